@@ -1,0 +1,112 @@
+# Makefile: builds the chapters of the whitted ray tracer, renders their scenes, runs the tests.
+#
+#   make chapter-N      build chapter N (1..10) and render its scene to out/chapter-NN.png
+#   make chapters       build and render every written chapter
+#   make test           unit tests, image regression, POV-Ray agreement (installs what is missing)
+#   make test-sanitize  the same suite built with AddressSanitizer and UndefinedBehaviorSanitizer
+#   make references     re-render the reference images on purpose and say what changed
+#   make clean          remove build/ and out/
+#
+# Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
+# below), so a chapter that reaches for a later idea fails to link.
+
+# ---- dependencies: Debian packages, installed when missing --------------------------------------
+ifeq ($(filter clean help,$(MAKECMDGOALS)),)
+DEPS_READY := $(shell tools/install-deps.sh >&2 && echo yes)
+ifneq ($(DEPS_READY),yes)
+$(error missing packages: see the message above)
+endif
+endif
+
+# ---- flags -------------------------------------------------------------------------------------
+CC := gcc
+SAN ?= 0
+ifeq ($(SAN),1)
+BUILD := build/san
+OPT := -O1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+else
+BUILD := build
+OPT := -O2
+endif
+CFLAGS := -std=c11 -D_DEFAULT_SOURCE -g $(OPT) -Wall -Wextra -Werror -fopenmp -Icommon \
+          $(shell pkg-config --cflags stb)
+LDFLAGS := $(OPT) -fopenmp
+LDLIBS := $(shell pkg-config --libs stb) -lm
+CRITERION := $(shell pkg-config --cflags --libs criterion)
+
+# ---- what each chapter introduces ----------------------------------------------------------------
+MODULES_01 := stats camera image outfile scene povray render cli
+MODULES_02 := $(MODULES_01) sphere headlight
+MODULES_03 := $(MODULES_02) triangle mesh scene_meshes
+MODULES_04 := $(MODULES_03) plane
+CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane
+ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
+
+chapter_number = $(firstword $(subst -, ,$(1)))
+chapter_dir = $(filter $(1)-%,$(CHAPTERS))
+
+.PHONY: all chapters test test-unit test-sanitize references clean help models \
+        $(foreach n,1 2 3 4 5 6 7 8 9 10,chapter-$(n))
+.DEFAULT_GOAL := all
+.SECONDARY:
+
+all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c)))
+
+# ---- compiling ---------------------------------------------------------------------------------
+$(BUILD)/common/%.o: common/%.c | $(BUILD)/common
+	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/chapters/%.o: chapters/%/main.c | $(BUILD)/chapters
+	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
+	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests out:
+	mkdir -p $@
+
+-include $(wildcard $(BUILD)/*/*.d)
+
+# One link rule per chapter, with exactly that chapter's modules.
+define chapter_rules
+$(BUILD)/chapter-$(call chapter_number,$(1)): $(BUILD)/chapters/$(1).o \
+        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
+	$$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
+endef
+$(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
+
+# ---- running chapters --------------------------------------------------------------------------
+chapter-%: | out
+	@n=$$(printf '%02d' $*); \
+	if [ -z "$(filter $$n-%,$(CHAPTERS))" ] && ! ls -d chapters/$$n-* >/dev/null 2>&1; then \
+	    echo "chapter $* is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
+	$(MAKE) --no-print-directory $(BUILD)/chapter-$$n $(MODEL_DEPS_$*) && ./$(BUILD)/chapter-$$n
+
+chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
+
+# ---- tests -------------------------------------------------------------------------------------
+TEST_SOURCES := $(wildcard tests/test_*.c)
+TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
+
+$(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
+
+# A chapter-3 program that calls plane_intersect (chapter 4): must fail to link. Used by a test.
+$(BUILD)/layering-probe: tests/layering/probe.c \
+        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_03)))
+	$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
+
+test: all $(BUILD)/run-tests
+	WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
+
+test-sanitize:
+	$(MAKE) --no-print-directory SAN=1 test
+
+references: all
+	tools/bless-references.sh $(BUILD)
+
+clean:
+	rm -rf build out
+
+help:
+	@sed -n '2,12p' Makefile | sed 's/^# \{0,1\}//'

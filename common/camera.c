@@ -1,0 +1,50 @@
+/* camera.c: builds the camera basis and the primary ray of each pixel (chapter 1). */
+#include "camera.h"
+
+#include <stdio.h>
+
+/* Up vectors closer than this to the viewing direction (|sin angle| below it) give no usable basis. */
+#define CAMERA_MIN_UP_SINE 1e-9
+
+bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov_degrees, int width,
+                 int height, char *err, size_t err_size) {
+    vec3 view = vec3_sub(target, eye);
+    if (vec3_length(view) == 0.0) {
+        snprintf(err, err_size, "camera eye and target are the same point");
+        return false;
+    }
+    if (!(vfov_degrees > 0.0 && vfov_degrees < 180.0)) {
+        snprintf(err, err_size, "camera fov must be between 0 and 180 degrees, got %g", vfov_degrees);
+        return false;
+    }
+    if (width <= 0 || height <= 0) {
+        snprintf(err, err_size, "image size must be positive, got %d x %d", width, height);
+        return false;
+    }
+    vec3 forward = vec3_normalize(view);
+    vec3 side = vec3_cross(forward, up);
+    double up_length = vec3_length(up);
+    if (!(up_length > 0.0) || vec3_length(side) <= CAMERA_MIN_UP_SINE * up_length) {
+        snprintf(err, err_size, "camera up vector is zero or parallel to the viewing direction");
+        return false;
+    }
+    cam->eye = eye;
+    cam->forward = forward;
+    cam->right = vec3_normalize(side);
+    cam->up = vec3_cross(cam->right, forward);
+    cam->half_height = tan(vfov_degrees * M_PI / 360.0);
+    cam->half_width = cam->half_height * (double)width / (double)height;
+    cam->width = width;
+    cam->height = height;
+    return true;
+}
+
+ray camera_ray(const struct camera *cam, int i, int j) {
+    /* Pixel centre in [-1, 1] image-plane coordinates: x grows to the right, y grows upwards. */
+    double x = 2.0 * (i + 0.5) / cam->width - 1.0;
+    double y = 1.0 - 2.0 * (j + 0.5) / cam->height;
+    vec3 direction = cam->forward;
+    direction = vec3_add_scaled(direction, cam->right, x * cam->half_width);
+    direction = vec3_add_scaled(direction, cam->up, y * cam->half_height);
+    return (ray){cam->eye, vec3_normalize(direction)};
+}

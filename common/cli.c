@@ -1,0 +1,201 @@
+/* cli.c: the command line and the load-render-write sequence shared by all chapters (chapter 1). */
+#include "cli.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define CLI_ERROR_SIZE 1024  /* longest error message kept */
+#define CLI_MAX_THREADS 256  /* more threads than this is a typing mistake */
+
+struct options {
+    const char *scene;
+    char output[PATH_MAX];
+    const char *pov;
+    int width, height; /* 0 = as the scene says */
+    int threads;       /* 0 = all cores */
+    bool output_given; /* -o was used; otherwise the picture goes to out/ */
+    bool quiet;
+};
+
+static void print_usage(FILE *out, const struct chapter *ch, const char *program) {
+    fprintf(out,
+            "usage: %s [SCENE] [options]\n"
+            "Chapter %d (%s) of the whitted ray tracer: renders SCENE (default %s).\n"
+            "\n"
+            "options:\n"
+            "  -o FILE          write the picture to FILE (default out/chapter-%02d.png)\n"
+            "  --width N        override the scene's image width\n"
+            "  --height N       override the scene's image height\n"
+            "  --pov FILE       write the scene's POV-Ray twin to FILE instead of rendering\n"
+            "  --threads N      render on N threads (default: all cores)\n"
+            "  --quiet          print nothing but errors\n"
+            "  -h, --help       show this help\n"
+            "\n"
+            "exit status: 0 done, 1 bad scene or mesh file, 2 bad command line, 3 cannot write output\n",
+            program, ch->number, ch->title, ch->default_scene, ch->number);
+}
+
+/* Reads a whole number in [lo, hi] for option `name`. */
+static bool option_int(const char *name, const char *text, int lo, int hi, int *out) {
+    char *end = NULL;
+    errno = 0;
+    long value = text == NULL ? 0 : strtol(text, &end, 10);
+    if (text == NULL || end == text || *end != '\0' || errno != 0 || value < lo || value > hi) {
+        fprintf(stderr, "%s needs a whole number from %d to %d, got '%s'\n", name, lo, hi,
+                text == NULL ? "" : text);
+        return false;
+    }
+    *out = (int)value;
+    return true;
+}
+
+/* Fills *o from the command line. Returns CLI_OK, CLI_USAGE on an error (message printed), or -1 when
+ * --help was printed and the program should stop successfully. */
+static int parse_options(const struct chapter *ch, int argc, char **argv, struct options *o) {
+    memset(o, 0, sizeof *o);
+    o->scene = ch->default_scene;
+    snprintf(o->output, sizeof o->output, "out/chapter-%02d.png", ch->number);
+    bool scene_given = false;
+    for (int k = 1; k < argc; k++) {
+        const char *arg = argv[k];
+        const char *value = k + 1 < argc ? argv[k + 1] : NULL;
+        bool takes_value = true;
+        if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
+            print_usage(stdout, ch, argv[0]);
+            return -1;
+        } else if (strcmp(arg, "--quiet") == 0) {
+            o->quiet = true;
+            takes_value = false;
+        } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0) {
+            if (value == NULL || value[0] == '\0') {
+                fprintf(stderr, "%s needs a file name\n", arg);
+                return CLI_USAGE;
+            }
+            if (strcmp(arg, "-o") == 0) {
+                snprintf(o->output, sizeof o->output, "%s", value);
+                o->output_given = true;
+            }
+            else {
+                o->pov = value;
+            }
+        } else if (strcmp(arg, "--width") == 0) {
+            if (!option_int(arg, value, 1, IMAGE_MAX_SIDE, &o->width))
+                return CLI_USAGE;
+        } else if (strcmp(arg, "--height") == 0) {
+            if (!option_int(arg, value, 1, IMAGE_MAX_SIDE, &o->height))
+                return CLI_USAGE;
+        } else if (strcmp(arg, "--threads") == 0) {
+            if (!option_int(arg, value, 1, CLI_MAX_THREADS, &o->threads))
+                return CLI_USAGE;
+        } else if (arg[0] == '-' && arg[1] != '\0') {
+            fprintf(stderr, "unknown option '%s'\n", arg);
+            return CLI_USAGE;
+        } else if (scene_given) {
+            fprintf(stderr, "only one scene file, please (got '%s' and '%s')\n", o->scene, arg);
+            return CLI_USAGE;
+        } else {
+            o->scene = arg;
+            scene_given = true;
+            takes_value = false;
+        }
+        if (takes_value)
+            k++;
+    }
+    return CLI_OK;
+}
+
+static double seconds_now(void) {
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
+}
+
+/* Loads the scene and everything the chapter needs; returns the world for trace, or NULL. */
+static void *load_world(const struct chapter *ch, const struct options *o, struct scene *s, char *err,
+                        size_t err_size) {
+    if (!scene_load(o->scene, s, err, err_size))
+        return NULL;
+    if (o->width > 0)
+        s->width = o->width;
+    if (o->height > 0)
+        s->height = o->height;
+    scene_drop_unsupported(s, ch->features, ch->number, o->quiet ? NULL : stderr);
+    if (ch->load_meshes != NULL && !ch->load_meshes(s, err, err_size))
+        return NULL;
+    if (ch->prepare == NULL)
+        return s;
+    return ch->prepare(s, err, err_size);
+}
+
+static int render_and_write(const struct chapter *ch, const struct options *o, const struct scene *s,
+                            const void *world) {
+    char err[CLI_ERROR_SIZE];
+    struct camera cam;
+    if (!camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, err, sizeof err)) {
+        fprintf(stderr, "%s: %s\n", s->path, err);
+        return CLI_BAD_INPUT;
+    }
+    struct image img;
+    if (!image_create(&img, s->width, s->height)) {
+        fprintf(stderr, "out of memory for a %d x %d image\n", s->width, s->height);
+        return CLI_OUTPUT_FAILED;
+    }
+    if (!o->output_given)
+        mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
+    struct stats total = {0};
+    struct render_job job = {.camera = &cam, .trace = ch->trace, .world = world, .threads = o->threads,
+                             .progress = !o->quiet && isatty(STDERR_FILENO)};
+    double started = seconds_now();
+    render_image(&job, &img, &total);
+    double elapsed = seconds_now() - started;
+    bool written = image_write_png(&img, o->output, err, sizeof err);
+    image_free(&img);
+    if (!written) {
+        fprintf(stderr, "%s\n", err);
+        return CLI_OUTPUT_FAILED;
+    }
+    if (!o->quiet) {
+        printf("chapter %d (%s): wrote %s (%d x %d) in %.3f s\n", ch->number, ch->title, o->output,
+               s->width, s->height, elapsed);
+        stats_print(stdout, &total);
+    }
+    return CLI_OK;
+}
+
+int cli_run(const struct chapter *ch, int argc, char **argv) {
+    struct options o;
+    int status = parse_options(ch, argc, argv, &o);
+    if (status < 0)
+        return CLI_OK;
+    if (status != CLI_OK) {
+        print_usage(stderr, ch, argv[0]);
+        return status;
+    }
+    char err[CLI_ERROR_SIZE];
+    struct scene s;
+    void *world = load_world(ch, &o, &s, err, sizeof err);
+    if (world == NULL) {
+        fprintf(stderr, "%s\n", err);
+        scene_free(&s);
+        return CLI_BAD_INPUT;
+    }
+    if (o.pov != NULL) {
+        status = povray_write_scene(&s, ch->lighting, o.pov, err, sizeof err) ? CLI_OK : CLI_OUTPUT_FAILED;
+        if (status != CLI_OK)
+            fprintf(stderr, "%s\n", err);
+        else if (!o.quiet)
+            printf("chapter %d (%s): wrote POV-Ray twin %s\n", ch->number, ch->title, o.pov);
+    } else {
+        status = render_and_write(ch, &o, &s, world);
+    }
+    if (ch->release != NULL && world != &s)
+        ch->release(world);
+    scene_free(&s);
+    return status;
+}

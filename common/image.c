@@ -1,0 +1,89 @@
+/* image.c: framebuffer allocation, output quantisation, and PNG files through stb (chapter 1). */
+#include "image.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "outfile.h"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+bool image_create(struct image *img, int width, int height) {
+    img->width = img->height = 0;
+    img->pixels = NULL;
+    if (width < 1 || height < 1 || width > IMAGE_MAX_SIDE || height > IMAGE_MAX_SIDE)
+        return false;
+    img->pixels = calloc((size_t)width * (size_t)height, sizeof *img->pixels);
+    if (img->pixels == NULL)
+        return false;
+    img->width = width;
+    img->height = height;
+    return true;
+}
+
+void image_free(struct image *img) {
+    free(img->pixels);
+    img->pixels = NULL;
+    img->width = img->height = 0;
+}
+
+uint8_t image_quantize(double v) {
+    if (!(v > 0.0)) /* also catches NaN */
+        return 0;
+    if (v >= 1.0)
+        return 255;
+    return (uint8_t)floor(255.0 * v + 0.5);
+}
+
+/* stb_image_write hands its output to this callback piece by piece; we append it to the file. */
+static void write_to_file(void *context, void *data, int size) {
+    FILE *file = context;
+    fwrite(data, 1, (size_t)size, file);
+}
+
+bool image_write_png_bytes(const uint8_t *rgb, int width, int height, const char *path, char *err,
+                           size_t err_size) {
+    struct outfile out;
+    if (!outfile_open(&out, path, err, err_size))
+        return false;
+    if (stbi_write_png_to_func(write_to_file, out.file, width, height, 3, rgb, width * 3) == 0) {
+        outfile_abandon(&out);
+        snprintf(err, err_size, "%s: cannot write: PNG encoding failed", path);
+        return false;
+    }
+    return outfile_commit(&out, err, err_size);
+}
+
+bool image_write_png(const struct image *img, const char *path, char *err, size_t err_size) {
+    size_t count = (size_t)img->width * (size_t)img->height;
+    uint8_t *rgb = malloc(count * 3);
+    if (rgb == NULL) {
+        snprintf(err, err_size, "%s: out of memory", path);
+        return false;
+    }
+    for (size_t k = 0; k < count; k++) {
+        rgb[3 * k + 0] = image_quantize(img->pixels[k].x);
+        rgb[3 * k + 1] = image_quantize(img->pixels[k].y);
+        rgb[3 * k + 2] = image_quantize(img->pixels[k].z);
+    }
+    bool ok = image_write_png_bytes(rgb, img->width, img->height, path, err, err_size);
+    free(rgb);
+    return ok;
+}
+
+uint8_t *image_read_rgb(const char *path, int *width, int *height, char *err, size_t err_size) {
+    int channels = 0;
+    uint8_t *rgb = stbi_load(path, width, height, &channels, 3);
+    if (rgb == NULL) {
+        snprintf(err, err_size, "%s: cannot read image: %s", path, stbi_failure_reason());
+        return NULL;
+    }
+    if (*width > IMAGE_MAX_SIDE || *height > IMAGE_MAX_SIDE) {
+        snprintf(err, err_size, "%s: image larger than %d pixels on a side", path, IMAGE_MAX_SIDE);
+        stbi_image_free(rgb);
+        return NULL;
+    }
+    return rgb;
+}

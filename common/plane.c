@@ -1,0 +1,32 @@
+/* plane.c: ray-plane intersection (chapter 4).
+ *
+ * Putting P = O + tD into n . P = d gives t = (d - n . O) / (n . D). When n . D = 0 the ray runs
+ * parallel to the plane and never meets it (or lies in it, which we also call a miss: a plane seen
+ * exactly edge-on covers no area of the picture). */
+#include "plane.h"
+
+#include "stats.h"
+
+bool plane_closest(const struct plane *planes, size_t count, const ray *r, double t_min, struct hit *h) {
+    const struct plane *nearest = NULL;
+    for (size_t k = 0; k < count; k++)
+        if (plane_intersect(&planes[k], r, t_min, h->t, &h->t))
+            nearest = &planes[k];
+    if (nearest == NULL)
+        return false;
+    h->normal = nearest->normal;
+    h->material = nearest->material;
+    return true;
+}
+
+bool plane_intersect(const struct plane *p, const ray *r, double t_min, double t_max, double *t) {
+    stats_thread.plane_tests++;
+    double denominator = vec3_dot(p->normal, r->direction);
+    if (denominator == 0.0)
+        return false;
+    double hit_t = (p->distance - vec3_dot(p->normal, r->origin)) / denominator;
+    if (!(hit_t > t_min && hit_t < t_max))
+        return false;
+    *t = hit_t;
+    return true;
+}

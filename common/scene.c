@@ -1,0 +1,626 @@
+/* scene.c: the scene file parser, one directive per line (chapter 1; format in docs/scene-format.md).
+ *
+ * Each line is a directive name, perhaps a positional argument (a material's name, a mesh's file, the
+ * image size, a colour), then `key value...` pairs in any order. Parsing is table-driven: every
+ * directive lists its keys and how many numbers each takes, and one routine reads any line against its
+ * table. Every error names the file and line, and nothing half-parsed escapes: on error the scene is
+ * freed and left empty. */
+#include "scene.h"
+
+#include "image.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define LINE_MAX_TOKENS 48      /* the longest directive (a triangle with material) needs 13 */
+#define SCENE_FILE_MAX_BYTES (64L * 1024 * 1024) /* scene files are small; meshes live elsewhere */
+#define MAX_DEPTH_LIMIT 64      /* deeper recursion adds nothing visible and only costs time */
+#define DEFAULT_MAX_DEPTH 5     /* POV-Ray's default max_trace_level */
+
+/* Where we are while parsing: for messages. */
+struct parser {
+    const char *name;
+    int line;
+    char *err;
+    size_t err_size;
+};
+
+/* Writes "name:line: message" into the error buffer and returns false, so callers can
+ * `return fail(p, ...)`. */
+static bool fail(const struct parser *p, const char *format, ...) {
+    int used = snprintf(p->err, p->err_size, "%s:%d: ", p->name, p->line);
+    if (used < 0 || (size_t)used >= p->err_size)
+        return false;
+    va_list args;
+    va_start(args, format);
+    vsnprintf(p->err + used, p->err_size - (size_t)used, format, args);
+    va_end(args);
+    return false;
+}
+
+/* ---- numbers ----------------------------------------------------------------------------------- */
+
+static bool parse_number(const struct parser *p, const char *token, const char *what, double *out) {
+    char *end = NULL;
+    errno = 0;
+    double value = strtod(token, &end);
+    if (end == token || *end != '\0')
+        return fail(p, "expected a number for '%s', got '%s'", what, token);
+    if (!isfinite(value) || errno == ERANGE)
+        return fail(p, "'%s' is not a finite number (for '%s')", token, what);
+    *out = value;
+    return true;
+}
+
+static bool parse_int(const struct parser *p, const char *token, const char *what, long lo, long hi,
+                      int *out) {
+    char *end = NULL;
+    errno = 0;
+    long value = strtol(token, &end, 10);
+    if (end == token || *end != '\0' || errno == ERANGE)
+        return fail(p, "expected a whole number for '%s', got '%s'", what, token);
+    if (value < lo || value > hi)
+        return fail(p, "'%s' must be between %ld and %ld, got %ld", what, lo, hi, value);
+    *out = (int)value;
+    return true;
+}
+
+/* ---- key tables -------------------------------------------------------------------------------- */
+
+/* One key a directive accepts: its name and how many values follow it (0 = one word, not a number). */
+struct key_spec {
+    const char *name;
+    int count;
+};
+
+#define KEY_MAX 10          /* no directive has more keys */
+#define KEY_MAX_NUMBERS 3   /* no key takes more numbers */
+
+/* The values found for each key of a table, by position in the table. */
+struct key_values {
+    bool present[KEY_MAX];
+    double number[KEY_MAX][KEY_MAX_NUMBERS];
+    const char *word[KEY_MAX];
+};
+
+/* Reads tokens[0..count) as key/value pairs against `specs` (n_specs entries). Rejects unknown keys,
+ * keys given twice and keys with too few values. */
+static bool parse_keys(const struct parser *p, const char *directive, char **tokens, int count,
+                       const struct key_spec *specs, int n_specs, struct key_values *kv) {
+    memset(kv, 0, sizeof *kv);
+    int k = 0;
+    while (k < count) {
+        int which = -1;
+        for (int s = 0; s < n_specs; s++)
+            if (strcmp(tokens[k], specs[s].name) == 0)
+                which = s;
+        if (which < 0) {
+            if (strcmp(tokens[k], "color") == 0)
+                return fail(p, "unknown key 'color' for %s (the format spells it 'colour')", directive);
+            return fail(p, "unknown key '%s' for %s", tokens[k], directive);
+        }
+        if (kv->present[which])
+            return fail(p, "'%s' given twice", specs[which].name);
+        kv->present[which] = true;
+        int needed = specs[which].count == 0 ? 1 : specs[which].count;
+        if (k + needed > count - 1) { /* the values would be tokens k+1 .. k+needed */
+            if (specs[which].count <= 1)
+                return fail(p, "'%s' needs a value", specs[which].name);
+            return fail(p, "'%s' needs %d numbers", specs[which].name, specs[which].count);
+        }
+        if (specs[which].count == 0) {
+            kv->word[which] = tokens[k + 1];
+        } else {
+            for (int n = 0; n < specs[which].count; n++)
+                if (!parse_number(p, tokens[k + 1 + n], specs[which].name, &kv->number[which][n]))
+                    return false;
+        }
+        k += 1 + needed;
+    }
+    return true;
+}
+
+static vec3 key_vec3(const struct key_values *kv, int key) {
+    return vec3_make(kv->number[key][0], kv->number[key][1], kv->number[key][2]);
+}
+
+/* Fails unless every key named in `required` (indices into the table, ending with -1) is present. */
+static bool require_keys(const struct parser *p, const char *directive, const struct key_spec *specs,
+                         const struct key_values *kv, const int *required) {
+    for (int r = 0; required[r] >= 0; r++)
+        if (!kv->present[required[r]])
+            return fail(p, "%s needs '%s'", directive, specs[required[r]].name);
+    return true;
+}
+
+/* ---- growing arrays ---------------------------------------------------------------------------- */
+
+/* Makes room for one more element of `size` bytes in *items (holding *count), doubling the capacity
+ * when full. Returns the new, zeroed element, or NULL when memory runs out. */
+static void *grow(void *items_ptr, size_t *count, size_t size) {
+    void **items = items_ptr;
+    size_t n = *count;
+    /* The capacity is not stored: it is always the smallest power of two >= count (1 for an empty
+     * array), so the array is full exactly when count is 0 or a power of two. */
+    if ((n & (n - 1)) == 0) {
+        size_t capacity = n == 0 ? 1 : 2 * n;
+        void *bigger = realloc(*items, capacity * size);
+        if (bigger == NULL)
+            return NULL;
+        *items = bigger;
+    }
+    char *slot = (char *)*items + n * size;
+    memset(slot, 0, size);
+    *count = n + 1;
+    return slot;
+}
+
+/* ---- directives -------------------------------------------------------------------------------- */
+
+static bool material_reference(const struct parser *p, const struct scene *s,
+                               const struct key_values *kv, int key, int *material) {
+    *material = 0;
+    if (!kv->present[key])
+        return true;
+    int found = scene_find_material(s, kv->word[key]);
+    if (found < 0)
+        return fail(p, "unknown material '%s' (define it with a material line first)", kv->word[key]);
+    *material = found;
+    return true;
+}
+
+static bool parse_camera(const struct parser *p, struct scene *s, char **tok, int n, bool *seen) {
+    enum { EYE, TARGET, UP, FOV };
+    static const struct key_spec specs[] = {{"eye", 3}, {"target", 3}, {"up", 3}, {"fov", 1}};
+    static const int required[] = {EYE, TARGET, FOV, -1};
+    struct key_values kv;
+    if (*seen)
+        return fail(p, "a second camera (a scene has one)");
+    if (!parse_keys(p, "camera", tok, n, specs, 4, &kv) ||
+        !require_keys(p, "camera", specs, &kv, required))
+        return false;
+    s->eye = key_vec3(&kv, EYE);
+    s->target = key_vec3(&kv, TARGET);
+    s->up = kv.present[UP] ? key_vec3(&kv, UP) : vec3_make(0, 1, 0);
+    s->fov = kv.number[FOV][0];
+    if (!(s->fov > 0.0 && s->fov < 180.0))
+        return fail(p, "camera fov must be between 0 and 180 degrees, got %g", s->fov);
+    if (vec3_length(vec3_sub(s->target, s->eye)) == 0.0)
+        return fail(p, "camera eye and target are the same point");
+    if (vec3_length(vec3_cross(vec3_sub(s->target, s->eye), s->up)) == 0.0)
+        return fail(p, "camera up is zero or parallel to the viewing direction");
+    *seen = true;
+    return true;
+}
+
+/* Reads exactly three numbers (a colour) after the directive name. */
+static bool parse_triple(const struct parser *p, const char *directive, char **tok, int n, vec3 *out) {
+    double c[3];
+    if (n != 3)
+        return fail(p, "%s needs 3 numbers, got %d", directive, n);
+    for (int k = 0; k < 3; k++)
+        if (!parse_number(p, tok[k], directive, &c[k]))
+            return false;
+    *out = vec3_make(c[0], c[1], c[2]);
+    return true;
+}
+
+static bool parse_material(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { COLOUR, AMBIENT, DIFFUSE, PHONG, PHONG_SIZE, REFLECTION, FILTER, TRANSMIT, IOR };
+    static const struct key_spec specs[] = {
+        {"colour", 3}, {"ambient", 1}, {"diffuse", 1},  {"phong", 1}, {"phong_size", 1},
+        {"reflection", 1}, {"filter", 1}, {"transmit", 1}, {"ior", 1}};
+    struct key_values kv;
+    if (n < 1)
+        return fail(p, "material needs a name");
+    if (strlen(tok[0]) >= SCENE_NAME_MAX)
+        return fail(p, "material name longer than %d characters", SCENE_NAME_MAX - 1);
+    if (scene_find_material(s, tok[0]) >= 0)
+        return fail(p, "material '%s' is already defined", tok[0]);
+    if (!parse_keys(p, "material", tok + 1, n - 1, specs, 9, &kv))
+        return false;
+    struct material m = s->materials[0]; /* unspecified keys keep the defaults */
+    snprintf(m.name, sizeof m.name, "%s", tok[0]);
+    double *scalars[] = {NULL, &m.ambient, &m.diffuse, &m.phong, &m.phong_size, &m.reflection,
+                         &m.filter, &m.transmit, &m.ior};
+    for (int k = AMBIENT; k <= IOR; k++)
+        if (kv.present[k])
+            *scalars[k] = kv.number[k][0];
+    if (kv.present[COLOUR])
+        m.colour = key_vec3(&kv, COLOUR);
+    for (int k = AMBIENT; k <= TRANSMIT; k++)
+        if (*scalars[k] < 0.0)
+            return fail(p, "material '%s': %s must not be negative", m.name, specs[k].name);
+    if (m.colour.x < 0.0 || m.colour.y < 0.0 || m.colour.z < 0.0)
+        return fail(p, "material '%s': colour must not be negative", m.name);
+    if (m.filter + m.transmit > 1.0)
+        return fail(p, "material '%s': filter + transmit must not exceed 1", m.name);
+    if (!(m.phong_size > 0.0))
+        return fail(p, "material '%s': phong_size must be positive", m.name);
+    if (!(m.ior > 0.0))
+        return fail(p, "material '%s': ior must be positive", m.name);
+    struct material *slot = grow(&s->materials, &s->material_count, sizeof *slot);
+    if (slot == NULL)
+        return fail(p, "out of memory");
+    *slot = m;
+    return true;
+}
+
+static bool parse_light(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { POSITION, COLOUR };
+    static const struct key_spec specs[] = {{"position", 3}, {"colour", 3}};
+    static const int required[] = {POSITION, -1};
+    struct key_values kv;
+    if (!parse_keys(p, "light", tok, n, specs, 2, &kv) || !require_keys(p, "light", specs, &kv, required))
+        return false;
+    struct light *light = grow(&s->lights, &s->light_count, sizeof *light);
+    if (light == NULL)
+        return fail(p, "out of memory");
+    light->position = key_vec3(&kv, POSITION);
+    light->colour = kv.present[COLOUR] ? key_vec3(&kv, COLOUR) : vec3_make(1, 1, 1);
+    return true;
+}
+
+static bool parse_sphere(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { CENTRE, RADIUS, MATERIAL };
+    static const struct key_spec specs[] = {{"centre", 3}, {"radius", 1}, {"material", 0}};
+    static const int required[] = {CENTRE, RADIUS, -1};
+    struct key_values kv;
+    int material;
+    if (!parse_keys(p, "sphere", tok, n, specs, 3, &kv) ||
+        !require_keys(p, "sphere", specs, &kv, required) || !material_reference(p, s, &kv, MATERIAL, &material))
+        return false;
+    if (!(kv.number[RADIUS][0] > 0.0))
+        return fail(p, "sphere radius must be positive, got %g", kv.number[RADIUS][0]);
+    struct sphere *sphere = grow(&s->spheres, &s->sphere_count, sizeof *sphere);
+    if (sphere == NULL)
+        return fail(p, "out of memory");
+    *sphere = (struct sphere){key_vec3(&kv, CENTRE), kv.number[RADIUS][0], material};
+    return true;
+}
+
+/* A plane comes in three forms: `normal N distance d` (POV-Ray's N.P = d), `normal N point P`, or the
+ * seed's three points `a A b B c C`. All are stored as a unit normal and a distance. */
+static bool parse_plane(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { NORMAL, DISTANCE, POINT, A, B, C, MATERIAL };
+    static const struct key_spec specs[] = {{"normal", 3}, {"distance", 1}, {"point", 3}, {"a", 3},
+                                            {"b", 3},      {"c", 3},        {"material", 0}};
+    struct key_values kv;
+    int material;
+    if (!parse_keys(p, "plane", tok, n, specs, 7, &kv) || !material_reference(p, s, &kv, MATERIAL, &material))
+        return false;
+    bool by_distance = kv.present[NORMAL] && kv.present[DISTANCE] && !kv.present[POINT];
+    bool by_point = kv.present[NORMAL] && kv.present[POINT] && !kv.present[DISTANCE];
+    bool by_points = kv.present[A] && kv.present[B] && kv.present[C] && !kv.present[NORMAL] &&
+                     !kv.present[DISTANCE] && !kv.present[POINT];
+    if (by_distance + by_point + by_points != 1)
+        return fail(p, "plane needs 'normal' with 'distance' or 'point', or three points 'a', 'b', 'c'");
+    vec3 normal;
+    vec3 point = vec3_make(0, 0, 0);
+    if (by_points) {
+        point = key_vec3(&kv, A);
+        normal = vec3_cross(vec3_sub(key_vec3(&kv, B), point), vec3_sub(key_vec3(&kv, C), point));
+        if (vec3_length(normal) == 0.0)
+            return fail(p, "plane points a, b, c lie on one line");
+    } else {
+        normal = key_vec3(&kv, NORMAL);
+        if (vec3_length(normal) == 0.0)
+            return fail(p, "plane normal must not be zero");
+        point = kv.present[POINT] ? key_vec3(&kv, POINT) : point;
+    }
+    struct plane *plane = grow(&s->planes, &s->plane_count, sizeof *plane);
+    if (plane == NULL)
+        return fail(p, "out of memory");
+    plane->normal = vec3_normalize(normal);
+    plane->distance = by_distance ? kv.number[DISTANCE][0] : vec3_dot(plane->normal, point);
+    plane->material = material;
+    return true;
+}
+
+static bool parse_triangle(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { A, B, C, MATERIAL };
+    static const struct key_spec specs[] = {{"a", 3}, {"b", 3}, {"c", 3}, {"material", 0}};
+    static const int required[] = {A, B, C, -1};
+    struct key_values kv;
+    int material;
+    if (!parse_keys(p, "triangle", tok, n, specs, 4, &kv) ||
+        !require_keys(p, "triangle", specs, &kv, required) || !material_reference(p, s, &kv, MATERIAL, &material))
+        return false;
+    struct triangle *triangle = grow(&s->triangles, &s->triangle_count, sizeof *triangle);
+    if (triangle == NULL)
+        return fail(p, "out of memory");
+    *triangle = (struct triangle){key_vec3(&kv, A), key_vec3(&kv, B), key_vec3(&kv, C), material};
+    return true;
+}
+
+static bool parse_box(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { MIN, MAX, MATERIAL };
+    static const struct key_spec specs[] = {{"min", 3}, {"max", 3}, {"material", 0}};
+    static const int required[] = {MIN, MAX, -1};
+    struct key_values kv;
+    int material;
+    if (!parse_keys(p, "box", tok, n, specs, 3, &kv) || !require_keys(p, "box", specs, &kv, required) ||
+        !material_reference(p, s, &kv, MATERIAL, &material))
+        return false;
+    vec3 lo = key_vec3(&kv, MIN), hi = key_vec3(&kv, MAX);
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+        return fail(p, "box min must be below max on every axis");
+    struct box *box = grow(&s->boxes, &s->box_count, sizeof *box);
+    if (box == NULL)
+        return fail(p, "out of memory");
+    *box = (struct box){lo, hi, material};
+    return true;
+}
+
+/* Joins the scene file's folder and a relative mesh path; absolute paths are kept. */
+static char *resolve_path(const char *scene_name, const char *path) {
+    const char *slash = strrchr(scene_name, '/');
+    size_t folder = (path[0] == '/' || slash == NULL) ? 0 : (size_t)(slash - scene_name) + 1;
+    char *joined = malloc(folder + strlen(path) + 1);
+    if (joined != NULL) {
+        memcpy(joined, scene_name, folder);
+        strcpy(joined + folder, path);
+    }
+    return joined;
+}
+
+static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { SCALE, ROTATE, TRANSLATE, MATERIAL };
+    static const struct key_spec specs[] = {{"scale", 1}, {"rotate", 3}, {"translate", 3}, {"material", 0}};
+    struct key_values kv;
+    int material;
+    if (n < 1)
+        return fail(p, "mesh needs a file name");
+    if (!parse_keys(p, "mesh", tok + 1, n - 1, specs, 4, &kv) ||
+        !material_reference(p, s, &kv, MATERIAL, &material))
+        return false;
+    double scale = kv.present[SCALE] ? kv.number[SCALE][0] : 1.0;
+    if (!(scale > 0.0))
+        return fail(p, "mesh scale must be positive, got %g", scale);
+    struct scene_mesh *mesh = grow(&s->meshes, &s->mesh_count, sizeof *mesh);
+    if (mesh == NULL)
+        return fail(p, "out of memory");
+    mesh->path = resolve_path(p->name, tok[0]);
+    if (mesh->path == NULL)
+        return fail(p, "out of memory");
+    mesh->scale = scale;
+    mesh->rotate = kv.present[ROTATE] ? key_vec3(&kv, ROTATE) : vec3_make(0, 0, 0);
+    mesh->translate = kv.present[TRANSLATE] ? key_vec3(&kv, TRANSLATE) : vec3_make(0, 0, 0);
+    mesh->material = material;
+    mesh->line = p->line;
+    return true;
+}
+
+/* ---- lines and files --------------------------------------------------------------------------- */
+
+/* Splits `line` in place at white space, stopping at '#'. Returns the token count, or -1 if there are
+ * more than `max`. */
+static int split_tokens(char *line, char **tokens, int max) {
+    int count = 0;
+    char *cursor = line;
+    for (;;) {
+        while (*cursor == ' ' || *cursor == '\t' || *cursor == '\r' || *cursor == '\v' || *cursor == '\f')
+            cursor++;
+        if (*cursor == '\0' || *cursor == '#')
+            return count;
+        if (count == max)
+            return -1;
+        tokens[count++] = cursor;
+        while (*cursor != '\0' && *cursor != '#' && *cursor != ' ' && *cursor != '\t' && *cursor != '\r' &&
+               *cursor != '\v' && *cursor != '\f')
+            cursor++;
+        if (*cursor == '#') {
+            *cursor = '\0';
+            return count;
+        }
+        if (*cursor != '\0')
+            *cursor++ = '\0';
+    }
+}
+
+static bool parse_line(const struct parser *p, struct scene *s, char **tok, int n, bool *camera_seen,
+                       bool *image_seen) {
+    const char *directive = tok[0];
+    char **args = tok + 1;
+    int count = n - 1;
+    if (strcmp(directive, "camera") == 0)
+        return parse_camera(p, s, args, count, camera_seen);
+    if (strcmp(directive, "image") == 0) {
+        if (*image_seen)
+            return fail(p, "a second image line");
+        if (count != 2)
+            return fail(p, "image needs a width and a height");
+        *image_seen = true;
+        return parse_int(p, args[0], "image width", 1, IMAGE_MAX_SIDE, &s->width) &&
+               parse_int(p, args[1], "image height", 1, IMAGE_MAX_SIDE, &s->height);
+    }
+    if (strcmp(directive, "background") == 0)
+        return parse_triple(p, "background", args, count, &s->background);
+    if (strcmp(directive, "ambient_light") == 0)
+        return parse_triple(p, "ambient_light", args, count, &s->ambient_light);
+    if (strcmp(directive, "max_depth") == 0) {
+        if (count != 1)
+            return fail(p, "max_depth needs one whole number");
+        return parse_int(p, args[0], "max_depth", 1, MAX_DEPTH_LIMIT, &s->max_depth);
+    }
+    if (strcmp(directive, "shadow_offset") == 0) {
+        if (count != 1 || (strcmp(args[0], "on") != 0 && strcmp(args[0], "off") != 0))
+            return fail(p, "shadow_offset needs 'on' or 'off'");
+        s->shadow_offset = strcmp(args[0], "on") == 0;
+        return true;
+    }
+    if (strcmp(directive, "material") == 0)
+        return parse_material(p, s, args, count);
+    if (strcmp(directive, "light") == 0)
+        return parse_light(p, s, args, count);
+    if (strcmp(directive, "sphere") == 0)
+        return parse_sphere(p, s, args, count);
+    if (strcmp(directive, "plane") == 0)
+        return parse_plane(p, s, args, count);
+    if (strcmp(directive, "triangle") == 0)
+        return parse_triangle(p, s, args, count);
+    if (strcmp(directive, "box") == 0)
+        return parse_box(p, s, args, count);
+    if (strcmp(directive, "mesh") == 0)
+        return parse_mesh(p, s, args, count);
+    return fail(p, "unknown directive '%s'", directive);
+}
+
+/* Sets the values a scene has before its first line. */
+static bool scene_defaults(struct scene *s, const char *name) {
+    memset(s, 0, sizeof *s);
+    s->path = malloc(strlen(name) + 1);
+    struct material *fallback = grow(&s->materials, &s->material_count, sizeof *fallback);
+    if (s->path == NULL || fallback == NULL)
+        return false;
+    strcpy(s->path, name);
+    /* POV-Ray's finish defaults, but a white pigment (POV-Ray's default pigment is black). */
+    *fallback = (struct material){.name = "default", .colour = {1, 1, 1}, .ambient = 0.1, .diffuse = 0.6,
+                                  .phong = 0.0, .phong_size = 40.0, .ior = 1.0};
+    s->up = vec3_make(0, 1, 0);
+    s->ambient_light = vec3_make(1, 1, 1);
+    s->max_depth = DEFAULT_MAX_DEPTH;
+    s->shadow_offset = true;
+    return true;
+}
+
+bool scene_parse(const char *name, const char *text, struct scene *s, char *err, size_t err_size) {
+    struct parser p = {name, 0, err, err_size};
+    char *copy = malloc(strlen(text) + 1);
+    if (copy == NULL || !scene_defaults(s, name)) {
+        free(copy);
+        scene_free(s);
+        snprintf(err, err_size, "%s: out of memory", name);
+        return false;
+    }
+    strcpy(copy, text);
+    bool ok = true, camera_seen = false, image_seen = false;
+    char *line = copy;
+    while (ok && line != NULL) {
+        char *newline = strchr(line, '\n');
+        if (newline != NULL)
+            *newline = '\0';
+        p.line++;
+        char *tokens[LINE_MAX_TOKENS];
+        int n = split_tokens(line, tokens, LINE_MAX_TOKENS);
+        if (n < 0)
+            ok = fail(&p, "too many words on one line (at most %d)", LINE_MAX_TOKENS);
+        else if (n > 0)
+            ok = parse_line(&p, s, tokens, n, &camera_seen, &image_seen);
+        line = newline != NULL ? newline + 1 : NULL;
+    }
+    free(copy);
+    if (ok && !camera_seen)
+        ok = (snprintf(err, err_size, "%s: no camera line (a scene needs one)", name), false);
+    if (ok && !image_seen)
+        ok = (snprintf(err, err_size, "%s: no image line (a scene needs its size, e.g. 'image 320 240')", name),
+              false);
+    if (!ok)
+        scene_free(s);
+    return ok;
+}
+
+bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
+    memset(s, 0, sizeof *s);
+    FILE *file = fopen(path, "rb");
+    if (file == NULL) {
+        snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
+        return false;
+    }
+    long size = -1;
+    if (fseek(file, 0, SEEK_END) == 0)
+        size = ftell(file);
+    rewind(file);
+    if (size < 0 || size > SCENE_FILE_MAX_BYTES) {
+        snprintf(err, err_size, "%s: %s", path, size < 0 ? "cannot read (not a regular file?)" :
+                                                "larger than 64 MiB; not a scene file");
+        fclose(file);
+        return false;
+    }
+    char *text = malloc((size_t)size + 1);
+    size_t length = text == NULL ? 0 : fread(text, 1, (size_t)size, file);
+    bool read_error = text == NULL || ferror(file) || length != (size_t)size;
+    fclose(file);
+    if (read_error) {
+        snprintf(err, err_size, "%s: cannot read", path);
+        free(text);
+        return false;
+    }
+    text[length] = '\0';
+    if (strlen(text) != length) {
+        int line = 1;
+        for (const char *c = text; *c != '\0'; c++)
+            line += *c == '\n';
+        snprintf(err, err_size, "%s:%d: contains a zero byte; not a text file", path, line);
+        free(text);
+        return false;
+    }
+    bool ok = scene_parse(path, text, s, err, err_size);
+    free(text);
+    return ok;
+}
+
+void scene_free(struct scene *s) {
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        free(s->meshes[k].path);
+        free(s->meshes[k].mesh.vertices);
+        free(s->meshes[k].mesh.faces);
+    }
+    free(s->path);
+    free(s->materials);
+    free(s->lights);
+    free(s->spheres);
+    free(s->planes);
+    free(s->triangles);
+    free(s->boxes);
+    free(s->meshes);
+    memset(s, 0, sizeof *s);
+}
+
+int scene_find_material(const struct scene *s, const char *name) {
+    for (size_t k = 0; k < s->material_count; k++)
+        if (strcmp(s->materials[k].name, name) == 0)
+            return (int)k;
+    return -1;
+}
+
+/* Appends ", N thing(s)" to the note being built. */
+static void note_count(char *note, size_t size, size_t count, const char *one, const char *many) {
+    if (count == 0)
+        return;
+    size_t used = strlen(note);
+    snprintf(note + used, size - used, "%s%zu %s", used == 0 ? "" : ", ", count, count == 1 ? one : many);
+}
+
+void scene_drop_unsupported(struct scene *s, unsigned supported, int chapter, FILE *note) {
+    char what[256] = "";
+    if (!(supported & SCENE_SPHERES)) {
+        note_count(what, sizeof what, s->sphere_count, "sphere", "spheres");
+        s->sphere_count = 0;
+    }
+    if (!(supported & SCENE_TRIANGLES)) {
+        note_count(what, sizeof what, s->triangle_count, "triangle", "triangles");
+        note_count(what, sizeof what, s->mesh_count, "mesh", "meshes");
+        s->triangle_count = 0;
+        for (size_t k = 0; k < s->mesh_count; k++) {
+            free(s->meshes[k].path);
+            free(s->meshes[k].mesh.vertices);
+            free(s->meshes[k].mesh.faces);
+        }
+        s->mesh_count = 0;
+    }
+    if (!(supported & SCENE_PLANES)) {
+        note_count(what, sizeof what, s->plane_count, "plane", "planes");
+        s->plane_count = 0;
+    }
+    if (!(supported & SCENE_BOXES)) {
+        note_count(what, sizeof what, s->box_count, "box", "boxes");
+        s->box_count = 0;
+    }
+    if (what[0] != '\0' && note != NULL)
+        fprintf(note, "%s: chapter %d ignores %s (not introduced yet)\n", s->path, chapter, what);
+}

@@ -1,0 +1,103 @@
+/* scene.h: the scene description and its text file format, docs/scene-format.md (chapter 1).
+ *
+ * A scene file is parsed into plain data: camera, image size, colours, materials, lights and shapes.
+ * Parsing needs no intersection code, so chapter 1 can read the same files as chapter 10. Meshes are
+ * only named here (file and transform); chapters that draw them load them with scene_load_meshes. */
+#ifndef WHITTED_SCENE_H
+#define WHITTED_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "box.h"
+#include "mesh.h"
+#include "plane.h"
+#include "sphere.h"
+#include "triangle.h"
+
+#define SCENE_NAME_MAX 64 /* longest material name, including the terminating zero */
+
+struct material {
+    char name[SCENE_NAME_MAX];
+    vec3 colour;        /* pigment, each channel 0..1 */
+    double ambient;     /* share of the ambient light reflected (POV-Ray finish ambient) */
+    double diffuse;     /* Lambertian share (finish diffuse) */
+    double phong;       /* highlight strength (finish phong) */
+    double phong_size;  /* highlight exponent, larger is smaller and sharper (finish phong_size) */
+    double reflection;  /* mirror share added on top (finish reflection) */
+    double filter;      /* share of light passing through, tinted by colour (pigment filter) */
+    double transmit;    /* share of light passing through untinted (pigment transmit) */
+    double ior;         /* index of refraction of the inside (interior ior) */
+};
+
+struct light {
+    vec3 position;
+    vec3 colour; /* intensity per channel; no fall-off with distance */
+};
+
+/* A `mesh` directive: which file, how to place it, and (once loaded) its triangles in world space. */
+struct scene_mesh {
+    char *path;          /* resolved relative to the scene file's folder; owned */
+    double scale;        /* uniform scale, applied first */
+    vec3 rotate;         /* degrees about x, then y, then z, applied second */
+    vec3 translate;      /* applied last */
+    int material;
+    int line;            /* line of the directive, for messages */
+    struct mesh mesh;    /* empty until scene_load_meshes */
+};
+
+/* Which kinds of directive a chapter draws; see scene_drop_unsupported. */
+enum scene_feature {
+    SCENE_SPHERES = 1 << 0,
+    SCENE_TRIANGLES = 1 << 1, /* `triangle` and `mesh` */
+    SCENE_PLANES = 1 << 2,
+    SCENE_BOXES = 1 << 3,
+};
+
+struct scene {
+    char *path; /* the file it was read from; owned */
+    vec3 eye, target, up;
+    double fov;           /* vertical field of view, degrees */
+    int width, height;    /* image size in pixels */
+    vec3 background;      /* colour of rays that hit nothing */
+    vec3 ambient_light;   /* global ambient light (POV-Ray ambient_light), default 1 1 1 */
+    int max_depth;        /* rays of this level or deeper are black; the camera ray is level 1 */
+    bool shadow_offset;   /* false: shadow rays accept hits from t > 0 (chapter 7's acne demo) */
+
+    struct material *materials; size_t material_count; /* materials[0] is "default" */
+    struct light *lights;       size_t light_count;
+    struct sphere *spheres;     size_t sphere_count;
+    struct plane *planes;       size_t plane_count;
+    struct triangle *triangles; size_t triangle_count;
+    struct box *boxes;          size_t box_count;
+    struct scene_mesh *meshes;  size_t mesh_count;
+};
+
+/* Reads the scene file at `path` into *s. On success returns true; free *s with scene_free. On
+ * failure returns false, leaves *s empty and writes "file:line: what is wrong" into err. Mesh files
+ * are not opened here (see scene_load_meshes). */
+bool scene_load(const char *path, struct scene *s, char *err, size_t err_size);
+
+/* Parses scene text held in memory, as scene_load does for a file; `name` is used in messages and to
+ * resolve mesh paths (relative to its folder). Same results and ownership as scene_load. */
+bool scene_parse(const char *name, const char *text, struct scene *s, char *err, size_t err_size);
+
+/* Frees everything *s owns (meshes included) and leaves it empty. Safe on an empty scene. */
+void scene_free(struct scene *s);
+
+/* Loads the file of every mesh directive and moves its vertices into world space (scale, rotate,
+ * translate). Returns false at the first file that fails, with the mesh reader's "file:line: what is
+ * wrong" in err; meshes loaded so far stay owned by *s. Defined in scene_meshes.c (chapter 3 on). */
+bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
+
+/* Removes the directives of every kind not in `supported` (a mask of enum scene_feature), so that a
+ * chapter can read any scene file and draw what it knows. If something was removed, prints one line
+ * to `note` (when not NULL) saying what was ignored, e.g. "scene.txt: chapter 2 ignores 3 triangles,
+ * 1 plane (not introduced yet)". */
+void scene_drop_unsupported(struct scene *s, unsigned supported, int chapter, FILE *note);
+
+/* Returns the index of the material called `name`, or -1 if there is none. */
+int scene_find_material(const struct scene *s, const char *name);
+
+#endif

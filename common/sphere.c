@@ -1,0 +1,46 @@
+/* sphere.c: ray-sphere intersection by the quadratic formula (chapter 2).
+ *
+ * A point P is on the sphere when |P - C|^2 = r^2. Putting P = O + tD with |D| = 1 gives
+ * t^2 + 2bt + c = 0 with b = (O - C).D and c = |O - C|^2 - r^2, so t = -b -+ sqrt(b^2 - c). This
+ * "half b" form saves the factors of 2 and 4 of the textbook formula. */
+#include "sphere.h"
+
+#include "stats.h"
+
+bool sphere_intersect(const struct sphere *s, const ray *r, double t_min, double t_max, double *t) {
+    stats_thread.sphere_tests++;
+    vec3 oc = vec3_sub(r->origin, s->centre);
+    double b = vec3_dot(oc, r->direction);
+    double c = vec3_dot(oc, oc) - s->radius * s->radius;
+    double discriminant = b * b - c;
+    if (discriminant < 0.0)
+        return false; /* the line passes the sphere by */
+    double root = sqrt(discriminant);
+    double near = -b - root;
+    if (near > t_min && near < t_max) {
+        *t = near;
+        return true;
+    }
+    double far = -b + root; /* the near root was behind us or too close: we may be inside */
+    if (far > t_min && far < t_max) {
+        *t = far;
+        return true;
+    }
+    return false;
+}
+
+bool sphere_closest(const struct sphere *spheres, size_t count, const ray *r, double t_min, struct hit *h) {
+    const struct sphere *nearest = NULL;
+    for (size_t k = 0; k < count; k++)
+        if (sphere_intersect(&spheres[k], r, t_min, h->t, &h->t))
+            nearest = &spheres[k];
+    if (nearest == NULL)
+        return false;
+    h->normal = sphere_normal(nearest, ray_at(*r, h->t));
+    h->material = nearest->material;
+    return true;
+}
+
+vec3 sphere_normal(const struct sphere *s, vec3 p) {
+    return vec3_scale(vec3_sub(p, s->centre), 1.0 / s->radius);
+}

@@ -1,0 +1,29 @@
+/* sphere.h: the sphere and its ray intersection, the first shape of all (chapter 2). */
+#ifndef WHITTED_SPHERE_H
+#define WHITTED_SPHERE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "hit.h"
+#include "ray.h"
+
+struct sphere {
+    vec3 centre;
+    double radius; /* > 0 */
+    int material;  /* index into scene.materials */
+};
+
+/* Finds the nearest t with t_min < t < t_max where ray r meets the surface of s. r.direction must have
+ * unit length. Returns false when there is none (miss, tangent rays count as a hit at the tangent
+ * point). A ray starting inside the sphere hits the far side. Counts one sphere test. */
+bool sphere_intersect(const struct sphere *s, const ray *r, double t_min, double t_max, double *t);
+
+/* Tests r against spheres[0..count) for hits with t_min < t < h->t and keeps the nearest in *h (t,
+ * outward normal, material). Returns true when *h was replaced. */
+bool sphere_closest(const struct sphere *spheres, size_t count, const ray *r, double t_min, struct hit *h);
+
+/* Returns the outward unit normal of s at the surface point p. */
+vec3 sphere_normal(const struct sphere *s, vec3 p);
+
+#endif

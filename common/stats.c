@@ -1,0 +1,41 @@
+/* stats.c: per-thread ray and intersection-test counters, summed and printed (chapter 1). */
+#include "stats.h"
+
+#include <inttypes.h>
+#include <string.h>
+
+_Thread_local struct stats stats_thread;
+
+void stats_add(struct stats *into, const struct stats *from) {
+    into->primary_rays += from->primary_rays;
+    into->shadow_rays += from->shadow_rays;
+    into->reflected_rays += from->reflected_rays;
+    into->refracted_rays += from->refracted_rays;
+    into->sphere_tests += from->sphere_tests;
+    into->triangle_tests += from->triangle_tests;
+    into->plane_tests += from->plane_tests;
+    into->box_tests += from->box_tests;
+    into->node_visits += from->node_visits;
+}
+
+void stats_reset_thread(void) { memset(&stats_thread, 0, sizeof stats_thread); }
+
+static void print_counter(FILE *out, const char *name, uint64_t value) {
+    if (value != 0)
+        fprintf(out, "  %-16s %15" PRIu64 "\n", name, value);
+}
+
+void stats_print(FILE *out, const struct stats *s) {
+    uint64_t rays = s->primary_rays + s->shadow_rays + s->reflected_rays + s->refracted_rays;
+    fprintf(out, "counters:\n");
+    print_counter(out, "rays (all)", rays);
+    print_counter(out, "primary rays", s->primary_rays);
+    print_counter(out, "shadow rays", s->shadow_rays);
+    print_counter(out, "reflected rays", s->reflected_rays);
+    print_counter(out, "refracted rays", s->refracted_rays);
+    print_counter(out, "sphere tests", s->sphere_tests);
+    print_counter(out, "triangle tests", s->triangle_tests);
+    print_counter(out, "plane tests", s->plane_tests);
+    print_counter(out, "box tests", s->box_tests);
+    print_counter(out, "node visits", s->node_visits);
+}

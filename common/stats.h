@@ -1,0 +1,39 @@
+/* stats.h: counters for rays by kind and intersection tests by primitive kind (chapter 1).
+ *
+ * Counting is part of the lesson: every chapter prints how many rays it traced and how many
+ * intersection tests it ran, so the effect of each new idea is a number, not a feeling. The counters
+ * are per thread (no locks, no shared cache lines on the hot path); the renderer adds each thread's
+ * counters into a total with stats_add when the thread finishes. */
+#ifndef WHITTED_STATS_H
+#define WHITTED_STATS_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+struct stats {
+    uint64_t primary_rays;   /* one per pixel */
+    uint64_t shadow_rays;    /* one per (hit, light) pair, from chapter 7 */
+    uint64_t reflected_rays; /* from chapter 8 */
+    uint64_t refracted_rays; /* from chapter 8 */
+    uint64_t sphere_tests;
+    uint64_t triangle_tests;
+    uint64_t plane_tests;
+    uint64_t box_tests;      /* box primitives and bounding boxes (chapter 5 on) */
+    uint64_t node_visits;    /* kd-tree or BVH nodes visited (chapters 9 and 10) */
+};
+
+/* The calling thread's counters. Intersection code increments fields directly:
+ * stats_thread.sphere_tests++. */
+extern _Thread_local struct stats stats_thread;
+
+/* Adds every counter of `from` into `into`. Cannot fail. */
+void stats_add(struct stats *into, const struct stats *from);
+
+/* Resets the calling thread's counters to zero. Cannot fail. */
+void stats_reset_thread(void);
+
+/* Prints the non-zero counters of `s` to `out`, one aligned "name: value" line each, with the
+ * total number of rays. Cannot fail (write errors on `out` are the caller's to check). */
+void stats_print(FILE *out, const struct stats *s);
+
+#endif
