@@ -39,7 +39,11 @@ MODULES_01 := stats camera image outfile scene povray render cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh scene_meshes
 MODULES_04 := $(MODULES_03) plane
-CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane
+MODULES_05 := $(MODULES_04) aabb box world
+MODULES_06 := $(MODULES_05) phong
+MODULES_07 := $(MODULES_06) shadow
+MODULES_08 := $(MODULES_07) whitted
+CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))

@@ -75,7 +75,7 @@ static void write_lights(FILE *out, const struct scene *s, enum pov_lighting lig
         put_vector(out, s->lights[k].position);
         fprintf(out, " color rgb ");
         put_vector(out, s->lights[k].colour);
-        fprintf(out, "%s }\n", lighting == POV_PHONG ? " shadowless" : "");
+        fprintf(out, " }\n");
     }
 }
 
@@ -106,6 +106,10 @@ static void write_appearance(FILE *out, const struct scene *s, int material, enu
     const struct material *m = &s->materials[material];
     if (is_transparent(m, lighting))
         fprintf(out, " interior { ior %.17g }", m->ior);
+    /* Chapter 6 has no shadows. POV-Ray's `shadowless` lights would also drop the highlights (measured:
+     * up to 182 levels off), so the lights stay ordinary and no shape casts a shadow instead. */
+    if (lighting == POV_PHONG)
+        fprintf(out, " no_shadow");
     fprintf(out, " }\n");
 }
 

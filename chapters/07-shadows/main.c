@@ -1,0 +1,35 @@
+/* Chapter 7, shadows: before a light counts, a shadow ray checks that nothing stands in its way.
+ *
+ * The shadow ray and its offset constants are in common/shadow.c. The shading is chapter 6's with one
+ * change: phong_shade is given shadow_opaque, so a light blocked by any shape adds nothing. Run the
+ * scene scenes/07-shadow-acne.scene to see what happens without the offset. */
+#include "cli.h"
+#include "phong.h"
+#include "shadow.h"
+#include "world.h"
+
+/* Returns the Phong-shaded colour of the nearest shape along r, lights blocked by shapes left out. */
+static vec3 trace_shadowed(const void *world, const ray *r) {
+    const struct world *w = world;
+    struct hit h = hit_nothing(INFINITY);
+    if (!world_closest(w, r, RAY_T_MIN, &h))
+        return w->scene->background;
+    struct phong_surface at = {ray_at(*r, h.t), hit_facing_normal(&h, r->direction), r->direction,
+                               &w->scene->materials[h.material], 1.0};
+    return phong_shade(w->scene, &at, shadow_opaque, w);
+}
+
+int main(int argc, char **argv) {
+    static const struct chapter chapter = {
+        .number = 7,
+        .title = "shadows",
+        .default_scene = "scenes/07-shadows.scene",
+        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .lighting = POV_PHONG_SHADOWS,
+        .load_meshes = scene_load_meshes,
+        .prepare = world_create,
+        .release = world_destroy,
+        .trace = trace_shadowed,
+    };
+    return cli_run(&chapter, argc, argv);
+}

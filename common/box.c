@@ -1,0 +1,35 @@
+/* box.c: axis-aligned boxes as shapes, by the slab test (chapter 5). */
+#include "box.h"
+
+#include "aabb.h"
+#include "stats.h"
+
+bool box_intersect(const struct box *b, const ray *r, double t_min, double t_max, double *t) {
+    stats_thread.box_tests++;
+    struct aabb bounds = {b->min, b->max};
+    double t_enter = -INFINITY, t_leave = INFINITY;
+    if (!aabb_clip(&bounds, r->origin, aabb_inverse_direction(r->direction), &t_enter, &t_leave))
+        return false;
+    if (t_enter > t_min && t_enter < t_max) {
+        *t = t_enter;
+        return true;
+    }
+    if (t_leave > t_min && t_leave < t_max) { /* the ray starts inside (or on) the box */
+        *t = t_leave;
+        return true;
+    }
+    return false;
+}
+
+bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_min, struct hit *h) {
+    const struct box *nearest = NULL;
+    for (size_t k = 0; k < count; k++)
+        if (box_intersect(&boxes[k], r, t_min, h->t, &h->t))
+            nearest = &boxes[k];
+    if (nearest == NULL)
+        return false;
+    struct aabb bounds = {nearest->min, nearest->max};
+    h->normal = aabb_normal(&bounds, ray_at(*r, h->t));
+    h->material = nearest->material;
+    return true;
+}

@@ -1,0 +1,34 @@
+/* phong.c: the Phong reflection model as POV-Ray 3.7 computes it (chapter 6). */
+#include "phong.h"
+
+#include <math.h>
+
+vec3 phong_reflect(vec3 direction, vec3 normal) {
+    return vec3_add_scaled(direction, normal, -2.0 * vec3_dot(direction, normal));
+}
+
+vec3 phong_shade(const struct scene *s, const struct phong_surface *at, phong_shadow_fn shadow,
+                 const void *world) {
+    const struct material *m = at->material;
+    vec3 colour = vec3_scale(vec3_mul(s->ambient_light, m->colour), m->ambient * at->opacity);
+    vec3 mirror = phong_reflect(at->direction, at->normal);
+    for (size_t k = 0; k < s->light_count; k++) {
+        const struct light *light = &s->lights[k];
+        vec3 to_light = vec3_normalize(vec3_sub(light->position, at->point));
+        double cosine = vec3_dot(at->normal, to_light);
+        if (cosine < PHONG_MIN_COSINE)
+            continue; /* the light is behind the surface (or grazing it) */
+        vec3 reaching = light->colour;
+        if (shadow != NULL) {
+            reaching = vec3_mul(reaching, shadow(world, at->point, light));
+            if (reaching.x == 0.0 && reaching.y == 0.0 && reaching.z == 0.0)
+                continue;
+        }
+        vec3 diffuse = vec3_scale(m->colour, m->diffuse * cosine * at->opacity);
+        double alignment = vec3_dot(mirror, to_light);
+        double highlight = (m->phong > 0.0 && alignment > 0.0) ? m->phong * pow(alignment, m->phong_size) : 0.0;
+        vec3 surface = vec3_add(diffuse, vec3_make(highlight, highlight, highlight));
+        colour = vec3_add(colour, vec3_mul(reaching, surface));
+    }
+    return colour;
+}

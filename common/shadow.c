@@ -1,0 +1,57 @@
+/* shadow.c: opaque and filtered shadow rays (chapters 7 and 8). */
+#include "shadow.h"
+
+#include "stats.h"
+
+/* The shadow ray from point towards light, and the window of t in which a blocker counts. */
+static ray shadow_ray(const struct world *w, vec3 point, const struct light *light, double *t_min,
+                      double *t_max) {
+    vec3 to_light = vec3_sub(light->position, point);
+    double distance = vec3_length(to_light);
+    double margin = w->scene->shadow_offset ? SHADOW_T_MIN : 0.0;
+    *t_min = margin;
+    *t_max = distance - margin;
+    stats_thread.shadow_rays++;
+    return (ray){point, vec3_scale(to_light, 1.0 / distance)};
+}
+
+/* Any crossing blocks: stop at the first. */
+static bool stop_at_first(void *context, double t, int material) {
+    (void)t;
+    (void)material;
+    *(bool *)context = true;
+    return false;
+}
+
+vec3 shadow_opaque(const void *world, vec3 point, const struct light *light) {
+    const struct world *w = world;
+    double t_min, t_max;
+    ray r = shadow_ray(w, point, light, &t_min, &t_max);
+    bool blocked = false;
+    world_for_each_crossing(w, &r, t_min, t_max, stop_at_first, &blocked);
+    return blocked ? vec3_make(0, 0, 0) : vec3_make(1, 1, 1);
+}
+
+/* Multiplies the light passed so far by what one surface lets through. */
+struct filter_state {
+    const struct scene *scene;
+    vec3 passed;
+};
+
+static bool filter_through(void *context, double t, int material) {
+    (void)t;
+    struct filter_state *state = context;
+    const struct material *m = &state->scene->materials[material];
+    vec3 through = vec3_add_scaled(vec3_make(m->transmit, m->transmit, m->transmit), m->colour, m->filter);
+    state->passed = vec3_mul(state->passed, through);
+    return state->passed.x != 0.0 || state->passed.y != 0.0 || state->passed.z != 0.0;
+}
+
+vec3 shadow_filtered(const void *world, vec3 point, const struct light *light) {
+    const struct world *w = world;
+    double t_min, t_max;
+    ray r = shadow_ray(w, point, light, &t_min, &t_max);
+    struct filter_state state = {w->scene, vec3_make(1, 1, 1)};
+    world_for_each_crossing(w, &r, t_min, t_max, filter_through, &state);
+    return state.passed;
+}

@@ -1,0 +1,23 @@
+/* shadow.h: shadow rays from a surface point to a light (chapter 7; light through glass, chapter 8).
+ *
+ * A shadow ray leaves the surface point P towards the light at distance d. Only blockers with
+ * SHADOW_T_MIN < t < d - SHADOW_T_MIN count: the margin at the start keeps the surface from shadowing
+ * itself through rounding ("shadow acne"), the margin at the end keeps a shape that touches the light
+ * from blocking it. The scene option `shadow_offset off` drops both margins (t > 0 and t < d) so the
+ * acne can be seen and tested. */
+#ifndef WHITTED_SHADOW_H
+#define WHITTED_SHADOW_H
+
+#include "scene.h"
+#include "world.h"
+
+/* Returns (1, 1, 1) when nothing lies between `point` and the light, (0, 0, 0) when anything does:
+ * every shape casts an opaque shadow (chapter 7). Counts one shadow ray. `world` is a struct world. */
+vec3 shadow_opaque(const void *world, vec3 point, const struct light *light);
+
+/* Returns the share of the light that passes every surface between `point` and the light: the product
+ * over each crossing of (colour * filter + transmit), so an opaque shape gives 0 and a glass sphere,
+ * crossed twice, transmit squared (chapter 8, as POV-Ray does). Counts one shadow ray. */
+vec3 shadow_filtered(const void *world, vec3 point, const struct light *light);
+
+#endif

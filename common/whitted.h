@@ -1,0 +1,28 @@
+/* whitted.h: recursive ray tracing, Whitted 1980: reflection, refraction and light through glass, as
+ * POV-Ray 3.7 computes them (chapter 8; chapters 9 and 10 reuse it unchanged with faster worlds).
+ *
+ * Colour seen along a ray of level L (the camera ray is level 1) that hits a surface:
+ *   local  = phong_shade with opacity 1 - filter - transmit and filtered shadows
+ *   + (colour * filter + transmit) * trace(refracted ray)      if the surface lets light through
+ *   + 1.0 * trace(reflected ray)  instead, on total internal reflection (then no mirror term)
+ *   + reflection * trace(reflected ray)                        otherwise
+ * A ray that would be of level max_depth + 1 is black. A refraction into ior exactly 1 bends nothing
+ * and does not use up a level (POV-Ray's rule). Secondary rays start on the surface itself and accept
+ * hits from RAY_T_MIN on. */
+#ifndef WHITTED_WHITTED_H
+#define WHITTED_WHITTED_H
+
+#include <stdbool.h>
+
+#include "world.h"
+
+/* Returns the refracted direction of unit D through a surface with unit normal N facing D, going from
+ * index n1 to n2 (eta = n1 / n2), by Heckbert's formula: eta D + (eta c - sqrt(k)) N with c = -D.N and
+ * k = 1 - eta^2 (1 - c^2). Returns false, leaving *out alone, on total internal reflection (k < 0). */
+bool whitted_refract(vec3 direction, vec3 normal, double eta, vec3 *out);
+
+/* Returns the colour seen along ray r in world w (a struct world), r being a camera ray (level 1).
+ * Matches render_trace_fn. */
+vec3 whitted_trace(const void *world, const ray *r);
+
+#endif

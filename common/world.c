@@ -1,0 +1,177 @@
+/* world.c: nearest-hit and all-crossings queries over every shape of a scene (chapter 5). */
+#include "world.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "box.h"
+#include "plane.h"
+#include "sphere.h"
+#include "stats.h"
+#include "triangle.h"
+
+struct aabb world_mesh_bounds(const struct mesh *m) {
+    struct aabb bounds = aabb_empty();
+    for (size_t k = 0; k < m->vertex_count; k++)
+        bounds = aabb_grow(bounds, m->vertices[k]);
+    return bounds;
+}
+
+bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size) {
+    w->scene = s;
+    w->accel = NULL;
+    w->mesh_bounds = calloc(s->mesh_count + 1, sizeof *w->mesh_bounds);
+    if (w->mesh_bounds == NULL) {
+        snprintf(err, err_size, "out of memory");
+        return false;
+    }
+    for (size_t k = 0; k < s->mesh_count; k++)
+        w->mesh_bounds[k] = world_mesh_bounds(&s->meshes[k].mesh);
+    return true;
+}
+
+void world_free(struct world *w) {
+    free(w->mesh_bounds);
+    w->mesh_bounds = NULL;
+}
+
+void *world_create(struct scene *s, char *err, size_t err_size) {
+    struct world *w = malloc(sizeof *w);
+    if (w == NULL) {
+        snprintf(err, err_size, "out of memory");
+        return NULL;
+    }
+    if (!world_init(w, s, err, err_size)) {
+        free(w);
+        return NULL;
+    }
+    return w;
+}
+
+void world_destroy(void *world) {
+    world_free(world);
+    free(world);
+}
+
+/* Triangles through the acceleration structure: one query replaces all triangle and mesh loops. */
+static bool accel_closest(const struct world_accel *a, const ray *r, double t_min, struct hit *h) {
+    double t;
+    uint32_t face;
+    if (!a->closest(a->structure, r, t_min, h->t, &t, &face))
+        return false;
+    const vec3 *v = a->triangles->vertices;
+    const uint32_t *corner = a->triangles->faces[face].v;
+    h->t = t;
+    h->normal = triangle_normal(v[corner[0]], v[corner[1]], v[corner[2]]);
+    h->material = a->materials[face];
+    return true;
+}
+
+bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
+    const struct scene *s = w->scene;
+    bool found = sphere_closest(s->spheres, s->sphere_count, r, t_min, h);
+    found |= box_closest(s->boxes, s->box_count, r, t_min, h);
+    if (w->accel != NULL) {
+        found |= accel_closest(w->accel, r, t_min, h);
+    } else {
+        found |= triangle_closest(s->triangles, s->triangle_count, r, t_min, h);
+        vec3 inv_direction = aabb_inverse_direction(r->direction);
+        for (size_t k = 0; k < s->mesh_count; k++)
+            if (aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL))
+                found |= triangle_mesh_closest(&s->meshes[k].mesh, s->meshes[k].material, r, t_min, h);
+    }
+    found |= plane_closest(s->planes, s->plane_count, r, t_min, h);
+    return found;
+}
+
+/* ---- all crossings, for shadows ---------------------------------------------------------------- */
+
+/* Passes each triangle hit found by the acceleration structure on with its material. */
+struct accel_visit {
+    const struct world_accel *accel;
+    world_crossing_visitor visit;
+    void *context;
+    bool stopped; /* the visitor returned false */
+};
+
+static bool visit_accel_face(void *context, double t, uint32_t face) {
+    struct accel_visit *v = context;
+    v->stopped = !v->visit(v->context, t, v->accel->materials[face]);
+    return !v->stopped;
+}
+
+/* Returns false if the visitor asked to stop. */
+static bool cross_spheres(const struct scene *s, const ray *r, double t_min, double t_max,
+                          world_crossing_visitor visit, void *context) {
+    for (size_t k = 0; k < s->sphere_count; k++) {
+        double t_near, t_far;
+        if (!sphere_intersect(&s->spheres[k], r, t_min, t_max, &t_near))
+            continue;
+        if (!visit(context, t_near, s->spheres[k].material))
+            return false;
+        if (sphere_intersect(&s->spheres[k], r, t_near, t_max, &t_far) &&
+            !visit(context, t_far, s->spheres[k].material))
+            return false;
+    }
+    return true;
+}
+
+static bool cross_boxes(const struct scene *s, const ray *r, double t_min, double t_max,
+                        world_crossing_visitor visit, void *context) {
+    for (size_t k = 0; k < s->box_count; k++) {
+        double t_near, t_far;
+        if (!box_intersect(&s->boxes[k], r, t_min, t_max, &t_near))
+            continue;
+        if (!visit(context, t_near, s->boxes[k].material))
+            return false;
+        if (box_intersect(&s->boxes[k], r, t_near, t_max, &t_far) && !visit(context, t_far, s->boxes[k].material))
+            return false;
+    }
+    return true;
+}
+
+static bool cross_triangles(const struct world *w, const ray *r, double t_min, double t_max,
+                            world_crossing_visitor visit, void *context) {
+    const struct scene *s = w->scene;
+    double t, u, v;
+    for (size_t k = 0; k < s->triangle_count; k++) {
+        const struct triangle *tri = &s->triangles[k];
+        if (triangle_intersect(tri->a, tri->b, tri->c, r, t_min, t_max, &t, &u, &v) &&
+            !visit(context, t, tri->material))
+            return false;
+    }
+    vec3 inv_direction = aabb_inverse_direction(r->direction);
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        const struct mesh *m = &s->meshes[k].mesh;
+        if (!aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, t_max, NULL))
+            continue;
+        for (size_t f = 0; f < m->face_count; f++) {
+            const uint32_t *corner = m->faces[f].v;
+            if (triangle_intersect(m->vertices[corner[0]], m->vertices[corner[1]], m->vertices[corner[2]], r,
+                                   t_min, t_max, &t, &u, &v) &&
+                !visit(context, t, s->meshes[k].material))
+                return false;
+        }
+    }
+    return true;
+}
+
+void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
+                             world_crossing_visitor visit, void *context) {
+    const struct scene *s = w->scene;
+    if (!cross_spheres(s, r, t_min, t_max, visit, context) || !cross_boxes(s, r, t_min, t_max, visit, context))
+        return;
+    if (w->accel != NULL) {
+        struct accel_visit forward = {w->accel, visit, context, false};
+        w->accel->for_each_hit(w->accel->structure, r, t_min, t_max, visit_accel_face, &forward);
+        if (forward.stopped)
+            return;
+    } else if (!cross_triangles(w, r, t_min, t_max, visit, context)) {
+        return;
+    }
+    for (size_t k = 0; k < s->plane_count; k++) {
+        double t;
+        if (plane_intersect(&s->planes[k], r, t_min, t_max, &t) && !visit(context, t, s->planes[k].material))
+            return;
+    }
+}

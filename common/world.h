@@ -1,0 +1,70 @@
+/* world.h: the scene's shapes made ready for ray queries, starting with per-mesh bounding boxes
+ * (chapter 5; chapters 9 and 10 plug an acceleration structure in through struct world_accel).
+ *
+ * Chapters 2 to 4 test every ray against every triangle of every mesh. The first speed-up is the
+ * cheapest: a ray that misses a mesh's bounding box cannot hit any of its triangles, so one box test
+ * replaces thousands of triangle tests. Planes have no bounding box and are always tested. */
+#ifndef WHITTED_WORLD_H
+#define WHITTED_WORLD_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "aabb.h"
+#include "hit.h"
+#include "scene.h"
+
+/* Calls back for one triangle hit (t, face index); returns false to stop the enumeration. */
+typedef bool (*world_hit_visitor)(void *context, double t, uint32_t face);
+
+/* An acceleration structure over all triangles of a scene (chapters 9 and 10), seen through its
+ * three queries. `triangles` holds every triangle of the scene (the `triangle` directives first, then
+ * the faces of each mesh in order) and `materials` the material of each face. */
+struct world_accel {
+    const void *structure;
+    const struct mesh *triangles;
+    const int *materials;
+    /* nearest face hit with t_min < t < t_max; the lowest face index among equal t */
+    bool (*closest)(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
+    /* any face hit with t_min < t < t_max */
+    bool (*occluded)(const void *structure, const ray *r, double t_min, double t_max);
+    /* every face hit with t_min < t < t_max, each once, until visit returns false */
+    void (*for_each_hit)(const void *structure, const ray *r, double t_min, double t_max,
+                         world_hit_visitor visit, void *context);
+};
+
+struct world {
+    const struct scene *scene;
+    struct aabb *mesh_bounds;        /* one box per scene mesh; owned */
+    const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
+};
+
+/* Computes the bounding box of every mesh of s (meshes already loaded). Returns false and writes
+ * "out of memory" into err on failure. Free with world_free. */
+bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size);
+
+/* Frees what world_init allocated. Safe on a zeroed world. */
+void world_free(struct world *w);
+
+/* The same as world_init on a new heap-allocated world, in the shape of struct chapter's prepare:
+ * returns the world, or NULL with the reason in err. Free with world_destroy. */
+void *world_create(struct scene *s, char *err, size_t err_size);
+
+/* Frees a world made by world_create. */
+void world_destroy(void *world);
+
+/* Returns the bounding box of mesh m (the empty box for a mesh without vertices). */
+struct aabb world_mesh_bounds(const struct mesh *m);
+
+/* Finds the nearest surface with t_min < t < h->t along r among all shapes, and keeps it in *h.
+ * Returns true when *h was replaced. */
+bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);
+
+/* Calls visit(context, t, material) for every crossing of a surface by r with t_min < t < t_max: both
+ * crossings of a sphere or box, each triangle, each plane. Stops as soon as visit returns false.
+ * Used for shadows (chapters 7 and 8). */
+typedef bool (*world_crossing_visitor)(void *context, double t, int material);
+void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
+                             world_crossing_visitor visit, void *context);
+
+#endif
