@@ -5,6 +5,7 @@
 #   make test           unit tests, image regression, POV-Ray agreement (installs what is missing)
 #   make test-sanitize  the same suite built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make references     re-render the reference images on purpose and say what changed
+#   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #   make clean          remove build/ and out/
 #
 # Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
@@ -35,7 +36,7 @@ LDLIBS := $(shell pkg-config --libs stb) -lm
 CRITERION := $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile scene povray render cli
+MODULES_01 := stats camera image outfile scene povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -49,10 +50,11 @@ ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,
 chapter_number = $(firstword $(subst -, ,$(1)))
 chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 
-.PHONY: all chapters test test-unit test-sanitize references clean help models \
+.PHONY: all chapters test test-sanitize references compare clean help models \
         $(foreach n,1 2 3 4 5 6 7 8 9 10,chapter-$(n))
 .DEFAULT_GOAL := all
 .SECONDARY:
+.SECONDEXPANSION:
 
 all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c)))
 
@@ -64,9 +66,12 @@ $(BUILD)/chapters/%.o: chapters/%/main.c | $(BUILD)/chapters
 	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
 
 $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
-	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
 
-$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests out:
+$(BUILD)/tools/%.o: tools/%.c | $(BUILD)/tools
+	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
+
+$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools out:
 	mkdir -p $@
 
 -include $(wildcard $(BUILD)/*/*.d)
@@ -89,24 +94,31 @@ chapter-%: | out
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
 
 # ---- tests -------------------------------------------------------------------------------------
-TEST_SOURCES := $(wildcard tests/test_*.c)
+TEST_SOURCES := $(wildcard tests/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
+TOOL_OBJECTS := $(BUILD)/tools/image_compare.o
 
-$(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/run-tests: $(TEST_OBJECTS) $(TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
 
-# A chapter-3 program that calls plane_intersect (chapter 4): must fail to link. Used by a test.
-$(BUILD)/layering-probe: tests/layering/probe.c \
-        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_03)))
+$(BUILD)/compare: $(BUILD)/tools/compare.o $(TOOL_OBJECTS) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
+# A program that calls plane_intersect (chapter 4), linked with chapter 3's modules: must fail to
+# link; with chapter 4's it must link. tests/test_layering.c runs both.
+$(BUILD)/layering-probe-%: tests/layering/probe.c $$(addprefix $(BUILD)/common/,$$(addsuffix .o,$$(MODULES_%)))
 	$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
 
 test: all $(BUILD)/run-tests
 	WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
 
+compare: all $(BUILD)/compare
+	tools/compare-povray.sh $(BUILD)
+
 test-sanitize:
 	$(MAKE) --no-print-directory SAN=1 test
 
-references: all
+references: all $(BUILD)/compare
 	tools/bless-references.sh $(BUILD)
 
 clean:

@@ -1,6 +1,8 @@
 /* cli.c: the command line and the load-render-write sequence shared by all chapters (chapter 1). */
 #include "cli.h"
 
+#include "heatmap.h"
+
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>
@@ -17,6 +19,7 @@ struct options {
     const char *scene;
     char output[PATH_MAX];
     const char *pov;
+    const char *heatmap;
     int width, height; /* 0 = as the scene says */
     int threads;       /* 0 = all cores */
     bool output_given; /* -o was used; otherwise the picture goes to out/ */
@@ -33,12 +36,15 @@ static void print_usage(FILE *out, const struct chapter *ch, const char *program
             "  --width N        override the scene's image width\n"
             "  --height N       override the scene's image height\n"
             "  --pov FILE       write the scene's POV-Ray twin to FILE instead of rendering\n"
+            "  --heatmap FILE   also write the work done per pixel as a picture\n"
             "  --threads N      render on N threads (default: all cores)\n"
             "  --quiet          print nothing but errors\n"
             "  -h, --help       show this help\n"
+            "%s"
             "\n"
             "exit status: 0 done, 1 bad scene or mesh file, 2 bad command line, 3 cannot write output\n",
-            program, ch->number, ch->title, ch->default_scene, ch->number);
+            program, ch->number, ch->title, ch->default_scene, ch->number,
+            ch->options_help != NULL ? ch->options_help : "");
 }
 
 /* Reads a whole number in [lo, hi] for option `name`. */
@@ -72,7 +78,7 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
         } else if (strcmp(arg, "--quiet") == 0) {
             o->quiet = true;
             takes_value = false;
-        } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0) {
+        } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0 || strcmp(arg, "--heatmap") == 0) {
             if (value == NULL || value[0] == '\0') {
                 fprintf(stderr, "%s needs a file name\n", arg);
                 return CLI_USAGE;
@@ -81,9 +87,10 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
                 snprintf(o->output, sizeof o->output, "%s", value);
                 o->output_given = true;
             }
-            else {
+            else if (strcmp(arg, "--pov") == 0)
                 o->pov = value;
-            }
+            else
+                o->heatmap = value;
         } else if (strcmp(arg, "--width") == 0) {
             if (!option_int(arg, value, 1, IMAGE_MAX_SIDE, &o->width))
                 return CLI_USAGE;
@@ -94,8 +101,14 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
             if (!option_int(arg, value, 1, CLI_MAX_THREADS, &o->threads))
                 return CLI_USAGE;
         } else if (arg[0] == '-' && arg[1] != '\0') {
-            fprintf(stderr, "unknown option '%s'\n", arg);
-            return CLI_USAGE;
+            int used = ch->parse_option != NULL ? ch->parse_option(arg, value) : 0;
+            if (used < 0)
+                return CLI_USAGE;
+            if (used == 0) {
+                fprintf(stderr, "unknown option '%s'\n", arg);
+                return CLI_USAGE;
+            }
+            takes_value = used == 2;
         } else if (scene_given) {
             fprintf(stderr, "only one scene file, please (got '%s' and '%s')\n", o->scene, arg);
             return CLI_USAGE;
@@ -148,14 +161,23 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
     }
     if (!o->output_given)
         mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
+    uint32_t *cost = NULL;
+    if (o->heatmap != NULL && (cost = calloc((size_t)s->width * (size_t)s->height, sizeof *cost)) == NULL) {
+        image_free(&img);
+        fprintf(stderr, "out of memory for the heat-map\n");
+        return CLI_OUTPUT_FAILED;
+    }
     struct stats total = {0};
     struct render_job job = {.camera = &cam, .trace = ch->trace, .world = world, .threads = o->threads,
-                             .progress = !o->quiet && isatty(STDERR_FILENO)};
+                             .progress = !o->quiet && isatty(STDERR_FILENO), .cost = cost};
     double started = seconds_now();
     render_image(&job, &img, &total);
     double elapsed = seconds_now() - started;
     bool written = image_write_png(&img, o->output, err, sizeof err);
+    if (written && cost != NULL)
+        written = heatmap_write(cost, s->width, s->height, o->heatmap, err, sizeof err);
     image_free(&img);
+    free(cost);
     if (!written) {
         fprintf(stderr, "%s\n", err);
         return CLI_OUTPUT_FAILED;
@@ -163,7 +185,11 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
     if (!o->quiet) {
         printf("chapter %d (%s): wrote %s (%d x %d) in %.3f s\n", ch->number, ch->title, o->output,
                s->width, s->height, elapsed);
+        if (o->heatmap != NULL)
+            printf("heat-map: %s\n", o->heatmap);
         stats_print(stdout, &total);
+        if (ch->report != NULL)
+            ch->report(world, &total, elapsed);
     }
     return CLI_OK;
 }
@@ -186,7 +212,10 @@ int cli_run(const struct chapter *ch, int argc, char **argv) {
         return CLI_BAD_INPUT;
     }
     if (o.pov != NULL) {
-        status = povray_write_scene(&s, ch->lighting, o.pov, err, sizeof err) ? CLI_OK : CLI_OUTPUT_FAILED;
+        if (!povray_can_express(&s, ch->lighting, err, sizeof err))
+            status = CLI_BAD_INPUT;
+        else if (!povray_write_scene(&s, ch->lighting, o.pov, err, sizeof err))
+            status = CLI_OUTPUT_FAILED;
         if (status != CLI_OK)
             fprintf(stderr, "%s\n", err);
         else if (!o.quiet)

@@ -6,7 +6,11 @@
  *   0  the picture (or POV-Ray twin) was written
  *   1  the scene or a mesh file is wrong (message: "file:line: what is wrong")
  *   2  the command line is wrong (message, then the usage)
- *   3  the output file cannot be written, or memory ran out */
+ *   3  the output file cannot be written, or memory ran out
+ *
+ * `--heatmap FILE` works in every chapter: it writes how much work each pixel's camera ray cost
+ * (node visits, box and shape tests, including those of its shadow and secondary rays) as a picture,
+ * on one fixed colour scale so that pictures of different chapters can be set side by side. */
 #ifndef WHITTED_CLI_H
 #define WHITTED_CLI_H
 
@@ -32,6 +36,13 @@ struct chapter {
     void *(*prepare)(struct scene *s, char *err, size_t err_size);
     void (*release)(void *world);   /* frees what prepare returned; optional */
     render_trace_fn trace;          /* the colour seen along a primary ray */
+    /* Optional: the chapter's own options. Called with an option the common parser does not know and
+     * the word after it (NULL at the end); returns the number of words used (1 or 2), 0 when the
+     * option is unknown, or -1 after printing why its value is wrong. */
+    int (*parse_option)(const char *option, const char *value);
+    const char *options_help;       /* lines describing those options for --help */
+    /* Optional: prints what the chapter measured (e.g. build time) after the counters. */
+    void (*report)(const void *world, const struct stats *total, double render_seconds);
 };
 
 /* Runs chapter `ch` with the command line argc/argv: parses the options (see --help), renders and

@@ -161,12 +161,18 @@ static void write_shapes(FILE *out, const struct scene *s, enum pov_lighting lig
     }
 }
 
-bool povray_write_scene(const struct scene *s, enum pov_lighting lighting, const char *path, char *err,
-                        size_t err_size) {
+bool povray_can_express(const struct scene *s, enum pov_lighting lighting, char *err, size_t err_size) {
     if (!s->shadow_offset && lighting >= POV_PHONG_SHADOWS) {
         snprintf(err, err_size, "%s: shadow_offset off has no POV-Ray equivalent", s->path);
         return false;
     }
+    return true;
+}
+
+bool povray_write_scene(const struct scene *s, enum pov_lighting lighting, const char *path, char *err,
+                        size_t err_size) {
+    if (!povray_can_express(s, lighting, err, err_size))
+        return false;
     struct outfile file;
     if (!outfile_open(&file, path, err, err_size))
         return false;

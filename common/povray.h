@@ -25,10 +25,14 @@ enum pov_lighting {
  * 8-bit output rounded like image_quantize (File_Gamma=1.0, Dither off, +FN8), no display, quiet. */
 #define POVRAY_OPTIONS "-D -P -V -A +FN8 -UA File_Gamma=1.0 Dither=off +Q9 -GA +GF"
 
+/* Returns true when POV-Ray can draw scene s as a chapter with `lighting` draws it. Otherwise writes
+ * "scene: feature has no POV-Ray equivalent" into err and returns false (only `shadow_offset off`,
+ * from chapter 7 on, has none). */
+bool povray_can_express(const struct scene *s, enum pov_lighting lighting, char *err, size_t err_size);
+
 /* Writes the twin of scene `s` as drawn under `lighting` to `path` (via a temporary file renamed into
  * place). Meshes must already be loaded if the chapter draws them. Returns false and writes
- * "path: reason" into err if the file cannot be written, or "scene: feature has no POV-Ray equivalent"
- * for a scene POV-Ray cannot reproduce (shadow_offset off). */
+ * "path: reason" into err if the file cannot be written, or povray_can_express's message. */
 bool povray_write_scene(const struct scene *s, enum pov_lighting lighting, const char *path, char *err,
                         size_t err_size);
 

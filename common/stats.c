@@ -25,6 +25,11 @@ static void print_counter(FILE *out, const char *name, uint64_t value) {
         fprintf(out, "  %-16s %15" PRIu64 "\n", name, value);
 }
 
+static void print_ratio(FILE *out, const char *name, uint64_t value, uint64_t per) {
+    if (value != 0)
+        fprintf(out, "  %-16s %15.2f\n", name, (double)value / (double)per);
+}
+
 void stats_print(FILE *out, const struct stats *s) {
     uint64_t rays = s->primary_rays + s->shadow_rays + s->reflected_rays + s->refracted_rays;
     fprintf(out, "counters:\n");
@@ -38,4 +43,13 @@ void stats_print(FILE *out, const struct stats *s) {
     print_counter(out, "plane tests", s->plane_tests);
     print_counter(out, "box tests", s->box_tests);
     print_counter(out, "node visits", s->node_visits);
+    if (s->primary_rays == 0)
+        return;
+    fprintf(out, "per pixel (with its shadow and secondary rays):\n");
+    print_ratio(out, "rays", rays, s->primary_rays);
+    print_ratio(out, "sphere tests", s->sphere_tests, s->primary_rays);
+    print_ratio(out, "triangle tests", s->triangle_tests, s->primary_rays);
+    print_ratio(out, "plane tests", s->plane_tests, s->primary_rays);
+    print_ratio(out, "box tests", s->box_tests, s->primary_rays);
+    print_ratio(out, "node visits", s->node_visits, s->primary_rays);
 }

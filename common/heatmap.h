@@ -1,0 +1,26 @@
+/* heatmap.h: a picture of how much work each pixel cost (chapter 1; it tells its story in chapters 5,
+ * 9 and 10).
+ *
+ * The cost of a pixel is the number of node visits plus box and shape tests its rays made. It is
+ * drawn on one fixed logarithmic scale, black (no work) through blue, red and yellow to white
+ * (HEATMAP_MAX_COST tests or more), so heat-maps of different chapters and structures compare directly. */
+#ifndef WHITTED_HEATMAP_H
+#define WHITTED_HEATMAP_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "image.h"
+
+/* The cost drawn white. A brute-force ray through a 5,000-triangle scene costs about this much. */
+#define HEATMAP_MAX_COST 8192
+
+/* Returns the colour of one cost on the fixed scale. */
+vec3 heatmap_colour(uint32_t cost);
+
+/* Writes the width x height costs as a PNG heat-map at `path`. Returns false and fills err when the
+ * file cannot be written. */
+bool heatmap_write(const uint32_t *cost, int width, int height, const char *path, char *err, size_t err_size);
+
+#endif

@@ -1,0 +1,154 @@
+/* image_test_support.c: helpers for the image regression and POV-Ray agreement tests. */
+#include "image_test_support.h"
+
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "image.h"
+#include "povray.h"
+#include "scene.h"
+
+#define COMMAND_MAX 2048
+
+static const char *const scene_names[] = {
+    NULL, "01-camera", "02-sphere", "03-triangle", "04-plane", "05-aabb",
+    "06-phong", "07-shadows", "08-recursion", "09-kdtree", "10-bvh",
+};
+
+const char *chapter_scene(int n) {
+    static _Thread_local char path[256];
+    snprintf(path, sizeof path, "scenes/%s.scene", scene_names[n]);
+    return path;
+}
+
+const char *chapter_program(int n) {
+    static _Thread_local char path[256];
+    const char *build = getenv("WHITTED_BUILD");
+    snprintf(path, sizeof path, "%s/chapter-%02d", build != NULL ? build : "build", n);
+    return path;
+}
+
+/* Runs a shell command with its output sent to a log file; returns its exit status or -1. */
+static int run(const char *command) {
+    mkdir("out", 0755);
+    mkdir(TEST_OUT, 0755);
+    char line[COMMAND_MAX];
+    snprintf(line, sizeof line, "%s >>" TEST_OUT "/commands.log 2>&1", command);
+    int status = system(line);
+    if (status == -1 || !WIFEXITED(status))
+        return -1;
+    return WEXITSTATUS(status);
+}
+
+int render_chapter(int n, const char *scene, const char *png, const char *extra) {
+    char command[COMMAND_MAX];
+    snprintf(command, sizeof command, "%s %s -o %s --quiet %s", chapter_program(n), scene, png, extra);
+    return run(command);
+}
+
+bool render_povray(int n, const char *scene, const char *png) {
+    char pov[512], command[COMMAND_MAX];
+    snprintf(pov, sizeof pov, "%s.pov", png);
+    snprintf(command, sizeof command, "%s %s --pov %s --quiet", chapter_program(n), scene, pov);
+    if (run(command) != 0)
+        return false;
+    struct scene s;
+    char err[512];
+    if (!scene_load(scene, &s, err, sizeof err))
+        return false;
+    /* One thread: the oracle measured identical pixels for any thread count, and the test suite
+     * already runs several tests at once. */
+    snprintf(command, sizeof command, "povray +I%s +O%s +W%d +H%d +WT1 %s", pov, png, s.width, s.height,
+             POVRAY_OPTIONS);
+    scene_free(&s);
+    return run(command) == 0;
+}
+
+struct image_difference compare_png(const char *a, const char *b) {
+    char err[512];
+    int wa = 0, ha = 0, wb = 0, hb = 0;
+    uint8_t *pa = image_read_rgb(a, &wa, &ha, err, sizeof err);
+    cr_assert_not_null(pa, "%s", err);
+    uint8_t *pb = image_read_rgb(b, &wb, &hb, err, sizeof err);
+    cr_assert_not_null(pb, "%s", err);
+    cr_assert(wa == wb && ha == hb, "%s is %dx%d but %s is %dx%d", a, wa, ha, b, wb, hb);
+    struct image_difference d = image_compare(pa, pb, wa, ha);
+    free(pa);
+    free(pb);
+    return d;
+}
+
+bool regression_passes(const struct image_difference *d) {
+    return d->within_1 >= REGRESSION_MIN_WITHIN_1 && d->mean <= REGRESSION_MAX_MEAN;
+}
+
+/* Reads a whole file into a new NUL-terminated buffer. */
+static char *read_text(const char *path) {
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "cannot open %s", path);
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    rewind(f);
+    char *text = malloc((size_t)size + 1);
+    cr_assert(fread(text, 1, (size_t)size, f) == (size_t)size, "cannot read %s", path);
+    text[size] = '\0';
+    fclose(f);
+    return text;
+}
+
+void write_scene_variant(const char *from, const char *to, const char *const *olds, const char *const *news,
+                         int count, const char *camera_line) {
+    char *text = read_text(from);
+    FILE *out = fopen(to, "wb");
+    cr_assert_not_null(out, "cannot write %s", to);
+    for (int k = 0; k < count; k++)
+        cr_assert_not_null(strstr(text, olds[k]), "'%s' not found in %s", olds[k], from);
+    char *line = text;
+    while (line != NULL && *line != '\0') {
+        char *end = strchr(line, '\n');
+        size_t length = end != NULL ? (size_t)(end - line) : strlen(line);
+        char *copy = strndup(line, length);
+        if (camera_line != NULL && strncmp(copy, "camera", 6) == 0) {
+            fprintf(out, "%s\n", camera_line);
+        } else {
+            for (int k = 0; k < count; k++) {
+                char *found = strstr(copy, olds[k]);
+                if (found == NULL)
+                    continue;
+                fprintf(out, "%.*s%s", (int)(found - copy), copy, news[k]);
+                memmove(copy, found + strlen(olds[k]), strlen(found + strlen(olds[k])) + 1);
+            }
+            fprintf(out, "%s\n", copy);
+        }
+        free(copy);
+        line = end != NULL ? end + 1 : NULL;
+    }
+    fclose(out);
+    free(text);
+}
+
+const char *shifted_camera_line(const char *path, double pixels) {
+    static _Thread_local char line[512];
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load(path, &s, err, sizeof err), "%s", err);
+    vec3 view = vec3_sub(s.target, s.eye);
+    vec3 right = vec3_normalize(vec3_cross(view, s.up));
+    double pixel_width = 2.0 * vec3_length(view) * tan(s.fov * M_PI / 360.0) / s.height;
+    vec3 shift = vec3_scale(right, pixels * pixel_width);
+    vec3 eye = vec3_add(s.eye, shift), target = vec3_add(s.target, shift);
+    snprintf(line, sizeof line, "camera eye %.17g %.17g %.17g target %.17g %.17g %.17g up %.17g %.17g %.17g fov %.17g",
+             eye.x, eye.y, eye.z, target.x, target.y, target.z, s.up.x, s.up.y, s.up.z, s.fov);
+    scene_free(&s);
+    return line;
+}
+
+void report_difference(const char *what, const struct image_difference *d) {
+    fprintf(stderr, "%s: max %d, mean %.4f, within 1: %.3f%%, within 2: %.3f%%\n", what, d->max, d->mean,
+            100.0 * d->within_1, 100.0 * d->within_2);
+}

@@ -1,0 +1,55 @@
+/* image_test_support.h: running chapter programs and POV-Ray from tests, and comparing their pictures.
+ *
+ * The tests run with the repository as working directory. WHITTED_BUILD names the build folder whose
+ * chapter programs are tested (build, or build/san for the sanitizer run). */
+#ifndef WHITTED_IMAGE_TEST_SUPPORT_H
+#define WHITTED_IMAGE_TEST_SUPPORT_H
+
+#include <stdbool.h>
+
+#include "image_compare.h"
+
+/* Folder for everything the image tests write. */
+#define TEST_OUT "out/test"
+
+/* The regression rule against reference_images/: floating-point noise moves a handful of pixels by one
+ * level (values exactly on a half level), a real change moves many pixels or moves them far. */
+#define REGRESSION_MIN_WITHIN_1 0.9995 /* at most 1 pixel in 2000 more than 1 level off */
+#define REGRESSION_MAX_MEAN 0.01       /* levels, averaged over all channels of all pixels */
+
+/* Returns the scene file of chapter n (1..10), e.g. "scenes/02-sphere.scene". */
+const char *chapter_scene(int n);
+
+/* Returns the program of chapter n in the build under test, e.g. "build/chapter-02". */
+const char *chapter_program(int n);
+
+/* Runs chapter n on `scene`, writing `png`, with extra command-line words `extra` (may be ""). Returns
+ * the exit status (or -1 if the program could not be run). */
+int render_chapter(int n, const char *scene, const char *png, const char *extra);
+
+/* Writes chapter n's POV-Ray twin of `scene` and renders it with POV-Ray to `png` at the scene's size.
+ * Returns true on success. */
+bool render_povray(int n, const char *scene, const char *png);
+
+/* Reads two PNG files and compares them; fails the current test if either cannot be read or their
+ * sizes differ. */
+struct image_difference compare_png(const char *a, const char *b);
+
+/* Returns true when d passes the regression rule above. */
+bool regression_passes(const struct image_difference *d);
+
+/* Copies scene file `from` to `to` (which must be in the same folder, so relative mesh paths still
+ * work), replacing the first occurrence of each text olds[k] by news[k] (count pairs). The line that
+ * starts with "camera" is replaced by `camera_line` when it is not NULL. Fails the test if an old text
+ * is not found. */
+void write_scene_variant(const char *from, const char *to, const char *const *olds, const char *const *news,
+                         int count, const char *camera_line);
+
+/* Returns a camera line for the scene in `path` with eye and target moved right by `pixels` pixel
+ * widths (measured at the target's distance). */
+const char *shifted_camera_line(const char *path, double pixels);
+
+/* Prints one line "what: max M, mean X, within 1: P%, within 2: Q%" to stderr for the log. */
+void report_difference(const char *what, const struct image_difference *d);
+
+#endif

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# compare-povray.sh BUILD [N...]: renders each chapter's scene with the chapter program and with
+# POV-Ray at the same size, writes side-by-side strips (ours | POV-Ray | difference x16) to
+# out/compare/, prints a Markdown table and writes it to out/compare/table.md.
+set -eu
+build=${1:-build}
+shift || true
+chapters=("$@")
+if [ ${#chapters[@]} -eq 0 ]; then
+    for program in "$build"/chapter-[0-9][0-9]; do chapters+=("${program##*/chapter-}"); done
+fi
+out=out/compare
+mkdir -p "$out"
+table=$out/table.md
+{
+    echo "| chapter | scene | size | max abs diff | mean abs diff | px within 1 | px within 2 | PSNR | agrees |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+} >"$table"
+status=0
+for n in "${chapters[@]}"; do
+    n=$(printf '%02d' "$((10#$n))")
+    scene=$(ls scenes/"$n"-*.scene | head -n 1)
+    "$build/chapter-$n" "$scene" --quiet -o "$out/chapter-$n-ours.png"
+    "$build/chapter-$n" "$scene" --quiet --pov "$out/chapter-$n.pov"
+    size=$(awk '$1 == "image" { print $2, $3 }' "$scene")
+    width=${size% *}; height=${size#* }
+    start=$(date +%s.%N)
+    povray +I"$out/chapter-$n.pov" +O"$out/chapter-$n-povray.png" +W"$width" +H"$height" \
+        -D -P -V -A +FN8 -UA File_Gamma=1.0 Dither=off +Q9 -GA +GF >"$out/chapter-$n-povray.log" 2>&1
+    povray_seconds=$(echo "$(date +%s.%N) - $start" | bc)
+    if result=$("$build/compare" "$out/chapter-$n-ours.png" "$out/chapter-$n-povray.png" "$out/chapter-$n-strip.png"); then
+        agrees=yes
+    else
+        agrees=NO; status=1
+    fi
+    # result: max M  mean X  within1 P%  within2 Q%  psnr S dB  over2 K
+    set -- $result
+    echo "| $n | ${scene#scenes/} | ${width}x${height} | $2 | $4 | $6 | $8 | ${10} dB | $agrees |" >>"$table"
+    echo "chapter $n: $result (POV-Ray took ${povray_seconds} s)"
+done
+echo
+cat "$table"
+exit $status
