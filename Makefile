@@ -38,7 +38,7 @@ CRITERION := $(shell pkg-config --cflags --libs criterion)
 # ---- what each chapter introduces ----------------------------------------------------------------
 MODULES_01 := stats camera image outfile scene povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
-MODULES_03 := $(MODULES_02) triangle mesh scene_meshes
+MODULES_03 := $(MODULES_02) triangle mesh mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
 MODULES_05 := $(MODULES_04) aabb box world
 MODULES_06 := $(MODULES_05) phong
@@ -56,7 +56,7 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 .SECONDARY:
 .SECONDEXPANSION:
 
-all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c)))
+all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS)
 
 # ---- compiling ---------------------------------------------------------------------------------
 $(BUILD)/common/%.o: common/%.c | $(BUILD)/common
@@ -84,12 +84,16 @@ $(BUILD)/chapter-$(call chapter_number,$(1)): $(BUILD)/chapters/$(1).o \
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
+# ---- models: the bunny is committed, the teapots are generated (tools/models.mk) -----------------
+include tools/models.mk
+SCENE_MODELS := scenes/models/teapot-5k.ply
+
 # ---- running chapters --------------------------------------------------------------------------
 chapter-%: | out
 	@n=$$(printf '%02d' $*); \
 	if [ -z "$(filter $$n-%,$(CHAPTERS))" ] && ! ls -d chapters/$$n-* >/dev/null 2>&1; then \
 	    echo "chapter $* is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
-	$(MAKE) --no-print-directory $(BUILD)/chapter-$$n $(MODEL_DEPS_$*) && ./$(BUILD)/chapter-$$n
+	$(MAKE) --no-print-directory $(BUILD)/chapter-$$n $(SCENE_MODELS) && ./$(BUILD)/chapter-$$n
 
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
 

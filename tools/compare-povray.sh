@@ -19,7 +19,7 @@ table=$out/table.md
 status=0
 for n in "${chapters[@]}"; do
     n=$(printf '%02d' "$((10#$n))")
-    scene=$(ls scenes/"$n"-*.scene | head -n 1)
+    scene=scenes/$(basename chapters/"$n"-*).scene
     "$build/chapter-$n" "$scene" --quiet -o "$out/chapter-$n-ours.png"
     "$build/chapter-$n" "$scene" --quiet --pov "$out/chapter-$n.pov"
     size=$(awk '$1 == "image" { print $2, $3 }' "$scene")
