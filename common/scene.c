@@ -50,7 +50,7 @@ static bool parse_number(const struct parser *p, const char *token, const char *
     double value = strtod(token, &end);
     if (end == token || *end != '\0')
         return fail(p, "expected a number for '%s', got '%s'", what, token);
-    if (!isfinite(value) || errno == ERANGE)
+    if (!isfinite(value)) /* ERANGE alone may be a harmless underflow to a tiny number */
         return fail(p, "'%s' is not a finite number (for '%s')", token, what);
     *out = value;
     return true;
@@ -293,8 +293,9 @@ static bool parse_plane(const struct parser *p, struct scene *s, char **tok, int
     int material;
     if (!parse_keys(p, "plane", tok, n, specs, 7, &kv) || !material_reference(p, s, &kv, MATERIAL, &material))
         return false;
-    bool by_distance = kv.present[NORMAL] && kv.present[DISTANCE] && !kv.present[POINT];
-    bool by_point = kv.present[NORMAL] && kv.present[POINT] && !kv.present[DISTANCE];
+    bool any_point_key = kv.present[A] || kv.present[B] || kv.present[C];
+    bool by_distance = kv.present[NORMAL] && kv.present[DISTANCE] && !kv.present[POINT] && !any_point_key;
+    bool by_point = kv.present[NORMAL] && kv.present[POINT] && !kv.present[DISTANCE] && !any_point_key;
     bool by_points = kv.present[A] && kv.present[B] && kv.present[C] && !kv.present[NORMAL] &&
                      !kv.present[DISTANCE] && !kv.present[POINT];
     if (by_distance + by_point + by_points != 1)
@@ -304,18 +305,20 @@ static bool parse_plane(const struct parser *p, struct scene *s, char **tok, int
     if (by_points) {
         point = key_vec3(&kv, A);
         normal = vec3_cross(vec3_sub(key_vec3(&kv, B), point), vec3_sub(key_vec3(&kv, C), point));
-        if (vec3_length(normal) == 0.0)
+        if (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0)
             return fail(p, "plane points a, b, c lie on one line");
     } else {
         normal = key_vec3(&kv, NORMAL);
-        if (vec3_length(normal) == 0.0)
+        if (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0)
             return fail(p, "plane normal must not be zero");
         point = kv.present[POINT] ? key_vec3(&kv, POINT) : point;
     }
     struct plane *plane = grow(&s->planes, &s->plane_count, sizeof *plane);
     if (plane == NULL)
         return fail(p, "out of memory");
-    plane->normal = vec3_normalize(normal);
+    /* Divide by the largest component first: |normal| of components like 1e200 would overflow. */
+    double largest = fmax(fabs(normal.x), fmax(fabs(normal.y), fabs(normal.z)));
+    plane->normal = vec3_normalize(vec3_scale(normal, 1.0 / largest));
     plane->distance = by_distance ? kv.number[DISTANCE][0] : vec3_dot(plane->normal, point);
     plane->material = material;
     return true;

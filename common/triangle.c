@@ -10,7 +10,8 @@
  * triangles invisible: det scales with the triangle's area, so a triangle with 1e-3 edges has
  * det around 1e-6 and would be rejected by EPSILON = 1e-6 although the ray meets it squarely. Only
  * det == 0 (ray exactly parallel, or zero area) is a miss here; a nearly parallel ray gives a huge t or
- * out-of-range u, v, which the tests below reject on their own. */
+ * out-of-range u, v, which the tests below reject on their own. A triangle whose corners coincide is
+ * caught on the hit path (see the comment there). */
 #include "triangle.h"
 
 #include "stats.h"
@@ -35,6 +36,13 @@ bool triangle_intersect(vec3 a, vec3 b, vec3 c, const ray *r, double t_min, doub
         return false;
     double hit_t = vec3_dot(edge2, q) * inv_det;
     if (!(hit_t > t_min && hit_t < t_max))
+        return false;
+    /* A triangle with two equal corners has det = 0 only in exact arithmetic: rounding can leave a
+     * tiny det and noise for u and v that passes the tests above. Such a triangle has no normal, so a
+     * "hit" would shade as NaN. Checking its area here, on the rare path of a hit, costs nothing on
+     * the common path of a miss. */
+    vec3 area = vec3_cross(edge1, edge2);
+    if (area.x == 0.0 && area.y == 0.0 && area.z == 0.0)
         return false;
     *t = hit_t;
     *u = hit_u;

@@ -1,0 +1,573 @@
+/* mesh_ply.c: the PLY reader (Greg Turk's polygon file format, as written by the Stanford 3D Scanning
+ * Repository, MeshLab, Blender and most scanners).
+ *
+ * A PLY file is a text header, then the data of each element the header declares, in the header's
+ * order. For example:
+ *
+ *     ply
+ *     format binary_little_endian 1.0
+ *     element vertex 8
+ *     property float x                 (any scalar type; more properties may follow, and are read past)
+ *     property float y
+ *     property float z
+ *     element face 6
+ *     property list uchar int vertex_indices
+ *     end_header
+ *
+ * The reader walks every element, including ones it does not use, so that what follows is read from
+ * the right place. In ascii files each entry of an element is one line; in binary files each value
+ * takes the size of its type, in the declared byte order, and a list starts with its length.
+ *
+ * Before reading any data the header's counts are checked against the bytes left in the file (every
+ * entry needs at least a few bytes), so a lying header cannot make us allocate much more memory than
+ * the file's own size. Errors in the data name the entry: "file:LINE: face 3: ..." in ascii files and
+ * "file: byte N: face 3: ..." in binary ones (entries are numbered from 0, as PLY indices are). */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mesh_private.h"
+
+#define PLY_MIN_LINE_BYTES 2 /* an ascii value needs a digit and a separator after it */
+
+/* ---- the header --------------------------------------------------------------------------------- */
+
+enum ply_type {
+    PLY_NOT_A_TYPE,
+    PLY_INT8,
+    PLY_UINT8,
+    PLY_INT16,
+    PLY_UINT16,
+    PLY_INT32,
+    PLY_UINT32,
+    PLY_FLOAT32,
+    PLY_FLOAT64
+};
+
+struct ply_type_info {
+    const char *name; /* the classic name, for messages */
+    size_t size;      /* bytes in a binary file */
+    bool is_integer;
+    double min, max; /* range of an integer type */
+};
+
+static const struct ply_type_info TYPES[] = {
+    [PLY_INT8] = {"char", 1, true, -128.0, 127.0},
+    [PLY_UINT8] = {"uchar", 1, true, 0.0, 255.0},
+    [PLY_INT16] = {"short", 2, true, -32768.0, 32767.0},
+    [PLY_UINT16] = {"ushort", 2, true, 0.0, 65535.0},
+    [PLY_INT32] = {"int", 4, true, -2147483648.0, 2147483647.0},
+    [PLY_UINT32] = {"uint", 4, true, 0.0, 4294967295.0},
+    [PLY_FLOAT32] = {"float", 4, false, 0.0, 0.0},
+    [PLY_FLOAT64] = {"double", 8, false, 0.0, 0.0},
+};
+
+/* Both spellings of every type: the classic names and the sized ones of later PLY writers. */
+static const struct {
+    const char *name;
+    enum ply_type type;
+} TYPE_NAMES[] = {
+    {"char", PLY_INT8},     {"int8", PLY_INT8},       {"uchar", PLY_UINT8},    {"uint8", PLY_UINT8},
+    {"short", PLY_INT16},   {"int16", PLY_INT16},     {"ushort", PLY_UINT16},  {"uint16", PLY_UINT16},
+    {"int", PLY_INT32},     {"int32", PLY_INT32},     {"uint", PLY_UINT32},    {"uint32", PLY_UINT32},
+    {"float", PLY_FLOAT32}, {"float32", PLY_FLOAT32}, {"double", PLY_FLOAT64}, {"float64", PLY_FLOAT64},
+};
+
+enum ply_format { PLY_NO_FORMAT, PLY_ASCII, PLY_BINARY_LITTLE_ENDIAN, PLY_BINARY_BIG_ENDIAN };
+
+/* What a property means to us; everything else is read past. */
+enum ply_role { ROLE_SKIPPED, ROLE_X, ROLE_Y, ROLE_Z, ROLE_CORNERS };
+
+struct ply_property {
+    enum ply_type type;       /* of the value, or of a list's items */
+    enum ply_type count_type; /* of a list's length; PLY_NOT_A_TYPE for a single value */
+    enum ply_role role;
+};
+
+enum ply_kind { KIND_OTHER, KIND_VERTEX, KIND_FACE };
+
+struct ply_element {
+    struct mesh_token name;
+    enum ply_kind kind;
+    size_t count;
+    size_t line;                           /* of its "element" line */
+    size_t first_property, property_count; /* its properties in ply_header.properties */
+};
+
+struct ply_header {
+    enum ply_format format;
+    size_t body;     /* offset of the first byte after the end_header line */
+    size_t end_line; /* line number of end_header */
+    struct ply_element *elements;
+    size_t element_count, element_capacity;
+    struct ply_property *properties;
+    size_t property_count, property_capacity;
+};
+
+#define NO_ELEMENT SIZE_MAX
+
+static enum ply_type type_named(struct mesh_token token) {
+    for (size_t k = 0; k < sizeof TYPE_NAMES / sizeof TYPE_NAMES[0]; k++)
+        if (mesh_token_is(token, TYPE_NAMES[k].name))
+            return TYPE_NAMES[k].type;
+    return PLY_NOT_A_TYPE;
+}
+
+/* Reads "format ascii|binary_little_endian|binary_big_endian 1.0". */
+static bool parse_format(const struct mesh_input *in, size_t line, const struct mesh_token *words, int count,
+                         struct ply_header *h) {
+    if (h->format != PLY_NO_FORMAT)
+        return mesh_fail_line(in, line, "second format line");
+    if (count != 3)
+        return mesh_fail_line(in, line, "malformed format line (expected 'format <kind> 1.0')");
+    if (mesh_token_is(words[1], "ascii"))
+        h->format = PLY_ASCII;
+    else if (mesh_token_is(words[1], "binary_little_endian"))
+        h->format = PLY_BINARY_LITTLE_ENDIAN;
+    else if (mesh_token_is(words[1], "binary_big_endian"))
+        h->format = PLY_BINARY_BIG_ENDIAN;
+    else
+        return mesh_fail_line(in, line,
+                              "unknown format '%.*s' (expected ascii, binary_little_endian or binary_big_endian)",
+                              mesh_shown(words[1]), words[1].text);
+    if (!mesh_token_is(words[2], "1.0"))
+        return mesh_fail_line(in, line, "unsupported PLY version '%.*s' (expected 1.0)", mesh_shown(words[2]),
+                              words[2].text);
+    return true;
+}
+
+/* Reads "element <name> <count>". */
+static bool parse_element(const struct mesh_input *in, size_t line, const struct mesh_token *words, int count,
+                          struct ply_header *h) {
+    if (count != 3)
+        return mesh_fail_line(in, line, "malformed element line (expected 'element <name> <count>')");
+    long long entries;
+    if (!mesh_parse_integer(words[2], &entries) || entries < 0 || (unsigned long long)entries > SIZE_MAX)
+        return mesh_fail_line(in, line, "bad element count '%.*s'", mesh_shown(words[2]), words[2].text);
+    enum ply_kind kind = mesh_token_is(words[1], "vertex") ? KIND_VERTEX
+                         : mesh_token_is(words[1], "face") ? KIND_FACE
+                                                           : KIND_OTHER;
+    for (size_t k = 0; k < h->element_count; k++)
+        if (kind != KIND_OTHER && h->elements[k].kind == kind)
+            return mesh_fail_line(in, line, "second element %.*s", mesh_shown(words[1]), words[1].text);
+    void *array = h->elements;
+    bool ok = mesh_reserve(&array, &h->element_capacity, h->element_count + 1, sizeof *h->elements);
+    h->elements = array;
+    if (!ok)
+        return mesh_fail_line(in, line, "out of memory");
+    h->elements[h->element_count++] = (struct ply_element){.name = words[1],
+                                                           .kind = kind,
+                                                           .count = (size_t)entries,
+                                                           .line = line,
+                                                           .first_property = h->property_count};
+    return true;
+}
+
+/* What a property named `name` of element e is for; fails on a second x, y, z or vertex_indices, and on
+ * one that is a list where a single value is expected or the other way round. */
+static bool property_role(const struct mesh_input *in, size_t line, const struct ply_header *h,
+                          const struct ply_element *e, struct mesh_token name, bool is_list, enum ply_role *role) {
+    *role = ROLE_SKIPPED;
+    if (e->kind == KIND_VERTEX && name.length == 1 && name.text[0] >= 'x' && name.text[0] <= 'z')
+        *role = (enum ply_role)(ROLE_X + (name.text[0] - 'x'));
+    else if (e->kind == KIND_FACE &&
+             (mesh_token_is(name, "vertex_indices") || mesh_token_is(name, "vertex_index")))
+        *role = ROLE_CORNERS;
+    if (*role == ROLE_SKIPPED)
+        return true;
+    for (size_t k = 0; k < e->property_count; k++)
+        if (h->properties[e->first_property + k].role == *role)
+            return mesh_fail_line(in, line, "second %.*s property", mesh_shown(name), name.text);
+    if (*role == ROLE_CORNERS && !is_list)
+        return mesh_fail_line(in, line, "%.*s must be a list", mesh_shown(name), name.text);
+    if (*role != ROLE_CORNERS && is_list)
+        return mesh_fail_line(in, line, "property %.*s must be a single value, not a list", mesh_shown(name),
+                              name.text);
+    return true;
+}
+
+/* Reads "property <type> <name>" or "property list <count type> <item type> <name>". */
+static bool parse_property(const struct mesh_input *in, size_t line, const struct mesh_token *words, int count,
+                           struct ply_header *h) {
+    if (h->element_count == 0)
+        return mesh_fail_line(in, line, "property before any element");
+    bool is_list = count >= 2 && mesh_token_is(words[1], "list");
+    if (count != (is_list ? 5 : 3))
+        return mesh_fail_line(in, line,
+                              "malformed property line (expected 'property <type> <name>' or "
+                              "'property list <count type> <item type> <name>')");
+    struct ply_property p = {.count_type = PLY_NOT_A_TYPE};
+    for (int k = is_list ? 2 : 1; k < count - 1; k++) {
+        enum ply_type type = type_named(words[k]);
+        if (type == PLY_NOT_A_TYPE)
+            return mesh_fail_line(in, line, "unknown property type '%.*s'", mesh_shown(words[k]), words[k].text);
+        if (is_list && k == 2)
+            p.count_type = type;
+        else
+            p.type = type;
+    }
+    if (is_list && !TYPES[p.count_type].is_integer)
+        return mesh_fail_line(in, line, "list length type must be an integer type, not %s",
+                              TYPES[p.count_type].name);
+    struct ply_element *e = &h->elements[h->element_count - 1];
+    struct mesh_token name = words[count - 1];
+    if (!property_role(in, line, h, e, name, is_list, &p.role))
+        return false;
+    if (p.role == ROLE_CORNERS && !TYPES[p.type].is_integer)
+        return mesh_fail_line(in, line, "vertex index type must be an integer type, not %s", TYPES[p.type].name);
+    void *array = h->properties;
+    bool ok = mesh_reserve(&array, &h->property_capacity, h->property_count + 1, sizeof *h->properties);
+    h->properties = array;
+    if (!ok)
+        return mesh_fail_line(in, line, "out of memory");
+    h->properties[h->property_count++] = p;
+    e->property_count++;
+    return true;
+}
+
+/* Reads the header's lines up to end_header into h. */
+static bool parse_header_lines(const struct mesh_input *in, struct ply_header *h) {
+    enum { MAX_WORDS = 6 }; /* one more than the longest line, to notice extra words */
+    struct mesh_lines lines;
+    mesh_lines_begin(&lines, in->data, in->size, 0, 1);
+    mesh_lines_next(&lines); /* "ply", checked by mesh_load */
+    const char *cursor;
+    while ((cursor = mesh_lines_next(&lines)) != NULL) {
+        struct mesh_token words[MAX_WORDS];
+        int count = 0;
+        while (count < MAX_WORDS && mesh_next_token(&cursor, lines.end, &words[count]))
+            count++;
+        if (count == 0 || mesh_token_is(words[0], "comment") || mesh_token_is(words[0], "obj_info"))
+            continue;
+        if (mesh_token_is(words[0], "end_header")) {
+            h->body = lines.next < in->size ? lines.next : in->size;
+            h->end_line = lines.line;
+            return true;
+        }
+        bool ok;
+        if (mesh_token_is(words[0], "format"))
+            ok = parse_format(in, lines.line, words, count, h);
+        else if (mesh_token_is(words[0], "element"))
+            ok = parse_element(in, lines.line, words, count, h);
+        else if (mesh_token_is(words[0], "property"))
+            ok = parse_property(in, lines.line, words, count, h);
+        else
+            ok = mesh_fail_line(in, lines.line, "unknown header keyword '%.*s'", mesh_shown(words[0]),
+                                words[0].text);
+        if (!ok)
+            return false;
+    }
+    return mesh_fail_line(in, lines.line, "missing end_header");
+}
+
+static size_t find_element(const struct ply_header *h, enum ply_kind kind) {
+    for (size_t k = 0; k < h->element_count; k++)
+        if (h->elements[k].kind == kind)
+            return k;
+    return NO_ELEMENT;
+}
+
+static bool has_role(const struct ply_header *h, const struct ply_element *e, enum ply_role role) {
+    for (size_t k = 0; k < e->property_count; k++)
+        if (h->properties[e->first_property + k].role == role)
+            return true;
+    return false;
+}
+
+/* Checks that the header declares what a mesh needs: a format, vertices with x, y and z, and faces. */
+static bool check_header(const struct mesh_input *in, const struct ply_header *h) {
+    if (h->format == PLY_NO_FORMAT)
+        return mesh_fail_line(in, h->end_line, "no format line before end_header");
+    size_t vertex = find_element(h, KIND_VERTEX), face = find_element(h, KIND_FACE);
+    if (vertex == NO_ELEMENT)
+        return mesh_fail_line(in, h->end_line, "no vertex element before end_header");
+    const struct ply_element *v = &h->elements[vertex];
+    static const char *const axis_names[] = {"x", "y", "z"};
+    for (int axis = 0; axis < 3; axis++)
+        if (!has_role(h, v, (enum ply_role)(ROLE_X + axis)))
+            return mesh_fail_line(in, v->line, "element vertex has no %s property", axis_names[axis]);
+    if (v->count > MESH_MAX_VERTICES)
+        return mesh_fail_line(in, v->line, "more than %zu vertices", MESH_MAX_VERTICES);
+    if (face == NO_ELEMENT || h->elements[face].count == 0)
+        return mesh_fail_file(in, "no faces");
+    if (!has_role(h, &h->elements[face], ROLE_CORNERS))
+        return mesh_fail_line(in, h->elements[face].line, "element face has no vertex_indices list");
+    return true;
+}
+
+/* The fewest bytes one entry of e can take: in binary files the size of its values with every list
+ * empty (a face's index list has at least 3 items); in ascii files PLY_MIN_LINE_BYTES per value. */
+static size_t min_entry_bytes(const struct ply_header *h, const struct ply_element *e) {
+    size_t bytes = 0, values = 0;
+    for (size_t k = 0; k < e->property_count; k++) {
+        const struct ply_property *p = &h->properties[e->first_property + k];
+        size_t items = p->role == ROLE_CORNERS ? 3 : 0;
+        if (p->count_type == PLY_NOT_A_TYPE) {
+            bytes += TYPES[p->type].size;
+            values += 1;
+        } else {
+            bytes += TYPES[p->count_type].size + items * TYPES[p->type].size;
+            values += 1 + items;
+        }
+    }
+    return h->format == PLY_ASCII ? values * PLY_MIN_LINE_BYTES : bytes;
+}
+
+/* Refuses counts that the rest of the file is too short to hold, before anything is allocated. */
+static bool check_counts_fit(const struct mesh_input *in, const struct ply_header *h) {
+    size_t available = in->size - h->body;
+    /* The last ascii value needs no separator after it. */
+    size_t budget = h->format == PLY_ASCII ? available + 1 : available;
+    size_t needed = 0;
+    for (size_t k = 0; k < h->element_count; k++) {
+        const struct ply_element *e = &h->elements[k];
+        size_t per_entry = min_entry_bytes(h, e);
+        if (per_entry == 0)
+            continue;
+        if (e->count > (budget - needed) / per_entry)
+            return mesh_fail_line(in, e->line, "element %.*s %zu does not fit in the %zu bytes after the header",
+                                  mesh_shown(e->name), e->name.text, e->count, available);
+        needed += e->count * per_entry;
+    }
+    return true;
+}
+
+static bool parse_header(const struct mesh_input *in, struct ply_header *h) {
+    return parse_header_lines(in, h) && check_header(in, h) && check_counts_fit(in, h);
+}
+
+/* ---- the data ---------------------------------------------------------------------------------- */
+
+struct ply_reader {
+    const struct mesh_input *in;
+    const struct ply_header *header;
+    size_t value_start;                /* binary: offset of the value being read, for messages */
+    size_t next;                       /* binary: offset of the next value */
+    struct mesh_lines lines;           /* ascii */
+    const char *cursor;                /* ascii: the rest of the current line */
+    const struct ply_element *element; /* the entry being read, for messages */
+    size_t index;
+    struct mesh *mesh;
+    size_t face_capacity;
+};
+
+/* Fails with "file:LINE: <element> <index>: <message>" (ascii) or "file: byte N: ..." (binary). */
+static bool reader_fail(const struct ply_reader *r, const char *format, ...) __attribute__((format(printf, 2, 3)));
+static bool reader_fail(const struct ply_reader *r, const char *format, ...) {
+    char message[200];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(message, sizeof message, format, args);
+    va_end(args);
+    const struct mesh_token name = r->element->name;
+    if (r->header->format == PLY_ASCII)
+        return mesh_fail_line(r->in, r->lines.line, "%.*s %zu: %s", mesh_shown(name), name.text, r->index,
+                              message);
+    return mesh_fail_byte(r->in, r->value_start, "%.*s %zu: %s", mesh_shown(name), name.text, r->index, message);
+}
+
+/* Converts the bits of a binary value (already in host order) to a double; every PLY type fits. */
+static double binary_value(enum ply_type type, uint64_t bits) {
+    if (type == PLY_FLOAT32) {
+        uint32_t narrow = (uint32_t)bits;
+        float f;
+        memcpy(&f, &narrow, sizeof f);
+        return f;
+    }
+    if (type == PLY_FLOAT64) {
+        double d;
+        memcpy(&d, &bits, sizeof d);
+        return d;
+    }
+    double range = TYPES[type].max - TYPES[type].min + 1.0; /* 2^bits */
+    double value = (double)bits;
+    return value > TYPES[type].max ? value - range : value; /* two's complement for signed types */
+}
+
+static bool read_binary_value(struct ply_reader *r, enum ply_type type, double *value) {
+    size_t size = TYPES[type].size;
+    r->value_start = r->next;
+    if (size > r->in->size - r->next)
+        return reader_fail(r, "file ends early");
+    const unsigned char *bytes = (const unsigned char *)r->in->data + r->next;
+    bool big_endian = r->header->format == PLY_BINARY_BIG_ENDIAN;
+    uint64_t bits = 0;
+    for (size_t k = 0; k < size; k++)
+        bits = bits << 8 | bytes[big_endian ? k : size - 1 - k];
+    r->next += size;
+    *value = binary_value(type, bits);
+    return true;
+}
+
+static bool read_ascii_value(struct ply_reader *r, enum ply_type type, double *value) {
+    struct mesh_token token;
+    if (!mesh_next_token(&r->cursor, r->lines.end, &token))
+        return reader_fail(r, "too few values");
+    if (!TYPES[type].is_integer) {
+        if (!mesh_parse_double(token, value))
+            return reader_fail(r, "'%.*s' is not a number", mesh_shown(token), token.text);
+        return true;
+    }
+    long long integer;
+    if (!mesh_parse_integer(token, &integer))
+        return reader_fail(r, "'%.*s' is not an integer", mesh_shown(token), token.text);
+    if (integer < TYPES[type].min || integer > TYPES[type].max)
+        return reader_fail(r, "%lld does not fit in %s", integer, TYPES[type].name);
+    *value = (double)integer;
+    return true;
+}
+
+static bool read_value(struct ply_reader *r, enum ply_type type, double *value) {
+    if (r->header->format == PLY_ASCII)
+        return read_ascii_value(r, type, value);
+    return read_binary_value(r, type, value);
+}
+
+/* Starts entry `index` of element e: in ascii files, moves to its line, skipping blank ones. */
+static bool begin_entry(struct ply_reader *r, const struct ply_element *e, size_t index) {
+    r->element = e;
+    r->index = index;
+    r->value_start = r->next;
+    if (r->header->format != PLY_ASCII)
+        return true;
+    struct mesh_token first;
+    do {
+        r->cursor = mesh_lines_next(&r->lines);
+        if (r->cursor == NULL)
+            return reader_fail(r, "file ends early");
+        const char *peek = r->cursor;
+        mesh_next_token(&peek, r->lines.end, &first);
+    } while (first.length == 0);
+    return true;
+}
+
+/* Ends an entry: in ascii files nothing may be left on its line. */
+static bool end_entry(struct ply_reader *r) {
+    struct mesh_token extra;
+    if (r->header->format == PLY_ASCII && mesh_next_token(&r->cursor, r->lines.end, &extra))
+        return reader_fail(r, "unexpected extra value '%.*s'", mesh_shown(extra), extra.text);
+    return true;
+}
+
+/* Reads a list length and checks it is not negative. */
+static bool read_list_length(struct ply_reader *r, const struct ply_property *p, double *length) {
+    if (!read_value(r, p->count_type, length))
+        return false;
+    if (*length < 0)
+        return reader_fail(r, "negative list length %.0f", *length);
+    return true;
+}
+
+/* Reads past a list nobody uses. */
+static bool skip_list(struct ply_reader *r, const struct ply_property *p) {
+    double length;
+    if (!read_list_length(r, p, &length))
+        return false;
+    size_t items = (size_t)length; /* a whole number from 0 to 2^32 - 1 */
+    if (r->header->format == PLY_ASCII) {
+        double ignored;
+        for (size_t k = 0; k < items; k++)
+            if (!read_value(r, p->type, &ignored))
+                return false;
+        return true;
+    }
+    size_t size = TYPES[p->type].size;
+    if (items > (r->in->size - r->next) / size) {
+        r->value_start = r->next;
+        return reader_fail(r, "file ends early");
+    }
+    r->next += items * size;
+    return true;
+}
+
+/* Reads a face's corner list and adds its fan of triangles to the mesh. */
+static bool read_corners(struct ply_reader *r, const struct ply_property *p, size_t vertex_count) {
+    double length;
+    if (!read_value(r, p->count_type, &length))
+        return false;
+    if (length < 3 || length > MESH_MAX_POLYGON_CORNERS)
+        return reader_fail(r, "%.0f corners (a face needs 3 to %d)", length, MESH_MAX_POLYGON_CORNERS);
+    uint32_t first = 0, previous = 0;
+    for (int k = 0; k < (int)length; k++) {
+        double index;
+        if (!read_value(r, p->type, &index))
+            return false;
+        if (index < 0 || index >= (double)vertex_count)
+            return reader_fail(r, "index %.0f out of range (%zu vertices)", index, vertex_count);
+        uint32_t corner = (uint32_t)index;
+        if (k >= 2 && !mesh_add_triangle(r->mesh, &r->face_capacity, first, previous, corner))
+            return reader_fail(r, "out of memory");
+        if (k == 0)
+            first = corner;
+        previous = corner;
+    }
+    return true;
+}
+
+/* Reads one property of the current entry; a vertex's coordinates go into xyz. */
+static bool read_property(struct ply_reader *r, const struct ply_property *p, size_t vertex_count, double xyz[3]) {
+    static const char *const axis_names[] = {"x", "y", "z"};
+    if (p->role == ROLE_CORNERS)
+        return read_corners(r, p, vertex_count);
+    if (p->count_type != PLY_NOT_A_TYPE)
+        return skip_list(r, p);
+    double value = 0;
+    if (!read_value(r, p->type, &value))
+        return false;
+    if (p->role == ROLE_SKIPPED)
+        return true;
+    int axis = (int)(p->role - ROLE_X);
+    if (!isfinite(value))
+        return reader_fail(r, "%s is not a finite number (%g)", axis_names[axis], value);
+    xyz[axis] = value;
+    return true;
+}
+
+/* Reads every entry of element e. */
+static bool read_element(struct ply_reader *r, const struct ply_element *e, size_t vertex_count) {
+    if (e->property_count == 0)
+        return true; /* nothing to read, however many entries it claims */
+    const struct ply_property *properties = &r->header->properties[e->first_property];
+    for (size_t index = 0; index < e->count; index++) {
+        if (!begin_entry(r, e, index))
+            return false;
+        double xyz[3] = {0, 0, 0};
+        for (size_t k = 0; k < e->property_count; k++)
+            if (!read_property(r, &properties[k], vertex_count, xyz))
+                return false;
+        if (e->kind == KIND_VERTEX)
+            r->mesh->vertices[index] = (vec3){xyz[0], xyz[1], xyz[2]};
+        if (!end_entry(r))
+            return false;
+    }
+    return true;
+}
+
+/* Allocates the vertex array and room for one triangle per face; their counts fit in the file. */
+static bool allocate(const struct mesh_input *in, const struct ply_header *h, struct ply_reader *r) {
+    size_t vertex_count = h->elements[find_element(h, KIND_VERTEX)].count;
+    size_t face_count = h->elements[find_element(h, KIND_FACE)].count;
+    r->mesh->vertices = calloc(vertex_count > 0 ? vertex_count : 1, sizeof *r->mesh->vertices);
+    if (r->mesh->vertices == NULL || !mesh_reserve_faces(r->mesh, &r->face_capacity, face_count))
+        return mesh_fail_file(in, "out of memory for %zu vertices and %zu faces", vertex_count, face_count);
+    r->mesh->vertex_count = vertex_count;
+    return true;
+}
+
+bool mesh_read_ply(const struct mesh_input *in, struct mesh *m) {
+    struct ply_header h = {0};
+    bool ok = parse_header(in, &h);
+    struct ply_reader r = {.in = in, .header = &h, .next = h.body, .mesh = m};
+    if (ok)
+        ok = allocate(in, &h, &r);
+    if (ok) {
+        mesh_lines_begin(&r.lines, in->data, in->size, h.body, h.end_line + 1);
+        for (size_t k = 0; ok && k < h.element_count; k++)
+            ok = read_element(&r, &h.elements[k], m->vertex_count);
+    }
+    free(h.elements);
+    free(h.properties);
+    return ok;
+}
