@@ -7,6 +7,7 @@
  * freed and left empty. */
 #include "scene.h"
 
+#include "camera.h"
 #include "image.h"
 
 #include <errno.h>
@@ -15,6 +16,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define LINE_MAX_TOKENS 48      /* the longest directive (a triangle with material) needs 13 */
 #define SCENE_FILE_MAX_BYTES (64L * 1024 * 1024) /* scene files are small; meshes live elsewhere */
@@ -187,12 +189,11 @@ static bool parse_camera(const struct parser *p, struct scene *s, char **tok, in
     s->target = key_vec3(&kv, TARGET);
     s->up = kv.present[UP] ? key_vec3(&kv, UP) : vec3_make(0, 1, 0);
     s->fov = kv.number[FOV][0];
-    if (!(s->fov > 0.0 && s->fov < 180.0))
-        return fail(p, "camera fov must be between 0 and 180 degrees, got %g", s->fov);
-    if (vec3_length(vec3_sub(s->target, s->eye)) == 0.0)
-        return fail(p, "camera eye and target are the same point");
-    if (vec3_length(vec3_cross(vec3_sub(s->target, s->eye), s->up)) == 0.0)
-        return fail(p, "camera up is zero or parallel to the viewing direction");
+    /* The camera's own checks, so that a camera that loads is a camera that renders. */
+    struct camera probe;
+    char why[256];
+    if (!camera_init(&probe, s->eye, s->target, s->up, s->fov, 1, 1, why, sizeof why))
+        return fail(p, "%s", why);
     *seen = true;
     return true;
 }
@@ -304,7 +305,14 @@ static bool parse_plane(const struct parser *p, struct scene *s, char **tok, int
     vec3 point = vec3_make(0, 0, 0);
     if (by_points) {
         point = key_vec3(&kv, A);
-        normal = vec3_cross(vec3_sub(key_vec3(&kv, B), point), vec3_sub(key_vec3(&kv, C), point));
+        vec3 ab = vec3_sub(key_vec3(&kv, B), point), ac = vec3_sub(key_vec3(&kv, C), point);
+        /* Scale both edges to at most 1 first, so that far-apart points cannot overflow the product. */
+        double ab_size = fmax(fabs(ab.x), fmax(fabs(ab.y), fabs(ab.z)));
+        double ac_size = fmax(fabs(ac.x), fmax(fabs(ac.y), fabs(ac.z)));
+        if (ab_size > 0.0 && ac_size > 0.0)
+            normal = vec3_cross(vec3_scale(ab, 1.0 / ab_size), vec3_scale(ac, 1.0 / ac_size));
+        else
+            normal = vec3_make(0, 0, 0);
         if (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0)
             return fail(p, "plane points a, b, c lie on one line");
     } else {
@@ -535,7 +543,8 @@ bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
         return false;
     }
     long size = -1;
-    if (fseek(file, 0, SEEK_END) == 0)
+    struct stat info;
+    if (fstat(fileno(file), &info) == 0 && S_ISREG(info.st_mode) && fseek(file, 0, SEEK_END) == 0)
         size = ftell(file);
     rewind(file);
     if (size < 0 || size > SCENE_FILE_MAX_BYTES) {
