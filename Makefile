@@ -44,7 +44,10 @@ MODULES_05 := $(MODULES_04) aabb box world
 MODULES_06 := $(MODULES_05) phong
 MODULES_07 := $(MODULES_06) shadow
 MODULES_08 := $(MODULES_07) whitted
-CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion
+MODULES_09 := $(MODULES_08) kdtree accel
+MODULES_10 := $(MODULES_09) bvh accel_bvh
+CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
+            09-kdtree 10-bvh
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
@@ -86,7 +89,7 @@ $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- models: the bunny is committed, the teapots are generated (tools/models.mk) -----------------
 include tools/models.mk
-SCENE_MODELS := scenes/models/teapot-5k.ply
+SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
 # ---- running chapters --------------------------------------------------------------------------
 chapter-%: | out

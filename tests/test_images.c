@@ -45,6 +45,45 @@ CHAPTER_IMAGE_TESTS(5, chapter_05_aabb)
 CHAPTER_IMAGE_TESTS(6, chapter_06_phong)
 CHAPTER_IMAGE_TESTS(7, chapter_07_shadows)
 CHAPTER_IMAGE_TESTS(8, chapter_08_recursion)
+CHAPTER_IMAGE_TESTS(9, chapter_09_kdtree)
+CHAPTER_IMAGE_TESTS(10, chapter_10_bvh)
+
+/* ---- acceleration changes the work, never the picture ------------------------------------------ */
+
+/* Renders `scene` with chapter n and the extra options, and asserts the picture equals `expected`. */
+static void check_identical(int n, const char *scene, const char *extra, const char *expected, const char *tag) {
+    char png[256];
+    snprintf(png, sizeof png, TEST_OUT "/identical-%s.png", tag);
+    cr_assert_eq(render_chapter(n, scene, png, extra), 0, "chapter %d %s failed", n, extra);
+    struct image_difference d = compare_png(png, expected);
+    cr_assert_eq(d.max, 0, "chapter %d %s differs from %s by up to %d levels", n, extra, expected, d.max);
+}
+
+Test(acceleration, every_structure_draws_the_brute_force_picture, .timeout = 300) {
+    const char *scene = chapter_scene(9);
+    const char *brute = TEST_OUT "/brute-force-09.png";
+    cr_assert_eq(render_chapter(10, scene, brute, "--accel none"), 0);
+    check_identical(10, scene, "--accel bvh --split sah", brute, "bvh-sah");
+    check_identical(10, scene, "--accel bvh --split seed", brute, "bvh-median");
+    check_identical(10, scene, "--accel kdtree --split sah", brute, "kd-sah");
+    check_identical(10, scene, "--accel kdtree --split seed", brute, "kd-seed");
+    check_identical(9, scene, "", brute, "chapter-9");
+    check_identical(8, scene, "", brute, "chapter-8");
+}
+
+Test(acceleration, chapters_9_and_10_draw_chapter_8s_picture) {
+    const char *expected = TEST_OUT "/chapter-08-for-accel.png";
+    cr_assert_eq(render_chapter(8, chapter_scene(8), expected, ""), 0);
+    check_identical(9, chapter_scene(8), "", expected, "ch9-on-8");
+    check_identical(10, chapter_scene(8), "", expected, "ch10-on-8");
+}
+
+Test(acceleration, the_picture_is_the_same_for_1_2_and_4_threads, .timeout = 300) {
+    const char *one = TEST_OUT "/threads-1.png";
+    cr_assert_eq(render_chapter(10, chapter_scene(10), one, "--threads 1"), 0);
+    check_identical(10, chapter_scene(10), "--threads 2", one, "threads-2");
+    check_identical(10, chapter_scene(10), "--threads 4", one, "threads-4");
+}
 
 /* ---- the checks catch real changes ------------------------------------------------------------ */
 
@@ -62,13 +101,6 @@ static struct image_difference variant_vs_reference(int n, const char *tag, cons
     struct image_difference d = compare_png(png, reference);
     report_difference(tag, &d);
     return d;
-}
-
-Test(reference_image, rendering_twice_gives_identical_pixels) {
-    cr_assert_eq(render_chapter(8, chapter_scene(8), TEST_OUT "/twice-a.png", "--threads 1"), 0);
-    cr_assert_eq(render_chapter(8, chapter_scene(8), TEST_OUT "/twice-b.png", "--threads 2"), 0);
-    struct image_difference d = compare_png(TEST_OUT "/twice-a.png", TEST_OUT "/twice-b.png");
-    cr_assert_eq(d.max, 0, "one and two threads differ by up to %d levels", d.max);
 }
 
 Test(reference_image, catches_a_camera_shifted_by_one_pixel) {

@@ -1,0 +1,64 @@
+/* Chapter 9, the kd-tree: space is cut in two, again and again, so a ray only visits the cells it
+ * passes through, front to back, and stops at the first cell where it hits something.
+ *
+ * The tree (build rules, traversal) is in common/kdtree.c; common/accel.c gathers the scene's
+ * triangles and routes the world's queries through the tree. The shading is chapter 8's, unchanged:
+ * the picture must not change, only the work. Try --accel none to compare. */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "accel.h"
+#include "cli.h"
+#include "kdtree.h"
+#include "whitted.h"
+
+static struct accel_choice choice = {ACCEL_KDTREE, true};
+
+static int parse_option(const char *option, const char *value) {
+    return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE, option, value);
+}
+
+/* Builds the world with the chosen structure over every triangle of the scene. */
+static void *prepare(struct scene *s, char *err, size_t err_size) {
+    struct accel_world *w = malloc(sizeof *w);
+    if (w == NULL || !accel_world_init(w, s, err, err_size)) {
+        free(w);
+        return NULL;
+    }
+    int split = choice.sah ? KD_SPLIT_SAH : KD_SPLIT_SEED;
+    if (choice.kind == ACCEL_KDTREE && !accel_world_use_kdtree(w, split, err, err_size)) {
+        accel_world_free(w);
+        free(w);
+        return NULL;
+    }
+    return w;
+}
+
+static void release(void *world) {
+    accel_world_free(world);
+    free(world);
+}
+
+static void report(const void *world, const struct stats *total, double seconds) {
+    (void)seconds;
+    accel_report(world, total);
+}
+
+int main(int argc, char **argv) {
+    static const struct chapter chapter = {
+        .number = 9,
+        .title = "kdtree",
+        .default_scene = "scenes/09-kdtree.scene",
+        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .lighting = POV_WHITTED,
+        .load_meshes = scene_load_meshes,
+        .prepare = prepare,
+        .release = release,
+        .trace = whitted_trace,
+        .parse_option = parse_option,
+        .options_help = "  --accel KIND     none or kdtree (default kdtree)\n"
+                        "  --split RULE     sah (default) or seed: the seed's rule, the axis holding most objects\n",
+        .report = report,
+    };
+    return cli_run(&chapter, argc, argv);
+}

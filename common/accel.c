@@ -1,0 +1,161 @@
+/* accel.c: gathering a scene's triangles and routing the world's queries through a kd-tree (chapter 9). */
+#include "accel.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "kdtree.h"
+
+double accel_now_ms(void) {
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return 1e3 * (double)now.tv_sec + 1e-6 * (double)now.tv_nsec;
+}
+
+/* Copies every triangle of s into one mesh, with each face's material beside it. */
+static bool gather_triangles(struct accel_world *w, const struct scene *s) {
+    size_t vertices = 3 * s->triangle_count, faces = s->triangle_count;
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        vertices += s->meshes[k].mesh.vertex_count;
+        faces += s->meshes[k].mesh.face_count;
+    }
+    if (vertices > UINT32_MAX)
+        return false;
+    struct mesh *all = &w->triangles;
+    all->vertices = malloc((vertices + 1) * sizeof *all->vertices);
+    all->faces = malloc((faces + 1) * sizeof *all->faces);
+    w->materials = malloc((faces + 1) * sizeof *w->materials);
+    if (all->vertices == NULL || all->faces == NULL || w->materials == NULL)
+        return false;
+    size_t v = 0, f = 0;
+    for (size_t k = 0; k < s->triangle_count; k++, f++) {
+        const struct triangle *t = &s->triangles[k];
+        all->vertices[v] = t->a;
+        all->vertices[v + 1] = t->b;
+        all->vertices[v + 2] = t->c;
+        all->faces[f] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
+        w->materials[f] = t->material;
+        v += 3;
+    }
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        const struct mesh *m = &s->meshes[k].mesh;
+        memcpy(all->vertices + v, m->vertices, m->vertex_count * sizeof *m->vertices);
+        for (size_t j = 0; j < m->face_count; j++, f++) {
+            for (int c = 0; c < 3; c++)
+                all->faces[f].v[c] = m->faces[j].v[c] + (uint32_t)v;
+            w->materials[f] = s->meshes[k].material;
+        }
+        v += m->vertex_count;
+    }
+    all->vertex_count = v;
+    all->face_count = f;
+    return true;
+}
+
+bool accel_world_init(struct accel_world *w, const struct scene *s, char *err, size_t err_size) {
+    memset(w, 0, sizeof *w);
+    if (!world_init(&w->world, s, err, err_size))
+        return false;
+    if (!gather_triangles(w, s)) {
+        accel_world_free(w);
+        snprintf(err, err_size, "out of memory");
+        return false;
+    }
+    w->accel.triangles = &w->triangles;
+    w->accel.materials = w->materials;
+    w->summary.name = "none (brute force behind per-mesh boxes)";
+    return true;
+}
+
+void accel_world_free(struct accel_world *w) {
+    if (w->structure != NULL && w->free_structure != NULL)
+        w->free_structure(w->structure);
+    world_free(&w->world);
+    mesh_free(&w->triangles);
+    free(w->materials);
+    memset(w, 0, sizeof *w);
+}
+
+/* The kd-tree's queries in the shape the world expects. */
+static bool kdtree_closest_any(const void *tree, const ray *r, double t_min, double t_max, double *t,
+                               uint32_t *face) {
+    return kdtree_closest(tree, r, t_min, t_max, t, face);
+}
+
+static bool kdtree_occluded_any(const void *tree, const ray *r, double t_min, double t_max) {
+    return kdtree_occluded(tree, r, t_min, t_max);
+}
+
+static void kdtree_for_each_hit_any(const void *tree, const ray *r, double t_min, double t_max,
+                                    world_hit_visitor visit, void *context) {
+    kdtree_for_each_hit(tree, r, t_min, t_max, visit, context);
+}
+
+static void kdtree_free_any(void *tree) { kdtree_free(tree); }
+
+int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *option, const char *value) {
+    static const char *kinds[] = {"none", "kdtree", "bvh"};
+    if (strcmp(option, "--accel") == 0) {
+        for (int k = 0; k < 3; k++)
+            if ((allowed & (1u << k)) && value != NULL && strcmp(value, kinds[k]) == 0) {
+                c->kind = (enum accel_kind)k;
+                return 2;
+            }
+        fprintf(stderr, "--accel needs one of:");
+        for (int k = 0; k < 3; k++)
+            if (allowed & (1u << k))
+                fprintf(stderr, " %s", kinds[k]);
+        fprintf(stderr, "; got '%s'\n", value != NULL ? value : "");
+        return -1;
+    }
+    if (strcmp(option, "--split") == 0) {
+        if (value != NULL && (strcmp(value, "sah") == 0 || strcmp(value, "seed") == 0)) {
+            c->sah = strcmp(value, "sah") == 0;
+            return 2;
+        }
+        fprintf(stderr, "--split needs 'sah' or 'seed' (the seed's rule), got '%s'\n", value != NULL ? value : "");
+        return -1;
+    }
+    return 0;
+}
+
+void accel_report(const struct accel_world *w, const struct stats *total) {
+    const struct accel_summary *a = &w->summary;
+    uint64_t rays = total->primary_rays + total->shadow_rays + total->reflected_rays + total->refracted_rays;
+    printf("acceleration: %s over %zu triangles\n", a->name, w->triangles.face_count);
+    if (w->structure == NULL)
+        return;
+    printf("  build            %12.1f ms\n", a->build_ms);
+    printf("  nodes            %12zu (%zu leaves, depth %zu)\n", a->nodes, a->leaves, a->max_depth);
+    if (rays == 0)
+        return;
+    printf("  per ray (all kinds): %.2f node visits, %.2f triangle tests\n",
+           (double)total->node_visits / (double)rays, (double)total->triangle_tests / (double)rays);
+    if (a->sah_cost > 0.0)
+        printf("  predicted by the SAH: %.2f (traversal and triangle costs in triangle-test units)\n",
+               a->sah_cost);
+}
+
+bool accel_world_use_kdtree(struct accel_world *w, int split, char *err, size_t err_size) {
+    double started = accel_now_ms();
+    struct kdtree *tree = kdtree_build(&w->triangles, (enum kd_split)split);
+    double build_ms = accel_now_ms() - started;
+    if (tree == NULL) {
+        snprintf(err, err_size, "out of memory building the kd-tree");
+        return false;
+    }
+    struct kdtree_info info;
+    kdtree_get_info(tree, &info);
+    w->summary = (struct accel_summary){split == KD_SPLIT_SAH ? "kd-tree (SAH)" : "kd-tree (seed's rule)",
+                                        build_ms, info.nodes, info.leaves, info.max_depth, info.sah_cost};
+    w->structure = tree;
+    w->free_structure = kdtree_free_any;
+    w->accel.structure = tree;
+    w->accel.closest = kdtree_closest_any;
+    w->accel.occluded = kdtree_occluded_any;
+    w->accel.for_each_hit = kdtree_for_each_hit_any;
+    w->world.accel = &w->accel;
+    return true;
+}
