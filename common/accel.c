@@ -78,6 +78,16 @@ void accel_world_free(struct accel_world *w) {
     memset(w, 0, sizeof *w);
 }
 
+void accel_world_destroy(void *world) {
+    accel_world_free(world);
+    free(world);
+}
+
+void accel_chapter_report(const void *world, const struct stats *total, double render_seconds) {
+    (void)render_seconds;
+    accel_report(world, total);
+}
+
 /* The kd-tree's queries in the shape the world expects. */
 static bool kdtree_closest_any(const void *tree, const ray *r, double t_min, double t_max, double *t,
                                uint32_t *face) {

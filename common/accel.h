@@ -60,6 +60,12 @@ struct accel_choice {
  * not one of these, -1 after printing why the value is wrong. */
 int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *option, const char *value);
 
+/* Frees a heap-allocated accel_world and what it owns: struct chapter's release. */
+void accel_world_destroy(void *world);
+
+/* accel_report in the shape of struct chapter's report. */
+void accel_chapter_report(const void *world, const struct stats *total, double render_seconds);
+
 /* Prints what was built and what tracing it cost per ray, beside the predicted cost. `total` holds the
  * counters of the whole render. */
 void accel_report(const struct accel_world *w, const struct stats *total);

@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include "world.h"
+
 vec3 phong_reflect(vec3 direction, vec3 normal) {
     return vec3_add_scaled(direction, normal, -2.0 * vec3_dot(direction, normal));
 }
@@ -31,4 +33,14 @@ vec3 phong_shade(const struct scene *s, const struct phong_surface *at, phong_sh
         colour = vec3_add(colour, vec3_mul(reaching, surface));
     }
     return colour;
+}
+
+vec3 phong_trace_nearest(const void *world, const ray *r, phong_shadow_fn shadow) {
+    const struct world *w = world;
+    struct hit h = hit_nothing(INFINITY);
+    if (!world_closest(w, r, RAY_T_MIN, &h))
+        return w->scene->background;
+    struct phong_surface at = {ray_at(*r, h.t), hit_facing_normal(&h, r->direction), r->direction,
+                               &w->scene->materials[h.material], 1.0};
+    return phong_shade(w->scene, &at, shadow, w);
 }

@@ -37,6 +37,10 @@ struct phong_surface {
 vec3 phong_shade(const struct scene *s, const struct phong_surface *at, phong_shadow_fn shadow,
                  const void *world);
 
+/* Returns the colour seen along r in world w (a struct world): the nearest surface shaded with
+ * phong_shade (opacity 1), or the background. `shadow` as for phong_shade. */
+vec3 phong_trace_nearest(const void *world, const ray *r, phong_shadow_fn shadow);
+
 /* Returns the mirror direction of D about the unit normal N: D - 2 (D.N) N. */
 vec3 phong_reflect(vec3 direction, vec3 normal);
 

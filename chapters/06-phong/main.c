@@ -1,22 +1,15 @@
 /* Chapter 6, Phong shading: materials and coloured point lights replace the light at the eye.
  *
  * Each hit is shaded by ambient light, the diffuse (Lambert) term and the Phong highlight of every light
- * that faces the surface (common/phong.c, POV-Ray's formula exactly). Nothing casts shadows yet: a light
- * reaches every surface that faces it. */
+ * that faces the surface (common/phong.c, POV-Ray's formula exactly: phong_shade for one point,
+ * phong_trace_nearest for a ray). Nothing casts shadows yet: a light reaches every surface that faces
+ * it. */
 #include "cli.h"
 #include "phong.h"
 #include "world.h"
 
-/* Returns the Phong-shaded colour of the nearest shape along r, or the background. */
-static vec3 trace_phong(const void *world, const ray *r) {
-    const struct world *w = world;
-    struct hit h = hit_nothing(INFINITY);
-    if (!world_closest(w, r, RAY_T_MIN, &h))
-        return w->scene->background;
-    struct phong_surface at = {ray_at(*r, h.t), hit_facing_normal(&h, r->direction), r->direction,
-                               &w->scene->materials[h.material], 1.0};
-    return phong_shade(w->scene, &at, NULL, w);
-}
+/* Returns the Phong-shaded colour of the nearest shape along r, or the background; no shadows. */
+static vec3 trace_phong(const void *world, const ray *r) { return phong_trace_nearest(world, r, NULL); }
 
 int main(int argc, char **argv) {
     static const struct chapter chapter = {

@@ -1,7 +1,7 @@
 /* Chapter 7, shadows: before a light counts, a shadow ray checks that nothing stands in its way.
  *
  * The shadow ray and its offset constants are in common/shadow.c. The shading is chapter 6's with one
- * change: phong_shade is given shadow_opaque, so a light blocked by any shape adds nothing. Run the
+ * change: phong_trace_nearest is given shadow_opaque, so a light blocked by any shape adds nothing. Run the
  * scene scenes/07-shadow-acne.scene to see what happens without the offset. */
 #include "cli.h"
 #include "phong.h"
@@ -9,15 +9,7 @@
 #include "world.h"
 
 /* Returns the Phong-shaded colour of the nearest shape along r, lights blocked by shapes left out. */
-static vec3 trace_shadowed(const void *world, const ray *r) {
-    const struct world *w = world;
-    struct hit h = hit_nothing(INFINITY);
-    if (!world_closest(w, r, RAY_T_MIN, &h))
-        return w->scene->background;
-    struct phong_surface at = {ray_at(*r, h.t), hit_facing_normal(&h, r->direction), r->direction,
-                               &w->scene->materials[h.material], 1.0};
-    return phong_shade(w->scene, &at, shadow_opaque, w);
-}
+static vec3 trace_shadowed(const void *world, const ray *r) { return phong_trace_nearest(world, r, shadow_opaque); }
 
 int main(int argc, char **argv) {
     static const struct chapter chapter = {

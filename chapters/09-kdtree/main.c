@@ -27,21 +27,10 @@ static void *prepare(struct scene *s, char *err, size_t err_size) {
     }
     int split = choice.sah ? KD_SPLIT_SAH : KD_SPLIT_SEED;
     if (choice.kind == ACCEL_KDTREE && !accel_world_use_kdtree(w, split, err, err_size)) {
-        accel_world_free(w);
-        free(w);
+        accel_world_destroy(w);
         return NULL;
     }
     return w;
-}
-
-static void release(void *world) {
-    accel_world_free(world);
-    free(world);
-}
-
-static void report(const void *world, const struct stats *total, double seconds) {
-    (void)seconds;
-    accel_report(world, total);
 }
 
 int main(int argc, char **argv) {
@@ -53,12 +42,12 @@ int main(int argc, char **argv) {
         .lighting = POV_WHITTED,
         .load_meshes = scene_load_meshes,
         .prepare = prepare,
-        .release = release,
+        .release = accel_world_destroy,
         .trace = whitted_trace,
         .parse_option = parse_option,
         .options_help = "  --accel KIND     none or kdtree (default kdtree)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule, the axis holding most objects\n",
-        .report = report,
+        .report = accel_chapter_report,
     };
     return cli_run(&chapter, argc, argv);
 }

@@ -32,21 +32,10 @@ static void *prepare(struct scene *s, char *err, size_t err_size) {
     else if (choice.kind == ACCEL_KDTREE)
         built = accel_world_use_kdtree(w, choice.sah ? KD_SPLIT_SAH : KD_SPLIT_SEED, err, err_size);
     if (!built) {
-        accel_world_free(w);
-        free(w);
+        accel_world_destroy(w);
         return NULL;
     }
     return w;
-}
-
-static void release(void *world) {
-    accel_world_free(world);
-    free(world);
-}
-
-static void report(const void *world, const struct stats *total, double seconds) {
-    (void)seconds;
-    accel_report(world, total);
 }
 
 int main(int argc, char **argv) {
@@ -58,13 +47,13 @@ int main(int argc, char **argv) {
         .lighting = POV_WHITTED,
         .load_meshes = scene_load_meshes,
         .prepare = prepare,
-        .release = release,
+        .release = accel_world_destroy,
         .trace = whitted_trace,
         .parse_option = parse_option,
         .options_help = "  --accel KIND     none, kdtree or bvh (default bvh)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
                         "                   kd-tree: the axis holding most objects)\n",
-        .report = report,
+        .report = accel_chapter_report,
     };
     return cli_run(&chapter, argc, argv);
 }
