@@ -53,6 +53,10 @@ ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,
 chapter_number = $(firstword $(subst -, ,$(1)))
 chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 
+# ---- models: the bunny is committed, the teapots are generated (tools/models.mk) -----------------
+include tools/models.mk
+SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
+
 .PHONY: all chapters test test-sanitize references compare clean help models \
         $(foreach n,1 2 3 4 5 6 7 8 9 10,chapter-$(n))
 .DEFAULT_GOAL := all
@@ -86,10 +90,6 @@ $(BUILD)/chapter-$(call chapter_number,$(1)): $(BUILD)/chapters/$(1).o \
 	$$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
-
-# ---- models: the bunny is committed, the teapots are generated (tools/models.mk) -----------------
-include tools/models.mk
-SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
 # ---- running chapters --------------------------------------------------------------------------
 chapter-%: | out
