@@ -577,16 +577,20 @@ static inline double2 min2(double2 a, double2 b) {
 /* What every box test of one ray shares: computed once per ray. */
 struct ray_setup {
     double origin[3];
-    double inverse[3]; /* 1 / direction; a zero component gives an infinity of the zero's sign */
-    int near[3];       /* 0 when the ray enters a box through its low face on this axis, 1 for the high */
+    double inverse[3];  /* 1 / direction; a zero component gives an infinity of the zero's sign */
+    int near[3];        /* 0 when the ray enters a box through its low face on this axis, 1 for the high */
+    double2 origin2[3]; /* origin and inverse again, each component in both lanes */
+    double2 inverse2[3];
 };
 
-static struct ray_setup ray_setup_make(const ray *r) {
+static inline struct ray_setup ray_setup_make(const ray *r) {
     struct ray_setup s;
     for (int a = 0; a < 3; a++) {
         s.origin[a] = vec3_axis(r->origin, a);
         s.inverse[a] = 1.0 / vec3_axis(r->direction, a);
         s.near[a] = s.inverse[a] < 0.0;
+        s.origin2[a] = (double2){s.origin[a], s.origin[a]};
+        s.inverse2[a] = (double2){s.inverse[a], s.inverse[a]};
     }
     return s;
 }
@@ -595,7 +599,7 @@ static struct ray_setup ray_setup_make(const ray *r) {
  * [t_near, t_far]. An origin exactly on a face plane with a zero direction component gives
  * 0 * infinity = NaN, which compares false and so leaves the interval alone: a ray running in a face's
  * plane is inside. */
-static bool root_hit(const struct bvh *b, const struct ray_setup *s, double t_near, double t_far) {
+static inline bool root_hit(const struct bvh *b, const struct ray_setup *s, double t_near, double t_far) {
     for (int a = 0; a < 3; a++) {
         double near_plane = s->near[a] ? b->root_hi[a] : b->root_lo[a];
         double far_plane = s->near[a] ? b->root_lo[a] : b->root_hi[a];
@@ -607,18 +611,24 @@ static bool root_hit(const struct bvh *b, const struct ray_setup *s, double t_ne
     return t_near <= t_far;
 }
 
-/* The same slab test on both children of n at once. Returns a bit mask (bit k: child k is hit in
+/* One axis of the slab test on both children of n at once: narrows each lane's [enter, leave]. */
+static inline void slab_pair(const struct bvh_node *n, const struct ray_setup *s, int axis, double2 *enter,
+                             double2 *leave) {
+    const float *near_planes = n->bounds[axis][s->near[axis]], *far_planes = n->bounds[axis][1 - s->near[axis]];
+    double2 t0 = ((double2){near_planes[0], near_planes[1]} - s->origin2[axis]) * s->inverse2[axis];
+    double2 t1 = ((double2){far_planes[0], far_planes[1]} - s->origin2[axis]) * s->inverse2[axis];
+    *enter = max2(t0, *enter);
+    *leave = min2(t1, *leave);
+}
+
+/* The slab test on both children of n at once. Returns a bit mask (bit k: child k is hit in
  * [t_near, t_far]) and each child's entry distance in *entry. */
 static inline int children_hit(const struct bvh_node *n, const struct ray_setup *s, double t_near, double t_far,
                                double2 *entry) {
     double2 enter = {t_near, t_near}, leave = {t_far, t_far};
-    for (int a = 0; a < 3; a++) {
-        const float *near_planes = n->bounds[a][s->near[a]], *far_planes = n->bounds[a][1 - s->near[a]];
-        double2 t0 = ((double2){near_planes[0], near_planes[1]} - s->origin[a]) * s->inverse[a];
-        double2 t1 = ((double2){far_planes[0], far_planes[1]} - s->origin[a]) * s->inverse[a];
-        enter = max2(t0, enter);
-        leave = min2(t1, leave);
-    }
+    slab_pair(n, s, 0, &enter, &leave);
+    slab_pair(n, s, 1, &enter, &leave);
+    slab_pair(n, s, 2, &enter, &leave);
     *entry = enter;
     long2 hit = enter <= leave;
     return (int)(hit[0] & 1) | (int)(hit[1] & 2);

@@ -65,4 +65,10 @@ void bvh_for_each_hit(const struct bvh *b, const ray *r, double t_min, double t_
 /* Fills *info with b's shape, build time and SAH cost. Cannot fail. */
 void bvh_get_info(const struct bvh *b, struct bvh_info *info);
 
+/* Checks b, built from m, against its invariants: every face stored exactly once and reachable from
+ * the root, every box holding its triangles' corners and its children's boxes, the depth within the
+ * traversal stack. Returns true when all hold; otherwise false with the first broken one described in
+ * why (why_size bytes). For tests: it walks the whole tree. */
+bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t why_size);
+
 #endif
