@@ -40,4 +40,14 @@ for n in "${chapters[@]}"; do
 done
 echo
 cat "$table"
+
+# Keep docs/povray.md's table current: replace what stands between its two markers.
+doc=docs/povray.md
+if [ -f "$doc" ] && grep -q '^<!-- compare-table -->$' "$doc"; then
+    awk -v table="$table" '
+        /^<!-- compare-table -->$/ { print; while ((getline line < table) > 0) print line; skipping = 1; next }
+        /^<!-- \/compare-table -->$/ { skipping = 0 }
+        !skipping { print }' "$doc" >"$doc.new" && mv "$doc.new" "$doc"
+    echo "updated the table in $doc"
+fi
 exit $status
