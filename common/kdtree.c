@@ -159,11 +159,13 @@ static float float_above(double x) {
 /* Which sides of the plane `split` on `axis` a triangle box goes to. */
 enum side { SIDE_LEFT = 1, SIDE_RIGHT = 2, SIDE_BOTH = 3 };
 
-/* Right when the box reaches past the plane; left when it starts before it, and also when it lies flat
- * in the plane (so every triangle goes somewhere). */
+/* Left when the box starts before the plane, right when it reaches past it, both when it lies flat in
+ * the plane: every triangle goes somewhere. (Padded boxes are never flat; only a mesh of zero size,
+ * whose pad is 0, has flat boxes.) */
 static enum side classify(const struct fbox *b, int axis, float split) {
-    bool right = b->hi[axis] > split;
-    bool left = b->lo[axis] < split || !right;
+    bool flat_in_plane = b->lo[axis] == split && b->hi[axis] == split;
+    bool left = b->lo[axis] < split || flat_in_plane;
+    bool right = b->hi[axis] > split || flat_in_plane;
     return (left ? SIDE_LEFT : 0) | (right ? SIDE_RIGHT : 0);
 }
 
@@ -291,13 +293,14 @@ static bool build_sah(struct kd_builder *bd, struct kd_event *events[3], size_t 
                     starts++;
                 right -= ends + planars;
                 if (p > box.lo[a] && p < box.hi[a]) {
-                    size_t left_here = left + planars; /* flat boxes in the plane go left (classify) */
+                    /* flat boxes in the plane go both ways (classify) */
+                    size_t left_here = left + planars, right_here = right + planars;
                     double below = (double)p - box.lo[a], above = (double)box.hi[a] - p;
                     double cross = extent[b] * extent[c], side = extent[b] + extent[c];
                     double area_left = 2.0 * (cross + below * side), area_right = 2.0 * (cross + above * side);
-                    double bonus = left_here == 0 || right == 0 ? 1.0 - KD_EMPTY_BONUS : 1.0;
+                    double bonus = left_here == 0 || right_here == 0 ? 1.0 - KD_EMPTY_BONUS : 1.0;
                     double cost = KD_COST_TRAVERSAL + KD_COST_TRIANGLE * bonus *
-                                                          (area_left * left_here + area_right * right) / area;
+                                                          (area_left * left_here + area_right * right_here) / area;
                     if (cost < best_cost) {
                         best_cost = cost;
                         best_axis = a;
@@ -625,6 +628,94 @@ void kdtree_free(struct kdtree *k) {
 }
 
 void kdtree_get_info(const struct kdtree *k, struct kdtree_info *info) { *info = k->info; }
+
+/* ==== checking ================================================================================ */
+
+struct check {
+    const struct kdtree *k;
+    unsigned char *seen_node;
+    char *why;
+    size_t why_size;
+};
+
+static bool check_fail(struct check *c, const char *message, size_t where) {
+    snprintf(c->why, c->why_size, "%s (at %zu)", message, where);
+    return false;
+}
+
+/* Checks the shape of the subtree at index: indices in range, each node reached once. */
+static bool check_shape(struct check *c, uint32_t index, size_t depth) {
+    const struct kdtree *k = c->k;
+    if (depth >= KD_STACK_SIZE)
+        return check_fail(c, "deeper than the traversal stack", depth);
+    if (index >= k->info.nodes || c->seen_node[index]++)
+        return check_fail(c, "node index out of range or reached twice", index);
+    const struct kd_node *n = &k->nodes[index];
+    if ((n->bits & 3u) == KD_LEAF) {
+        if ((size_t)n->first + (n->bits >> 2) > k->info.references)
+            return check_fail(c, "leaf runs past the references", index);
+        for (uint32_t i = 0; i < n->bits >> 2; i++)
+            if (k->refs[n->first + i] >= k->face_count)
+                return check_fail(c, "reference to a face that does not exist", index);
+        return true;
+    }
+    if (!(n->bits >> 2 > index + 1))
+        return check_fail(c, "above child not after the below child", index);
+    return check_shape(c, index + 1, depth + 1) && check_shape(c, n->bits >> 2, depth + 1);
+}
+
+/* Checks that face is in every leaf under index whose region touches the box [lo, hi]. */
+static bool check_face(struct check *c, uint32_t index, uint32_t face, const double lo[3], const double hi[3]) {
+    const struct kd_node *n = &c->k->nodes[index];
+    uint32_t axis = n->bits & 3u;
+    if (axis == KD_LEAF) {
+        for (uint32_t i = 0; i < n->bits >> 2; i++)
+            if (c->k->refs[n->first + i] == face)
+                return true;
+        return check_fail(c, "face missing from a leaf its box touches", face);
+    }
+    if (lo[axis] <= n->split && !check_face(c, index + 1, face, lo, hi))
+        return false;
+    return !(hi[axis] >= n->split) || check_face(c, n->bits >> 2, face, lo, hi);
+}
+
+bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, size_t why_size) {
+    struct check c = {k, calloc(k->info.nodes + 1, 1), why, why_size};
+    if (c.seen_node == NULL) {
+        snprintf(why, why_size, "out of memory");
+        return false;
+    }
+    bool ok = true;
+    if (k->face_count != m->face_count)
+        ok = check_fail(&c, "face count differs from the mesh's", k->face_count);
+    if (ok && k->face_count > 0) {
+        ok = check_shape(&c, 0, 0);
+        for (size_t i = 0; ok && i < k->info.nodes; i++)
+            if (!c.seen_node[i])
+                ok = check_fail(&c, "node not reachable from the root", i);
+    }
+    for (uint32_t f = 0; ok && f < k->face_count; f++) {
+        const uint32_t *v = m->faces[f].v;
+        vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
+        const struct kd_triangle *t = &k->triangles[f];
+        if (memcmp(&t->a, &a, sizeof a) != 0 || memcmp(&t->edge1, &e1, sizeof e1) != 0 ||
+            memcmp(&t->edge2, &e2, sizeof e2) != 0) {
+            ok = check_fail(&c, "stored triangle differs from its face", f);
+            break;
+        }
+        double lo[3], hi[3];
+        for (int axis = 0; axis < 3; axis++) {
+            double x0 = vec3_axis(a, axis), x1 = vec3_axis(m->vertices[v[1]], axis), x2 = vec3_axis(m->vertices[v[2]], axis);
+            lo[axis] = fmin(x0, fmin(x1, x2));
+            hi[axis] = fmax(x0, fmax(x1, x2));
+            if (!(lo[axis] >= k->root_lo[axis] && hi[axis] <= k->root_hi[axis]))
+                ok = check_fail(&c, "root box does not hold a triangle", f);
+        }
+        ok = ok && check_face(&c, 0, f, lo, hi);
+    }
+    free(c.seen_node);
+    return ok;
+}
 
 /* ==== traversal =============================================================================== */
 

@@ -66,4 +66,10 @@ void kdtree_for_each_hit(const struct kdtree *k, const ray *r, double t_min, dou
 /* Fills *info with k's shape, build time and SAH cost. Cannot fail. */
 void kdtree_get_info(const struct kdtree *k, struct kdtree_info *info);
 
+/* Checks k, built from m, against its invariants: every node reachable exactly once, every face in
+ * every leaf its bounding box touches (so in at least one), the root box holding every vertex, the
+ * depth within the traversal stack. Returns true when all hold; otherwise false with the first broken
+ * one described in why (why_size bytes). For tests: it walks the whole tree once per face. */
+bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, size_t why_size);
+
 #endif

@@ -12,8 +12,8 @@
 
 struct stats {
     uint64_t primary_rays;   /* one per pixel */
-    uint64_t shadow_rays;    /* one per (hit, light) pair, from chapter 7 */
-    uint64_t reflected_rays; /* from chapter 8 */
+    uint64_t shadow_rays;    /* one per (hit, light facing the surface) pair, from chapter 7 */
+    uint64_t reflected_rays; /* from chapter 8; only rays within the depth limit */
     uint64_t refracted_rays; /* from chapter 8 */
     uint64_t sphere_tests;
     uint64_t triangle_tests;

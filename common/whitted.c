@@ -2,6 +2,7 @@
 #include "whitted.h"
 
 #include <math.h>
+#include <stdint.h>
 
 #include "phong.h"
 #include "shadow.h"
@@ -18,6 +19,15 @@ bool whitted_refract(vec3 direction, vec3 normal, double eta, vec3 *out) {
 
 static vec3 trace(const struct world *w, const ray *r, int level);
 
+/* Traces a secondary ray of the given level, counting it in *counter only when it is within the depth
+ * limit: a ray past the limit is black without being traced. */
+static vec3 spawn(const struct world *w, ray r, int level, uint64_t *counter) {
+    if (level > w->scene->max_depth)
+        return vec3_make(0, 0, 0);
+    (*counter)++;
+    return trace(w, &r, level);
+}
+
 /* The light arriving through a transparent surface, or by total internal reflection. Sets
  * *total_reflection when the ray could not leave. */
 static vec3 transmitted(const struct world *w, const ray *r, const struct hit *h, vec3 point, vec3 facing,
@@ -28,21 +38,17 @@ static vec3 transmitted(const struct world *w, const ray *r, const struct hit *h
     vec3 direction;
     *total_reflection = !whitted_refract(r->direction, facing, eta, &direction);
     if (*total_reflection) {
-        stats_thread.reflected_rays++;
         ray mirror = {point, vec3_normalize(phong_reflect(r->direction, facing))};
-        return trace(w, &mirror, level + 1);
+        return spawn(w, mirror, level + 1, &stats_thread.reflected_rays);
     }
-    stats_thread.refracted_rays++;
     ray through = {point, vec3_normalize(direction)};
     int next_level = m->ior == 1.0 ? level : level + 1; /* nothing bends: not a new level */
     vec3 weight = vec3_add_scaled(vec3_make(m->transmit, m->transmit, m->transmit), m->colour, m->filter);
-    return vec3_mul(weight, trace(w, &through, next_level));
+    return vec3_mul(weight, spawn(w, through, next_level, &stats_thread.refracted_rays));
 }
 
 static vec3 trace(const struct world *w, const ray *r, int level) {
-    const struct scene *s = w->scene;
-    if (level > s->max_depth)
-        return vec3_make(0, 0, 0);
+    const struct scene *s = w->scene; /* level <= max_depth: spawn checked it (max_depth >= 1) */
     struct hit h = hit_nothing(INFINITY);
     if (!world_closest(w, r, RAY_T_MIN, &h))
         return s->background;
@@ -55,9 +61,8 @@ static vec3 trace(const struct world *w, const ray *r, int level) {
     if (m->filter > 0.0 || m->transmit > 0.0)
         colour = vec3_add(colour, transmitted(w, r, &h, point, facing, level, &total_reflection));
     if (!total_reflection && m->reflection > 0.0) {
-        stats_thread.reflected_rays++;
         ray mirror = {point, vec3_normalize(phong_reflect(r->direction, facing))};
-        colour = vec3_add_scaled(colour, trace(w, &mirror, level + 1), m->reflection);
+        colour = vec3_add_scaled(colour, spawn(w, mirror, level + 1, &stats_thread.reflected_rays), m->reflection);
     }
     return colour;
 }

@@ -10,6 +10,8 @@ if [ ${#chapters[@]} -eq 0 ]; then
     for program in "$build"/chapter-[0-9][0-9]; do chapters+=("${program##*/chapter-}"); done
 fi
 out=out/compare
+# The options the tests use, from the one place that defines them.
+povray_options=$(sed -n 's/^#define POVRAY_OPTIONS "\(.*\)"$/\1/p' common/povray.h)
 mkdir -p "$out"
 table=$out/table.md
 {
@@ -26,7 +28,7 @@ for n in "${chapters[@]}"; do
     width=${size% *}; height=${size#* }
     start=$(date +%s.%N)
     povray +I"$out/chapter-$n.pov" +O"$out/chapter-$n-povray.png" +W"$width" +H"$height" \
-        -D -P -V -A +FN8 -UA File_Gamma=1.0 Dither=off +Q9 -GA +GF >"$out/chapter-$n-povray.log" 2>&1
+        $povray_options >"$out/chapter-$n-povray.log" 2>&1
     povray_seconds=$(echo "$(date +%s.%N) - $start" | bc)
     if result=$("$build/compare" "$out/chapter-$n-ours.png" "$out/chapter-$n-povray.png" "$out/chapter-$n-strip.png"); then
         agrees=yes

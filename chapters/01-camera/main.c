@@ -1,7 +1,8 @@
 /* Chapter 1, the camera: one ray through the centre of every pixel, coloured by where it points.
  *
  * There are no shapes yet. Each ray's colour is its direction mapped from [-1, 1] to [0, 1] per
- * channel: red grows to the right, green grows upwards, blue towards -z. A camera that is wrong in any
+ * channel: red grows with x, green with y and blue with z (for this scene's camera, which looks down
+ * -z: red to the right, green upwards, blue dark in the centre and rising towards the corners). A camera that is wrong in any
  * way (mirrored, upside down, wrong field of view, rays through pixel corners) gives a visibly
  * different picture. The camera itself is in common/camera.c; the pixel loop in common/render.c. */
 #include "cli.h"

@@ -1,6 +1,7 @@
 /* Chapter 3, the triangle: single triangles and whole meshes join the spheres.
  *
- * Moller-Trumbore is in common/triangle.c, the PLY and OBJ readers in common/mesh.c. Every mesh face is
+ * Moller-Trumbore is in common/triangle.c, the mesh loader in common/mesh.c (PLY in mesh_ply.c, OBJ
+ * in mesh_obj.c). Every mesh face is
  * tested against every ray, one by one: the brute-force loop whose cost chapters 5, 9 and 10 attack. */
 #include "cli.h"
 #include "headlight.h"
