@@ -6,6 +6,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bvh.h" /* only for the names of the split rules */
 #include "kdtree.h"
 
 double accel_now_ms(void) {
@@ -76,6 +77,27 @@ void accel_world_free(struct accel_world *w) {
     mesh_free(&w->triangles);
     free(w->materials);
     memset(w, 0, sizeof *w);
+}
+
+void *accel_world_create(struct scene *s, const struct accel_choice *c, accel_bvh_builder use_bvh, char *err,
+                         size_t err_size) {
+    struct accel_world *w = malloc(sizeof *w);
+    if (w == NULL || !accel_world_init(w, s, err, err_size)) {
+        if (w == NULL)
+            snprintf(err, err_size, "out of memory");
+        free(w);
+        return NULL;
+    }
+    bool built = true;
+    if (c->kind == ACCEL_KDTREE)
+        built = accel_world_use_kdtree(w, c->sah ? KD_SPLIT_SAH : KD_SPLIT_SEED, err, err_size);
+    else if (c->kind == ACCEL_BVH && use_bvh != NULL)
+        built = use_bvh(w, c->sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, err, err_size);
+    if (!built) {
+        accel_world_destroy(w);
+        return NULL;
+    }
+    return w;
 }
 
 void accel_world_destroy(void *world) {

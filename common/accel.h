@@ -60,6 +60,14 @@ struct accel_choice {
  * not one of these, -1 after printing why the value is wrong. */
 int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *option, const char *value);
 
+/* Builds a BVH into w: accel_world_use_bvh, passed in by chapter 10 (chapter 9 has none to pass). */
+typedef bool (*accel_bvh_builder)(struct accel_world *w, int split, char *err, size_t err_size);
+
+/* Makes a heap-allocated accel_world for s with the structure `c` asks for (a BVH through use_bvh).
+ * Returns it, or NULL with the reason in err. Free with accel_world_destroy. */
+void *accel_world_create(struct scene *s, const struct accel_choice *c, accel_bvh_builder use_bvh, char *err,
+                         size_t err_size);
+
 /* Frees a heap-allocated accel_world and what it owns: struct chapter's release. */
 void accel_world_destroy(void *world);
 

@@ -4,12 +4,8 @@
  * The tree (build rules, traversal) is in common/kdtree.c; common/accel.c gathers the scene's
  * triangles and routes the world's queries through the tree. The shading is chapter 8's, unchanged:
  * the picture must not change, only the work. Try --accel none to compare. */
-#include <stdio.h>
-#include <stdlib.h>
-
 #include "accel.h"
 #include "cli.h"
-#include "kdtree.h"
 #include "whitted.h"
 
 static struct accel_choice choice = {ACCEL_KDTREE, true};
@@ -20,17 +16,7 @@ static int parse_option(const char *option, const char *value) {
 
 /* Builds the world with the chosen structure over every triangle of the scene. */
 static void *prepare(struct scene *s, char *err, size_t err_size) {
-    struct accel_world *w = malloc(sizeof *w);
-    if (w == NULL || !accel_world_init(w, s, err, err_size)) {
-        free(w);
-        return NULL;
-    }
-    int split = choice.sah ? KD_SPLIT_SAH : KD_SPLIT_SEED;
-    if (choice.kind == ACCEL_KDTREE && !accel_world_use_kdtree(w, split, err, err_size)) {
-        accel_world_destroy(w);
-        return NULL;
-    }
-    return w;
+    return accel_world_create(s, &choice, NULL, err, err_size);
 }
 
 int main(int argc, char **argv) {

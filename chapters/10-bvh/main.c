@@ -4,13 +4,8 @@
  * The hierarchy (median and SAH builds, ordered traversal) is in common/bvh.c and is plugged into the
  * world by common/accel_bvh.c. Shading is chapter 8's: the picture equals chapters 8 and 9's, only
  * faster. --accel none|kdtree|bvh compares all three on the same scene. */
-#include <stdio.h>
-#include <stdlib.h>
-
 #include "accel.h"
-#include "bvh.h"
 #include "cli.h"
-#include "kdtree.h"
 #include "whitted.h"
 
 static struct accel_choice choice = {ACCEL_BVH, true};
@@ -21,21 +16,7 @@ static int parse_option(const char *option, const char *value) {
 
 /* Builds the world with the chosen structure over every triangle of the scene. */
 static void *prepare(struct scene *s, char *err, size_t err_size) {
-    struct accel_world *w = malloc(sizeof *w);
-    if (w == NULL || !accel_world_init(w, s, err, err_size)) {
-        free(w);
-        return NULL;
-    }
-    bool built = true;
-    if (choice.kind == ACCEL_BVH)
-        built = accel_world_use_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, err, err_size);
-    else if (choice.kind == ACCEL_KDTREE)
-        built = accel_world_use_kdtree(w, choice.sah ? KD_SPLIT_SAH : KD_SPLIT_SEED, err, err_size);
-    if (!built) {
-        accel_world_destroy(w);
-        return NULL;
-    }
-    return w;
+    return accel_world_create(s, &choice, accel_world_use_bvh, err, err_size);
 }
 
 int main(int argc, char **argv) {
