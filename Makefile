@@ -6,6 +6,7 @@
 #   make test-sanitize  the same suite built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make references     re-render the reference images on purpose and say what changed
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
+#   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
 #   make clean          remove build/ and out/
 #
 # Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
@@ -104,6 +105,9 @@ $(foreach n,1 2 3 4 5 6 7 8 9 10,$(eval $(call run_chapter_rule,$(n))))
 
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
 
+# ---- benchmarks (bench/bench.mk): make bench, make bench-accel ----------------------------------
+include bench/bench.mk
+
 # ---- tests -------------------------------------------------------------------------------------
 TEST_SOURCES := $(wildcard tests/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
@@ -136,4 +140,4 @@ clean:
 	rm -rf build out
 
 help:
-	@sed -n '2,12p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,13p' Makefile | sed 's/^# \{0,1\}//'

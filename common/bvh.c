@@ -11,20 +11,27 @@
  * Booth 1990), so the sum is the expected cost of a ray that reaches the node.
  *
  * Tuning constants (values below): BVH_BINS 16, BVH_MAX_LEAF_SIZE 8, BVH_MEDIAN_LEAF_SIZE 2,
- * BVH_COST_TRAVERSAL 1.0, BVH_COST_TRIANGLE 1.0, BVH_MAX_DEPTH 64, BVH_BOX_PAD 2^-20.
+ * BVH_COST_TRAVERSAL 1.0, BVH_COST_TRIANGLE 1.0, BVH_MAX_DEPTH 64, BVH_WIDTH 4, BVH_BOX_PAD 2^-20,
+ * BVH_SLIVER_SINE 1e-6. (The bench models' frame times moved by less than the noise for traversal costs
+ * 0.5 to 2, leaf limits 4 and 8, and 16 or 32 bins: the tree is not what limits the speed.)
  *
  * Exact agreement with the brute-force loop. A query must return the very face and t that testing
- * every face with triangle_intersect would. Three things make sure of it:
- *  - Triangles are tested with a copy of triangle_intersect's arithmetic (same operations, same
- *    order, edges b - a and c - a computed once at build time with the same subtraction), so t is the
+ * every face with triangle_intersect would. Four things make sure of it:
+ *  - Triangles are tested with triangle_crossing (triangle.h), the very arithmetic triangle_intersect
+ *    uses, on edges b - a and c - a computed once at build time with the same subtraction, so t is the
  *    same double to the last bit.
  *  - A box may only be skipped when no triangle inside can be reported hit. Moller-Trumbore rounds:
  *    it may call a ray that passes a hair outside a triangle a hit. So every triangle's box is grown by
  *    BVH_BOX_PAD times the mesh's size before it is rounded outward to float, far more than any such
  *    rounding error (about 1e-16 of the distance from the ray's origin) and far too little to cost
  *    anything measurable. The slab test itself runs in double on these float bounds.
+ *  - Needle-thin triangles (BVH_SLIVER_SINE), whose rounding errors no pad covers, are kept out of the
+ *    tree and tested by every ray.
  *  - Ties: a box is skipped only when it starts strictly after the best hit so far, and a triangle at
  *    the same t as the best replaces it only with a lower face index.
+ * What is left: a ray starting more than about a thousand mesh sizes away, or one meeting a triangle's
+ * plane at a grazing angle below about 1e-8 radians, has rounding errors the pad may not cover. Neither
+ * occurs in tests/test_accel.c's hundreds of thousands of chosen rays nor, as far as we know, in a scene.
  *
  * Layout, chosen for speed. Both rules build a binary tree, which is then collapsed into a 4-wide one
  * (each node takes its widest interior child's children until it has BVH_WIDTH, as in Embree's BVH4):
@@ -53,6 +60,7 @@
 #endif
 
 #include "stats.h"
+#include "triangle.h"
 
 /* Centroid slots per axis for the SAH build. Wald (2007) found 16 within a few percent of testing
  * every plane; more bins build slower and help little. */
@@ -88,6 +96,15 @@
  * within a thousand mesh sizes, and invisible in the statistics. */
 #define BVH_BOX_PAD (1.0 / 1048576.0)
 
+/* A triangle whose edges b - a and c - a are this close to parallel (the sine of the angle between
+ * them is below it, yet not zero) is kept out of the tree and tested by every ray. For such a sliver
+ * Moller-Trumbore divides by a determinant that is mostly rounding noise, and can report a "hit" far
+ * outside the triangle (measured: 2.6e-4 away, for a triangle whose middle corner is the midpoint of
+ * its long edge): no box can be trusted to hold it. Above 1e-6 the error stays below 1e-9 of the ray's
+ * distance, well inside BVH_BOX_PAD. Edges with an exactly zero cross product are never hit at all
+ * (triangle_intersect rejects them), so those stay in the tree. Real meshes have few slivers or none. */
+#define BVH_SLIVER_SINE 1e-6
+
 /* Faces are numbered with uint32_t. */
 #define BVH_MAX_FACES ((size_t)1 << 31)
 
@@ -109,9 +126,10 @@ struct bvh {
     size_t node_count;
     float root_lo[3], root_hi[3];    /* the root's box */
     uint32_t root_child, root_count; /* the root, as a child is referred to in a node */
-    struct bvh_triangle *triangles;  /* triangle_count entries, in leaf order */
+    struct bvh_triangle *triangles;  /* triangle_count entries: tree_count in leaf order, then the slivers */
     uint32_t *faces;                 /* faces[k] = index into the mesh's faces of triangles[k] */
     size_t triangle_count;
+    size_t tree_count;               /* triangles in the tree; the rest are slivers, tested by every ray */
     struct bvh_info info;
 };
 
@@ -506,6 +524,14 @@ static double now_ms(void) {
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
+/* True for a face of m that BVH_SLIVER_SINE keeps out of the tree. */
+static bool is_sliver(const struct mesh *m, size_t face) {
+    const uint32_t *v = m->faces[face].v;
+    vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
+    double cross = vec3_length(vec3_cross(e1, e2));
+    return cross > 0.0 && cross < BVH_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
+}
+
 struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
     double start = now_ms();
     size_t n = m->face_count;
@@ -538,32 +564,39 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
         }
     vec3 extent = vec3_sub(hi, lo);
     double pad = n > 0 ? BVH_BOX_PAD * fmax(extent.x, fmax(extent.y, extent.z)) : 0.0;
+    /* Tree faces first (their prims), slivers at the end of faces[]. */
+    size_t tree = 0, slivers = 0;
     for (size_t f = 0; f < n; f++) {
+        if (is_sliver(m, f)) {
+            b->faces[n - ++slivers] = (uint32_t)f;
+            continue;
+        }
         const uint32_t *v = m->faces[f].v;
         vec3 a = m->vertices[v[0]], bb = m->vertices[v[1]], c = m->vertices[v[2]];
         vec3 tlo = vec3_min(a, vec3_min(bb, c)), thi = vec3_max(a, vec3_max(bb, c));
-        prims[f] = (struct fbox){{float_below(tlo.x - pad), float_below(tlo.y - pad), float_below(tlo.z - pad), 0.0f},
-                                 {float_above(thi.x + pad), float_above(thi.y + pad), float_above(thi.z + pad), 0.0f}};
-        b->faces[f] = (uint32_t)f;
+        prims[tree] = (struct fbox){{float_below(tlo.x - pad), float_below(tlo.y - pad), float_below(tlo.z - pad), 0.0f},
+                                    {float_above(thi.x + pad), float_above(thi.y + pad), float_above(thi.z + pad), 0.0f}};
+        b->faces[tree++] = (uint32_t)f;
     }
+    b->tree_count = tree;
 
     struct builder bd = {prims, b->faces, split, binary, 0, b->nodes, 0, 0.0, 0, 0, 0.0};
-    struct build_range root = {0, (uint32_t)n, fbox_empty(), fbox_empty()};
+    struct build_range root = {0, (uint32_t)tree, fbox_empty(), fbox_empty()};
     range_bounds(&bd, &root);
-    if (n == 0)
+    if (tree == 0)
         root.box = (struct fbox){{0, 0, 0, 0}, {0, 0, 0, 0}};
     for (int axis = 0; axis < 3; axis++) {
         b->root_lo[axis] = root.box.lo[axis];
         b->root_hi[axis] = root.box.hi[axis];
     }
     bd.root_area = fbox_area(&root.box);
-    if (n > 0)
+    if (tree > 0)
         build_subtree(&bd, &root, 0, &b->root_child, &b->root_count);
-    if (n > 0 && b->root_count == 0) {
+    if (tree > 0 && b->root_count == 0) {
         b->root_child = collapse(&bd, b->root_child, &root.box, 0);
-    } else if (n > 0) {
-        bd.leaves = 1; /* the whole mesh is one leaf */
-        bd.sah_cost = BVH_COST_TRIANGLE * n;
+    } else if (tree > 0) {
+        bd.leaves = 1; /* the whole tree is one leaf */
+        bd.sah_cost = BVH_COST_TRIANGLE * tree;
     }
     free(binary);
     free(prims);
@@ -580,7 +613,8 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
     b->info.nodes = bd.node_count + bd.leaves;
     b->info.leaves = bd.leaves;
     b->info.max_depth = bd.max_depth;
-    b->info.sah_cost = bd.sah_cost;
+    b->info.sah_cost = bd.sah_cost + BVH_COST_TRIANGLE * slivers;
+    b->info.slivers = slivers;
     b->info.build_ms = now_ms() - start;
     return b;
 }
@@ -617,7 +651,7 @@ static bool check_subtree(struct check *c, uint32_t child, uint32_t count, const
     if (depth >= BVH_STACK_SIZE)
         return check_fail(c, "deeper than the traversal stack", depth);
     if (count > 0) {
-        if ((size_t)child + count > c->b->triangle_count)
+        if ((size_t)child + count > c->b->tree_count)
             return check_fail(c, "leaf runs past the triangles", child);
         for (uint32_t k = child; k < child + count; k++) {
             if (c->seen_triangle[k]++)
@@ -677,11 +711,14 @@ bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t w
             memcmp(&t->edge2, &e2, sizeof e2) != 0)
             ok = check_fail(&c, "stored triangle differs from its face", k);
     }
-    if (ok && b->triangle_count > 0)
+    if (ok && b->tree_count > 0)
         ok = check_subtree(&c, b->root_child, b->root_count, b->root_lo, b->root_hi, 0);
-    for (size_t k = 0; ok && k < b->triangle_count; k++)
+    for (size_t k = 0; ok && k < b->tree_count; k++)
         if (!c.seen_triangle[k])
             ok = check_fail(&c, "triangle in no leaf", k);
+    for (size_t k = 0; ok && k < b->triangle_count; k++)
+        if (is_sliver(m, b->faces[k]) != (k >= b->tree_count))
+            ok = check_fail(&c, "sliver in the tree, or other triangle among the slivers", k);
     /* Every face once: triangles hold each face exactly once when no face number repeats. */
     if (ok) {
         memset(c.seen_triangle, 0, b->triangle_count + 1);
@@ -779,25 +816,11 @@ static inline unsigned child_pair_hit(const struct bvh_node *n, int h, const str
     return lanes_true(enter <= leave);
 }
 
-/* Moller-Trumbore with exactly triangle_intersect's arithmetic (the same vec3 operations in the same
- * order on the same values), so t is bit-identical. Returns true and stores t when the ray's line
- * crosses the triangle; the caller checks t against its window. Does not count the test. */
+/* Whether r's line crosses the triangle, and where: triangle_crossing (triangle.h), the arithmetic
+ * triangle_intersect uses, so t is bit-identical to the brute-force loop's. Does not count. */
 static inline bool triangle_hit(const struct bvh_triangle *tri, const ray *r, double *t) {
-    vec3 p = vec3_cross(r->direction, tri->edge2);
-    double det = vec3_dot(tri->edge1, p);
-    if (det == 0.0)
-        return false;
-    double inv_det = 1.0 / det;
-    vec3 to_origin = vec3_sub(r->origin, tri->a);
-    double u = vec3_dot(to_origin, p) * inv_det;
-    if (u < 0.0 || u > 1.0)
-        return false;
-    vec3 q = vec3_cross(to_origin, tri->edge1);
-    double v = vec3_dot(r->direction, q) * inv_det;
-    if (v < 0.0 || u + v > 1.0)
-        return false;
-    *t = vec3_dot(tri->edge2, q) * inv_det;
-    return true;
+    double u, v;
+    return triangle_crossing(tri->a, tri->edge1, tri->edge2, r, t, &u, &v);
 }
 
 /* The three questions one traversal answers; the code is specialised for each at compile time. */
@@ -815,30 +838,80 @@ struct query_state {
     void *ctx;
 };
 
+/* Tests triangles [first, first + count) for query q, lowering *box_max as nearer hits turn up.
+ * Returns false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
+static inline __attribute__((always_inline)) bool test_triangles(const struct bvh *b, const ray *r, uint32_t first,
+                                                                 uint32_t count, double t_min, double t_max,
+                                                                 enum query kind, struct query_state *q,
+                                                                 double *box_max, uint64_t *tests) {
+    for (uint32_t k = first; k < first + count; k++) {
+        double t;
+        (*tests)++;
+        if (!triangle_hit(&b->triangles[k], r, &t) || !(t > t_min && t < t_max))
+            continue;
+        uint32_t face = b->faces[k];
+        if (kind == QUERY_ANY) {
+            q->found = true;
+            return false;
+        }
+        if (kind == QUERY_ALL) {
+            q->found = true;
+            if (!q->visit(q->ctx, t, face))
+                return false;
+            continue;
+        }
+        if (!q->found || t < q->t || (t == q->t && face < q->face)) {
+            q->found = true;
+            q->t = t;
+            q->face = face;
+            *box_max = t; /* from now on only boxes starting at or before t matter */
+        }
+    }
+    return true;
+}
+
+/* Asks the memory system for a child the ray will visit later, so that it is in cache by then: a big
+ * mesh's nodes and triangles do not fit in cache, and each visit otherwise waits for memory. */
+static inline void prefetch_child(const struct bvh *b, uint32_t child, uint32_t count) {
+    if (count == 0) {
+        __builtin_prefetch(&b->nodes[child]);
+        __builtin_prefetch((const char *)&b->nodes[child] + 64);
+    } else {
+        __builtin_prefetch(&b->triangles[child]);
+        __builtin_prefetch((const char *)&b->triangles[child] + 64);
+    }
+}
+
 /* A subtree put aside for later, with the distance at which the ray enters its box. */
 struct stack_entry {
     uint32_t child, count;
     double entry;
 };
 
-/* Walks the tree for one query. Counters are kept in locals and added to the thread's once at the end
- * (one thread-local update per ray instead of one per node). Returns q->found. */
+/* Walks the tree for one query, after the slivers. Counters are kept in locals and added to the
+ * thread's once at the end (one thread-local update per ray instead of one per node). Returns
+ * q->found. */
 static inline __attribute__((always_inline)) bool traverse(const struct bvh *b, const ray *r, double t_min,
                                                            double t_max, enum query kind, struct query_state *q) {
     q->found = false;
     q->t = t_max;
-    if (b->triangle_count == 0)
-        return false;
-    struct ray_setup s = ray_setup_make(r);
     /* The box tests' window: infinite ends replaced by the largest finite doubles, so that a ray
      * parallel to a slab and outside it (entry and exit both +infinity) is a miss. */
     double box_min = t_min > -DBL_MAX ? t_min : -DBL_MAX;
     double box_max = t_max < DBL_MAX ? t_max : DBL_MAX;
-    uint64_t visits = 0, boxes = 1, tests = 0;
+    uint64_t visits = 0, boxes = 0, tests = 0;
+    bool running = test_triangles(b, r, (uint32_t)b->tree_count, (uint32_t)(b->triangle_count - b->tree_count),
+                                  t_min, t_max, kind, q, &box_max, &tests);
+    struct ray_setup s = ray_setup_make(r);
     struct stack_entry stack[BVH_STACK_SIZE];
     int top = 0;
     uint32_t child = b->root_child, count = b->root_count;
-    bool running = root_hit(b, &s, box_min, box_max);
+    if (running && b->tree_count > 0) {
+        boxes++;
+        running = root_hit(b, &s, box_min, box_max);
+    } else {
+        running = false;
+    }
     while (running) {
         visits++;
         if (count == 0) {
@@ -863,40 +936,14 @@ static inline __attribute__((always_inline)) bool traverse(const struct bvh *b, 
                 for (int i = hits - 1; i > 0; i--) {
                     int k = order[i];
                     stack[top++] = (struct stack_entry){n->child[k], n->count[k], entry[k >> 1][k & 1]};
+                    prefetch_child(b, n->child[k], n->count[k]);
                 }
                 child = n->child[order[0]];
                 count = n->count[order[0]];
                 continue;
             }
-        } else {
-            for (uint32_t k = child; k < child + count; k++) {
-                double t;
-                tests++;
-                if (!triangle_hit(&b->triangles[k], r, &t) || !(t > t_min && t < t_max))
-                    continue;
-                uint32_t face = b->faces[k];
-                if (kind == QUERY_ANY) {
-                    q->found = true;
-                    running = false;
-                    break;
-                }
-                if (kind == QUERY_ALL) {
-                    q->found = true;
-                    if (!q->visit(q->ctx, t, face)) {
-                        running = false;
-                        break;
-                    }
-                    continue;
-                }
-                if (!q->found || t < q->t || (t == q->t && face < q->face)) {
-                    q->found = true;
-                    q->t = t;
-                    q->face = face;
-                    box_max = t; /* from now on only boxes starting at or before t matter */
-                }
-            }
-            if (!running)
-                break;
+        } else if (!test_triangles(b, r, child, count, t_min, t_max, kind, q, &box_max, &tests)) {
+            break;
         }
         /* Next: the most recently put aside subtree that can still hold something at or before box_max
          * (at: a lower face at the same t would win the tie). */

@@ -31,12 +31,14 @@ struct bvh; /* opaque */
 
 /* What a built hierarchy looks like, for printing beside measured costs. */
 struct bvh_info {
-    size_t nodes;     /* interior nodes + leaves */
+    size_t nodes;     /* interior nodes (4-wide, see bvh.c) + leaves */
     size_t leaves;
-    size_t max_depth; /* edges from the root to the deepest leaf (0 for a single leaf) */
+    size_t max_depth; /* edges from the root to the deepest leaf in the 4-wide tree (0 for a single leaf) */
     double build_ms;  /* wall-clock time bvh_build took, in milliseconds */
     double sah_cost;  /* the tree's expected cost per ray by the surface area heuristic, in units of one
                          triangle test (see BVH_COST_TRAVERSAL and BVH_COST_TRIANGLE in bvh.c) */
+    size_t slivers;   /* needle-thin triangles kept out of the tree and tested by every ray (bvh.c says why);
+                         0 for well-made meshes */
 };
 
 /* Builds a hierarchy over the faces of m with the given split rule. m is only read, and not kept: it

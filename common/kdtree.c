@@ -10,7 +10,8 @@
  *    "contains" objects. We read it as its BVH chapter does the same job: the plane goes through the
  *    median of the triangles' centres (of their boxes clipped to the node), and an axis "contains" the
  *    objects that its median plane leaves whole on one side; the axis containing the most wins (ties to
- *    x, then y). Leaves at KD_SEED_LEAF_SIZE triangles or the depth limit.
+ *    x, then y). Leaves at KD_SEED_LEAF_SIZE triangles or the depth limit, and (our addition) where
+ *    more than KD_SEED_MAX_STRADDLING of the triangles would straddle the plane.
  *
  *  - KD_SPLIT_SAH, the surface area heuristic as in Wald and Havran (IEEE RT 2006), section 4: the
  *    candidate planes are the faces of the triangles' boxes, the cost of cutting at p is
@@ -18,16 +19,17 @@
  *    lowered by KD_EMPTY_BONUS when one side is empty, and a node becomes a leaf when no plane beats
  *    KD_COST_TRIANGLE * count ("no benefit"), when it holds fewer than KD_MIN_SPLIT_COUNT triangles, or
  *    at the depth limit. As in their O(N log N) algorithm the bound planes ("events") are sorted once at
- *    the root, and each split passes its children the events in order, so no node sorts again.
+ *    the root (a radix sort), and each split passes its children the events in order, so no node sorts
+ *    again.
  *    Triangles are not clipped to the node (their "perfect splits"): a straddling triangle keeps its
  *    whole box in both children, which costs some tree quality and keeps the build simple.
  *
- * The depth limit is KD_MAX_DEPTH_BASE + KD_MAX_DEPTH_PER_LEVEL * log2(triangles), 8 + 1.3 log2 N as in
- * pbrt and Havran's thesis (section 4.7).
+ * The SAH's depth limit is KD_MAX_DEPTH_BASE + KD_MAX_DEPTH_PER_LEVEL * log2(triangles), 8 + 1.3 log2 N
+ * as in pbrt and Havran's thesis; the dissertation's rule stops at log2 N + KD_SEED_EXTRA_DEPTH.
  *
- * Traversal: front to back with a stack, the algorithm the dissertation quotes (Havran's "TA_B^rec" in
- * its simplest form): at each node the ray's interval [t_near, t_far] is split at the plane's t, the
- * near child visited first and the far one pushed with its interval. The textbook accepts a hit in a
+ * Traversal: front to back with a stack, the walk the dissertation quotes (its figure 19; Havran's
+ * thesis compares the family): at each node the ray's interval [t_near, t_far] is split at the plane's
+ * t, the child the ray meets first is visited and the other pushed with its interval. The textbook accepts a hit in a
  * leaf only when it lies inside the leaf's interval, because a straddling triangle's hit may lie in a
  * later leaf, behind something nearer there. Combined with mailboxes (below) that rule loses hits: the
  * triangle rejected in the first leaf is not tested again in the leaf where its hit really is. So here
@@ -44,11 +46,14 @@
  * Exact agreement with the brute-force loop, as in bvh.c: triangles are tested with triangle_intersect's
  * arithmetic on edges precomputed with the same subtraction (same t to the last bit); every triangle's
  * box is grown by KD_BOX_PAD times the mesh's size, so that a ray that Moller-Trumbore's rounding
- * calls a hit is always in a leaf holding the triangle; and the t comparisons that prune the walk allow
- * a tolerance of KD_T_TOLERANCE (relative to the distances involved) for the rounding of the planes' t.
+ * calls a hit is always in a leaf holding the triangle; needle-thin triangles (KD_SLIVER_SINE) stay out
+ * of the tree and are tested by every ray; and the t comparisons that prune the walk allow a tolerance
+ * of KD_T_TOLERANCE (relative to the distances involved) for the rounding of the planes' t. Ties go to
+ * the lowest face index, as in the brute-force loop.
  *
- * Tuning constants: KD_COST_TRAVERSAL 1, KD_COST_TRIANGLE 1.5, KD_EMPTY_BONUS 0.2, KD_MIN_SPLIT_COUNT
- * 2, KD_SEED_LEAF_SIZE 2, depth 8 + 1.3 log2 N, KD_BOX_PAD 2^-20, KD_T_TOLERANCE 1e-9, KD_MAILBOX_SIZE 32.
+ * Tuning constants: KD_COST_TRAVERSAL 2, KD_COST_TRIANGLE 1, KD_EMPTY_BONUS 0.2, KD_MIN_SPLIT_COUNT
+ * 2, KD_SEED_LEAF_SIZE 2, KD_SEED_MAX_STRADDLING 0.5, KD_SEED_EXTRA_DEPTH 2, depth 8 + 1.3 log2 N (SAH),
+ * KD_BOX_PAD 2^-20, KD_T_TOLERANCE 1e-9, KD_MAILBOX_SIZE 32, KD_SLIVER_SINE 1e-6.
  *
  * Layout: nodes are 8 bytes (pbrt's): the plane as a float, or a leaf's first reference, and one word
  * holding the axis (3 for a leaf) in its low two bits and, above them, the index of the far ("above")
@@ -61,15 +66,19 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <time.h>
 
 #include "stats.h"
+#include "triangle.h"
 
-/* Relative costs of one node step and one triangle test, as the heuristic sees them. A kd-tree node
- * step (one subtraction, one multiplication, two comparisons) is cheaper than a triangle test; 1.5
- * against 1 was the fastest on the bench models (bench_accel). */
-#define KD_COST_TRAVERSAL 1.0
-#define KD_COST_TRIANGLE 1.5
+/* Relative costs of one node step and one triangle test, as the heuristic sees them. A node step is
+ * fewer operations than a triangle test, but each one waits for a node from memory; on the bench
+ * models (bench_accel, 1:1.5 to 2:1 tried) frame times hardly moved while 2:1 built the smallest trees
+ * fastest: without clipping, cheap steps let the heuristic cut below the size of the triangles and
+ * copy each into many leaves. */
+#define KD_COST_TRAVERSAL 2.0
+#define KD_COST_TRIANGLE 1.0
 
 /* A split leaving one side empty costs this fraction less: empty space is cut off cheaply and lets
  * rays leave the tree early. Wald and Havran use 0.2 (their lambda = 0.8). */
@@ -86,8 +95,25 @@
 /* The dissertation's rule stops at this many triangles (its BVH stops at one or two). */
 #define KD_SEED_LEAF_SIZE 2
 
+/* The dissertation's rule stops at a "pre-defined depth" without giving it. Median planes halve the
+ * count, so leaves of one or two triangles are reached at depth log2(N); below that, cuts mostly copy
+ * the triangles that straddle them (at 8 + 1.3 log2 N, the SAH's limit, the teapot's 350,000 triangles
+ * had 31 references each). We stop at log2(N) + 2. */
+#define KD_SEED_EXTRA_DEPTH 2
+
+/* Our addition to the dissertation's rule: a node whose plane would send more than this share of its
+ * triangles to both sides becomes a leaf. Without it, large triangles are copied into every leaf below
+ * them: 5,000 random triangles gave 608 million references (2.4 GB) at the depth limit. 0.5: the two
+ * children then hold at most 1.5 times the parent's references. */
+#define KD_SEED_MAX_STRADDLING 0.5
+
 /* Triangle boxes grow by this fraction of the mesh's largest extent: 2^-20, as BVH_BOX_PAD in bvh.c. */
 #define KD_BOX_PAD (1.0 / 1048576.0)
+
+/* Needle-thin triangles (the sine of the angle between edges b - a and c - a below this, yet not zero)
+ * stay out of the tree and are tested by every ray: their Moller-Trumbore "hits" may lie far outside
+ * them (see BVH_SLIVER_SINE in bvh.c, the same value and reasons). */
+#define KD_SLIVER_SINE 1e-6
 
 /* Tolerance of the t comparisons that prune the walk, relative to the ray's distance from the mesh
  * plus the mesh's size: far above the ~1e-16 rounding of a plane's t, far below any real gap. */
@@ -127,11 +153,32 @@ struct kdtree {
     uint32_t *refs;                 /* leaves' face numbers, leaf after leaf */
     struct kd_triangle *triangles;  /* indexed by face number */
     size_t face_count;
+    uint32_t *slivers;              /* faces kept out of the tree (KD_SLIVER_SINE), sliver_count of them */
+    size_t sliver_count;
     float root_lo[3], root_hi[3];   /* box of all padded triangle boxes */
     vec3 centre;                    /* of the root box */
     double size;                    /* length of the root box's diagonal */
     struct kdtree_info info;
 };
+
+/* ==== memory ================================================================================== */
+
+/* Arrays of 2 MB or more are aligned to 2 MB and the kernel is asked for 2 MB pages (see alloc_big in
+ * bvh.c: first-touch page faults dominated the build on a virtual machine; here the event lists of
+ * the top levels are made afresh at every level). NULL when memory runs out; release with free(). */
+#define KD_HUGE_PAGE ((size_t)1 << 21)
+
+static void *alloc_big(size_t bytes) {
+    if (bytes < KD_HUGE_PAGE)
+        return malloc(bytes ? bytes : 1);
+    size_t rounded = (bytes + KD_HUGE_PAGE - 1) / KD_HUGE_PAGE * KD_HUGE_PAGE;
+    void *p = aligned_alloc(KD_HUGE_PAGE, rounded);
+#if defined(MADV_HUGEPAGE)
+    if (p != NULL)
+        madvise(p, rounded, MADV_HUGEPAGE); /* only a hint: failure changes nothing */
+#endif
+    return p;
+}
 
 /* ==== building ================================================================================ */
 
@@ -178,13 +225,48 @@ struct kd_event {
     uint32_t key; /* face << 2 | event_type */
 };
 
-static int compare_events(const void *pa, const void *pb) {
-    const struct kd_event *a = pa, *b = pb;
-    if (a->position != b->position)
-        return a->position < b->position ? -1 : 1;
-    if ((a->key & 3u) != (b->key & 3u))
-        return (a->key & 3u) < (b->key & 3u) ? -1 : 1;
-    return (a->key > b->key) - (a->key < b->key);
+/* The order the sweep needs, as one unsigned 64-bit number: the position's bits made to sort like the
+ * floats they are (negative numbers flipped, the sign bit set on the others), then the type, then the
+ * face (below 2^30, KD_MAX_FACES). Positions are never -0 (see push_events). */
+static uint64_t event_order(const struct kd_event *e) {
+    uint32_t bits;
+    memcpy(&bits, &e->position, sizeof bits);
+    bits = bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+    return (uint64_t)bits << 32 | (uint64_t)(e->key & 3u) << 30 | e->key >> 2;
+}
+
+/* Sorts events[0..n) by event_order: a least-significant-digit radix sort, four passes of 16 bits,
+ * each a counting sort (stable) into the other buffer; O(n), where qsort was a quarter of the build.
+ * False when memory runs out (the events are then unsorted). */
+static bool sort_events(struct kd_event *events, size_t n) {
+    struct kd_event *other = alloc_big(n * sizeof *other);
+    size_t *count = malloc(((size_t)1 << 16) * sizeof *count);
+    if (other == NULL || count == NULL) {
+        free(other);
+        free(count);
+        return false;
+    }
+    struct kd_event *from = events, *to = other;
+    for (int shift = 0; shift < 64; shift += 16) {
+        memset(count, 0, ((size_t)1 << 16) * sizeof *count);
+        for (size_t i = 0; i < n; i++)
+            count[event_order(&from[i]) >> shift & 0xffffu]++;
+        size_t start = 0;
+        for (size_t d = 0; d < (size_t)1 << 16; d++) {
+            size_t c = count[d];
+            count[d] = start;
+            start += c;
+        }
+        for (size_t i = 0; i < n; i++)
+            to[count[event_order(&from[i]) >> shift & 0xffffu]++] = from[i];
+        struct kd_event *swap = from;
+        from = to;
+        to = swap;
+    }
+    /* After an even number of passes the result is back in events. */
+    free(other);
+    free(count);
+    return true;
 }
 
 struct kd_builder {
@@ -351,8 +433,8 @@ static bool build_sah(struct kd_builder *bd, struct kd_event *events[3], size_t 
             to_left += (s & SIDE_LEFT) != 0;
             to_right += (s & SIDE_RIGHT) != 0;
         }
-        left_events[a] = malloc((to_left ? to_left : 1) * sizeof **left_events);
-        right_events[a] = malloc((to_right ? to_right : 1) * sizeof **right_events);
+        left_events[a] = alloc_big(to_left * sizeof **left_events);
+        right_events[a] = alloc_big(to_right * sizeof **right_events);
         ok = ok && left_events[a] != NULL && right_events[a] != NULL;
         for (size_t i = 0; ok && i < event_count[a]; i++) {
             unsigned char s = bd->sides[events[a][i].key >> 2];
@@ -384,34 +466,34 @@ static bool build_sah(struct kd_builder *bd, struct kd_event *events[3], size_t 
     return build_sah(bd, right_events, right_n, right_count, right_box, depth + 1);
 }
 
-/* Sorts the events of every face along every axis and builds the SAH tree. */
-static bool build_sah_root(struct kd_builder *bd, size_t face_count, const struct fbox *root) {
+/* Sorts the events of faces[0..count) along every axis and builds the SAH tree over them. */
+static bool build_sah_root(struct kd_builder *bd, const uint32_t *faces, size_t count, const struct fbox *root) {
     struct kd_event *events[3];
     size_t event_count[3];
     bool ok = true;
     for (int a = 0; a < 3; a++) {
-        events[a] = malloc((2 * face_count + 1) * sizeof **events);
+        events[a] = alloc_big((2 * count + 1) * sizeof **events);
         ok = ok && events[a] != NULL;
         event_count[a] = 0;
-        for (size_t f = 0; ok && f < face_count; f++) {
-            const struct fbox *b = &bd->boxes[f];
-            uint32_t key = (uint32_t)f << 2;
-            if (b->lo[a] == b->hi[a]) {
-                events[a][event_count[a]++] = (struct kd_event){b->lo[a], key | EVENT_PLANAR};
+        for (size_t i = 0; ok && i < count; i++) {
+            const struct fbox *b = &bd->boxes[faces[i]];
+            uint32_t key = faces[i] << 2;
+            float lo = b->lo[a] + 0.0f, hi = b->hi[a] + 0.0f; /* + 0: -0 becomes +0, for event_order */
+            if (lo == hi) {
+                events[a][event_count[a]++] = (struct kd_event){lo, key | EVENT_PLANAR};
             } else {
-                events[a][event_count[a]++] = (struct kd_event){b->lo[a], key | EVENT_START};
-                events[a][event_count[a]++] = (struct kd_event){b->hi[a], key | EVENT_END};
+                events[a][event_count[a]++] = (struct kd_event){lo, key | EVENT_START};
+                events[a][event_count[a]++] = (struct kd_event){hi, key | EVENT_END};
             }
         }
-        if (ok)
-            qsort(events[a], event_count[a], sizeof **events, compare_events);
+        ok = ok && sort_events(events[a], event_count[a]);
     }
     if (!ok) {
         for (int a = 0; a < 3; a++)
             free(events[a]);
         return false;
     }
-    return build_sah(bd, events, event_count, face_count, *root, 0);
+    return build_sah(bd, events, event_count, count, *root, 0);
 }
 
 /* ---- the dissertation's rule ------------------------------------------------------------------- */
@@ -482,8 +564,8 @@ static bool build_seed(struct kd_builder *bd, uint32_t *faces, size_t count, str
             left_count += (s & SIDE_LEFT) != 0;
             right_count += (s & SIDE_RIGHT) != 0;
         }
-        if (left_count == count && right_count == count)
-            best_axis = -1; /* every triangle straddles: cutting would only copy them */
+        if ((double)(left_count + right_count - count) > KD_SEED_MAX_STRADDLING * (double)count)
+            best_axis = -1; /* too many straddle: cutting would mostly copy them */
     }
     if (best_axis < 0) {
         count_node(bd, &box, count, true, depth);
@@ -528,6 +610,14 @@ static double now_ms(void) {
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
+/* True for a face of m that KD_SLIVER_SINE keeps out of the tree. */
+static bool is_sliver(const struct mesh *m, size_t face) {
+    const uint32_t *v = m->faces[face].v;
+    vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
+    double cross = vec3_length(vec3_cross(e1, e2));
+    return cross > 0.0 && cross < KD_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
+}
+
 struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
     double start = now_ms();
     size_t n = m->face_count;
@@ -535,23 +625,27 @@ struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
         return NULL;
     struct kdtree *k = calloc(1, sizeof *k);
     struct kd_builder bd = {0};
-    struct fbox *boxes = malloc((n ? n : 1) * sizeof *boxes);
+    struct fbox *boxes = alloc_big(n * sizeof *boxes);
+    uint32_t *tree_faces = malloc((n ? n : 1) * sizeof *tree_faces);
     bd.sides = malloc(n ? n : 1);
     bd.node_capacity = 64;
     bd.nodes = malloc(bd.node_capacity * sizeof *bd.nodes);
     bd.ref_capacity = n + 64;
     bd.refs = malloc(bd.ref_capacity * sizeof *bd.refs);
-    if (k != NULL)
-        k->triangles = malloc((n ? n : 1) * sizeof *k->triangles);
+    if (k != NULL) {
+        k->triangles = alloc_big(n * sizeof *k->triangles);
+        k->slivers = malloc((n ? n : 1) * sizeof *k->slivers);
+    }
     if (split == KD_SPLIT_SEED)
         bd.centres = malloc((n ? n : 1) * sizeof *bd.centres);
-    if (k == NULL || boxes == NULL || bd.sides == NULL || bd.nodes == NULL || bd.refs == NULL ||
-        k->triangles == NULL || (split == KD_SPLIT_SEED && bd.centres == NULL))
+    if (k == NULL || boxes == NULL || tree_faces == NULL || bd.sides == NULL || bd.nodes == NULL ||
+        bd.refs == NULL || k->triangles == NULL || k->slivers == NULL || (split == KD_SPLIT_SEED && bd.centres == NULL))
         goto fail;
     bd.boxes = boxes;
     k->face_count = n;
 
-    /* Padded float boxes, their union, and the triangles in the form the test wants. */
+    /* Padded float boxes and their union, the triangles in the form the test wants, and which faces
+     * go into the tree (all but the slivers). */
     vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t f = 0; f < n; f++)
         for (int c = 0; c < 3; c++) {
@@ -561,9 +655,16 @@ struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
     vec3 extent = vec3_sub(hi, lo);
     double pad = n > 0 ? KD_BOX_PAD * fmax(extent.x, fmax(extent.y, extent.z)) : 0.0;
     struct fbox root = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    size_t tree = 0;
     for (size_t f = 0; f < n; f++) {
         const uint32_t *v = m->faces[f].v;
         vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
+        k->triangles[f] = (struct kd_triangle){a, vec3_sub(b, a), vec3_sub(c, a)};
+        if (is_sliver(m, f)) {
+            k->slivers[k->sliver_count++] = (uint32_t)f;
+            continue;
+        }
+        tree_faces[tree++] = (uint32_t)f;
         vec3 tlo = vec3_min(a, vec3_min(b, c)), thi = vec3_max(a, vec3_max(b, c));
         for (int axis = 0; axis < 3; axis++) {
             boxes[f].lo[axis] = float_below(vec3_axis(tlo, axis) - pad);
@@ -571,9 +672,8 @@ struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
             root.lo[axis] = boxes[f].lo[axis] < root.lo[axis] ? boxes[f].lo[axis] : root.lo[axis];
             root.hi[axis] = boxes[f].hi[axis] > root.hi[axis] ? boxes[f].hi[axis] : root.hi[axis];
         }
-        k->triangles[f] = (struct kd_triangle){a, vec3_sub(b, a), vec3_sub(c, a)};
     }
-    if (n == 0)
+    if (tree == 0)
         root = (struct fbox){{0, 0, 0}, {0, 0, 0}};
     memcpy(k->root_lo, root.lo, sizeof root.lo);
     memcpy(k->root_hi, root.hi, sizeof root.hi);
@@ -583,23 +683,26 @@ struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
                                     (double)root.hi[2] - root.lo[2]));
 
     bd.root_area = fbox_area(&root);
-    bd.depth_limit = (size_t)(KD_MAX_DEPTH_BASE + KD_MAX_DEPTH_PER_LEVEL * log2((double)(n > 1 ? n : 1)));
+    double levels = log2((double)(tree > 1 ? tree : 1));
+    bd.depth_limit = split == KD_SPLIT_SAH ? (size_t)(KD_MAX_DEPTH_BASE + KD_MAX_DEPTH_PER_LEVEL * levels)
+                                           : (size_t)ceil(levels) + KD_SEED_EXTRA_DEPTH;
     assert(bd.depth_limit < KD_STACK_SIZE);
     bool ok;
     if (split == KD_SPLIT_SAH) {
-        ok = build_sah_root(&bd, n, &root);
+        ok = build_sah_root(&bd, tree_faces, tree, &root);
+        free(tree_faces);
     } else {
-        uint32_t *faces = malloc((n ? n : 1) * sizeof *faces);
-        for (size_t f = 0; faces != NULL && f < n; f++)
-            faces[f] = (uint32_t)f;
-        ok = faces != NULL && build_seed(&bd, faces, n, root, 0);
+        ok = build_seed(&bd, tree_faces, tree, root, 0); /* takes tree_faces */
     }
+    tree_faces = NULL;
     if (!ok)
         goto fail;
 
     k->nodes = bd.nodes;
     k->refs = bd.refs;
     k->info = bd.info;
+    k->info.slivers = k->sliver_count;
+    k->info.sah_cost += KD_COST_TRIANGLE * (double)k->sliver_count;
     free(boxes);
     free(bd.sides);
     free(bd.centres);
@@ -608,12 +711,15 @@ struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
 
 fail:
     free(boxes);
+    free(tree_faces);
     free(bd.sides);
     free(bd.centres);
     free(bd.nodes);
     free(bd.refs);
-    if (k != NULL)
+    if (k != NULL) {
         free(k->triangles);
+        free(k->slivers);
+    }
     free(k);
     return NULL;
 }
@@ -624,6 +730,7 @@ void kdtree_free(struct kdtree *k) {
     free(k->nodes);
     free(k->refs);
     free(k->triangles);
+    free(k->slivers);
     free(k);
 }
 
@@ -694,6 +801,10 @@ bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, si
             if (!c.seen_node[i])
                 ok = check_fail(&c, "node not reachable from the root", i);
     }
+    for (size_t i = 0; ok && i < k->sliver_count; i++)
+        if (k->slivers[i] >= k->face_count || !is_sliver(m, k->slivers[i]) || (i > 0 && k->slivers[i] <= k->slivers[i - 1]))
+            ok = check_fail(&c, "sliver list wrong", i);
+    size_t slivers_seen = 0;
     for (uint32_t f = 0; ok && f < k->face_count; f++) {
         const uint32_t *v = m->faces[f].v;
         vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
@@ -702,6 +813,10 @@ bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, si
             memcmp(&t->edge2, &e2, sizeof e2) != 0) {
             ok = check_fail(&c, "stored triangle differs from its face", f);
             break;
+        }
+        if (is_sliver(m, f)) {
+            slivers_seen++;
+            continue; /* not in the tree */
         }
         double lo[3], hi[3];
         for (int axis = 0; axis < 3; axis++) {
@@ -713,30 +828,19 @@ bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, si
         }
         ok = ok && check_face(&c, 0, f, lo, hi);
     }
+    if (ok && slivers_seen != k->sliver_count)
+        ok = check_fail(&c, "sliver count wrong", slivers_seen);
     free(c.seen_node);
     return ok;
 }
 
 /* ==== traversal =============================================================================== */
 
-/* Moller-Trumbore with exactly triangle_intersect's arithmetic (see bvh.c): the same t to the last
- * bit. Returns true and stores t when the ray's line crosses the triangle; does not count. */
+/* Whether r's line crosses the triangle, and where: triangle_crossing (triangle.h), the arithmetic
+ * triangle_intersect uses, so t is bit-identical to the brute-force loop's. Does not count. */
 static inline bool triangle_hit(const struct kd_triangle *tri, const ray *r, double *t) {
-    vec3 p = vec3_cross(r->direction, tri->edge2);
-    double det = vec3_dot(tri->edge1, p);
-    if (det == 0.0)
-        return false;
-    double inv_det = 1.0 / det;
-    vec3 to_origin = vec3_sub(r->origin, tri->a);
-    double u = vec3_dot(to_origin, p) * inv_det;
-    if (u < 0.0 || u > 1.0)
-        return false;
-    vec3 q = vec3_cross(to_origin, tri->edge1);
-    double v = vec3_dot(r->direction, q) * inv_det;
-    if (v < 0.0 || u + v > 1.0)
-        return false;
-    *t = vec3_dot(tri->edge2, q) * inv_det;
-    return true;
+    double u, v;
+    return triangle_crossing(tri->a, tri->edge1, tri->edge2, r, t, &u, &v);
 }
 
 enum query {
@@ -778,12 +882,50 @@ static bool report_once(struct query_state *q, double t, uint32_t face) {
     return q->visit(q->ctx, t, face);
 }
 
+/* Tests faces[0..count) for query q, skipping (and recording) those in the mailbox when one is
+ * given. Returns false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
+static inline __attribute__((always_inline)) bool test_faces(const struct kdtree *k, const ray *r,
+                                                             const uint32_t *faces, uint32_t count, double t_min,
+                                                             double t_max, enum query kind, struct query_state *q,
+                                                             uint32_t *mailbox, uint64_t *tests) {
+    for (uint32_t i = 0; i < count; i++) {
+        uint32_t face = faces[i];
+        if (mailbox != NULL) {
+            uint32_t *slot = &mailbox[face & (KD_MAILBOX_SIZE - 1)];
+            if (*slot == face)
+                continue; /* tested already on this ray */
+            *slot = face;
+        }
+        (*tests)++;
+        double t;
+        if (!triangle_hit(&k->triangles[face], r, &t) || !(t > t_min && t < t_max))
+            continue;
+        if (kind == QUERY_ANY) {
+            q->found = true;
+            return false;
+        }
+        if (kind == QUERY_ALL) {
+            q->found = true;
+            if (!report_once(q, t, face))
+                return false;
+            continue;
+        }
+        if (!q->found || t < q->t || (t == q->t && face < q->face)) {
+            q->found = true;
+            q->t = t;
+            q->face = face;
+        }
+    }
+    return true;
+}
+
 struct stack_entry {
     uint32_t node;
     double t_near, t_far;
 };
 
-/* Walks the tree for one query (specialised per kind at compile time). Returns q->found. */
+/* Walks the tree for one query (specialised per kind at compile time), after the slivers. Returns
+ * q->found. */
 static inline __attribute__((always_inline)) bool traverse(const struct kdtree *k, const ray *r, double t_min,
                                                            double t_max, enum query kind, struct query_state *q) {
     q->found = false;
@@ -791,6 +933,11 @@ static inline __attribute__((always_inline)) bool traverse(const struct kdtree *
     double length = vec3_length(r->direction);
     if (k->face_count == 0 || length == 0.0)
         return false; /* a zero direction hits nothing: Moller-Trumbore's determinant is 0 */
+    uint64_t tests = 0;
+    bool running = test_faces(k, r, k->slivers, (uint32_t)k->sliver_count, t_min, t_max, kind, q, NULL, &tests);
+    stats_thread.triangle_tests += tests;
+    if (!running)
+        return q->found;
     double origin[3] = {r->origin.x, r->origin.y, r->origin.z};
     double inverse[3] = {1.0 / r->direction.x, 1.0 / r->direction.y, 1.0 / r->direction.z};
 
@@ -811,16 +958,16 @@ static inline __attribute__((always_inline)) bool traverse(const struct kdtree *
     }
     stats_thread.box_tests++;
     if (!(t_near <= t_far))
-        return false;
+        return q->found;
 
     double tolerance = KD_T_TOLERANCE * (vec3_length(vec3_sub(r->origin, k->centre)) + k->size) / length;
     uint32_t mailbox[KD_MAILBOX_SIZE];
     memset(mailbox, 0xff, sizeof mailbox); /* UINT32_MAX: no face */
     struct stack_entry stack[KD_STACK_SIZE];
     int top = 0;
-    uint64_t visits = 0, tests = 0;
+    uint64_t visits = 0;
+    tests = 0;
     uint32_t index = 0;
-    bool running = true;
     while (running) {
         const struct kd_node *n = &k->nodes[index];
         visits++;
@@ -849,38 +996,7 @@ static inline __attribute__((always_inline)) bool traverse(const struct kdtree *
             continue;
         }
 
-        const uint32_t *refs = &k->refs[n->first];
-        uint32_t count = n->bits >> 2;
-        for (uint32_t i = 0; i < count; i++) {
-            uint32_t face = refs[i];
-            uint32_t *slot = &mailbox[face & (KD_MAILBOX_SIZE - 1)];
-            if (*slot == face)
-                continue; /* tested already on this ray */
-            *slot = face;
-            tests++;
-            double t;
-            if (!triangle_hit(&k->triangles[face], r, &t) || !(t > t_min && t < t_max))
-                continue;
-            if (kind == QUERY_ANY) {
-                q->found = true;
-                running = false;
-                break;
-            }
-            if (kind == QUERY_ALL) {
-                q->found = true;
-                if (!report_once(q, t, face)) {
-                    running = false;
-                    break;
-                }
-                continue;
-            }
-            if (!q->found || t < q->t || (t == q->t && face < q->face)) {
-                q->found = true;
-                q->t = t;
-                q->face = face;
-            }
-        }
-        if (!running)
+        if (!test_faces(k, r, &k->refs[n->first], n->bits >> 2, t_min, t_max, kind, q, mailbox, &tests))
             break;
         /* Next: the most recently postponed subtree that starts no later than the best hit (give or take
          * the tolerance); those starting beyond it cannot hold anything nearer. */

@@ -39,6 +39,8 @@ struct kdtree_info {
     double build_ms;     /* wall-clock time kdtree_build took, in milliseconds */
     double sah_cost;     /* expected cost per ray by the surface area heuristic, in units of one triangle test
                             (KD_COST_TRAVERSAL and KD_COST_TRIANGLE in kdtree.c) */
+    size_t slivers;      /* needle-thin triangles kept out of the tree and tested by every ray (kdtree.c says
+                            why); 0 for well-made meshes */
 };
 
 /* Builds a tree over the faces of m with the given rule. m is only read, and not kept. A mesh without
@@ -66,8 +68,8 @@ void kdtree_for_each_hit(const struct kdtree *k, const ray *r, double t_min, dou
 /* Fills *info with k's shape, build time and SAH cost. Cannot fail. */
 void kdtree_get_info(const struct kdtree *k, struct kdtree_info *info);
 
-/* Checks k, built from m, against its invariants: every node reachable exactly once, every face in
- * every leaf its bounding box touches (so in at least one), the root box holding every vertex, the
+/* Checks k, built from m, against its invariants: every node reachable exactly once, every face but
+ * the slivers in every leaf its bounding box touches (so in at least one), the root box holding them, the
  * depth within the traversal stack. Returns true when all hold; otherwise false with the first broken
  * one described in why (why_size bytes). For tests: it walks the whole tree once per face. */
 bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, size_t why_size);

@@ -10,8 +10,8 @@
  * triangles invisible: det scales with the triangle's area, so a triangle with 1e-3 edges has
  * det around 1e-6 and would be rejected by EPSILON = 1e-6 although the ray meets it squarely. Only
  * det == 0 (ray exactly parallel, or zero area) is a miss here; a nearly parallel ray gives a huge t or
- * out-of-range u, v, which the tests below reject on their own. A triangle whose corners coincide is
- * caught on the hit path (see the comment there). */
+ * out-of-range u, v, which the tests reject on their own. A triangle whose corners coincide is caught
+ * on the hit path (see triangle_crossing in triangle.h, which holds the arithmetic). */
 #include "triangle.h"
 
 #include "stats.h"
@@ -19,30 +19,10 @@
 bool triangle_intersect(vec3 a, vec3 b, vec3 c, const ray *r, double t_min, double t_max, double *t,
                         double *u, double *v) {
     stats_thread.triangle_tests++;
-    vec3 edge1 = vec3_sub(b, a);
-    vec3 edge2 = vec3_sub(c, a);
-    vec3 p = vec3_cross(r->direction, edge2);
-    double det = vec3_dot(edge1, p);
-    if (det == 0.0)
+    double hit_t, hit_u, hit_v;
+    if (!triangle_crossing(a, vec3_sub(b, a), vec3_sub(c, a), r, &hit_t, &hit_u, &hit_v))
         return false;
-    double inv_det = 1.0 / det;
-    vec3 to_origin = vec3_sub(r->origin, a);
-    double hit_u = vec3_dot(to_origin, p) * inv_det;
-    if (hit_u < 0.0 || hit_u > 1.0)
-        return false;
-    vec3 q = vec3_cross(to_origin, edge1);
-    double hit_v = vec3_dot(r->direction, q) * inv_det;
-    if (hit_v < 0.0 || hit_u + hit_v > 1.0)
-        return false;
-    double hit_t = vec3_dot(edge2, q) * inv_det;
     if (!(hit_t > t_min && hit_t < t_max))
-        return false;
-    /* A triangle with two equal corners has det = 0 only in exact arithmetic: rounding can leave a
-     * tiny det and noise for u and v that passes the tests above. Such a triangle has no normal, so a
-     * "hit" would shade as NaN. Checking its area here, on the rare path of a hit, costs nothing on
-     * the common path of a miss. */
-    vec3 area = vec3_cross(edge1, edge2);
-    if (area.x == 0.0 && area.y == 0.0 && area.z == 0.0)
         return false;
     *t = hit_t;
     *u = hit_u;

@@ -14,6 +14,38 @@ struct triangle {
     int material; /* index into scene.materials */
 };
 
+/* The arithmetic of Moller-Trumbore on a triangle given as a corner a and its edges edge1 = b - a and
+ * edge2 = c - a, the form the acceleration structures store. It is shared by triangle_intersect and
+ * by the kd-tree and BVH, so that all of them find the same t to the last bit. Returns true and stores
+ * t, u and v when the ray's line crosses the triangle, at any t (the caller checks its window). A ray
+ * parallel to the plane, and a triangle with two equal corners, never cross. Counts nothing. */
+static inline bool triangle_crossing(vec3 a, vec3 edge1, vec3 edge2, const ray *r, double *t, double *u,
+                                     double *v) {
+    vec3 p = vec3_cross(r->direction, edge2);
+    double det = vec3_dot(edge1, p);
+    if (det == 0.0)
+        return false;
+    double inv_det = 1.0 / det;
+    vec3 to_origin = vec3_sub(r->origin, a);
+    double hit_u = vec3_dot(to_origin, p) * inv_det;
+    if (hit_u < 0.0 || hit_u > 1.0)
+        return false;
+    vec3 q = vec3_cross(to_origin, edge1);
+    double hit_v = vec3_dot(r->direction, q) * inv_det;
+    if (hit_v < 0.0 || hit_u + hit_v > 1.0)
+        return false;
+    /* Two equal corners give det = 0 only in exact arithmetic: rounding can leave a tiny det and noise
+     * for u and v that passes the tests above, and such a triangle has no normal to shade with. Its
+     * area is checked here, on the rare path of a crossing, so the common path of a miss pays nothing. */
+    vec3 area = vec3_cross(edge1, edge2);
+    if (area.x == 0.0 && area.y == 0.0 && area.z == 0.0)
+        return false;
+    *t = vec3_dot(edge2, q) * inv_det;
+    *u = hit_u;
+    *v = hit_v;
+    return true;
+}
+
 /* Finds where ray r meets the triangle (a, b, c) with t_min < t < t_max. On a hit returns true and
  * stores t and the barycentric coordinates u, v of the hit (P = (1-u-v)a + ub + vc); points on edges
  * and corners count as inside. Both faces are hit (two-sided). A ray parallel to the triangle's plane,

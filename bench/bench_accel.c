@@ -1,0 +1,441 @@
+/* bench_accel.c: times the acceleration structures of chapters 9 and 10 on real models.
+ *
+ *     bench_accel [--embree] [--repeats N] [--only NAME] MODEL.ply...
+ *
+ * For each model: a camera fitted to its bounding sphere, 800x600 pixels, one camera ray per pixel,
+ * one point light and, from every hit, one shadow ray towards it; one thread. Each structure is built
+ * and the frame traced --repeats times (default 3), and the fastest of each is reported: build ms,
+ * frame ms, million rays per second, and the counters per ray. The brute-force loop ("naive") would
+ * take hours on big models, so it traces only a few evenly spaced rows and its time is scaled up to the
+ * whole frame; its row says "(sampled)". With --embree (when built with Embree, see bench/bench.mk)
+ * Intel Embree 3 traces the same rays as the yardstick and every row gets its ratio to it. --only NAME
+ * runs just the structure called NAME (and BVH-SAH, the reference), e.g. for a profiler.
+ *
+ * Every structure must find exactly the brute-force answer, so each frame is also checked pixel by
+ * pixel against the BVH-SAH frame: the nearest face, its t to the last bit, and the shadow. Embree works
+ * in float, so it is only expected to agree on nearly every pixel; its count of differing pixels is
+ * printed for information. */
+#include <inttypes.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bvh.h"
+#include "camera.h"
+#include "kdtree.h"
+#include "mesh.h"
+#include "stats.h"
+#include "triangle.h"
+
+#define BENCH_WIDTH 800
+#define BENCH_HEIGHT 600
+#define BENCH_VFOV_DEGREES 40.0
+/* The brute-force rows are chosen to cost about this many triangle tests in all (~4 s at about
+ * 8 ns a test), and never fewer than BENCH_NAIVE_MIN_ROWS rows. */
+#define BENCH_NAIVE_BUDGET_TESTS 5e8
+#define BENCH_NAIVE_MIN_ROWS 3
+
+#ifdef WHITTED_EMBREE
+/* Defined in embree_ref.c: builds and traces the same frame with Embree; see there. */
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int repeats, double *build_ms,
+                      double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
+#endif
+
+static double now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* ---- the structures behind one interface -------------------------------------------------------- */
+
+struct accel {
+    const char *name;
+    void *(*build)(const struct mesh *m, double *build_ms, double *sah_cost); /* NULL on out of memory */
+    void (*destroy)(void *structure);
+    bool (*closest)(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
+    bool (*occluded)(const void *structure, const ray *r, double t_min, double t_max);
+};
+
+/* The brute-force loop: every face, every ray. */
+static void *naive_build(const struct mesh *m, double *build_ms, double *sah_cost) {
+    *build_ms = 0.0;
+    *sah_cost = (double)m->face_count;
+    return (void *)m;
+}
+
+static void naive_destroy(void *structure) { (void)structure; }
+
+static bool naive_closest(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    const struct mesh *m = structure;
+    bool found = false;
+    double u, v;
+    for (size_t k = 0; k < m->face_count; k++) {
+        const uint32_t *c = m->faces[k].v;
+        if (triangle_intersect(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], r, t_min, t_max, &t_max, &u, &v)) {
+            found = true;
+            *face = (uint32_t)k;
+        }
+    }
+    if (found)
+        *t = t_max;
+    return found;
+}
+
+static bool naive_occluded(const void *structure, const ray *r, double t_min, double t_max) {
+    const struct mesh *m = structure;
+    double t, u, v;
+    for (size_t k = 0; k < m->face_count; k++) {
+        const uint32_t *c = m->faces[k].v;
+        if (triangle_intersect(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], r, t_min, t_max, &t, &u, &v))
+            return true;
+    }
+    return false;
+}
+
+#define BVH_ADAPTER(tag, rule)                                                                            \
+    static void *tag##_build(const struct mesh *m, double *build_ms, double *sah_cost) {                  \
+        struct bvh *b = bvh_build(m, rule);                                                               \
+        struct bvh_info info;                                                                             \
+        if (b != NULL) {                                                                                  \
+            bvh_get_info(b, &info);                                                                       \
+            *build_ms = info.build_ms;                                                                    \
+            *sah_cost = info.sah_cost;                                                                    \
+        }                                                                                                 \
+        return b;                                                                                         \
+    }
+
+#define KD_ADAPTER(tag, rule)                                                                             \
+    static void *tag##_build(const struct mesh *m, double *build_ms, double *sah_cost) {                  \
+        struct kdtree *k = kdtree_build(m, rule);                                                         \
+        struct kdtree_info info;                                                                          \
+        if (k != NULL) {                                                                                  \
+            kdtree_get_info(k, &info);                                                                    \
+            *build_ms = info.build_ms;                                                                    \
+            *sah_cost = info.sah_cost;                                                                    \
+        }                                                                                                 \
+        return k;                                                                                         \
+    }
+
+BVH_ADAPTER(bvh_median, BVH_SPLIT_MEDIAN)
+BVH_ADAPTER(bvh_sah, BVH_SPLIT_SAH)
+KD_ADAPTER(kd_seed, KD_SPLIT_SEED)
+KD_ADAPTER(kd_sah, KD_SPLIT_SAH)
+
+static void bvh_destroy(void *s) { bvh_free(s); }
+static bool bvh_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return bvh_closest(s, r, t_min, t_max, t, face);
+}
+static bool bvh_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
+    return bvh_occluded(s, r, t_min, t_max);
+}
+static void kd_destroy(void *s) { kdtree_free(s); }
+static bool kd_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return kdtree_closest(s, r, t_min, t_max, t, face);
+}
+static bool kd_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
+    return kdtree_occluded(s, r, t_min, t_max);
+}
+
+/* In the order the table prints them; BVH-SAH (index ACCEL_REFERENCE) is traced first and is the
+ * frame the others are checked against. */
+static const struct accel accels[] = {
+    {"naive", naive_build, naive_destroy, naive_closest, naive_occluded},
+    {"kd-seed", kd_seed_build, kd_destroy, kd_closest_any, kd_occluded_any},
+    {"kd-SAH", kd_sah_build, kd_destroy, kd_closest_any, kd_occluded_any},
+    {"BVH-median", bvh_median_build, bvh_destroy, bvh_closest_any, bvh_occluded_any},
+    {"BVH-SAH", bvh_sah_build, bvh_destroy, bvh_closest_any, bvh_occluded_any},
+};
+#define ACCEL_COUNT (sizeof accels / sizeof accels[0])
+#define ACCEL_NAIVE 0
+#define ACCEL_REFERENCE 4
+
+/* ---- the frame --------------------------------------------------------------------------------- */
+
+/* What one pixel saw: the nearest face (UINT32_MAX for none), its t, and whether the light is hidden. */
+struct pixel {
+    double t;
+    uint32_t face;
+    bool shadowed;
+};
+
+struct frame {
+    double ms;
+    struct stats counters;        /* all rays */
+    uint64_t primary_tests;       /* triangle tests spent on camera rays alone */
+};
+
+/* Traces the rows listed in rows[0..row_count) into pixels (indexed by j * width + i). */
+static void trace_frame(const struct accel *a, const void *structure, const struct camera *cam, vec3 light,
+                        const int *rows, int row_count, struct pixel *pixels, struct frame *out) {
+    stats_reset_thread();
+    uint64_t primary_tests = 0;
+    double start = now_ms();
+    for (int k = 0; k < row_count; k++) {
+        int j = rows[k];
+        for (int i = 0; i < cam->width; i++) {
+            ray r = camera_ray(cam, i, j);
+            stats_thread.primary_rays++;
+            struct pixel p = {INFINITY, UINT32_MAX, false};
+            uint64_t before = stats_thread.triangle_tests;
+            bool hit = a->closest(structure, &r, RAY_T_MIN, INFINITY, &p.t, &p.face);
+            primary_tests += stats_thread.triangle_tests - before;
+            if (hit) {
+                vec3 point = ray_at(r, p.t);
+                vec3 to_light = vec3_sub(light, point);
+                double distance = vec3_length(to_light);
+                ray shadow = {point, vec3_scale(to_light, 1.0 / distance)};
+                stats_thread.shadow_rays++;
+                p.shadowed = a->occluded(structure, &shadow, SHADOW_T_MIN, distance - SHADOW_T_MIN);
+            }
+            pixels[(size_t)j * cam->width + i] = p;
+        }
+    }
+    out->ms = now_ms() - start;
+    out->counters = stats_thread;
+    out->primary_tests = primary_tests;
+}
+
+/* Pixels of the listed rows where a and b differ (face, t or shadow). */
+static long count_differences(const struct pixel *a, const struct pixel *b, int width, const int *rows, int row_count) {
+    long differ = 0;
+    for (int k = 0; k < row_count; k++)
+        for (int i = 0; i < width; i++) {
+            size_t at = (size_t)rows[k] * width + i;
+            if (a[at].face != b[at].face || a[at].shadowed != b[at].shadowed ||
+                (a[at].face != UINT32_MAX && a[at].t != b[at].t))
+                differ++;
+        }
+    return differ;
+}
+
+/* A camera that sees the whole bounding sphere of m from the front, a little above and to the right
+ * (the models are y-up), and a light above and behind the camera's right shoulder. */
+static bool fit_camera(const struct mesh *m, struct camera *cam, vec3 *light) {
+    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t k = 0; k < m->vertex_count; k++) {
+        lo = vec3_min(lo, m->vertices[k]);
+        hi = vec3_max(hi, m->vertices[k]);
+    }
+    vec3 centre = vec3_scale(vec3_add(lo, hi), 0.5);
+    double radius = 0.5 * vec3_length(vec3_sub(hi, lo));
+    double distance = radius / sin(0.5 * BENCH_VFOV_DEGREES * M_PI / 180.0);
+    vec3 eye = vec3_add_scaled(centre, vec3_normalize(vec3_make(0.45, 0.35, 1.0)), distance);
+    *light = vec3_add_scaled(centre, vec3_make(2.0, 4.0, 3.0), radius);
+    char err[128];
+    return camera_init(cam, eye, centre, vec3_make(0, 1, 0), BENCH_VFOV_DEGREES, BENCH_WIDTH, BENCH_HEIGHT, err,
+                       sizeof err);
+}
+
+/* ---- the table --------------------------------------------------------------------------------- */
+
+struct row {
+    bool done;
+    char label[48];
+    double build_ms, frame_ms, sah_cost;
+    double rays, triangle_tests, node_visits, primary_rays, primary_tests;
+    long differ;
+    bool compared;
+};
+
+/* Prints x in a column of width w, or "-" when it does not apply (NAN). */
+static void print_number(int w, double x, int decimals) {
+    if (isnan(x))
+        printf(" %*s", w, "-");
+    else
+        printf(" %*.*f", w, decimals, x);
+}
+
+static void print_table(const struct row *rows, size_t count, const struct row *embree) {
+    printf("  %-26s %9s %10s %8s %8s %9s %9s %8s %8s %8s  %s\n", "structure", "build ms", "frame ms", "Mrays/s",
+           "tri/ray", "nodes/ray", "tri/cam", "SAH cost", "frame/E", "build/E", "pixels as BVH-SAH's?");
+    bool with_embree = embree != NULL && embree->done;
+    for (size_t k = 0; k <= count; k++) {
+        const struct row *r = k < count ? &rows[k] : embree;
+        if (r == NULL || !r->done)
+            continue;
+        bool counted = r->primary_rays > 0; /* ours count their tests; Embree does not tell */
+        printf("  %-26s", r->label);
+        print_number(9, r->build_ms > 0 ? r->build_ms : NAN, 1);
+        print_number(10, r->frame_ms, 1);
+        print_number(8, r->rays / (r->frame_ms * 1e3), 2);
+        print_number(8, counted ? r->triangle_tests / r->rays : NAN, 2);
+        print_number(9, counted ? r->node_visits / r->rays : NAN, 2);
+        print_number(9, counted ? r->primary_tests / r->primary_rays : NAN, 2);
+        print_number(8, counted ? r->sah_cost : NAN, 1);
+        print_number(8, with_embree ? r->frame_ms / embree->frame_ms : NAN, 2);
+        print_number(8, with_embree && r->build_ms > 0 ? r->build_ms / embree->build_ms : NAN, 2);
+        if (r->compared)
+            printf("  %s", r->differ == 0 ? "all equal" : "NO");
+        else if (r != embree)
+            printf("  (the reference)");
+        if (r->differ != 0)
+            printf(" (%ld differ)", r->differ);
+        printf("\n");
+    }
+    printf("  tri/ray, nodes/ray: triangle tests and node visits per ray (camera and shadow); tri/cam: triangle\n"
+           "  tests per camera ray; SAH cost: the structure's own prediction, in triangle tests per ray;\n"
+           "  frame/E, build/E: time over Embree's; pixels: nearest face, its t to the last bit, and the shadow,\n"
+           "  on every pixel (on the sampled rows for the brute-force loop)\n");
+}
+
+static int bench_model(const char *path, bool with_embree, int repeats, const char *only) {
+    struct mesh m;
+    char err[512];
+    if (!mesh_load(path, &m, err, sizeof err)) {
+        fprintf(stderr, "bench_accel: %s\n", err);
+        return 1;
+    }
+    struct camera cam;
+    vec3 light;
+    if (!fit_camera(&m, &cam, &light)) {
+        fprintf(stderr, "bench_accel: %s: cannot fit a camera (no vertices?)\n", path);
+        mesh_free(&m);
+        return 1;
+    }
+    size_t pixel_count = (size_t)cam.width * cam.height;
+    struct pixel *reference = malloc(pixel_count * sizeof *reference);
+    struct pixel *pixels = malloc(pixel_count * sizeof *pixels);
+    int *all_rows = malloc((size_t)cam.height * sizeof *all_rows);
+    if (reference == NULL || pixels == NULL || all_rows == NULL) {
+        fprintf(stderr, "bench_accel: out of memory\n");
+        return 1;
+    }
+    for (int j = 0; j < cam.height; j++)
+        all_rows[j] = j;
+
+    /* The brute-force loop's rows: evenly spaced, as many as the budget allows. */
+    double naive_tests_per_row = (double)m.face_count * cam.width * 1.5; /* ~half the rays cast shadows */
+    int naive_rows = (int)(BENCH_NAIVE_BUDGET_TESTS / (naive_tests_per_row > 1 ? naive_tests_per_row : 1));
+    naive_rows = naive_rows < BENCH_NAIVE_MIN_ROWS ? BENCH_NAIVE_MIN_ROWS : naive_rows;
+    naive_rows = naive_rows > cam.height ? cam.height : naive_rows;
+    int sampled_rows[BENCH_HEIGHT];
+    for (int k = 0; k < naive_rows; k++)
+        sampled_rows[k] = (int)((k + 0.5) * cam.height / naive_rows);
+
+    printf("%s: %zu triangles, %dx%d, 1 camera ray per pixel + 1 shadow ray per hit, 1 thread, best of %d\n",
+           path, m.face_count, cam.width, cam.height, repeats);
+    fflush(stdout);
+
+    struct row rows[ACCEL_COUNT] = {0};
+    size_t order[ACCEL_COUNT] = {ACCEL_REFERENCE};
+    for (size_t k = 0, n = 1; k < ACCEL_COUNT; k++)
+        if (k != ACCEL_REFERENCE)
+            order[n++] = k;
+    for (size_t o = 0; o < ACCEL_COUNT; o++) {
+        size_t k = order[o];
+        const struct accel *a = &accels[k];
+        if (only != NULL && k != ACCEL_REFERENCE && strcmp(only, a->name) != 0)
+            continue;
+        struct row *row = &rows[k];
+        bool naive = k == ACCEL_NAIVE;
+        const int *list = naive ? sampled_rows : all_rows;
+        int list_count = naive ? naive_rows : cam.height;
+        int runs = naive ? 1 : repeats;
+        snprintf(row->label, sizeof row->label, "%s", a->name);
+        if (naive && naive_rows < cam.height)
+            snprintf(row->label, sizeof row->label, "%s (sampled, %d rows)", a->name, naive_rows);
+        row->build_ms = INFINITY;
+        row->frame_ms = INFINITY;
+        for (int run = 0; run < runs; run++) {
+            double build_ms = 0, sah_cost = 0;
+            void *s = a->build(&m, &build_ms, &sah_cost);
+            if (s == NULL) {
+                fprintf(stderr, "bench_accel: %s: out of memory building %s\n", path, a->name);
+                return 1;
+            }
+            struct frame f;
+            trace_frame(a, s, &cam, light, list, list_count, k == ACCEL_REFERENCE ? reference : pixels, &f);
+            a->destroy(s);
+            double scale = (double)cam.height / list_count; /* extrapolation of the sampled rows */
+            row->build_ms = build_ms < row->build_ms ? build_ms : row->build_ms;
+            if (f.ms * scale < row->frame_ms) {
+                row->frame_ms = f.ms * scale;
+                row->sah_cost = sah_cost;
+                row->rays = (double)(f.counters.primary_rays + f.counters.shadow_rays) * scale;
+                row->primary_rays = (double)f.counters.primary_rays * scale;
+                row->triangle_tests = (double)f.counters.triangle_tests * scale;
+                row->node_visits = (double)f.counters.node_visits * scale;
+                row->primary_tests = (double)f.primary_tests * scale;
+            }
+        }
+        if (k != ACCEL_REFERENCE) {
+            row->differ = count_differences(reference, pixels, cam.width, list, list_count);
+            row->compared = true;
+        }
+        row->done = true;
+        fprintf(stderr, "  %s done\n", row->label);
+    }
+
+    struct row embree = {0};
+#ifdef WHITTED_EMBREE
+    if (with_embree) {
+        unsigned char *codes = malloc(pixel_count);
+        if (codes == NULL || !embree_ref_frame(&m, &cam, light, repeats, &embree.build_ms, &embree.frame_ms, codes,
+                                               err, sizeof err)) {
+            fprintf(stderr, "bench_accel: %s: %s\n", path, codes == NULL ? "out of memory" : err);
+            return 1;
+        }
+        snprintf(embree.label, sizeof embree.label, "Embree 3 (float, 1 thread)");
+        long differ = 0, hits = 0, shadowed = 0;
+        for (size_t p = 0; p < pixel_count; p++) {
+            int ours = reference[p].face == UINT32_MAX ? 0 : reference[p].shadowed ? 2 : 1;
+            differ += codes[p] != ours;
+            hits += codes[p] != 0;
+            shadowed += codes[p] == 2;
+        }
+        embree.rays = (double)(pixel_count + hits);
+        embree.differ = differ;
+        embree.done = true;
+        free(codes);
+    }
+#else
+    (void)with_embree;
+#endif
+    print_table(rows, ACCEL_COUNT, with_embree ? &embree : NULL);
+    if (embree.done)
+        printf("  Embree's pixels are compared with BVH-SAH's hit/miss and shadow only: it works in float, so a\n"
+               "  few grazing rays may go the other way\n");
+    printf("\n");
+    fflush(stdout);
+    free(reference);
+    free(pixels);
+    free(all_rows);
+    mesh_free(&m);
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    bool with_embree = false;
+    int repeats = 3;
+    const char *only = NULL;
+    int first = 1;
+    for (; first < argc && argv[first][0] == '-'; first++) {
+        if (strcmp(argv[first], "--embree") == 0)
+            with_embree = true;
+        else if (strcmp(argv[first], "--repeats") == 0 && first + 1 < argc && atoi(argv[first + 1]) > 0)
+            repeats = atoi(argv[++first]);
+        else if (strcmp(argv[first], "--only") == 0 && first + 1 < argc)
+            only = argv[++first];
+        else
+            break;
+    }
+    if (first >= argc || argv[first][0] == '-') {
+        fprintf(stderr, "usage: bench_accel [--embree] [--repeats N] [--only NAME] MODEL.ply...\n");
+        return 2;
+    }
+#ifndef WHITTED_EMBREE
+    if (with_embree) {
+        fprintf(stderr, "bench_accel: built without Embree (install libembree-dev and rebuild: make bench)\n");
+        return 2;
+    }
+#endif
+    int status = 0;
+    for (int k = first; k < argc; k++)
+        status |= bench_model(argv[k], with_embree, repeats, only);
+    return status;
+}

@@ -1,0 +1,136 @@
+/* embree_ref.c: the benchmark's yardstick, the same frame traced by Intel Embree 3 (chapter 10).
+ *
+ * Compiled into bench_accel only when Debian's libembree-dev is installed (bench/bench.mk checks for
+ * /usr/include/embree3/rtcore.h and defines WHITTED_EMBREE). Embree is a production ray tracing kernel
+ * library: wide BVHs, SIMD box and triangle tests, float arithmetic. To compare like with like it runs
+ * here as our code does: one thread (device config "threads=1"), one ray at a time (rtcIntersect1 for
+ * camera rays, rtcOccluded1 for shadow rays), default scene flags and build quality.
+ *
+ * The rays are the very rays bench_accel traces, rounded to float: each pixel's camera ray, and from
+ * each hit one shadow ray to the light over SHADOW_T_MIN < t < distance - SHADOW_T_MIN. The hit point
+ * is computed in double from Embree's (float) distance, as bench_accel computes it from ours. */
+#include <embree3/rtcore.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <time.h>
+
+#include "camera.h"
+#include "mesh.h"
+
+/* Also declared in bench_accel.c (the benchmark has no header of its own). */
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int repeats, double *build_ms,
+                      double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
+
+static double now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
+/* A scene holding m as one triangle geometry, not yet committed (built). NULL on failure. */
+static RTCScene new_scene(RTCDevice device, const struct mesh *m) {
+    RTCScene scene = rtcNewScene(device);
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (scene == NULL || geometry == NULL)
+        return NULL;
+    float *vertices = rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                              3 * sizeof(float), m->vertex_count);
+    unsigned *indices = rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                3 * sizeof(unsigned), m->face_count);
+    if (vertices == NULL || indices == NULL)
+        return NULL;
+    for (size_t k = 0; k < m->vertex_count; k++) {
+        vertices[3 * k + 0] = (float)m->vertices[k].x;
+        vertices[3 * k + 1] = (float)m->vertices[k].y;
+        vertices[3 * k + 2] = (float)m->vertices[k].z;
+    }
+    for (size_t f = 0; f < m->face_count; f++)
+        for (int c = 0; c < 3; c++)
+            indices[3 * f + c] = m->faces[f].v[c];
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);
+    return scene;
+}
+
+static void set_ray(struct RTCRay *out, vec3 origin, vec3 direction, double t_min, double t_max) {
+    out->org_x = (float)origin.x;
+    out->org_y = (float)origin.y;
+    out->org_z = (float)origin.z;
+    out->dir_x = (float)direction.x;
+    out->dir_y = (float)direction.y;
+    out->dir_z = (float)direction.z;
+    out->tnear = (float)t_min;
+    out->tfar = (float)t_max;
+    out->time = 0.0f;
+    out->mask = UINT32_MAX;
+    out->id = 0;
+    out->flags = 0;
+}
+
+/* Traces one frame into pixels (0 nothing hit, 1 lit, 2 in shadow); returns the elapsed ms. */
+static double trace_frame(RTCScene scene, const struct camera *cam, vec3 light, unsigned char *pixels) {
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    double start = now_ms();
+    for (int j = 0; j < cam->height; j++) {
+        for (int i = 0; i < cam->width; i++) {
+            ray r = camera_ray(cam, i, j);
+            struct RTCRayHit hit;
+            set_ray(&hit.ray, r.origin, r.direction, RAY_T_MIN, INFINITY);
+            hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(scene, &context, &hit);
+            unsigned char code = 0;
+            if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+                vec3 point = ray_at(r, hit.ray.tfar);
+                vec3 to_light = vec3_sub(light, point);
+                double distance = vec3_length(to_light);
+                struct RTCRay shadow;
+                set_ray(&shadow, point, vec3_scale(to_light, 1.0 / distance), SHADOW_T_MIN, distance - SHADOW_T_MIN);
+                rtcOccluded1(scene, &context, &shadow);
+                code = shadow.tfar == -INFINITY ? 2 : 1; /* Embree marks an occluded ray with tfar = -inf */
+            }
+            pixels[(size_t)j * cam->width + i] = code;
+        }
+    }
+    return now_ms() - start;
+}
+
+/* Builds the scene `repeats` times and traces the frame `repeats` times; reports the fastest of each
+ * (the least disturbed by the rest of the machine). Returns false with a message in err on failure. */
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int repeats, double *build_ms,
+                      double *frame_ms, unsigned char *pixels, char *err, size_t err_size) {
+    RTCDevice device = rtcNewDevice("threads=1");
+    if (device == NULL) {
+        snprintf(err, err_size, "embree: rtcNewDevice failed (error %d)", (int)rtcGetDeviceError(NULL));
+        return false;
+    }
+    *build_ms = INFINITY;
+    *frame_ms = INFINITY;
+    for (int k = 0; k < repeats; k++) {
+        RTCScene scene = new_scene(device, m);
+        if (scene == NULL) {
+            snprintf(err, err_size, "embree: could not make the scene (error %d)", (int)rtcGetDeviceError(device));
+            rtcReleaseDevice(device);
+            return false;
+        }
+        double start = now_ms();
+        rtcCommitScene(scene);
+        double built = now_ms() - start;
+        if (rtcGetDeviceError(device) != RTC_ERROR_NONE) {
+            snprintf(err, err_size, "embree: rtcCommitScene failed");
+            rtcReleaseScene(scene);
+            rtcReleaseDevice(device);
+            return false;
+        }
+        double traced = trace_frame(scene, cam, light, pixels);
+        *build_ms = built < *build_ms ? built : *build_ms;
+        *frame_ms = traced < *frame_ms ? traced : *frame_ms;
+        rtcReleaseScene(scene);
+    }
+    rtcReleaseDevice(device);
+    return true;
+}

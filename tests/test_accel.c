@@ -1,0 +1,783 @@
+/* test_accel.c: the BVH and the kd-tree (chapters 9 and 10) against the brute-force loop, ray by ray.
+ *
+ * Every ray is first traced by brute force: triangle_intersect on every face, which gives each face's
+ * t. The answer for any window t_min < t < t_max follows from those: the nearest hit (the lowest face
+ * among equal t), whether anything is hit, and the set of faces hit. All four structures (BVH with the
+ * median and the SAH split, kd-tree with the dissertation's rule and the SAH) must then give exactly
+ * that answer: the same t to the last bit, the same face, the same set, each face reported once.
+ *
+ * The rays are chosen to hurt: random ones, rays aimed at faces, vertices and shared edges, rays along
+ * the axes (with signed zero components) through vertices, rays lying in planes through vertices or
+ * on the padded planes the structures cut space with (BVH_BOX_PAD and KD_BOX_PAD are 2^-20 of the mesh
+ * size), origins on vertices, on the mesh's box faces and inside the mesh, tiny and non-unit
+ * directions, and windows that end or start exactly at a hit. The meshes: random triangle soups with
+ * degenerate, coincident and axis-aligned triangles, a tessellated sphere, stacked axis-aligned grids,
+ * and the bunny and the small teapot when scenes/models has them. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh.h"
+#include "kdtree.h"
+#include "mesh.h"
+#include "stats.h"
+#include "triangle.h"
+
+/* Brute-force triangle tests per mesh (rays * faces): about 0.2 s each at -O2. */
+#define ACCEL_TEST_BUDGET 2.5e7
+#define ACCEL_TEST_MAX_RAYS 12000
+#define ACCEL_TEST_MIN_RAYS 600
+
+/* The fraction of the mesh's size by which both structures pad their boxes (bvh.c, kdtree.c). */
+#define ACCEL_PAD (1.0 / 1048576.0)
+
+/* ---- reproducible random numbers (splitmix64) ---------------------------------------------------- */
+
+struct rng {
+    uint64_t state;
+};
+
+static uint64_t rng_next(struct rng *g) {
+    uint64_t z = (g->state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+static double rng_unit(struct rng *g) { return (double)(rng_next(g) >> 11) * 0x1.0p-53; } /* [0, 1) */
+
+static double rng_between(struct rng *g, double lo, double hi) { return lo + (hi - lo) * rng_unit(g); }
+
+static uint32_t rng_below(struct rng *g, uint32_t n) { return (uint32_t)(rng_next(g) % n); }
+
+static vec3 rng_direction(struct rng *g) {
+    for (;;) {
+        vec3 d = {rng_between(g, -1, 1), rng_between(g, -1, 1), rng_between(g, -1, 1)};
+        double length = vec3_length(d);
+        if (length > 0.1 && length <= 1.0)
+            return vec3_scale(d, 1.0 / length);
+    }
+}
+
+static void set_axis(vec3 *v, int axis, double value) {
+    if (axis == 0)
+        v->x = value;
+    else if (axis == 1)
+        v->y = value;
+    else
+        v->z = value;
+}
+
+/* ---- meshes made here ------------------------------------------------------------------------- */
+
+struct builder {
+    struct mesh m;
+    size_t vertex_capacity, face_capacity;
+};
+
+static uint32_t add_vertex(struct builder *b, vec3 p) {
+    if (b->m.vertex_count == b->vertex_capacity) {
+        b->vertex_capacity = b->vertex_capacity ? 2 * b->vertex_capacity : 64;
+        b->m.vertices = realloc(b->m.vertices, b->vertex_capacity * sizeof *b->m.vertices);
+        cr_assert_not_null(b->m.vertices);
+    }
+    b->m.vertices[b->m.vertex_count] = p;
+    return (uint32_t)b->m.vertex_count++;
+}
+
+static void add_face(struct builder *b, uint32_t v0, uint32_t v1, uint32_t v2) {
+    if (b->m.face_count == b->face_capacity) {
+        b->face_capacity = b->face_capacity ? 2 * b->face_capacity : 64;
+        b->m.faces = realloc(b->m.faces, b->face_capacity * sizeof *b->m.faces);
+        cr_assert_not_null(b->m.faces);
+    }
+    b->m.faces[b->m.face_count++] = (struct mesh_face){{v0, v1, v2}};
+}
+
+static void add_triangle(struct builder *b, vec3 p0, vec3 p1, vec3 p2) {
+    uint32_t v0 = add_vertex(b, p0), v1 = add_vertex(b, p1), v2 = add_vertex(b, p2);
+    add_face(b, v0, v1, v2);
+}
+
+/* A coordinate in [0, 1), sometimes snapped to sixteenths so that planes through vertices repeat. */
+static double soup_coordinate(struct rng *g) {
+    double x = rng_unit(g);
+    return rng_below(g, 4) == 0 ? floor(x * 16.0) / 16.0 : x;
+}
+
+static vec3 soup_point(struct rng *g) { return vec3_make(soup_coordinate(g), soup_coordinate(g), soup_coordinate(g)); }
+
+/* `count` random triangles in the unit cube: mostly small ones, some spanning the cube, some flat in
+ * an axis plane, some sharing vertices and edges with earlier ones, and some degenerate (two corners
+ * equal, all three equal, corners on an axis-aligned line or on a general line) or coincident with an
+ * earlier triangle (same corners in the same order, which ties exactly, or in another order). */
+static struct mesh make_soup(uint64_t seed, size_t count) {
+    struct rng g = {seed};
+    struct builder b = {0};
+    while (b.m.face_count < count) {
+        uint32_t kind = rng_below(&g, 100);
+        size_t faces = b.m.face_count;
+        if (kind < 8 && faces > 0) { /* coincident with an earlier face */
+            const uint32_t *v = b.m.faces[rng_below(&g, (uint32_t)faces)].v;
+            if (kind < 4)
+                add_face(&b, v[0], v[1], v[2]);
+            else
+                add_face(&b, v[1], v[2], v[0]);
+        } else if (kind < 14) { /* degenerate */
+            vec3 a = soup_point(&g), c = soup_point(&g);
+            switch (kind % 4) {
+            case 0:
+                add_triangle(&b, a, a, c);
+                break;
+            case 1:
+                add_triangle(&b, a, a, a);
+                break;
+            case 2: {
+                vec3 p = a, q = a;
+                int axis = (int)rng_below(&g, 3);
+                set_axis(&p, axis, vec3_axis(a, axis) + 0.25);
+                set_axis(&q, axis, vec3_axis(a, axis) + 0.5);
+                add_triangle(&b, a, p, q);
+                break;
+            }
+            default:
+                add_triangle(&b, a, vec3_scale(vec3_add(a, c), 0.5), c);
+            }
+        } else if (kind < 26 && faces > 0) { /* shares one or two corners with an earlier face */
+            const uint32_t *v = b.m.faces[rng_below(&g, (uint32_t)faces)].v;
+            vec3 near = b.m.vertices[v[0]];
+            uint32_t extra = add_vertex(&b, vec3_add(near, vec3_scale(rng_direction(&g), 0.05)));
+            if (kind % 2 == 0)
+                add_face(&b, v[1], v[0], extra); /* the shared edge v0-v1, reversed as in a mesh */
+            else
+                add_face(&b, v[0], extra, add_vertex(&b, vec3_add(near, vec3_scale(rng_direction(&g), 0.05))));
+        } else if (kind < 34) { /* flat in a plane x, y or z = constant */
+            int axis = (int)rng_below(&g, 3);
+            double level = soup_coordinate(&g);
+            vec3 p[3];
+            for (int k = 0; k < 3; k++) {
+                p[k] = soup_point(&g);
+                set_axis(&p[k], axis, level);
+            }
+            add_triangle(&b, p[0], p[1], p[2]);
+        } else if (kind < 42) { /* large */
+            add_triangle(&b, soup_point(&g), soup_point(&g), soup_point(&g));
+        } else { /* small */
+            vec3 centre = soup_point(&g);
+            double size = rng_between(&g, 0.005, 0.1);
+            add_triangle(&b, vec3_add_scaled(centre, rng_direction(&g), size),
+                         vec3_add_scaled(centre, rng_direction(&g), size),
+                         vec3_add_scaled(centre, rng_direction(&g), size));
+        }
+    }
+    return b.m;
+}
+
+/* A UV sphere: `rings` bands of latitude, `segments` of longitude, poles included. */
+static struct mesh make_sphere(int rings, int segments, vec3 centre, double radius) {
+    struct builder b = {0};
+    uint32_t north = add_vertex(&b, vec3_add(centre, vec3_make(0, radius, 0)));
+    for (int i = 1; i < rings; i++) {
+        double theta = M_PI * i / rings;
+        for (int j = 0; j < segments; j++) {
+            double phi = 2.0 * M_PI * j / segments;
+            add_vertex(&b, vec3_add(centre, vec3_scale(vec3_make(sin(theta) * cos(phi), cos(theta),
+                                                                sin(theta) * sin(phi)), radius)));
+        }
+    }
+    uint32_t south = add_vertex(&b, vec3_add(centre, vec3_make(0, -radius, 0)));
+    for (int j = 0; j < segments; j++) {
+        int next = (j + 1) % segments;
+        add_face(&b, north, 1 + next, 1 + j);
+        uint32_t last = 1 + (uint32_t)((rings - 2) * segments);
+        add_face(&b, south, last + j, last + next);
+    }
+    for (int i = 0; i + 2 < rings; i++)
+        for (int j = 0; j < segments; j++) {
+            uint32_t a = 1 + (uint32_t)(i * segments + j), c = 1 + (uint32_t)(i * segments + (j + 1) % segments);
+            add_face(&b, a, c, a + (uint32_t)segments);
+            add_face(&b, c, c + (uint32_t)segments, a + (uint32_t)segments);
+        }
+    return b.m;
+}
+
+/* Three stacked square grids at z = 0, 1, 2 with integer corners (every cell two triangles sharing a
+ * diagonal), crossed by a wall at x = n / 2: all coordinates exact, many coplanar triangles, many
+ * shared edges hit at exactly the same t. */
+static struct mesh make_grids(int n) {
+    struct builder b = {0};
+    for (int layer = 0; layer < 3; layer++) {
+        uint32_t first = (uint32_t)b.m.vertex_count;
+        for (int i = 0; i <= n; i++)
+            for (int j = 0; j <= n; j++)
+                add_vertex(&b, vec3_make(i, j, layer));
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++) {
+                uint32_t a = first + (uint32_t)(i * (n + 1) + j);
+                add_face(&b, a, a + (uint32_t)(n + 1), a + 1);
+                add_face(&b, a + 1, a + (uint32_t)(n + 1), a + (uint32_t)(n + 2));
+            }
+    }
+    uint32_t first = (uint32_t)b.m.vertex_count;
+    for (int j = 0; j <= n; j++)
+        for (int k = 0; k <= 4; k++)
+            add_vertex(&b, vec3_make(n / 2, j, k * 0.5));
+    for (int j = 0; j < n; j++)
+        for (int k = 0; k < 4; k++) {
+            uint32_t a = first + (uint32_t)(j * 5 + k);
+            add_face(&b, a, a + 5, a + 1);
+            add_face(&b, a + 1, a + 5, a + 6);
+        }
+    return b.m;
+}
+
+/* ---- the four structures behind one interface ------------------------------------------------- */
+
+typedef bool (*visit_fn)(void *ctx, double t, uint32_t face);
+
+struct accel {
+    const char *name;
+    void *structure;
+    bool (*closest)(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
+    bool (*occluded)(const void *s, const ray *r, double t_min, double t_max);
+    void (*for_each_hit)(const void *s, const ray *r, double t_min, double t_max, visit_fn visit, void *ctx);
+};
+
+static bool bvh_closest_of(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return bvh_closest(s, r, t_min, t_max, t, face);
+}
+static bool bvh_occluded_of(const void *s, const ray *r, double t_min, double t_max) {
+    return bvh_occluded(s, r, t_min, t_max);
+}
+static void bvh_for_each_hit_of(const void *s, const ray *r, double t_min, double t_max, visit_fn visit, void *ctx) {
+    bvh_for_each_hit(s, r, t_min, t_max, visit, ctx);
+}
+static bool kd_closest_of(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return kdtree_closest(s, r, t_min, t_max, t, face);
+}
+static bool kd_occluded_of(const void *s, const ray *r, double t_min, double t_max) {
+    return kdtree_occluded(s, r, t_min, t_max);
+}
+static void kd_for_each_hit_of(const void *s, const ray *r, double t_min, double t_max, visit_fn visit, void *ctx) {
+    kdtree_for_each_hit(s, r, t_min, t_max, visit, ctx);
+}
+
+#define ACCEL_COUNT 4
+
+/* Builds all four structures over m and checks each one's invariants. */
+static void build_all(const struct mesh *m, const char *mesh_name, struct accel out[ACCEL_COUNT]) {
+    char why[256];
+    struct bvh *bvh_median = bvh_build(m, BVH_SPLIT_MEDIAN), *bvh_sah = bvh_build(m, BVH_SPLIT_SAH);
+    struct kdtree *kd_seed = kdtree_build(m, KD_SPLIT_SEED), *kd_sah = kdtree_build(m, KD_SPLIT_SAH);
+    cr_assert(bvh_median && bvh_sah && kd_seed && kd_sah, "%s: a build ran out of memory", mesh_name);
+    cr_assert(bvh_is_valid(bvh_median, m, why, sizeof why), "%s: BVH median invalid: %s", mesh_name, why);
+    cr_assert(bvh_is_valid(bvh_sah, m, why, sizeof why), "%s: BVH SAH invalid: %s", mesh_name, why);
+    cr_assert(kdtree_is_valid(kd_seed, m, why, sizeof why), "%s: kd-tree seed invalid: %s", mesh_name, why);
+    cr_assert(kdtree_is_valid(kd_sah, m, why, sizeof why), "%s: kd-tree SAH invalid: %s", mesh_name, why);
+    out[0] = (struct accel){"BVH median", bvh_median, bvh_closest_of, bvh_occluded_of, bvh_for_each_hit_of};
+    out[1] = (struct accel){"BVH SAH", bvh_sah, bvh_closest_of, bvh_occluded_of, bvh_for_each_hit_of};
+    out[2] = (struct accel){"kd-tree seed", kd_seed, kd_closest_of, kd_occluded_of, kd_for_each_hit_of};
+    out[3] = (struct accel){"kd-tree SAH", kd_sah, kd_closest_of, kd_occluded_of, kd_for_each_hit_of};
+}
+
+static void free_all(struct accel a[ACCEL_COUNT]) {
+    bvh_free(a[0].structure);
+    bvh_free(a[1].structure);
+    kdtree_free(a[2].structure);
+    kdtree_free(a[3].structure);
+}
+
+/* ---- the oracle and the comparison ------------------------------------------------------------ */
+
+struct report {
+    uint32_t face;
+    double t;
+};
+
+struct checker {
+    const char *mesh_name;
+    const struct mesh *m;
+    struct accel accels[ACCEL_COUNT];
+    double *t_of_face;   /* this ray's t for every face; NAN where triangle_intersect misses */
+    uint32_t *hit_faces; /* the faces with a t, hit_count of them */
+    size_t hit_count;
+    uint32_t *stamp;     /* stamp[face] == generation: already reported on this call */
+    uint32_t generation;
+    struct report *reports; /* what for_each_hit reported, report_count of them */
+    size_t report_count;
+    size_t windows;      /* windows checked, for the log */
+};
+
+static bool collect_report(void *ctx, double t, uint32_t face) {
+    struct checker *c = ctx;
+    if (c->report_count < c->m->face_count + 1)
+        c->reports[c->report_count] = (struct report){face, t};
+    c->report_count++;
+    return true;
+}
+
+static void checker_init(struct checker *c, const char *mesh_name, const struct mesh *m) {
+    *c = (struct checker){.mesh_name = mesh_name, .m = m};
+    build_all(m, mesh_name, c->accels);
+    size_t n = m->face_count + 1;
+    c->t_of_face = malloc(n * sizeof *c->t_of_face);
+    c->hit_faces = malloc(n * sizeof *c->hit_faces);
+    c->stamp = calloc(n, sizeof *c->stamp);
+    c->reports = malloc(n * sizeof *c->reports);
+    cr_assert(c->t_of_face && c->hit_faces && c->stamp && c->reports, "out of memory");
+}
+
+static void checker_free(struct checker *c) {
+    free_all(c->accels);
+    free(c->t_of_face);
+    free(c->hit_faces);
+    free(c->stamp);
+    free(c->reports);
+}
+
+/* The brute-force pass: every face's t for ray r, whatever the window. */
+static void trace_brute_force(struct checker *c, const ray *r) {
+    c->hit_count = 0;
+    for (size_t f = 0; f < c->m->face_count; f++) {
+        const uint32_t *v = c->m->faces[f].v;
+        double t, u, w;
+        if (triangle_intersect(c->m->vertices[v[0]], c->m->vertices[v[1]], c->m->vertices[v[2]], r, -INFINITY,
+                               INFINITY, &t, &u, &w)) {
+            c->t_of_face[f] = t;
+            c->hit_faces[c->hit_count++] = (uint32_t)f;
+        } else {
+            c->t_of_face[f] = NAN;
+        }
+    }
+}
+
+#define RAY_FORMAT "ray (%a, %a, %a) + t (%a, %a, %a), window (%a, %a)"
+#define RAY_ARGS(r, t_min, t_max)                                                                         \
+    (r)->origin.x, (r)->origin.y, (r)->origin.z, (r)->direction.x, (r)->direction.y, (r)->direction.z,   \
+        (t_min), (t_max)
+
+/* Checks every structure's three answers for ray r in the window (t_min, t_max). */
+static void check_window(struct checker *c, const ray *r, double t_min, double t_max) {
+    bool expect_hit = false;
+    double expect_t = INFINITY;
+    uint32_t expect_face = UINT32_MAX;
+    size_t expect_count = 0;
+    for (size_t k = 0; k < c->hit_count; k++) {
+        uint32_t f = c->hit_faces[k];
+        double t = c->t_of_face[f];
+        if (!(t > t_min && t < t_max))
+            continue;
+        expect_count++;
+        if (!expect_hit || t < expect_t || (t == expect_t && f < expect_face)) {
+            expect_hit = true;
+            expect_t = t;
+            expect_face = f;
+        }
+    }
+    c->windows++;
+    for (int s = 0; s < ACCEL_COUNT; s++) {
+        const struct accel *a = &c->accels[s];
+        double t = -1.0;
+        uint32_t face = UINT32_MAX - 1;
+        bool hit = a->closest(a->structure, r, t_min, t_max, &t, &face);
+        if (hit != expect_hit || (hit && (t != expect_t || face != expect_face)))
+            cr_assert_fail("%s on %s: closest gives %s t=%a face %u, brute force %s t=%a face %u; " RAY_FORMAT, a->name,
+                           c->mesh_name, hit ? "hit" : "miss", t, face, expect_hit ? "hit" : "miss", expect_t,
+                           expect_face, RAY_ARGS(r, t_min, t_max));
+        bool occluded = a->occluded(a->structure, r, t_min, t_max);
+        if (occluded != expect_hit)
+            cr_assert_fail("%s on %s: occluded says %d, brute force %d; " RAY_FORMAT, a->name, c->mesh_name,
+                           occluded, expect_hit, RAY_ARGS(r, t_min, t_max));
+
+        c->report_count = 0;
+        c->generation++;
+        a->for_each_hit(a->structure, r, t_min, t_max, collect_report, c);
+        if (c->report_count != expect_count)
+            cr_assert_fail("%s on %s: for_each_hit reported %zu hits, brute force has %zu; " RAY_FORMAT, a->name,
+                           c->mesh_name, c->report_count, expect_count, RAY_ARGS(r, t_min, t_max));
+        for (size_t k = 0; k < c->report_count; k++) {
+            struct report rep = c->reports[k];
+            if (rep.face >= c->m->face_count || c->stamp[rep.face] == c->generation)
+                cr_assert_fail("%s on %s: for_each_hit reported face %u twice or out of range; " RAY_FORMAT, a->name,
+                               c->mesh_name, rep.face, RAY_ARGS(r, t_min, t_max));
+            c->stamp[rep.face] = c->generation;
+            double want = c->t_of_face[rep.face];
+            if (!(want > t_min && want < t_max) || rep.t != want)
+                cr_assert_fail("%s on %s: for_each_hit reported face %u at t=%a, brute force t=%a; " RAY_FORMAT,
+                               a->name, c->mesh_name, rep.face, rep.t, want, RAY_ARGS(r, t_min, t_max));
+        }
+    }
+}
+
+/* ---- the rays --------------------------------------------------------------------------------- */
+
+enum ray_kind {
+    RAY_RANDOM,              /* origin anywhere around the mesh, any direction */
+    RAY_AT_FACE,             /* aimed at a point of a face (on an edge a quarter of the time) */
+    RAY_AT_VERTEX,           /* aimed at a corner */
+    RAY_AT_EDGE,             /* aimed at the middle of an edge */
+    RAY_ALONG_AXIS_AT_VERTEX,/* parallel to an axis, exactly through a corner, other components +-0 */
+    RAY_ALONG_AXIS_AT_FACE,  /* parallel to an axis, through a point of a face */
+    RAY_IN_VERTEX_PLANE,     /* inside the plane x, y or z = a corner's coordinate */
+    RAY_ON_PADDED_PLANE,     /* origin on (or in) a plane a structure may cut at: a corner +- the pad */
+    RAY_FROM_VERTEX,         /* starting exactly at a corner */
+    RAY_FROM_BOX_FACE,       /* starting on a face of the mesh's box, often running inside it */
+    RAY_FROM_INSIDE,         /* starting inside the mesh's box */
+    RAY_ALONG_AXIS,          /* parallel to an axis from anywhere */
+    RAY_ODD_DIRECTION,       /* not of unit length (1e-3, 1e3), or with a denormal component */
+    RAY_KINDS
+};
+
+struct scene_box {
+    vec3 lo, hi, centre;
+    double size; /* largest extent */
+};
+
+static struct scene_box box_of(const struct mesh *m) {
+    struct scene_box b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}, {0, 0, 0}, 0};
+    for (size_t f = 0; f < m->face_count; f++)
+        for (int k = 0; k < 3; k++) {
+            b.lo = vec3_min(b.lo, m->vertices[m->faces[f].v[k]]);
+            b.hi = vec3_max(b.hi, m->vertices[m->faces[f].v[k]]);
+        }
+    if (m->face_count == 0)
+        b.lo = b.hi = vec3_make(0, 0, 0);
+    b.centre = vec3_scale(vec3_add(b.lo, b.hi), 0.5);
+    vec3 e = vec3_sub(b.hi, b.lo);
+    b.size = fmax(e.x, fmax(e.y, e.z));
+    return b;
+}
+
+/* A point in the mesh's box grown by half its size on every side. */
+static vec3 around(struct rng *g, const struct scene_box *b) {
+    double margin = 0.5 * b->size + 1e-3;
+    return vec3_make(rng_between(g, b->lo.x - margin, b->hi.x + margin), rng_between(g, b->lo.y - margin, b->hi.y + margin),
+                     rng_between(g, b->lo.z - margin, b->hi.z + margin));
+}
+
+static vec3 random_corner(struct rng *g, const struct mesh *m) {
+    return m->vertices[m->faces[rng_below(g, (uint32_t)m->face_count)].v[rng_below(g, 3)]];
+}
+
+static vec3 random_face_point(struct rng *g, const struct mesh *m) {
+    const uint32_t *v = m->faces[rng_below(g, (uint32_t)m->face_count)].v;
+    double u = rng_unit(g), w = rng_unit(g);
+    if (u + w > 1.0) {
+        u = 1.0 - u;
+        w = 1.0 - w;
+    }
+    if (rng_below(g, 4) == 0)
+        w = 0.0; /* on the edge from corner 0 to corner 1 */
+    vec3 a = m->vertices[v[0]];
+    return vec3_add(a, vec3_add(vec3_scale(vec3_sub(m->vertices[v[1]], a), u), vec3_scale(vec3_sub(m->vertices[v[2]], a), w)));
+}
+
+/* A ray from a random origin towards target (or a random direction if they coincide). */
+static ray aimed_at(struct rng *g, const struct scene_box *b, vec3 target) {
+    vec3 origin = around(g, b);
+    vec3 d = vec3_sub(target, origin);
+    double length = vec3_length(d);
+    return (ray){origin, length > 0 ? vec3_scale(d, 1.0 / length) : rng_direction(g)};
+}
+
+/* The unit vector along axis with the given sign; the other components are +0 or -0 at random. */
+static vec3 axis_direction(struct rng *g, int axis, double sign) {
+    vec3 d = {rng_below(g, 2) ? 0.0 : -0.0, rng_below(g, 2) ? 0.0 : -0.0, rng_below(g, 2) ? 0.0 : -0.0};
+    set_axis(&d, axis, sign);
+    return d;
+}
+
+/* Makes direction d run inside the plane of `axis` (component +-0), unit length again. */
+static vec3 flatten(struct rng *g, vec3 d, int axis) {
+    set_axis(&d, axis, rng_below(g, 2) ? 0.0 : -0.0);
+    double length = vec3_length(d);
+    if (length == 0.0) {
+        d = axis_direction(g, (axis + 1) % 3, 1.0);
+        set_axis(&d, axis, 0.0);
+        return d;
+    }
+    return vec3_scale(d, 1.0 / length);
+}
+
+/* The float a structure would use for a box face at x: x - pad rounded down or x + pad rounded up. */
+static double padded_plane(double x, double pad, bool above) {
+    float f = (float)(above ? x + pad : x - pad);
+    if (above && (double)f < x + pad)
+        f = nextafterf(f, INFINITY);
+    if (!above && (double)f > x - pad)
+        f = nextafterf(f, -INFINITY);
+    return f;
+}
+
+static ray make_ray(struct rng *g, const struct mesh *m, const struct scene_box *b, enum ray_kind kind) {
+    int axis = (int)rng_below(g, 3);
+    double sign = rng_below(g, 2) ? 1.0 : -1.0;
+    switch (kind) {
+    case RAY_AT_FACE:
+        return aimed_at(g, b, random_face_point(g, m));
+    case RAY_AT_VERTEX:
+        return aimed_at(g, b, random_corner(g, m));
+    case RAY_AT_EDGE: {
+        const uint32_t *v = m->faces[rng_below(g, (uint32_t)m->face_count)].v;
+        int k = (int)rng_below(g, 3);
+        return aimed_at(g, b, vec3_scale(vec3_add(m->vertices[v[k]], m->vertices[v[(k + 1) % 3]]), 0.5));
+    }
+    case RAY_ALONG_AXIS_AT_VERTEX:
+    case RAY_ALONG_AXIS_AT_FACE: {
+        vec3 target = kind == RAY_ALONG_AXIS_AT_VERTEX ? random_corner(g, m) : random_face_point(g, m);
+        vec3 origin = target;
+        set_axis(&origin, axis, vec3_axis(target, axis) - sign * rng_between(g, 0.1, 2.0) * (b->size + 1e-3));
+        return (ray){origin, axis_direction(g, axis, sign)};
+    }
+    case RAY_IN_VERTEX_PLANE: {
+        vec3 origin = around(g, b);
+        set_axis(&origin, axis, vec3_axis(random_corner(g, m), axis));
+        return (ray){origin, flatten(g, rng_direction(g), axis)};
+    }
+    case RAY_ON_PADDED_PLANE: {
+        vec3 origin = around(g, b);
+        set_axis(&origin, axis, padded_plane(vec3_axis(random_corner(g, m), axis), ACCEL_PAD * b->size, sign > 0));
+        vec3 d = rng_direction(g);
+        return (ray){origin, rng_below(g, 2) ? flatten(g, d, axis) : d};
+    }
+    case RAY_FROM_VERTEX:
+        return (ray){random_corner(g, m), rng_direction(g)};
+    case RAY_FROM_BOX_FACE: {
+        vec3 origin = around(g, b);
+        set_axis(&origin, axis, vec3_axis(sign > 0 ? b->hi : b->lo, axis));
+        vec3 d = rng_direction(g);
+        return (ray){origin, rng_below(g, 2) ? flatten(g, d, axis) : d};
+    }
+    case RAY_FROM_INSIDE: {
+        vec3 origin = rng_below(g, 8) == 0 ? b->centre
+                                           : vec3_make(rng_between(g, b->lo.x, b->hi.x), rng_between(g, b->lo.y, b->hi.y),
+                                                       rng_between(g, b->lo.z, b->hi.z));
+        return (ray){origin, rng_direction(g)};
+    }
+    case RAY_ALONG_AXIS:
+        return (ray){around(g, b), axis_direction(g, axis, sign)};
+    case RAY_ODD_DIRECTION: {
+        ray r = aimed_at(g, b, random_face_point(g, m));
+        uint32_t how = rng_below(g, 3);
+        if (how == 2)
+            set_axis(&r.direction, axis, sign * 0x1p-1060); /* denormal: 1 / it is infinite */
+        else
+            r.direction = vec3_scale(r.direction, how == 0 ? 1e-3 : 1e3);
+        return r;
+    }
+    default:
+        return (ray){around(g, b), rng_direction(g)};
+    }
+}
+
+/* Traces `count` rays of every kind in turn against c's mesh, each in three windows: a usual one, one
+ * ending exactly at a hit and one starting exactly at it (or, without hits, a random and an empty
+ * window). */
+static void check_rays(struct checker *c, uint64_t seed, size_t count) {
+    struct rng g = {seed};
+    struct scene_box b = box_of(c->m);
+    static const double usual_min[] = {RAY_T_MIN, 0.0, -INFINITY, SHADOW_T_MIN};
+    for (size_t i = 0; i < count; i++) {
+        ray r = make_ray(&g, c->m, &b, (enum ray_kind)(i % RAY_KINDS));
+        trace_brute_force(c, &r);
+        double t_min = usual_min[i % 4];
+        double t_max = i % 4 == 3 ? rng_between(&g, 0.0, 3.0 * (b.size + 1.0)) : INFINITY;
+        check_window(c, &r, t_min, t_max);
+        if (c->hit_count > 0) {
+            double at = c->t_of_face[c->hit_faces[rng_below(&g, (uint32_t)c->hit_count)]];
+            check_window(c, &r, -INFINITY, at);
+            check_window(c, &r, at, INFINITY);
+        } else {
+            double a = rng_between(&g, -1.0, 2.0 * (b.size + 1.0)), z = rng_between(&g, -1.0, 2.0 * (b.size + 1.0));
+            check_window(c, &r, fmin(a, z), fmax(a, z));
+            check_window(c, &r, fmax(a, z), fmin(a, z));
+        }
+    }
+}
+
+static size_t rays_for(const struct mesh *m) {
+    double rays = ACCEL_TEST_BUDGET / (double)(m->face_count > 0 ? m->face_count : 1);
+    return rays > ACCEL_TEST_MAX_RAYS ? ACCEL_TEST_MAX_RAYS : rays < ACCEL_TEST_MIN_RAYS ? ACCEL_TEST_MIN_RAYS : (size_t)rays;
+}
+
+/* Builds everything over m, checks rays_for(m) rays, frees m. */
+static void check_mesh(const char *name, struct mesh *m, uint64_t seed) {
+    struct checker c;
+    checker_init(&c, name, m);
+    check_rays(&c, seed, rays_for(m));
+    cr_log_info("%s: %zu faces, %zu rays, %zu windows: all four structures agree with brute force", name,
+                m->face_count, rays_for(m), c.windows);
+    checker_free(&c);
+    mesh_free(m);
+}
+
+static void check_soups(size_t faces, int seeds) {
+    for (int s = 0; s < seeds; s++) {
+        char name[64];
+        snprintf(name, sizeof name, "soup of %zu (seed %d)", faces, s);
+        struct mesh m = make_soup(1000003u * faces + (uint64_t)s, faces);
+        check_mesh(name, &m, 77 + (uint64_t)s);
+    }
+}
+
+/* Loads scenes/models/NAME, or skips the test when it is not there (the teapots are generated). */
+static void check_model(const char *path) {
+    struct mesh m;
+    char err[512];
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        cr_skip_test("%s not found (make models)", path);
+    fclose(f);
+    cr_assert(mesh_load(path, &m, err, sizeof err), "%s", err);
+    check_mesh(path, &m, 4242);
+}
+
+/* ---- agreement with brute force --------------------------------------------------------------- */
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_1_to_10_triangles, .timeout = 120) {
+    check_soups(1, 4);
+    check_soups(2, 4);
+    check_soups(3, 4);
+    check_soups(5, 3);
+    check_soups(10, 3);
+}
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_30_to_300_triangles, .timeout = 120) {
+    check_soups(30, 3);
+    check_soups(100, 3);
+    check_soups(300, 2);
+}
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_1000_triangles, .timeout = 120) { check_soups(1000, 2); }
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_3000_triangles, .timeout = 120) { check_soups(3000, 2); }
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_5000_triangles, .timeout = 120) { check_soups(5000, 2); }
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_a_sphere_from_inside_and_outside, .timeout = 120) {
+    struct mesh m = make_sphere(24, 48, vec3_make(0.25, -0.5, 1.0), 1.5);
+    check_mesh("sphere", &m, 11);
+}
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_stacked_axis_aligned_grids, .timeout = 120) {
+    struct mesh m = make_grids(16);
+    check_mesh("grids", &m, 12);
+}
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_bunny, .timeout = 120) { check_model("scenes/models/bunny.ply"); }
+
+Test(accel, bvh_and_kdtree_match_brute_force_on_teapot_5k, .timeout = 120) {
+    check_model("scenes/models/teapot-5k.ply");
+}
+
+/* ---- behaviour of the interface ---------------------------------------------------------------- */
+
+Test(accel, empty_mesh_builds_and_nothing_hits_it) {
+    struct mesh empty = {0};
+    struct accel a[ACCEL_COUNT];
+    build_all(&empty, "empty mesh", a);
+    ray r = {{0, 0, -1}, {0, 0, 1}};
+    for (int s = 0; s < ACCEL_COUNT; s++) {
+        double t;
+        uint32_t face;
+        cr_expect_not(a[s].closest(a[s].structure, &r, -INFINITY, INFINITY, &t, &face), "%s", a[s].name);
+        cr_expect_not(a[s].occluded(a[s].structure, &r, -INFINITY, INFINITY), "%s", a[s].name);
+    }
+    free_all(a);
+}
+
+Test(accel, coincident_copies_of_a_triangle_give_the_lowest_face_index) {
+    struct builder b = {0};
+    struct rng g = {5};
+    for (int k = 0; k < 40; k++) /* clutter, then 12 copies of one triangle, then more clutter */
+        add_triangle(&b, soup_point(&g), soup_point(&g), soup_point(&g));
+    uint32_t v0 = add_vertex(&b, vec3_make(0, 0, 2)), v1 = add_vertex(&b, vec3_make(1, 0, 2)),
+             v2 = add_vertex(&b, vec3_make(0, 1, 2));
+    uint32_t first = (uint32_t)b.m.face_count;
+    for (int k = 0; k < 12; k++)
+        add_face(&b, v0, v1, v2);
+    for (int k = 0; k < 40; k++)
+        add_triangle(&b, soup_point(&g), soup_point(&g), soup_point(&g));
+    struct accel a[ACCEL_COUNT];
+    build_all(&b.m, "copies", a);
+    ray r = {{0.25, 0.25, 5.0}, {0, 0, -1}}; /* hits the copies first, at t = 3 */
+    for (int s = 0; s < ACCEL_COUNT; s++) {
+        double t = 0;
+        uint32_t face = 0;
+        cr_assert(a[s].closest(a[s].structure, &r, RAY_T_MIN, INFINITY, &t, &face), "%s", a[s].name);
+        cr_expect_eq(t, 3.0, "%s: t = %a", a[s].name, t);
+        cr_expect_eq(face, first, "%s: face %u, want %u", a[s].name, face, first);
+    }
+    free_all(a);
+    mesh_free(&b.m);
+}
+
+static bool stop_after_first(void *ctx, double t, uint32_t face) {
+    (void)t;
+    (void)face;
+    (*(int *)ctx)++;
+    return false;
+}
+
+Test(accel, for_each_hit_stops_as_soon_as_visit_returns_false) {
+    struct mesh m = make_grids(8); /* a ray down the z axis crosses three layers */
+    struct accel a[ACCEL_COUNT];
+    build_all(&m, "grids", a);
+    ray r = {{2.3, 3.6, 10.0}, {0, 0, -1}};
+    for (int s = 0; s < ACCEL_COUNT; s++) {
+        int calls = 0;
+        a[s].for_each_hit(a[s].structure, &r, 0.0, INFINITY, stop_after_first, &calls);
+        cr_expect_eq(calls, 1, "%s: visit called %d times", a[s].name, calls);
+    }
+    free_all(a);
+    mesh_free(&m);
+}
+
+Test(accel, structures_test_few_triangles_and_count_nodes_boxes_and_triangles) {
+    struct mesh m = make_sphere(64, 128, vec3_make(0, 0, 0), 1.0); /* 16,128 triangles */
+    struct accel a[ACCEL_COUNT];
+    build_all(&m, "sphere", a);
+    struct rng g = {9};
+    for (int s = 0; s < ACCEL_COUNT; s++) {
+        stats_reset_thread();
+        int rays = 2000;
+        for (int i = 0; i < rays; i++) {
+            vec3 origin = vec3_scale(rng_direction(&g), 4.0), target = vec3_scale(rng_direction(&g), 0.9);
+            ray r = {origin, vec3_normalize(vec3_sub(target, origin))}; /* through the sphere */
+            double t;
+            uint32_t face;
+            a[s].closest(a[s].structure, &r, RAY_T_MIN, INFINITY, &t, &face);
+        }
+        double per_ray = (double)stats_thread.triangle_tests / rays;
+        cr_expect(per_ray < 0.01 * (double)m.face_count, "%s: %.1f triangle tests per ray on %zu triangles", a[s].name,
+                  per_ray, m.face_count);
+        cr_expect_gt(stats_thread.node_visits, (uint64_t)rays, "%s counts node visits", a[s].name);
+        cr_expect_gt(stats_thread.box_tests, 0, "%s counts box tests", a[s].name);
+    }
+    free_all(a);
+    mesh_free(&m);
+}
+
+Test(accel, info_describes_a_consistent_tree) {
+    struct mesh m = make_soup(31, 2000);
+    for (int rule = 0; rule < 2; rule++) {
+        struct bvh *b = bvh_build(&m, rule ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN);
+        struct bvh_info bi;
+        bvh_get_info(b, &bi);
+        cr_expect(bi.leaves > 0 && bi.leaves < bi.nodes && bi.max_depth > 0, "BVH %d: %zu nodes, %zu leaves", rule,
+                  bi.nodes, bi.leaves);
+        cr_expect(bi.sah_cost > 0 && bi.sah_cost < 2000.0 && bi.build_ms >= 0, "BVH %d: cost %g", rule, bi.sah_cost);
+        bvh_free(b);
+        struct kdtree *k = kdtree_build(&m, rule ? KD_SPLIT_SAH : KD_SPLIT_SEED);
+        struct kdtree_info ki;
+        kdtree_get_info(k, &ki);
+        cr_expect(ki.leaves > 0 && ki.leaves < ki.nodes && ki.references >= m.face_count && ki.empty_leaves < ki.leaves,
+                  "kd %d: %zu nodes, %zu leaves, %zu references", rule, ki.nodes, ki.leaves, ki.references);
+        cr_expect(ki.sah_cost > 0 && ki.build_ms >= 0, "kd %d: cost %g", rule, ki.sah_cost);
+        kdtree_free(k);
+    }
+    mesh_free(&m);
+}
