@@ -4,6 +4,7 @@
 #   make chapters       build and render every written chapter
 #   make test           unit tests, image regression, POV-Ray agreement (installs what is missing)
 #   make test-sanitize  the same suite built with AddressSanitizer and UndefinedBehaviorSanitizer
+#   make test-accel-long  the kd-tree and BVH differential tests with millions of rays
 #   make references     re-render the reference images on purpose and say what changed
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
@@ -58,7 +59,7 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 include tools/models.mk
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
-.PHONY: all chapters test test-sanitize references compare clean help models \
+.PHONY: all chapters test test-sanitize test-accel-long references compare clean help models \
         $(foreach n,1 2 3 4 5 6 7 8 9 10,chapter-$(n))
 .DEFAULT_GOAL := all
 .SECONDARY:
@@ -133,6 +134,10 @@ compare: all $(BUILD)/compare
 test-sanitize:
 	$(MAKE) --no-print-directory SAN=1 test
 
+# The kd-tree and BVH differential tests with 20 times the rays (millions), without a time limit.
+test-accel-long: $(BUILD)/run-tests
+	WHITTED_ACCEL_RAYS=20 WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests --filter 'accel/*' --timeout 0
+
 references: all $(BUILD)/compare
 	tools/bless-references.sh $(BUILD)
 
@@ -140,4 +145,4 @@ clean:
 	rm -rf build out
 
 help:
-	@sed -n '2,13p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,14p' Makefile | sed 's/^# \{0,1\}//'

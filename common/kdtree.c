@@ -4,12 +4,12 @@
  * reaches, so triangles that straddle the plane are referenced from both halves. Two rules choose the
  * plane:
  *
- *  - KD_SPLIT_SEED, the dissertation's (its section 3.1): bound the objects, "split the axis that
- *    contains the greatest number of objects", send straddling objects both ways, stop at a fixed depth
- *    or below a primitive count. It says neither where on that axis the plane goes nor how an axis
- *    "contains" objects. We read it as its BVH chapter does the same job: the plane goes through the
- *    median of the triangles' centres (of their boxes clipped to the node), and an axis "contains" the
- *    objects that its median plane leaves whole on one side; the axis containing the most wins (ties to
+ *  - KD_SPLIT_SEED, the dissertation's (its section 3.1): bound the objects, cut along the axis that
+ *    holds the most objects, send straddling objects both ways, stop at a fixed depth or below a
+ *    primitive count. It says neither where on that axis the plane goes nor how an axis holds objects.
+ *    We read it as its BVH chapter does the same job: the plane goes through the median of the
+ *    triangles' centres (of their boxes clipped to the node), and an axis holds the objects that its
+ *    median plane leaves whole on one side; the axis holding the most wins (ties to
  *    x, then y). Leaves at KD_SEED_LEAF_SIZE triangles or the depth limit, and (our addition) where
  *    more than KD_SEED_MAX_STRADDLING of the triangles would straddle the plane.
  *

@@ -598,9 +598,17 @@ static void check_rays(struct checker *c, uint64_t seed, size_t count) {
     }
 }
 
+/* WHITTED_ACCEL_RAYS=K multiplies every ray count by K: `make test-accel-long` runs millions of rays. */
+static double ray_scale(void) {
+    const char *text = getenv("WHITTED_ACCEL_RAYS");
+    double scale = text != NULL ? atof(text) : 1.0;
+    return scale >= 1.0 ? scale : 1.0;
+}
+
 static size_t rays_for(const struct mesh *m) {
     double rays = ACCEL_TEST_BUDGET / (double)(m->face_count > 0 ? m->face_count : 1);
-    return rays > ACCEL_TEST_MAX_RAYS ? ACCEL_TEST_MAX_RAYS : rays < ACCEL_TEST_MIN_RAYS ? ACCEL_TEST_MIN_RAYS : (size_t)rays;
+    rays = rays > ACCEL_TEST_MAX_RAYS ? ACCEL_TEST_MAX_RAYS : rays < ACCEL_TEST_MIN_RAYS ? ACCEL_TEST_MIN_RAYS : rays;
+    return (size_t)(rays * ray_scale());
 }
 
 /* Builds everything over m, checks rays_for(m) rays, frees m. */
