@@ -105,9 +105,9 @@ void accel_world_destroy(void *world) {
     free(world);
 }
 
-void accel_chapter_report(const void *world, const struct stats *total, double render_seconds) {
+void accel_chapter_report(const void *world, const struct stats *total, double render_seconds, bool detailed) {
     (void)render_seconds;
-    accel_report(world, total);
+    accel_report(world, total, detailed);
 }
 
 /* The kd-tree's queries in the shape the world expects. */
@@ -153,21 +153,23 @@ int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *opt
     return 0;
 }
 
-void accel_report(const struct accel_world *w, const struct stats *total) {
+void accel_report(const struct accel_world *w, const struct stats *total, bool detailed) {
     const struct accel_summary *a = &w->summary;
     uint64_t rays = total->primary_rays + total->shadow_rays + total->reflected_rays + total->refracted_rays;
     printf("acceleration: %s over %zu triangles\n", a->name, w->triangles.face_count);
     if (w->structure == NULL)
         return;
     printf("  build            %12.1f ms\n", a->build_ms);
+    if (!detailed)
+        return;
     printf("  nodes            %12zu (%zu leaves, depth %zu)\n", a->nodes, a->leaves, a->max_depth);
     if (rays == 0)
         return;
     printf("  per ray (all kinds): %.2f node visits, %.2f triangle tests\n",
            (double)total->node_visits / (double)rays, (double)total->triangle_tests / (double)rays);
     if (a->sah_cost > 0.0)
-        printf("  predicted by the SAH: %.2f (traversal and triangle costs in triangle-test units)\n",
-               a->sah_cost);
+        printf("  predicted by the SAH: %.2f per ray crossing the scene's box at random (node visits and\n"
+               "  triangle tests weighted by the structure's cost constants)\n", a->sah_cost);
 }
 
 bool accel_world_use_kdtree(struct accel_world *w, int split, char *err, size_t err_size) {

@@ -72,11 +72,11 @@ void *accel_world_create(struct scene *s, const struct accel_choice *c, accel_bv
 void accel_world_destroy(void *world);
 
 /* accel_report in the shape of struct chapter's report. */
-void accel_chapter_report(const void *world, const struct stats *total, double render_seconds);
+void accel_chapter_report(const void *world, const struct stats *total, double render_seconds, bool detailed);
 
-/* Prints what was built and what tracing it cost per ray, beside the predicted cost. `total` holds the
- * counters of the whole render. */
-void accel_report(const struct accel_world *w, const struct stats *total);
+/* Prints what was built and its build time; with `detailed`, also its shape and what tracing it cost
+ * per ray, beside the cost the SAH predicted. `total` holds the counters of the whole render. */
+void accel_report(const struct accel_world *w, const struct stats *total, bool detailed);
 
 /* Returns the wall-clock time in milliseconds since an arbitrary fixed point, for build timings. */
 double accel_now_ms(void);

@@ -24,6 +24,7 @@ struct options {
     int threads;       /* 0 = all cores */
     bool output_given; /* -o was used; otherwise the picture goes to out/ */
     bool quiet;
+    bool stats;        /* --stats: the chapter's detailed report too */
 };
 
 static void print_usage(FILE *out, const struct chapter *ch, const char *program) {
@@ -38,6 +39,7 @@ static void print_usage(FILE *out, const struct chapter *ch, const char *program
             "  --pov FILE       write the scene's POV-Ray twin to FILE instead of rendering\n"
             "  --heatmap FILE   also write the work done per pixel as a picture\n"
             "  --threads N      render on N threads (default: all cores)\n"
+            "  --stats          also print the details of what the chapter built\n"
             "  --quiet          print nothing but errors\n"
             "  -h, --help       show this help\n"
             "%s"
@@ -75,8 +77,9 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
         if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
             print_usage(stdout, ch, argv[0]);
             return -1;
-        } else if (strcmp(arg, "--quiet") == 0) {
-            o->quiet = true;
+        } else if (strcmp(arg, "--quiet") == 0 || strcmp(arg, "--stats") == 0) {
+            o->quiet = o->quiet || strcmp(arg, "--quiet") == 0;
+            o->stats = o->stats || strcmp(arg, "--stats") == 0;
             takes_value = false;
         } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0 || strcmp(arg, "--heatmap") == 0) {
             if (value == NULL || value[0] == '\0') {
@@ -189,7 +192,7 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
             printf("heat-map: %s\n", o->heatmap);
         stats_print(stdout, &total);
         if (ch->report != NULL)
-            ch->report(world, &total, elapsed);
+            ch->report(world, &total, elapsed, o->stats);
     }
     return CLI_OK;
 }

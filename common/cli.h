@@ -41,8 +41,9 @@ struct chapter {
      * option is unknown, or -1 after printing why its value is wrong. */
     int (*parse_option)(const char *option, const char *value);
     const char *options_help;       /* lines describing those options for --help */
-    /* Optional: prints what the chapter measured (e.g. build time) after the counters. */
-    void (*report)(const void *world, const struct stats *total, double render_seconds);
+    /* Optional: prints what the chapter built (e.g. build time) after the counters; more with
+     * `detailed` (the --stats option). */
+    void (*report)(const void *world, const struct stats *total, double render_seconds, bool detailed);
 };
 
 /* Runs chapter `ch` with the command line argc/argv: parses the options (see --help), renders and

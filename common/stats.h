@@ -7,6 +7,7 @@
 #ifndef WHITTED_STATS_H
 #define WHITTED_STATS_H
 
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -33,7 +34,8 @@ void stats_add(struct stats *into, const struct stats *from);
 void stats_reset_thread(void);
 
 /* Prints the non-zero counters of `s` to `out`, one aligned "name: value" line each, with the
- * total number of rays. Cannot fail (write errors on `out` are the caller's to check). */
+ * total number of rays, then each counter divided by the number of camera rays. Cannot fail (write
+ * errors on `out` are the caller's to check). */
 void stats_print(FILE *out, const struct stats *s);
 
 #endif

@@ -121,3 +121,9 @@ Test(cli, no_progress_line_when_stderr_is_not_a_terminal) {
     cr_assert_eq(run_capturing(command, output, sizeof output), 0);
     cr_assert_null(strstr(output, "rendering:"), "a progress line went to a pipe:\n%s", output);
 }
+
+Test(cli, stats_adds_the_structure_and_the_predicted_cost) {
+    expect_run(9, "--stats -o " TEST_OUT "/stats.png", 0, "predicted by the SAH:");
+    expect_run(10, "--accel bvh --split seed --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
+               "acceleration: BVH (median split) over 353546 triangles");
+}
