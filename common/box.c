@@ -6,7 +6,7 @@
 
 bool box_intersect(const struct box *b, const ray *r, double t_min, double t_max, double *t) {
     stats_thread.box_tests++;
-    struct aabb bounds = {b->min, b->max};
+    struct aabb bounds = aabb_of_box(b);
     double t_enter = -INFINITY, t_leave = INFINITY;
     if (!aabb_clip(&bounds, r->origin, aabb_inverse_direction(r->direction), &t_enter, &t_leave))
         return false;
@@ -28,7 +28,7 @@ bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_m
             nearest = &boxes[k];
     if (nearest == NULL)
         return false;
-    struct aabb bounds = {nearest->min, nearest->max};
+    struct aabb bounds = aabb_of_box(nearest);
     h->normal = aabb_normal(&bounds, ray_at(*r, h->t));
     h->material = nearest->material;
     return true;

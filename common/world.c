@@ -12,8 +12,11 @@
 
 struct aabb world_mesh_bounds(const struct mesh *m) {
     struct aabb bounds = aabb_empty();
-    for (size_t k = 0; k < m->vertex_count; k++)
-        bounds = aabb_grow(bounds, m->vertices[k]);
+    for (size_t k = 0; k < m->face_count; k++) {
+        const uint32_t *corner = m->faces[k].v;
+        bounds = aabb_union(bounds, aabb_of_triangle(m->vertices[corner[0]], m->vertices[corner[1]],
+                                                     m->vertices[corner[2]]));
+    }
     return bounds;
 }
 

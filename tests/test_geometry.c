@@ -744,3 +744,27 @@ Test(headlight, back_side_is_lit_like_the_front) {
     assert_vec3_near(back, front, EXACT, "back vs front");
     cr_assert_gt(back.x, 0.0);
 }
+
+/* ---- bounding boxes of shapes ------------------------------------------------------------------ */
+
+static void assert_box(struct aabb got, vec3 lo, vec3 hi) {
+    cr_assert(got.min.x == lo.x && got.min.y == lo.y && got.min.z == lo.z, "min (%g, %g, %g)", got.min.x,
+              got.min.y, got.min.z);
+    cr_assert(got.max.x == hi.x && got.max.y == hi.y && got.max.z == hi.z, "max (%g, %g, %g)", got.max.x,
+              got.max.y, got.max.z);
+}
+
+Test(aabb, a_sphere_is_bounded_by_centre_plus_minus_radius) {
+    struct sphere s = {vec3_make(1, -2, 3), 0.5, 0};
+    assert_box(aabb_of_sphere(&s), vec3_make(0.5, -2.5, 2.5), vec3_make(1.5, -1.5, 3.5));
+}
+
+Test(aabb, a_triangle_is_bounded_by_its_corners) {
+    assert_box(aabb_of_triangle(vec3_make(0, 5, -1), vec3_make(2, -1, 0), vec3_make(-3, 0, 4)), vec3_make(-3, -1, -1),
+               vec3_make(2, 5, 4));
+}
+
+Test(aabb, a_box_is_its_own_bounding_box) {
+    struct box b = {vec3_make(-1, 0, 2), vec3_make(1, 3, 4), 0};
+    assert_box(aabb_of_box(&b), b.min, b.max);
+}
