@@ -11,9 +11,8 @@ command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
 have_pkgconfig stb || missing+=(libstb-dev)
 have_pkgconfig criterion || missing+=(libcriterion-dev)
 command -v povray >/dev/null 2>&1 || missing+=(povray)
-# Optional extras for `make bench` and `make plots`; asked for only by those targets.
+# Optional: Intel Embree 3, the yardstick of `make bench`; asked for only by that target.
 if [ "${WHITTED_EXTRAS:-}" = "bench" ]; then
-    command -v gnuplot >/dev/null 2>&1 || missing+=(gnuplot-nox)
     [ -e /usr/include/embree3/rtcore.h ] || missing+=(libembree-dev)
 fi
 
