@@ -1,0 +1,85 @@
+/* test_docs.c: the walkthroughs quote the code as it is. Every ```c block in the docs must appear,
+ * character for character, in one of the files it could come from; a quote that drifted from its code
+ * fails here, naming the doc and the block's first line. */
+#include <criterion/criterion.h>
+#include <glob.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FENCE_OPEN "```c\n"
+#define FENCE_CLOSE "```"
+
+/* Where quoted code may come from. */
+static const char *const code_patterns[] = {"common/*.[ch]", "chapters/*/main.c", "tools/*.[ch]", "bench/*.c",
+                                            "tests/*.[ch]", "scenes/*.scene"};
+
+static char *read_all(const char *path) {
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "cannot open %s", path);
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    rewind(f);
+    char *text = malloc((size_t)size + 1);
+    cr_assert(fread(text, 1, (size_t)size, f) == (size_t)size);
+    text[size] = '\0';
+    fclose(f);
+    return text;
+}
+
+/* All code files, read once. */
+struct corpus {
+    char **texts;
+    size_t count;
+};
+
+static struct corpus read_code(void) {
+    struct corpus c = {NULL, 0};
+    for (size_t p = 0; p < sizeof code_patterns / sizeof code_patterns[0]; p++) {
+        glob_t found;
+        if (glob(code_patterns[p], 0, NULL, &found) != 0)
+            continue;
+        c.texts = realloc(c.texts, (c.count + found.gl_pathc) * sizeof *c.texts);
+        for (size_t k = 0; k < found.gl_pathc; k++)
+            c.texts[c.count++] = read_all(found.gl_pathv[k]);
+        globfree(&found);
+    }
+    return c;
+}
+
+static bool quoted_somewhere(const struct corpus *c, const char *block) {
+    for (size_t k = 0; k < c->count; k++)
+        if (strstr(c->texts[k], block) != NULL)
+            return true;
+    return false;
+}
+
+Test(docs, every_c_listing_in_the_walkthroughs_is_the_current_code) {
+    struct corpus code = read_code();
+    cr_assert_gt(code.count, 20, "found only %zu code files: not run from the repository root?", code.count);
+    glob_t docs;
+    cr_assert_eq(glob("docs/*.md", 0, NULL, &docs), 0);
+    size_t listings = 0, stale = 0;
+    for (size_t d = 0; d < docs.gl_pathc; d++) {
+        char *text = read_all(docs.gl_pathv[d]);
+        for (char *open = strstr(text, FENCE_OPEN); open != NULL; open = strstr(open, FENCE_OPEN)) {
+            char *start = open + strlen(FENCE_OPEN);
+            char *close = strstr(start, FENCE_CLOSE);
+            cr_assert_not_null(close, "%s: a ```c block is never closed", docs.gl_pathv[d]);
+            *close = '\0';
+            listings++;
+            if (!quoted_somewhere(&code, start)) {
+                stale++;
+                fprintf(stderr, "%s: listing not found in the code, starting: %.70s\n", docs.gl_pathv[d], start);
+            }
+            open = close + strlen(FENCE_CLOSE);
+        }
+        free(text);
+    }
+    globfree(&docs);
+    for (size_t k = 0; k < code.count; k++)
+        free(code.texts[k]);
+    free(code.texts);
+    cr_assert_gt(listings, 30, "only %zu listings found", listings);
+    cr_assert_eq(stale, 0, "%zu of %zu listings no longer match the code (see above)", stale, listings);
+}
