@@ -3,7 +3,9 @@
  *
  * The cost of a pixel is the number of node visits plus box and shape tests its rays made. It is
  * drawn on one fixed logarithmic scale, black (no work) through blue, red and yellow to white
- * (HEATMAP_MAX_COST tests or more), so heat-maps of different chapters and structures compare directly. */
+ * (HEATMAP_MAX_COST tests or more), so heat-maps of different chapters and structures can be set side
+ * by side. Mind what a unit is: a BVH node visit also counts a box test for each of its (up to four)
+ * children, a kd-tree step counts none, so equal colours are equal counts, not equal times. */
 #ifndef WHITTED_HEATMAP_H
 #define WHITTED_HEATMAP_H
 
