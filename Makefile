@@ -80,7 +80,7 @@ $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 $(BUILD)/tools/%.o: tools/%.c | $(BUILD)/tools
 	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
 
-$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools out:
+$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools $(BUILD)/mutants out:
 	mkdir -p $@
 
 -include $(wildcard $(BUILD)/*/*.d)
@@ -120,12 +120,26 @@ $(BUILD)/run-tests: $(TEST_OBJECTS) $(TOOL_OBJECTS) $(addprefix $(BUILD)/common/
 $(BUILD)/compare: $(BUILD)/tools/compare.o $(TOOL_OBJECTS) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-# A program that calls plane_intersect (chapter 4), linked with chapter 3's modules: must fail to
-# link; with chapter 4's it must link. tests/test_layering.c runs both.
-$(BUILD)/layering-probe-%: tests/layering/probe.c $$(addprefix $(BUILD)/common/,$$(addsuffix .o,$$(MODULES_%)))
-	$(CC) $(CFLAGS) $^ -o $@ $(LDLIBS)
+# Chapter NN's program linked with the modules of chapter MM instead of its own:
+# $(BUILD)/layering-NN-with-MM. With MM = NN - 1 it must fail to link, because every chapter uses what
+# it introduces; tests/test_layering.c checks that for every chapter.
+layering_chapter = $(call chapter_dir,$(word 1,$(subst -with-, ,$(1))))
+layering_modules = $(MODULES_$(word 2,$(subst -with-, ,$(1))))
+$(BUILD)/layering-%: $$(BUILD)/chapters/$$(call layering_chapter,$$*).o \
+        $$(addprefix $$(BUILD)/common/,$$(addsuffix .o,$$(call layering_modules,$$*)))
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-test: all $(BUILD)/run-tests
+# Deliberately wrong tracers, for the tests that prove the POV-Ray agreement check catches real
+# mistakes: chapter 6 with its highlight multiplied by the pigment colour (see common/phong.c).
+MUTANTS := $(BUILD)/mutant-highlight-times-pigment
+$(BUILD)/mutants/phong-highlight-times-pigment.o: common/phong.c | $(BUILD)/mutants
+	$(CC) $(CFLAGS) -DWHITTED_MUTANT_HIGHLIGHT_TIMES_PIGMENT -c $< -o $@
+
+$(BUILD)/mutant-highlight-times-pigment: $(BUILD)/chapters/06-phong.o $(BUILD)/mutants/phong-highlight-times-pigment.o \
+        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(filter-out phong,$(MODULES_06))))
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
+test: all $(BUILD)/run-tests $(MUTANTS)
 	WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
 
 compare: all $(BUILD)/compare

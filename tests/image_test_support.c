@@ -45,10 +45,21 @@ static int run(const char *command) {
     return WEXITSTATUS(status);
 }
 
-int render_chapter(int n, const char *scene, const char *png, const char *extra) {
+int render_with(const char *program, const char *scene, const char *png, const char *extra) {
     char command[COMMAND_MAX];
-    snprintf(command, sizeof command, "%s %s -o %s --quiet %s", chapter_program(n), scene, png, extra);
+    snprintf(command, sizeof command, "%s %s -o %s --quiet %s", program, scene, png, extra);
     return run(command);
+}
+
+int render_chapter(int n, const char *scene, const char *png, const char *extra) {
+    return render_with(chapter_program(n), scene, png, extra);
+}
+
+const char *mutant_program(const char *name) {
+    static _Thread_local char path[256];
+    const char *build = getenv("WHITTED_BUILD");
+    snprintf(path, sizeof path, "%s/mutant-%s", build != NULL ? build : "build", name);
+    return path;
 }
 
 bool render_povray(int n, const char *scene, const char *png) {

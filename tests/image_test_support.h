@@ -27,6 +27,13 @@ const char *chapter_program(int n);
  * the exit status (or -1 if the program could not be run). */
 int render_chapter(int n, const char *scene, const char *png, const char *extra);
 
+/* Runs the chapter program `program` (a path) as render_chapter does. */
+int render_with(const char *program, const char *scene, const char *png, const char *extra);
+
+/* Returns the path of the deliberately wrong program `name` that the Makefile builds for the tests,
+ * e.g. "build/mutant-highlight-times-pigment". */
+const char *mutant_program(const char *name);
+
 /* Writes chapter n's POV-Ray twin of `scene` and renders it with POV-Ray to `png` at the scene's size.
  * Returns true on success. */
 bool render_povray(int n, const char *scene, const char *png);

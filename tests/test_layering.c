@@ -1,37 +1,59 @@
 /* test_layering.c: a chapter can only use what it and earlier chapters introduced. The Makefile links
- * each chapter with its own module list; here a program calling chapter 4's plane_intersect must fail
- * to link with chapter 3's list and link with chapter 4's. */
+ * each chapter with its own module list (MODULES_NN); here every chapter's program, linked with the
+ * list of the chapter before it, must fail to link for want of the very idea the chapter introduces,
+ * and link with its own list. */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
 
-/* Runs `make` on the probe linked against chapter `chapter`'s modules; returns its exit status and the
- * first bytes of its output in `output`. */
-static int link_probe(const char *chapter, char *output, size_t size) {
+/* Runs `make` to link chapter `chapter`'s program with chapter `modules`' module list; returns make's
+ * exit status and the first bytes of its output in `output`. */
+static int link_chapter(int chapter, int modules, char *output, size_t size) {
     const char *build = getenv("WHITTED_BUILD");
-    bool sanitized = build != NULL && strstr(build, "san") != NULL;
-    char command[512];
+    build = build != NULL ? build : "build";
+    bool sanitized = strstr(build, "san") != NULL;
+    char target[256], command[768];
+    snprintf(target, sizeof target, "%s/layering-%02d-with-%02d", build, chapter, modules);
     snprintf(command, sizeof command,
-             "rm -f %s/layering-probe-%s && env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS "
-             "make --no-print-directory SAN=%d %s/layering-probe-%s 2>&1",
-             build != NULL ? build : "build", chapter, sanitized ? 1 : 0, build != NULL ? build : "build", chapter);
+             "rm -f %s && env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS make --no-print-directory SAN=%d %s 2>&1",
+             target, sanitized ? 1 : 0, target);
     FILE *pipe = popen(command, "r");
     cr_assert_not_null(pipe);
     size_t length = fread(output, 1, size - 1, pipe);
     output[length] = '\0';
     int status = pclose(pipe);
+    remove(target);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-Test(layering, chapter_3_cannot_use_chapter_4s_plane) {
+/* For each chapter from 2 on, a function its main.c uses from a module that chapter introduces. */
+static const struct {
+    int chapter;
+    const char *symbol;
+} new_ideas[] = {
+    {2, "sphere_closest"},   {3, "triangle_closest"}, {4, "plane_closest"},
+    {5, "world_closest"},    {6, "phong_trace_nearest"}, {7, "shadow_opaque"},
+    {8, "whitted_trace"},    {9, "accel_world_create"},  {10, "accel_world_use_bvh"},
+};
+
+Test(layering, no_chapter_links_with_the_previous_chapters_modules, .timeout = 300) {
     static char output[65536];
-    cr_assert_neq(link_probe("03", output, sizeof output), 0, "the probe linked with chapter 3's modules");
-    cr_assert_not_null(strstr(output, "undefined reference to `plane_intersect'"), "unexpected output:\n%s", output);
+    for (size_t k = 0; k < sizeof new_ideas / sizeof new_ideas[0]; k++) {
+        int n = new_ideas[k].chapter;
+        char expected[128];
+        snprintf(expected, sizeof expected, "undefined reference to `%s'", new_ideas[k].symbol);
+        cr_assert_neq(link_chapter(n, n - 1, output, sizeof output), 0,
+                      "chapter %d linked with chapter %d's modules", n, n - 1);
+        cr_assert_not_null(strstr(output, expected), "chapter %d with chapter %d's modules: no \"%s\" in:\n%s", n,
+                           n - 1, expected, output);
+    }
 }
 
-Test(layering, chapter_4_can_use_its_plane) {
+Test(layering, every_chapter_links_with_its_own_modules, .timeout = 300) {
     static char output[65536];
-    cr_assert_eq(link_probe("04", output, sizeof output), 0, "the probe failed with chapter 4's modules:\n%s", output);
+    for (int n = 1; n <= 10; n++)
+        cr_assert_eq(link_chapter(n, n, output, sizeof output), 0,
+                     "chapter %d failed to link with its own modules:\n%s", n, output);
 }
