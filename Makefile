@@ -94,13 +94,15 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..10: explicit rules (GNU make skips pattern rules for phony targets).
+# chapter-N for N = 1..10: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# models that the chapter's scene names are made first (mesh paths are relative to scenes/).
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
 	if ! ls -d chapters/$$$$n-* >/dev/null 2>&1; then \
 	    echo "chapter $(1) is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
-	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(SCENE_MODELS) && ./$$(BUILD)/chapter-$$$$n
+	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
+	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
 $(foreach n,1 2 3 4 5 6 7 8 9 10,$(eval $(call run_chapter_rule,$(n))))
 

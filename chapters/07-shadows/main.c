@@ -1,8 +1,8 @@
 /* Chapter 7, shadows: before a light counts, a shadow ray checks that nothing stands in its way.
  *
- * The shadow ray and its offset constants are in common/shadow.c. The shading is chapter 6's with one
- * change: phong_trace_nearest is given shadow_opaque, so a light blocked by any shape adds nothing. Run the
- * scene scenes/07-shadow-acne.scene to see what happens without the offset. */
+ * The shadow ray is in common/shadow.c, its offset constant SHADOW_T_MIN in common/ray.h. The shading
+ * is chapter 6's with one change: phong_trace_nearest is given shadow_opaque, so a light blocked by any
+ * shape adds nothing. Run the scene scenes/07-shadow-acne.scene to see what happens without the offset. */
 #include "cli.h"
 #include "phong.h"
 #include "shadow.h"
