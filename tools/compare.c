@@ -1,18 +1,41 @@
-/* compare.c: `compare A.png B.png [STRIP.png]` prints how far two pictures differ and optionally writes
- * them side by side with their amplified difference (used by `make compare`; a tool, not a chapter).
+/* compare.c: `compare A.png B.png [SIDE.png DIFF.png]` prints how far two pictures differ and optionally
+ * writes them side by side (A | B) to SIDE.png and their difference, amplified DIFF_GAIN times, to DIFF.png
+ * (used by `make compare`; a tool, not a chapter).
  * Exit status: 0 when the pictures meet the POV-Ray agreement rule, 1 when not, 2 on bad input. */
 #include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "image.h"
 #include "image_compare.h"
 
-#define STRIP_GAIN 16 /* a 1-level difference shows as 16 of 255: visible, not glaring */
+#define DIFF_GAIN 16 /* a 1-level difference shows as 16 of 255: visible, not glaring */
+
+/* Writes the pictures a and b (width x height) side by side to side_path and their difference, amplified
+ * DIFF_GAIN times, to diff_path. Returns true on success; on failure writes the reason into err. */
+static bool write_pictures(const uint8_t *a, const uint8_t *b, int width, int height, const char *side_path,
+                           const char *diff_path, char *err, size_t err_size) {
+    size_t bytes = (size_t)width * (size_t)height * 3;
+    uint8_t *side = malloc(2 * bytes), *diff = malloc(bytes);
+    bool ok = false;
+    if (side == NULL || diff == NULL) {
+        snprintf(err, err_size, "out of memory");
+    } else {
+        image_compare_side_by_side(a, b, width, height, side);
+        image_compare_difference(a, b, width, height, DIFF_GAIN, diff);
+        ok = image_write_png_bytes(side, 2 * width, height, side_path, err, err_size) &&
+             image_write_png_bytes(diff, width, height, diff_path, err, err_size);
+    }
+    free(side);
+    free(diff);
+    return ok;
+}
 
 int main(int argc, char **argv) {
-    if (argc != 3 && argc != 4) {
-        fprintf(stderr, "usage: %s A.png B.png [STRIP.png]\n", argv[0]);
+    if (argc != 3 && argc != 5) {
+        fprintf(stderr, "usage: %s A.png B.png [SIDE.png DIFF.png]\n", argv[0]);
         return 2;
     }
     char err[512];
@@ -37,14 +60,9 @@ int main(int argc, char **argv) {
     printf("max %d  mean %.4f  within1 %.3f%%  within2 %.3f%%  psnr %s dB  over2 %ld\n", d.max, d.mean,
            100.0 * d.within_1, 100.0 * d.within_2, psnr, d.pixels_over_2);
     int status = image_difference_agrees(&d) ? 0 : 1;
-    if (argc == 4) {
-        uint8_t *strip = malloc((size_t)wa * 3 * 3 * (size_t)ha);
-        if (strip == NULL || (image_compare_strip(a, b, wa, ha, STRIP_GAIN, strip),
-                              !image_write_png_bytes(strip, 3 * wa, ha, argv[3], err, sizeof err))) {
-            fprintf(stderr, "%s\n", strip == NULL ? "out of memory" : err);
-            status = 2;
-        }
-        free(strip);
+    if (argc == 5 && !write_pictures(a, b, wa, ha, argv[3], argv[4], err, sizeof err)) {
+        fprintf(stderr, "%s\n", err);
+        status = 2;
     }
     free(a);
     free(b);

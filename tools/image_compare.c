@@ -1,8 +1,10 @@
-/* image_compare.c: difference statistics and a side-by-side strip of two pictures (tools). */
+/* image_compare.c: difference statistics of two pictures, and pictures of them side by side and of their
+ * amplified difference (tools). */
 #include "image_compare.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 struct image_difference image_compare(const uint8_t *a, const uint8_t *b, int width, int height) {
     struct image_difference d = {0};
@@ -36,16 +38,19 @@ bool image_difference_agrees(const struct image_difference *d) {
     return d->within_2 >= AGREEMENT_MIN_WITHIN_2 && d->mean <= AGREEMENT_MAX_MEAN;
 }
 
-void image_compare_strip(const uint8_t *a, const uint8_t *b, int width, int height, int gain, uint8_t *out) {
+void image_compare_side_by_side(const uint8_t *a, const uint8_t *b, int width, int height, uint8_t *out) {
     size_t row = (size_t)width * 3;
     for (int j = 0; j < height; j++) {
-        uint8_t *line = out + (size_t)j * row * 3;
-        const uint8_t *ra = a + (size_t)j * row, *rb = b + (size_t)j * row;
-        for (size_t k = 0; k < row; k++) {
-            int delta = abs((int)ra[k] - (int)rb[k]) * gain;
-            line[k] = ra[k];
-            line[row + k] = rb[k];
-            line[2 * row + k] = (uint8_t)(delta > 255 ? 255 : delta);
-        }
+        uint8_t *line = out + (size_t)j * row * 2;
+        memcpy(line, a + (size_t)j * row, row);
+        memcpy(line + row, b + (size_t)j * row, row);
+    }
+}
+
+void image_compare_difference(const uint8_t *a, const uint8_t *b, int width, int height, int gain, uint8_t *out) {
+    size_t bytes = (size_t)width * (size_t)height * 3;
+    for (size_t k = 0; k < bytes; k++) {
+        int delta = abs((int)a[k] - (int)b[k]) * gain;
+        out[k] = (uint8_t)(delta > 255 ? 255 : delta);
     }
 }

@@ -27,8 +27,11 @@ struct image_difference image_compare(const uint8_t *a, const uint8_t *b, int wi
 /* Returns true when d meets the agreement rule above. */
 bool image_difference_agrees(const struct image_difference *d);
 
-/* Writes into `out` (width * 3 by height RGB) the pictures a and b side by side with, on the right,
- * their difference amplified `gain` times (each channel |a - b| * gain, clamped to 255). */
-void image_compare_strip(const uint8_t *a, const uint8_t *b, int width, int height, int gain, uint8_t *out);
+/* Writes into `out` (width * 2 by height RGB) the pictures a and b side by side, a on the left. */
+void image_compare_side_by_side(const uint8_t *a, const uint8_t *b, int width, int height, uint8_t *out);
+
+/* Writes into `out` (width by height RGB) the difference of a and b amplified `gain` times: each
+ * channel |a - b| * gain, clamped to 255, so identical pixels are black. */
+void image_compare_difference(const uint8_t *a, const uint8_t *b, int width, int height, int gain, uint8_t *out);
 
 #endif

@@ -7,6 +7,7 @@ set -u
 missing=()
 have_pkgconfig() { command -v pkg-config >/dev/null 2>&1 && pkg-config --exists "$1"; }
 
+command -v gcc >/dev/null 2>&1 || missing+=(gcc)
 command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
 have_pkgconfig stb || missing+=(libstb-dev)
 have_pkgconfig criterion || missing+=(libcriterion-dev)
