@@ -13,6 +13,7 @@ void stats_add(struct stats *into, const struct stats *from) {
     into->refracted_rays += from->refracted_rays;
     into->sphere_tests += from->sphere_tests;
     into->triangle_tests += from->triangle_tests;
+    into->triangle_tests_culled += from->triangle_tests_culled;
     into->plane_tests += from->plane_tests;
     into->box_tests += from->box_tests;
     into->node_visits += from->node_visits;
@@ -40,6 +41,7 @@ void stats_print(FILE *out, const struct stats *s) {
     print_counter(out, "refracted rays", s->refracted_rays);
     print_counter(out, "sphere tests", s->sphere_tests);
     print_counter(out, "triangle tests", s->triangle_tests);
+    print_counter(out, "triangles culled", s->triangle_tests_culled);
     print_counter(out, "plane tests", s->plane_tests);
     print_counter(out, "box tests", s->box_tests);
     print_counter(out, "node visits", s->node_visits);
@@ -49,6 +51,7 @@ void stats_print(FILE *out, const struct stats *s) {
     print_ratio(out, "rays", rays, s->primary_rays);
     print_ratio(out, "sphere tests", s->sphere_tests, s->primary_rays);
     print_ratio(out, "triangle tests", s->triangle_tests, s->primary_rays);
+    print_ratio(out, "triangles culled", s->triangle_tests_culled, s->primary_rays);
     print_ratio(out, "plane tests", s->plane_tests, s->primary_rays);
     print_ratio(out, "box tests", s->box_tests, s->primary_rays);
     print_ratio(out, "node visits", s->node_visits, s->primary_rays);

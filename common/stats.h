@@ -18,6 +18,11 @@ struct stats {
     uint64_t refracted_rays; /* from chapter 8 */
     uint64_t sphere_tests;
     uint64_t triangle_tests;
+    /* triangle tests skipped because the ray missed a mesh's bounding box: the mesh's face count for
+     * each miss. Counted only by world.c's per-mesh culling (chapters 5 to 8, and 9 and 10 with
+     * --accel none). Not work done: triangle_tests + triangle_tests_culled is what the same rays would
+     * cost without bounding boxes, as in chapter 4's brute-force loop. */
+    uint64_t triangle_tests_culled;
     uint64_t plane_tests;
     uint64_t box_tests;      /* box primitives and bounding boxes (chapter 5 on) */
     uint64_t node_visits;    /* kd-tree or BVH nodes visited (chapters 9 and 10) */

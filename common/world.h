@@ -57,12 +57,14 @@ void world_destroy(void *world);
 struct aabb world_mesh_bounds(const struct mesh *m);
 
 /* Finds the nearest surface with t_min < t < h->t along r among all shapes, and keeps it in *h.
- * Returns true when *h was replaced. */
+ * Returns true when *h was replaced. Without w->accel, a mesh whose bounding box r misses within
+ * (t_min, h->t) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);
 
 /* Calls visit(context, t, material) for every crossing of a surface by r with t_min < t < t_max: both
  * crossings of a sphere or box, each triangle, each plane. Stops as soon as visit returns false.
- * Used for shadows (chapters 7 and 8). */
+ * Used for shadows (chapters 7 and 8). Without w->accel, a mesh whose bounding box r misses within
+ * (t_min, t_max) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 typedef bool (*world_crossing_visitor)(void *context, double t, int material);
 void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
                              world_crossing_visitor visit, void *context);

@@ -1,8 +1,10 @@
 /* test_shading.c: unit tests of chapters 5 to 8 against closed-form answers: the box shape and the
  * world's mesh culling (chapter 5), POV-Ray's Phong formula (chapter 6), opaque and filtered shadow rays
  * (chapters 7 and 8) and the recursive Whitted tracer (chapter 8). Scenes are parsed from text held in
- * memory. Every expected value is worked out by hand in the comment next to it. */
+ * memory. Every expected value is worked out by hand in the comment next to it. One test reads the real
+ * chapter 5 scene and its meshes instead, to check the culling counter against chapter 4's brute force. */
 #include <criterion/criterion.h>
+#include <inttypes.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -10,6 +12,7 @@
 #include <string.h>
 
 #include "box.h"
+#include "camera.h"
 #include "phong.h"
 #include "scene.h"
 #include "shadow.h"
@@ -256,6 +259,140 @@ Test(world, ray_entering_a_mesh_bounding_box_tests_every_face) {
     cr_assert(found);
     assert_number(h.t, 4.5, SAME, "t");
     assert_colour(h.normal, grey(1.0 / sqrt(3.0)), SAME, "normal");
+}
+
+/* ---- world: the triangle tests the bounding boxes saved (chapter 5) ---------------------------- */
+
+/* The triangle tests one query ran and the ones its bounding boxes saved, since `before`. */
+struct triangle_work {
+    uint64_t tested;
+    uint64_t culled;
+};
+
+static struct triangle_work triangle_work_since(const struct stats *before) {
+    return (struct triangle_work){stats_thread.triangle_tests - before->triangle_tests,
+                                  stats_thread.triangle_tests_culled - before->triangle_tests_culled};
+}
+
+/* A world_crossing_visitor that counts the crossings in *(int *)context and never stops. */
+static bool count_every_crossing(void *context, double t, int material) {
+    (void)t;
+    (void)material;
+    ++*(int *)context;
+    return true;
+}
+
+Test(world, a_mesh_whose_bounding_box_is_missed_adds_its_faces_to_the_culled_count) {
+    /* Two octahedra of 8 faces on the -z axis: boxes z in [-6, -4] and z in [-11, -9], x and y in
+     * [-1, 1]. */
+    struct fixture f;
+    build(&f, "mesh octahedron.obj translate 0 0 -5\nmesh octahedron.obj translate 0 0 -10\n");
+    struct stats before = stats_thread;
+
+    /* From (0.25, 0.25) the nearest search hits the first octahedron at t = 4.5, before the second box
+     * begins (t = 9): 8 faces tested, 8 culled by the shorter ray. */
+    ray through = ray_along(vec3_make(0.25, 0.25, 0), vec3_make(0, 0, -1));
+    struct hit h = hit_nothing(INFINITY);
+    cr_assert(world_closest(&f.world, &through, RAY_T_MIN, &h));
+    assert_number(h.t, 4.5, SAME, "t");
+    struct triangle_work work = triangle_work_since(&before);
+    cr_assert_eq(work.tested, 8);
+    cr_assert_eq(work.culled, 8);
+
+    /* The crossings along the whole ray enter both boxes: all 16 faces tested, none culled. With
+     * |x| + |y| = 0.5 the ray crosses each octahedron where |z + 5|, or |z + 10|, is 0.5: 4 crossings. */
+    before = stats_thread;
+    int crossings = 0;
+    world_for_each_crossing(&f.world, &through, RAY_T_MIN, INFINITY, count_every_crossing, &crossings);
+    work = triangle_work_since(&before);
+    cr_assert_eq(crossings, 4);
+    cr_assert_eq(work.tested, 16);
+    cr_assert_eq(work.culled, 0);
+
+    /* y = 1.5 is outside both boxes' y slab: both queries test nothing and cull all 16 faces. */
+    ray above = ray_along(vec3_make(0, 1.5, 0), vec3_make(0, 0, -1));
+    before = stats_thread;
+    h = hit_nothing(INFINITY);
+    cr_assert(!world_closest(&f.world, &above, RAY_T_MIN, &h));
+    work = triangle_work_since(&before);
+    cr_assert_eq(work.tested, 0);
+    cr_assert_eq(work.culled, 16);
+    before = stats_thread;
+    crossings = 0;
+    world_for_each_crossing(&f.world, &above, RAY_T_MIN, INFINITY, count_every_crossing, &crossings);
+    work = triangle_work_since(&before);
+    cr_assert_eq(crossings, 0);
+    cr_assert_eq(work.tested, 0);
+    cr_assert_eq(work.culled, 16);
+    release(&f);
+}
+
+/* The test below traces the centre pixel of each CHAPTER_5_PIXEL_STEP x CHAPTER_5_PIXEL_STEP block:
+ * 40 x 30 of the 320 x 240 camera rays, enough to cross each bounding box and to miss both, for about
+ * 10 million brute-force triangle tests (a fraction of a second). */
+#define CHAPTER_5_PIXEL_STEP 8
+
+/* Loads scenes/05-aabb.scene with its meshes, as chapter 5 does, into *s and *w, and its camera into
+ * *cam; skips the test when a mesh file is missing (the teapots are generated: make models). */
+static void load_chapter_5_scene(struct scene *s, struct world *w, struct camera *cam) {
+    static const char path[] = "scenes/05-aabb.scene";
+    char err[512] = "";
+    cr_assert(scene_load(path, s, err, sizeof err), "%s (run the tests from the repository root)", err);
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        FILE *mesh_file = fopen(s->meshes[k].path, "rb");
+        if (mesh_file == NULL) {
+            scene_free(s);
+            cr_skip_test("%s not found (make models)", s->meshes[k].path);
+        }
+        fclose(mesh_file);
+    }
+    cr_assert(scene_load_meshes(s, err, sizeof err), "%s", err);
+    cr_assert(world_init(w, s, err, sizeof err), "%s", err);
+    cr_assert(camera_init(cam, s->eye, s->target, s->up, s->fov, s->width, s->height, err, sizeof err), "%s",
+              err);
+}
+
+Test(world, on_the_chapter_5_scene_triangle_tests_plus_culled_equal_chapter_4s_brute_force) {
+    struct scene s;
+    struct world w;
+    struct camera cam;
+    load_chapter_5_scene(&s, &w, &cam);
+    uint64_t rays = 0, tested = 0, culled = 0, brute_force = 0;
+    for (int j = CHAPTER_5_PIXEL_STEP / 2; j < cam.height; j += CHAPTER_5_PIXEL_STEP) {
+        for (int i = CHAPTER_5_PIXEL_STEP / 2; i < cam.width; i += CHAPTER_5_PIXEL_STEP) {
+            ray r = camera_ray(&cam, i, j);
+            struct stats before = stats_thread;
+            struct hit h = hit_nothing(INFINITY);
+            world_closest(&w, &r, RAY_T_MIN, &h);
+            struct triangle_work work = triangle_work_since(&before);
+
+            /* Chapter 4's trace_with_planes: every triangle, then every face of every mesh. */
+            before = stats_thread;
+            struct hit every = hit_nothing(INFINITY);
+            triangle_closest(s.triangles, s.triangle_count, &r, RAY_T_MIN, &every);
+            for (size_t k = 0; k < s.mesh_count; k++)
+                triangle_mesh_closest(&s.meshes[k].mesh, s.meshes[k].material, &r, RAY_T_MIN, &every);
+            uint64_t all = stats_thread.triangle_tests - before.triangle_tests;
+
+            cr_assert_eq(work.tested + work.culled, all, "pixel (%d, %d): %" PRIu64 " tested + %" PRIu64
+                         " culled, brute force %" PRIu64, i, j, work.tested, work.culled, all);
+            rays++;
+            tested += work.tested;
+            culled += work.culled;
+            brute_force += all;
+        }
+    }
+    /* Not vacuous: both kinds of ray occur, and brute force tested every face (the bunny's 3,674 and
+     * the teapot's 5,112) for each of the 40 x 30 rays. */
+    uint64_t faces = s.triangle_count;
+    for (size_t k = 0; k < s.mesh_count; k++)
+        faces += s.meshes[k].mesh.face_count;
+    cr_assert_gt(tested, 0);
+    cr_assert_gt(culled, tested, "the boxes should save most of the work on this scene");
+    cr_assert_eq(rays, 40 * 30);
+    cr_assert_eq(brute_force, faces * rays);
+    world_free(&w);
+    scene_free(&s);
 }
 
 /* ---- Phong (chapter 6) ------------------------------------------------------------------------- */
