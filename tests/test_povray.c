@@ -236,6 +236,8 @@ Test(povray_export, mesh_is_one_mesh2_with_the_right_counts) {
     cr_assert_eq(number_after(pov, "face_indices { "), 2);
     cr_assert(contains(pov, "<0, 1, 0.5> }"), "the last vertex closes the list");
     cr_assert(contains(pov, "<0, 1, 2>,\n    <0, 2, 3> }"));
+    cr_assert(contains(pov, "<0, 2, 3> }\n  inside_vector <0, 0, 1>\n "),
+              "inside_vector, before the texture, so POV-Ray searches the whole mesh");
     cr_assert(contains(pov, "texture { M1 }"));
     free(pov);
 }
