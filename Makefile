@@ -135,7 +135,7 @@ $(BUILD)/layering-%: $$(BUILD)/chapters/$$(call layering_chapter,$$*).o \
 # mistakes: chapter 6 with its highlight multiplied by the pigment colour (see common/phong.c).
 MUTANTS := $(BUILD)/mutant-highlight-times-pigment
 $(BUILD)/mutants/phong-highlight-times-pigment.o: common/phong.c | $(BUILD)/mutants
-	$(CC) $(CFLAGS) -DWHITTED_MUTANT_HIGHLIGHT_TIMES_PIGMENT -c $< -o $@
+	$(CC) $(CFLAGS) -DWHITTED_MUTANT_HIGHLIGHT_TIMES_PIGMENT -MMD -MP -c $< -o $@
 
 $(BUILD)/mutant-highlight-times-pigment: $(BUILD)/chapters/06-phong.o $(BUILD)/mutants/phong-highlight-times-pigment.o \
         $(addprefix $(BUILD)/common/,$(addsuffix .o,$(filter-out phong,$(MODULES_06))))
