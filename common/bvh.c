@@ -18,8 +18,7 @@
  * Exact agreement with the brute-force loop. A query must return the very face and t that testing
  * every face with triangle_intersect would. Four things make sure of it:
  *  - Triangles are tested with triangle_crossing (triangle.h), the very arithmetic triangle_intersect
- *    uses, on edges b - a and c - a computed once at build time with the same subtraction, so t is the
- *    same double to the last bit.
+ *    uses, on the very corners the mesh holds, so t is the same double to the last bit.
  *  - A box may only be skipped when no triangle inside can be reported hit. Moller-Trumbore rounds:
  *    it may call a ray that passes a hair outside a triangle a hit. So every triangle's box is grown by
  *    BVH_BOX_PAD times the mesh's size before it is rounded outward to float, far more than any such
@@ -126,9 +125,9 @@ struct bvh_node {
 
 _Static_assert(sizeof(struct bvh_node) == 128, "a node should fill exactly two 64-byte cache lines");
 
-/* A triangle as the intersection test wants it: corner a and the two edges leaving it. */
+/* A triangle as the intersection test wants it: its three corners, copied from the mesh. */
 struct bvh_triangle {
-    vec3 a, edge1, edge2;
+    vec3 a, b, c;
 };
 
 struct bvh {
@@ -548,7 +547,7 @@ static double now_ms(void) {
 /* True for a face of m that BVH_SLIVER_SINE keeps out of the tree. */
 static bool is_sliver(const struct mesh *m, size_t face) {
     const uint32_t *v = m->faces[face].v;
-    vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
+    vec3 a = m->vertices[v[0]], b1 = m->vertices[v[1]], c2 = m->vertices[v[2]];
     double cross = vec3_length(vec3_cross(e1, e2));
     return cross > 0.0 && cross < BVH_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
 }
@@ -628,7 +627,7 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
     for (size_t k = 0; k < n; k++) {
         const uint32_t *v = m->faces[b->faces[k]].v;
         vec3 a = m->vertices[v[0]];
-        b->triangles[k] = (struct bvh_triangle){a, vec3_sub(m->vertices[v[1]], a), vec3_sub(m->vertices[v[2]], a)};
+        b->triangles[k] = (struct bvh_triangle){a, m->vertices[v[1]], m->vertices[v[2]]};
     }
 
     b->info.nodes = bd.node_count + bd.leaves;
@@ -726,10 +725,10 @@ bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t w
             break;
         }
         const uint32_t *v = m->faces[f].v;
-        vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
+        vec3 a = m->vertices[v[0]], b1 = m->vertices[v[1]], c2 = m->vertices[v[2]];
         const struct bvh_triangle *t = &b->triangles[k];
-        if (memcmp(&t->a, &a, sizeof a) != 0 || memcmp(&t->edge1, &e1, sizeof e1) != 0 ||
-            memcmp(&t->edge2, &e2, sizeof e2) != 0)
+        if (memcmp(&t->a, &a, sizeof a) != 0 || memcmp(&t->b, &b1, sizeof b1) != 0 ||
+            memcmp(&t->c, &c2, sizeof c2) != 0)
             ok = check_fail(&c, "stored triangle differs from its face", k);
     }
     if (ok && b->tree_count > 0)
@@ -851,7 +850,7 @@ static inline unsigned child_pair_hit(const struct bvh_node *n, int h, const str
  * triangle_intersect uses, so t is bit-identical to the brute-force loop's. Does not count. */
 static inline bool triangle_hit(const struct bvh_triangle *tri, const ray *r, double *t) {
     double u, v;
-    return triangle_crossing(tri->a, tri->edge1, tri->edge2, r, t, &u, &v);
+    return triangle_crossing(tri->a, tri->b, tri->c, r, t, &u, &v);
 }
 
 /* The three questions one traversal answers; the code is specialised for each at compile time. */

@@ -44,7 +44,7 @@
  * reported, so it reports each once.
  *
  * Exact agreement with the brute-force loop, as in bvh.c: triangles are tested with triangle_intersect's
- * arithmetic on edges precomputed with the same subtraction (same t to the last bit); every triangle's
+ * arithmetic on the very corners the mesh holds (same t to the last bit); every triangle's
  * box is grown by KD_BOX_PAD times the mesh's size, so that a ray that Moller-Trumbore's rounding
  * calls a hit is always in a leaf holding the triangle; needle-thin triangles (KD_SLIVER_SINE) stay out
  * of the tree and are tested by every ray; and the t comparisons that prune the walk allow a tolerance
@@ -145,7 +145,7 @@ _Static_assert(sizeof(struct kd_node) == 8, "kd-tree nodes are meant to be 8 byt
 
 /* A triangle as the intersection test wants it (see bvh.c). */
 struct kd_triangle {
-    vec3 a, edge1, edge2;
+    vec3 a, b, c;
 };
 
 struct kdtree {
@@ -613,7 +613,7 @@ static double now_ms(void) {
 /* True for a face of m that KD_SLIVER_SINE keeps out of the tree. */
 static bool is_sliver(const struct mesh *m, size_t face) {
     const uint32_t *v = m->faces[face].v;
-    vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
+    vec3 a = m->vertices[v[0]], b1 = m->vertices[v[1]], c2 = m->vertices[v[2]];
     double cross = vec3_length(vec3_cross(e1, e2));
     return cross > 0.0 && cross < KD_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
 }
@@ -659,7 +659,7 @@ struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
     for (size_t f = 0; f < n; f++) {
         const uint32_t *v = m->faces[f].v;
         vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
-        k->triangles[f] = (struct kd_triangle){a, vec3_sub(b, a), vec3_sub(c, a)};
+        k->triangles[f] = (struct kd_triangle){a, b, c};
         if (is_sliver(m, f)) {
             k->slivers[k->sliver_count++] = (uint32_t)f;
             continue;
@@ -807,10 +807,10 @@ bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, si
     size_t slivers_seen = 0;
     for (uint32_t f = 0; ok && f < k->face_count; f++) {
         const uint32_t *v = m->faces[f].v;
-        vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
+        vec3 a = m->vertices[v[0]], b1 = m->vertices[v[1]], c2 = m->vertices[v[2]];
         const struct kd_triangle *t = &k->triangles[f];
-        if (memcmp(&t->a, &a, sizeof a) != 0 || memcmp(&t->edge1, &e1, sizeof e1) != 0 ||
-            memcmp(&t->edge2, &e2, sizeof e2) != 0) {
+        if (memcmp(&t->a, &a, sizeof a) != 0 || memcmp(&t->b, &b1, sizeof b1) != 0 ||
+            memcmp(&t->c, &c2, sizeof c2) != 0) {
             ok = check_fail(&c, "stored triangle differs from its face", f);
             break;
         }
@@ -840,7 +840,7 @@ bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, si
  * triangle_intersect uses, so t is bit-identical to the brute-force loop's. Does not count. */
 static inline bool triangle_hit(const struct kd_triangle *tri, const ray *r, double *t) {
     double u, v;
-    return triangle_crossing(tri->a, tri->edge1, tri->edge2, r, t, &u, &v);
+    return triangle_crossing(tri->a, tri->b, tri->c, r, t, &u, &v);
 }
 
 enum query {

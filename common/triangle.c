@@ -20,7 +20,7 @@ bool triangle_intersect(vec3 a, vec3 b, vec3 c, const ray *r, double t_min, doub
                         double *u, double *v) {
     stats_thread.triangle_tests++;
     double hit_t, hit_u, hit_v;
-    if (!triangle_crossing(a, vec3_sub(b, a), vec3_sub(c, a), r, &hit_t, &hit_u, &hit_v))
+    if (!triangle_crossing(a, b, c, r, &hit_t, &hit_u, &hit_v))
         return false;
     if (!(hit_t > t_min && hit_t < t_max))
         return false;

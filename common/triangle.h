@@ -14,13 +14,13 @@ struct triangle {
     int material; /* index into scene.materials */
 };
 
-/* The arithmetic of Moller-Trumbore on a triangle given as a corner a and its edges edge1 = b - a and
- * edge2 = c - a, the form the acceleration structures store. It is shared by triangle_intersect and
- * by the kd-tree and BVH, so that all of them find the same t to the last bit. Returns true and stores
- * t, u and v when the ray's line crosses the triangle, at any t (the caller checks its window). A ray
- * parallel to the plane, and a triangle with two equal corners, never cross. Counts nothing. */
-static inline bool triangle_crossing(vec3 a, vec3 edge1, vec3 edge2, const ray *r, double *t, double *u,
-                                     double *v) {
+/* The arithmetic of Moller-Trumbore on the triangle with corners a, b, c, the form the acceleration
+ * structures store. It is shared by triangle_intersect and by the kd-tree and BVH, so that all of them
+ * find the same t to the last bit. Returns true and stores t, u and v when the ray's line crosses the
+ * triangle, at any t (the caller checks its window). A ray parallel to the plane, and a triangle with
+ * two equal corners, never cross. Counts nothing. */
+static inline bool triangle_crossing(vec3 a, vec3 b, vec3 c, const ray *r, double *t, double *u, double *v) {
+    vec3 edge1 = vec3_sub(b, a), edge2 = vec3_sub(c, a);
     vec3 p = vec3_cross(r->direction, edge2);
     double det = vec3_dot(edge1, p);
     if (det == 0.0)
