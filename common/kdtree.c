@@ -613,7 +613,7 @@ static double now_ms(void) {
 /* True for a face of m that KD_SLIVER_SINE keeps out of the tree. */
 static bool is_sliver(const struct mesh *m, size_t face) {
     const uint32_t *v = m->faces[face].v;
-    vec3 a = m->vertices[v[0]], b1 = m->vertices[v[1]], c2 = m->vertices[v[2]];
+    vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
     double cross = vec3_length(vec3_cross(e1, e2));
     return cross > 0.0 && cross < KD_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
 }

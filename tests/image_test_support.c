@@ -33,16 +33,27 @@ const char *chapter_program(int n) {
     return path;
 }
 
-/* Runs a shell command with its output sent to a log file; returns its exit status or -1. */
-static int run(const char *command) {
+/* Runs a shell command with its output appended to the log file `log`; returns its exit status or -1. */
+static int run_logged(const char *command, const char *log) {
     mkdir("out", 0755);
     mkdir(TEST_OUT, 0755);
     char line[COMMAND_MAX];
-    snprintf(line, sizeof line, "%s >>" TEST_OUT "/commands.log 2>&1", command);
+    snprintf(line, sizeof line, "echo '$ %s' >>%s; %s >>%s 2>&1", command, log, command, log);
     int status = system(line);
     if (status == -1 || !WIFEXITED(status))
         return -1;
     return WEXITSTATUS(status);
+}
+
+/* Runs a shell command with its output sent to the shared log; returns its exit status or -1. */
+static int run(const char *command) { return run_logged(command, TEST_OUT "/commands.log"); }
+
+/* Prints the last lines of the log file `log` to stderr, to say why a command failed. */
+static void print_log_tail(const char *log) {
+    char command[COMMAND_MAX];
+    snprintf(command, sizeof command, "tail -n 15 %s >&2", log);
+    if (system(command) != 0)
+        fprintf(stderr, "(could not read %s)\n", log);
 }
 
 int render_with(const char *program, const char *scene, const char *png, const char *extra) {
@@ -77,7 +88,21 @@ bool render_povray(int n, const char *scene, const char *png) {
     snprintf(command, sizeof command, "povray +I%s +O%s +W%d +H%d +WT1 %s", pov, png, s.width, s.height,
              POVRAY_OPTIONS);
     scene_free(&s);
-    return run(command) == 0;
+    /* POV-Ray is another program on a shared machine: a run that fails once (seen once in hundreds, its
+     * output lost among the parallel tests' logs) is tried once more, and both runs' output is kept in
+     * the twin's own log. The twin is the same file both times, so a real fault in it fails twice. */
+    char log[512];
+    snprintf(log, sizeof log, "%s.log", png);
+    remove(log);
+    int status = run_logged(command, log);
+    if (status != 0) {
+        fprintf(stderr, "POV-Ray exited with %d on %s; trying once more. Its output:\n", status, pov);
+        print_log_tail(log);
+        status = run_logged(command, log);
+        if (status != 0)
+            print_log_tail(log);
+    }
+    return status == 0;
 }
 
 struct image_difference compare_png(const char *a, const char *b) {
