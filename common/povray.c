@@ -1,6 +1,6 @@
 /* povray.c: the scene-to-POV-Ray exporter (chapter 1; the mapping is explained in docs/povray.md).
  *
- * The mapping follows the measurements in ../shared/povray-oracle.md:
+ * The mapping follows the measurements described in docs/povray.md:
  *  - `#version 3.7` with `assumed_gamma 1.0`, so colours are linear, and `adc_bailout 0`, so no weak
  *    reflected ray is dropped;
  *  - the camera as an explicit basis (location, direction, right, up): world coordinates go in

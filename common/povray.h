@@ -2,7 +2,7 @@
  *
  * Every chapter can write the POV-Ray "twin" of what it draws (`--pov FILE`): the same camera, the
  * same shapes, and lighting that makes POV-Ray compute exactly the chapter's shading formula. The
- * rules come from ../shared/povray-oracle.md and are explained in docs/povray.md. Twins are generated,
+ * rules were measured against POV-Ray and are explained in docs/povray.md. Twins are generated,
  * never edited by hand, so they cannot drift from the scene files. */
 #ifndef WHITTED_POVRAY_H
 #define WHITTED_POVRAY_H

@@ -1,6 +1,6 @@
 /* ray.h: a ray, origin + t * direction, and the distance tolerances every chapter shares (chapter 1).
  *
- * The tolerances are POV-Ray 3.7's, measured in ../shared/povray-oracle.md, so that our images and
+ * The tolerances are POV-Ray 3.7's, as measured (docs/povray.md), so that our images and
  * POV-Ray's agree pixel for pixel. They are absolute distances in scene units: keep scenes near unit
  * scale (the oracle saw a millimetre-scale scene disagree on 39 of 30,000 pixels). */
 #ifndef WHITTED_RAY_H

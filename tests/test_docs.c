@@ -83,3 +83,63 @@ Test(docs, every_c_listing_in_the_walkthroughs_is_the_current_code) {
     cr_assert_gt(listings, 30, "only %zu listings found", listings);
     cr_assert_eq(stale, 0, "%zu of %zu listings no longer match the code (see above)", stale, listings);
 }
+
+/* Everything a reader of the repository can open: the docs, the code, the scenes and the tools. */
+static const char *const readable_patterns[] = {"README.md", "docs/*.md", "scenes/*.scene", "scenes/models/README.md",
+                                                "common/*.[ch]", "chapters/*/main.c", "tools/*", "bench/*",
+                                                "tests/*.[ch]", "Makefile", ".ci/run"};
+
+Test(docs, nothing_cites_a_file_outside_the_repository) {
+    /* The project's private notes sit beside the repository during development; a public reader has
+     * only the repository, so no page or comment may send them there. Spelled in two pieces so that
+     * this file does not match itself. */
+    const char *outside = "../" "shared";
+    size_t files = 0, citing = 0;
+    for (size_t p = 0; p < sizeof readable_patterns / sizeof readable_patterns[0]; p++) {
+        glob_t found;
+        if (glob(readable_patterns[p], 0, NULL, &found) != 0)
+            continue;
+        for (size_t k = 0; k < found.gl_pathc; k++) {
+            char *text = read_all(found.gl_pathv[k]);
+            files++;
+            if (strstr(text, outside) != NULL) {
+                citing++;
+                fprintf(stderr, "%s cites %s/, which is not part of the repository\n", found.gl_pathv[k], outside);
+            }
+            free(text);
+        }
+        globfree(&found);
+    }
+    cr_assert_gt(files, 50, "found only %zu files: not run from the repository root?", files);
+    cr_assert_eq(citing, 0, "%zu files cite a folder outside the repository (see above)", citing);
+}
+
+Test(docs, every_page_links_to_pages_that_exist) {
+    /* A relative link in a walkthrough, [text](name.md) or [text](../path), must name a file that is
+     * there; anchors (#...) and web addresses are not checked. */
+    glob_t docs;
+    cr_assert_eq(glob("docs/*.md", 0, NULL, &docs), 0);
+    size_t links = 0, broken = 0;
+    for (size_t d = 0; d < docs.gl_pathc; d++) {
+        char *text = read_all(docs.gl_pathv[d]);
+        for (char *at = strstr(text, "]("); at != NULL; at = strstr(at + 2, "](")) {
+            char *target = at + 2, *end = strpbrk(target, ")# \n");
+            if (end == NULL || end == target || strncmp(target, "http", 4) == 0 || *end == ' ' || *end == '\n')
+                continue;
+            char path[512];
+            snprintf(path, sizeof path, "docs/%.*s", (int)(end - target), target);
+            links++;
+            FILE *f = fopen(path, "rb");
+            if (f == NULL) {
+                broken++;
+                fprintf(stderr, "%s links to %.*s, which does not exist\n", docs.gl_pathv[d], (int)(end - target), target);
+            } else {
+                fclose(f);
+            }
+        }
+        free(text);
+    }
+    globfree(&docs);
+    cr_assert_gt(links, 50, "only %zu links found", links);
+    cr_assert_eq(broken, 0, "%zu links point at missing files (see above)", broken);
+}

@@ -1,4 +1,4 @@
-/* test_povray.c: the POV-Ray exporter (common/povray.c) writes the twin that ../shared/povray-oracle.md
+/* test_povray.c: the POV-Ray exporter (common/povray.c) writes the twin that docs/povray.md
  * prescribes for each lighting: the header settings, the explicit camera basis, the lights and finishes
  * of each chapter, transparency only where the chapter draws it, and meshes as mesh2. Numbers are
  * printed with 17 significant digits, so they are read back here with strtod and compared exactly. */

@@ -19,7 +19,7 @@ struct image_difference {
 /* Compares two width x height RGB pictures (3 bytes a pixel, same size). Cannot fail. */
 struct image_difference image_compare(const uint8_t *a, const uint8_t *b, int width, int height);
 
-/* The agreement rule between our renders and POV-Ray's, from ../shared/povray-oracle.md section (d):
+/* The agreement rule between our renders and POV-Ray's (docs/povray.md, "The agreement rule"):
  * at least 99.9 % of pixels within 2 levels and a mean difference of at most 0.05 levels. */
 #define AGREEMENT_MIN_WITHIN_2 0.999
 #define AGREEMENT_MAX_MEAN 0.05
