@@ -7,6 +7,7 @@
 #   make test-accel-long  the kd-tree and BVH differential tests with millions of rays
 #   make references     re-render the reference images on purpose and say what changed
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
+#                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
 #   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
 #   make clean          remove build/ and out/
 #
@@ -65,7 +66,7 @@ SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 .SECONDARY:
 .SECONDEXPANSION:
 
-all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS)
+all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(BUILD)/compare $(SCENE_MODELS)
 
 # ---- compiling ---------------------------------------------------------------------------------
 $(BUILD)/common/%.o: common/%.c | $(BUILD)/common
@@ -102,7 +103,7 @@ chapter-$(1): | out
 	if ! ls -d chapters/$$$$n-* >/dev/null 2>&1; then \
 	    echo "chapter $(1) is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
-	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models && ./$$(BUILD)/chapter-$$$$n
+	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
 $(foreach n,1 2 3 4 5 6 7 8 9 10,$(eval $(call run_chapter_rule,$(n))))
 
@@ -145,7 +146,7 @@ test: all $(BUILD)/run-tests $(MUTANTS)
 	WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
 
 compare: all $(BUILD)/compare
-	tools/compare-povray.sh $(BUILD)
+	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
 
 test-sanitize:
 	$(MAKE) --no-print-directory SAN=1 test
