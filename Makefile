@@ -15,11 +15,26 @@
 # below), so a chapter that reaches for a later idea fails to link.
 
 # ---- dependencies: Debian packages, installed when missing --------------------------------------
+# Each goal asks only for what it needs (tools/install-deps.sh lists the packages): building and
+# rendering a chapter needs gcc and stb; the tests add Criterion and POV-Ray; make compare adds POV-Ray.
+DEPS_NEEDS := build $(if $(filter test test-sanitize test-accel-long %run-tests,$(MAKECMDGOALS)),test) \
+              $(if $(filter compare,$(MAKECMDGOALS)),compare)
 ifeq ($(filter clean help,$(MAKECMDGOALS)),)
-DEPS_READY := $(shell tools/install-deps.sh >&2 && echo yes)
+DEPS_READY := $(shell tools/install-deps.sh $(DEPS_NEEDS) >&2 && echo yes)
 ifneq ($(DEPS_READY),yes)
 $(error missing packages: see the message above)
 endif
+endif
+
+# stb from the system, or else unpacked into .deps/ by install-deps.sh on a machine without root
+# (linked statically from there, so the programs need nothing from .deps/ at run time).
+LOCAL_STB_LIB := $(firstword $(wildcard .deps/root/usr/lib/*/libstb.a))
+ifeq ($(if $(filter local,$(WHITTED_DEPS)),,$(shell pkg-config --exists stb 2>/dev/null && echo yes)),yes)
+STB_CFLAGS := $(shell pkg-config --cflags stb)
+STB_LIBS := $(shell pkg-config --libs stb)
+else
+STB_CFLAGS := -I.deps/root/usr/include/stb
+STB_LIBS := $(LOCAL_STB_LIB)
 endif
 
 # ---- flags -------------------------------------------------------------------------------------
@@ -32,11 +47,10 @@ else
 BUILD := build
 OPT := -O2
 endif
-CFLAGS := -std=c11 -D_DEFAULT_SOURCE -g $(OPT) -Wall -Wextra -Werror -fopenmp -Icommon \
-          $(shell pkg-config --cflags stb)
+CFLAGS := -std=c11 -D_DEFAULT_SOURCE -g $(OPT) -Wall -Wextra -Werror -fopenmp -Icommon $(STB_CFLAGS)
 LDFLAGS := $(OPT) -fopenmp
-LDLIBS := $(shell pkg-config --libs stb) -lm
-CRITERION := $(shell pkg-config --cflags --libs criterion)
+LDLIBS := $(STB_LIBS) -lm
+CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
 MODULES_01 := stats camera image outfile scene povray render heatmap cli

@@ -25,7 +25,7 @@ BENCH_LDLIBS := $(if $(BENCH_EMBREE),-lembree3)
 bench: bench-accel
 
 bench-accel: $(BENCH_MODELS)
-	WHITTED_EXTRAS=bench tools/install-deps.sh
+	tools/install-deps.sh bench
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_accel
 	$(BUILD)/bench_accel $$([ -e /usr/include/embree3/rtcore.h ] && echo --embree) $(BENCH_MODELS)
 

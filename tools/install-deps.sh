@@ -1,31 +1,91 @@
 #!/usr/bin/env bash
-# install-deps.sh: installs the Debian packages whitted needs, only those that are missing.
-# Called by the Makefile before every build; safe to run any number of times.
-# As root it runs apt-get; otherwise it prints the exact command to run and fails.
+# install-deps.sh: makes sure the Debian packages a make target needs are there, installing only what
+# is missing. Called by the Makefile before every build; safe to run any number of times.
+#
+#   tools/install-deps.sh [NEED...]     NEED: build (the default), test, compare, bench
+#
+#   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
+#   test     build + Criterion (libcriterion-dev) and POV-Ray: make test
+#   compare  build + POV-Ray: make compare
+#   bench    build + Intel Embree 3 (libembree-dev): make bench
+#
+# How it installs: as root with apt-get; otherwise with `sudo apt-get` when sudo needs no password.
+# Without either (a lab machine), the only library the chapters need, stb, is fetched into .deps/ with
+# `apt-get download` and unpacked with `dpkg -x`, neither of which needs root, and the Makefile builds
+# against it (a compiler must already be there). Anything else it cannot install it names, with the
+# command for someone who has root, and fails. WHITTED_DEPS=local forces the .deps/ route for stb.
 set -u
+cd "$(dirname "$0")/.."
+
+needs=("$@")
+[ ${#needs[@]} -eq 0 ] && needs=(build)
+
+have_command() { command -v "$1" >/dev/null 2>&1; }
+have_pkgconfig() { have_command pkg-config && pkg-config --exists "$1"; }
+# stb unpacked into .deps/ by an earlier run without root.
+have_local_stb() { compgen -G ".deps/root/usr/lib/*/libstb.a" >/dev/null && [ -d .deps/root/usr/include/stb ]; }
+have_stb() { { [ "${WHITTED_DEPS:-}" != local ] && have_pkgconfig stb; } || have_local_stb; }
 
 missing=()
-have_pkgconfig() { command -v pkg-config >/dev/null 2>&1 && pkg-config --exists "$1"; }
-
-command -v gcc >/dev/null 2>&1 || missing+=(gcc)
-command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
-have_pkgconfig stb || missing+=(libstb-dev)
-have_pkgconfig criterion || missing+=(libcriterion-dev)
-command -v povray >/dev/null 2>&1 || missing+=(povray)
-# Optional: Intel Embree 3, the yardstick of `make bench`; asked for only by that target.
-if [ "${WHITTED_EXTRAS:-}" = "bench" ]; then
-    [ -e /usr/include/embree3/rtcore.h ] || missing+=(libembree-dev)
-fi
-
+want() { # want PACKAGE: add it to the list once
+    local p
+    for p in "${missing[@]+"${missing[@]}"}"; do [ "$p" = "$1" ] && return; done
+    missing+=("$1")
+}
+for need in "${needs[@]}"; do
+    case $need in
+    build | test | compare | bench)
+        have_command gcc || want gcc
+        have_command pkg-config || want pkg-config
+        have_stb || want libstb-dev
+        ;;&
+    test)
+        have_pkgconfig criterion || want libcriterion-dev
+        have_command povray || want povray
+        ;;
+    compare) have_command povray || want povray ;;
+    bench) [ -e /usr/include/embree3/rtcore.h ] || want libembree-dev ;;
+    build) ;;
+    *)
+        echo "install-deps.sh: unknown need '$need' (build, test, compare or bench)" >&2
+        exit 2
+        ;;
+    esac
+done
 [ ${#missing[@]} -eq 0 ] && exit 0
 
-if [ "$(id -u)" -ne 0 ]; then
-    echo "whitted needs these Debian packages: ${missing[*]}" >&2
-    echo "install them with:  sudo apt-get update && sudo apt-get install -y ${missing[*]}" >&2
-    exit 1
+apt_install() { # apt_install PREFIX...: runs PREFIX apt-get install, updating the lists if needed
+    echo "installing missing packages: ${missing[*]}" >&2
+    "$@" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}" >&2 && return 0
+    "$@" apt-get update -q >&2 && "$@" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}" >&2
+}
+
+if [ "${WHITTED_DEPS:-}" != local ]; then
+    if [ "$(id -u)" -eq 0 ]; then
+        apt_install
+        exit
+    fi
+    if have_command sudo && sudo -n true 2>/dev/null; then
+        apt_install sudo -n
+        exit
+    fi
 fi
-echo "installing missing packages: ${missing[*]}" >&2
-export DEBIAN_FRONTEND=noninteractive
-if ! apt-get install -y -q "${missing[@]}" >&2; then
-    apt-get update -q >&2 && apt-get install -y -q "${missing[@]}" >&2 || exit 1
+
+# No root. stb can be unpacked into .deps/ without it; everything else must be installed by someone
+# who has root.
+others=()
+for p in "${missing[@]}"; do [ "$p" != libstb-dev ] && others+=("$p"); done
+if [ ${#others[@]} -eq 0 ]; then
+    echo "no root: fetching libstb-dev into .deps/ (apt-get download, dpkg -x)" >&2
+    rm -rf .deps/debs && mkdir -p .deps/debs .deps/root
+    if (cd .deps/debs && apt-get download libstb-dev >&2) && dpkg -x .deps/debs/libstb-dev_*.deb .deps/root &&
+       have_local_stb; then
+        echo "stb is in .deps/root; the Makefile builds against it" >&2
+        exit 0
+    fi
+    echo "could not fetch libstb-dev without root (apt-get download needs the package lists that" >&2
+    echo "'apt-get update' makes, as root, once)." >&2
 fi
+echo "whitted needs these Debian packages: ${missing[*]}" >&2
+echo "someone with root can install them with:  sudo apt-get update && sudo apt-get install -y ${missing[*]}" >&2
+exit 1
