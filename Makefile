@@ -104,7 +104,7 @@ $(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools $(BUILD)/mutants
 define chapter_rules
 $(BUILD)/chapter-$(call chapter_number,$(1)): $(BUILD)/chapters/$(1).o \
         $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
-	$$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
+	tools/link-chapter.sh $(BUILD) $$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
@@ -144,7 +144,7 @@ layering_chapter = $(call chapter_dir,$(word 1,$(subst -with-, ,$(1))))
 layering_modules = $(MODULES_$(word 2,$(subst -with-, ,$(1))))
 $(BUILD)/layering-%: $$(BUILD)/chapters/$$(call layering_chapter,$$*).o \
         $$(addprefix $$(BUILD)/common/,$$(addsuffix .o,$$(call layering_modules,$$*)))
-	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+	tools/link-chapter.sh $(BUILD) $(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # Deliberately wrong tracers, for the tests that prove the POV-Ray agreement check catches real
 # mistakes: chapter 6 with its highlight multiplied by the pigment colour (see common/phong.c).

@@ -48,6 +48,15 @@ Test(layering, no_chapter_links_with_the_previous_chapters_modules, .timeout = 3
                       "chapter %d linked with chapter %d's modules", n, n - 1);
         cr_assert_not_null(strstr(output, expected), "chapter %d with chapter %d's modules: no \"%s\" in:\n%s", n,
                            n - 1, expected, output);
+        /* And the student is told where the missing function comes from. */
+        char note[256];
+        snprintf(note, sizeof note, "note: %s is in common/", new_ideas[k].symbol);
+        char *at = strstr(output, note);
+        cr_assert_not_null(at, "chapter %d with chapter %d's modules: no \"%s\" in:\n%s", n, n - 1, note, output);
+        char introduced[64];
+        snprintf(introduced, sizeof introduced, "which chapter %d introduces", n);
+        cr_assert_not_null(strstr(at, introduced), "the note for %s does not name chapter %d:\n%s",
+                           new_ideas[k].symbol, n, at);
     }
 }
 
