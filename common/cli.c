@@ -2,6 +2,7 @@
 #include "cli.h"
 
 #include "heatmap.h"
+#include "scene_set.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -25,6 +26,8 @@ struct options {
     bool output_given; /* -o was used; otherwise the picture goes to out/ */
     bool quiet;
     bool stats;        /* --stats: the chapter's detailed report too */
+    const char *sets[SCENE_SET_MAX]; /* --set PATH=VALUE changes to the scene, in order */
+    int set_count;
 };
 
 static void print_usage(FILE *out, const struct chapter *ch, const char *program) {
@@ -39,6 +42,8 @@ static void print_usage(FILE *out, const struct chapter *ch, const char *program
             "  --pov FILE       write the scene's POV-Ray twin to FILE instead of rendering\n"
             "  --heatmap FILE   also write the work done per pixel as a picture\n"
             "  --threads N      render on N threads (default: all cores)\n"
+            "  --set PATH=VALUE change one value of the scene, e.g. max_depth=1, camera.fov=30,\n"
+            "                   material.glass.ior=1.45, sphere.2.radius=0.5 (repeatable)\n"
             "  --stats          also print the details of what the chapter built\n"
             "  --quiet          print nothing but errors\n"
             "  -h, --help       show this help\n"
@@ -94,6 +99,16 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
                 o->pov = value;
             else
                 o->heatmap = value;
+        } else if (strcmp(arg, "--set") == 0) {
+            if (value == NULL || strchr(value, '=') == NULL) {
+                fprintf(stderr, "--set needs PATH=VALUE, e.g. --set max_depth=1\n");
+                return CLI_USAGE;
+            }
+            if (o->set_count == SCENE_SET_MAX) {
+                fprintf(stderr, "at most %d --set options, please\n", SCENE_SET_MAX);
+                return CLI_USAGE;
+            }
+            o->sets[o->set_count++] = value;
         } else if (strcmp(arg, "--width") == 0) {
             if (!option_int(arg, value, 1, IMAGE_MAX_SIDE, &o->width))
                 return CLI_USAGE;
@@ -132,10 +147,11 @@ static double seconds_now(void) {
     return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
 }
 
-/* Loads the scene and everything the chapter needs; returns the world for trace, or NULL. */
-static void *load_world(const struct chapter *ch, const struct options *o, struct scene *s, char *err,
-                        size_t err_size) {
-    if (!scene_load(o->scene, s, err, err_size))
+/* Loads the scene and everything the chapter needs; returns the world for trace, or NULL (with
+ * *bad_option set when a --set change was at fault rather than the scene). */
+static void *load_world(const struct chapter *ch, const struct options *o, struct scene *s, bool *bad_option,
+                        char *err, size_t err_size) {
+    if (!scene_load_changed(o->scene, o->sets, o->set_count, s, bad_option, err, err_size))
         return NULL;
     if (o->width > 0)
         s->width = o->width;
@@ -208,11 +224,12 @@ int cli_run(const struct chapter *ch, int argc, char **argv) {
     }
     char err[CLI_ERROR_SIZE];
     struct scene s;
-    void *world = load_world(ch, &o, &s, err, sizeof err);
+    bool bad_option = false;
+    void *world = load_world(ch, &o, &s, &bad_option, err, sizeof err);
     if (world == NULL) {
         fprintf(stderr, "%s\n", err);
         scene_free(&s);
-        return CLI_BAD_INPUT;
+        return bad_option ? CLI_USAGE : CLI_BAD_INPUT;
     }
     if (o.pov != NULL) {
         if (!povray_can_express(&s, ch->lighting, err, sizeof err))

@@ -535,12 +535,11 @@ bool scene_parse(const char *name, const char *text, struct scene *s, char *err,
     return ok;
 }
 
-bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
-    memset(s, 0, sizeof *s);
+char *scene_read_text(const char *path, char *err, size_t err_size) {
     FILE *file = fopen(path, "rb");
     if (file == NULL) {
         snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
-        return false;
+        return NULL;
     }
     long size = -1;
     struct stat info;
@@ -551,7 +550,7 @@ bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
         snprintf(err, err_size, "%s: %s", path, size < 0 ? "cannot read (not a regular file?)" :
                                                 "larger than 64 MiB; not a scene file");
         fclose(file);
-        return false;
+        return NULL;
     }
     char *text = malloc((size_t)size + 1);
     size_t length = text == NULL ? 0 : fread(text, 1, (size_t)size, file);
@@ -560,7 +559,7 @@ bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
     if (read_error) {
         snprintf(err, err_size, "%s: cannot read", path);
         free(text);
-        return false;
+        return NULL;
     }
     text[length] = '\0';
     if (strlen(text) != length) {
@@ -569,8 +568,16 @@ bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
             line += *c == '\n';
         snprintf(err, err_size, "%s:%d: contains a zero byte; not a text file", path, line);
         free(text);
-        return false;
+        return NULL;
     }
+    return text;
+}
+
+bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
+    memset(s, 0, sizeof *s);
+    char *text = scene_read_text(path, err, err_size);
+    if (text == NULL)
+        return false;
     bool ok = scene_parse(path, text, s, err, err_size);
     free(text);
     return ok;

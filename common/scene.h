@@ -79,6 +79,11 @@ struct scene {
  * are not opened here (see scene_load_meshes). */
 bool scene_load(const char *path, struct scene *s, char *err, size_t err_size);
 
+/* Reads the scene file at `path` whole, as scene_load does before parsing it. Returns a malloc'd,
+ * zero-terminated string (the caller frees it), or NULL with "file: what is wrong" in err when the file
+ * cannot be read, is not a regular file, is too large or holds a zero byte. */
+char *scene_read_text(const char *path, char *err, size_t err_size);
+
 /* Parses scene text held in memory, as scene_load does for a file; `name` is used in messages and to
  * resolve mesh paths (relative to its folder). Same results and ownership as scene_load. */
 bool scene_parse(const char *name, const char *text, struct scene *s, char *err, size_t err_size);

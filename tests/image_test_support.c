@@ -12,6 +12,7 @@
 #include "image.h"
 #include "povray.h"
 #include "scene.h"
+#include "test_support.h"
 
 #define COMMAND_MAX 2048
 
@@ -31,18 +32,6 @@ const char *chapter_program(int n) {
     const char *build = getenv("WHITTED_BUILD");
     snprintf(path, sizeof path, "%s/chapter-%02d", build != NULL ? build : "build", n);
     return path;
-}
-
-/* Runs a shell command with its output appended to the log file `log`; returns its exit status or -1. */
-static int run_logged(const char *command, const char *log) {
-    mkdir("out", 0755);
-    mkdir(TEST_OUT, 0755);
-    char line[COMMAND_MAX];
-    snprintf(line, sizeof line, "echo '$ %s' >>%s; %s >>%s 2>&1", command, log, command, log);
-    int status = system(line);
-    if (status == -1 || !WIFEXITED(status))
-        return -1;
-    return WEXITSTATUS(status);
 }
 
 /* Runs a shell command with its output sent to the shared log; returns its exit status or -1. */
@@ -123,23 +112,9 @@ bool regression_passes(const struct image_difference *d) {
     return d->within_1 >= REGRESSION_MIN_WITHIN_1 && d->mean <= REGRESSION_MAX_MEAN;
 }
 
-/* Reads a whole file into a new NUL-terminated buffer. */
-static char *read_text(const char *path) {
-    FILE *f = fopen(path, "rb");
-    cr_assert_not_null(f, "cannot open %s", path);
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    rewind(f);
-    char *text = malloc((size_t)size + 1);
-    cr_assert(fread(text, 1, (size_t)size, f) == (size_t)size, "cannot read %s", path);
-    text[size] = '\0';
-    fclose(f);
-    return text;
-}
-
 void write_scene_variant(const char *from, const char *to, const char *const *olds, const char *const *news,
                          int count, const char *camera_line) {
-    char *text = read_text(from);
+    char *text = read_text_file(from);
     FILE *out = fopen(to, "wb");
     cr_assert_not_null(out, "cannot write %s", to);
     for (int k = 0; k < count; k++)

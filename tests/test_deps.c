@@ -7,16 +7,9 @@
 #include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include "test_support.h"
 
 #define COMMAND_MAX 4096
-
-/* Runs a shell command, its output appended to `log`; returns its exit status or -1. */
-static int run_logged(const char *command, const char *log) {
-    char line[COMMAND_MAX + 512];
-    snprintf(line, sizeof line, "{ %s ; } >>%s 2>&1", command, log);
-    int status = system(line);
-    return status == -1 || !WIFEXITED(status) ? -1 : WEXITSTATUS(status);
-}
 
 static bool file_contains(const char *path, const char *text) {
     FILE *f = fopen(path, "rb");

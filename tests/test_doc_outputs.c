@@ -11,23 +11,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "test_support.h"
 
 #define MARKER "<!-- output of: "
 #define COMMAND_MAX 2048
 #define OUTPUT_MAX (1 << 20)
-
-static char *read_all(const char *path) {
-    FILE *f = fopen(path, "rb");
-    cr_assert_not_null(f, "cannot open %s", path);
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    rewind(f);
-    char *text = malloc((size_t)size + 1);
-    cr_assert(fread(text, 1, (size_t)size, f) == (size_t)size);
-    text[size] = '\0';
-    fclose(f);
-    return text;
-}
 
 /* Copies the line `line` (length n) into `out`, with every number that is followed by " s" or " ms"
  * replaced by "#", and trailing blanks removed. */
@@ -95,7 +83,7 @@ static char *run_quoted(const char *command) {
 }
 
 static void check_page(const char *page) {
-    char *text = read_all(page);
+    char *text = read_text_file(page);
     size_t blocks = 0, stale = 0;
     for (char *at = strstr(text, MARKER); at != NULL; at = strstr(at + 1, MARKER)) {
         char *command = at + strlen(MARKER);

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "test_support.h"
 
 #define FENCE_OPEN "```c\n"
 #define FENCE_CLOSE "```"
@@ -13,19 +14,6 @@
 /* Where quoted code may come from. */
 static const char *const code_patterns[] = {"common/*.[ch]", "chapters/*/main.c", "tools/*.[ch]", "bench/*.c",
                                             "tests/*.[ch]", "scenes/*.scene"};
-
-static char *read_all(const char *path) {
-    FILE *f = fopen(path, "rb");
-    cr_assert_not_null(f, "cannot open %s", path);
-    fseek(f, 0, SEEK_END);
-    long size = ftell(f);
-    rewind(f);
-    char *text = malloc((size_t)size + 1);
-    cr_assert(fread(text, 1, (size_t)size, f) == (size_t)size);
-    text[size] = '\0';
-    fclose(f);
-    return text;
-}
 
 /* All code files, read once. */
 struct corpus {
@@ -41,7 +29,7 @@ static struct corpus read_code(void) {
             continue;
         c.texts = realloc(c.texts, (c.count + found.gl_pathc) * sizeof *c.texts);
         for (size_t k = 0; k < found.gl_pathc; k++)
-            c.texts[c.count++] = read_all(found.gl_pathv[k]);
+            c.texts[c.count++] = read_text_file(found.gl_pathv[k]);
         globfree(&found);
     }
     return c;
@@ -61,7 +49,7 @@ Test(docs, every_c_listing_in_the_walkthroughs_is_the_current_code) {
     cr_assert_eq(glob("docs/*.md", 0, NULL, &docs), 0);
     size_t listings = 0, stale = 0;
     for (size_t d = 0; d < docs.gl_pathc; d++) {
-        char *text = read_all(docs.gl_pathv[d]);
+        char *text = read_text_file(docs.gl_pathv[d]);
         for (char *open = strstr(text, FENCE_OPEN); open != NULL; open = strstr(open, FENCE_OPEN)) {
             char *start = open + strlen(FENCE_OPEN);
             char *close = strstr(start, FENCE_CLOSE);
@@ -100,7 +88,7 @@ Test(docs, nothing_cites_a_file_outside_the_repository) {
         if (glob(readable_patterns[p], 0, NULL, &found) != 0)
             continue;
         for (size_t k = 0; k < found.gl_pathc; k++) {
-            char *text = read_all(found.gl_pathv[k]);
+            char *text = read_text_file(found.gl_pathv[k]);
             files++;
             if (strstr(text, outside) != NULL) {
                 citing++;
@@ -121,7 +109,7 @@ Test(docs, every_page_links_to_pages_that_exist) {
     cr_assert_eq(glob("docs/*.md", 0, NULL, &docs), 0);
     size_t links = 0, broken = 0;
     for (size_t d = 0; d < docs.gl_pathc; d++) {
-        char *text = read_all(docs.gl_pathv[d]);
+        char *text = read_text_file(docs.gl_pathv[d]);
         for (char *at = strstr(text, "]("); at != NULL; at = strstr(at + 2, "](")) {
             char *target = at + 2, *end = strpbrk(target, ")# \n");
             if (end == NULL || end == target || strncmp(target, "http", 4) == 0 || *end == ' ' || *end == '\n')

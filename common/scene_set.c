@@ -1,0 +1,254 @@
+/* scene_set.c: changing one value of a scene from the command line, `--set PATH=VALUE` (chapter 1).
+ *
+ * The change is made to the scene's text before it is parsed, so the value is checked by the parser
+ * like any other and an error still names the scene file and line. PATH says which line and which
+ * value:
+ *   max_depth=1                     a directive with positional values: they are replaced
+ *   camera.fov=30                   a key of the one line of that directive
+ *   material.glass.ior=1.45         a key of the material with that name
+ *   sphere.2.radius=0.5             a key of the 2nd line of that directive (lights and shapes)
+ * VALUE's words replace as many words after the key; a key the line does not have is added to it, and
+ * a positional directive the scene does not have (max_depth, say) is added as a new line. */
+#include "scene_set.h"
+
+#include "scene.h"
+
+#include <ctype.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SET_MAX_WORDS 64 /* words on the changed line; scene lines have at most 48 */
+
+/* Writes the message into err; returns false. */
+static bool set_fail(char *err, size_t err_size, const char *spec, const char *format, ...) {
+    int used = snprintf(err, err_size, "--set %s: ", spec);
+    if (used >= 0 && (size_t)used < err_size) {
+        va_list args;
+        va_start(args, format);
+        vsnprintf(err + used, err_size - (size_t)used, format, args);
+        va_end(args);
+    }
+    return false;
+}
+
+/* Splits `text` in place into words at blanks; returns the count (at most max), or -1 if more. */
+static int split_words(char *text, char **words, int max) {
+    int count = 0;
+    for (char *cursor = strtok(text, " \t\r"); cursor != NULL; cursor = strtok(NULL, " \t\r")) {
+        if (count == max)
+            return -1;
+        words[count++] = cursor;
+    }
+    return count;
+}
+
+/* The bounds of line number `index` (0-based) of text: *start and the length. */
+struct line_span {
+    size_t start, length;
+};
+
+/* Finds the line the path names. `directive`, then either nothing, a material's name or an ordinal.
+ * Returns the line's span in *found, or false (with found->start = SIZE_MAX when there is none). */
+static bool find_line(const char *text, const char *directive, const char *name, int ordinal,
+                      struct line_span *found) {
+    int seen = 0;
+    size_t directive_length = strlen(directive);
+    for (size_t start = 0; text[start] != '\0';) {
+        const char *line = text + start;
+        const char *end = strchr(line, '\n');
+        size_t length = end != NULL ? (size_t)(end - line) : strlen(line);
+        const char *word = line;
+        while (*word == ' ' || *word == '\t')
+            word++;
+        bool match = strncmp(word, directive, directive_length) == 0 &&
+                     (word[directive_length] == ' ' || word[directive_length] == '\t' ||
+                      word[directive_length] == '\r' || word + directive_length == line + length);
+        if (match && name != NULL) {
+            const char *second = word + directive_length;
+            while (*second == ' ' || *second == '\t')
+                second++;
+            size_t name_length = strlen(name);
+            match = strncmp(second, name, name_length) == 0 && (second[name_length] == ' ' ||
+                    second[name_length] == '\t' || second[name_length] == '\r' || second[name_length] == '\n' ||
+                    second[name_length] == '#' || second[name_length] == '\0');
+        }
+        if (match && ++seen == (ordinal > 0 ? ordinal : 1)) {
+            *found = (struct line_span){start, length};
+            return true;
+        }
+        start += length + (end != NULL ? 1 : 0);
+    }
+    found->start = (size_t)-1;
+    return false;
+}
+
+/* Rewrites one line: `words` (count of them, the comment in `comment`) with `key` given `values`.
+ * With key NULL, everything after the first `fixed` words is replaced by the values. Returns a new
+ * string, or NULL when out of memory. */
+static char *rewrite_line(char **words, int count, int fixed, const char *key, char **values, int value_count,
+                          const char *comment) {
+    size_t size = strlen(comment) + 2;
+    for (int k = 0; k < count; k++)
+        size += strlen(words[k]) + 1;
+    for (int k = 0; k < value_count; k++)
+        size += strlen(values[k]) + 1;
+    size += key != NULL ? strlen(key) + 1 : 0;
+    char *line = malloc(size), *o = line;
+    if (line == NULL)
+        return NULL;
+    int key_at = -1;
+    if (key != NULL)
+        for (int k = fixed; k < count; k++)
+            if (strcmp(words[k], key) == 0) {
+                key_at = k;
+                break;
+            }
+    int keep = key == NULL ? fixed : count;
+    for (int k = 0; k < keep; k++) {
+        if (key_at >= 0 && k > key_at && k <= key_at + value_count)
+            continue; /* an old value of the key */
+        o += sprintf(o, "%s%s", o == line ? "" : " ", words[k]);
+        if (k == key_at)
+            for (int v = 0; v < value_count; v++)
+                o += sprintf(o, " %s", values[v]);
+    }
+    if (key == NULL || key_at < 0) {
+        if (key != NULL)
+            o += sprintf(o, " %s", key);
+        for (int v = 0; v < value_count; v++)
+            o += sprintf(o, " %s", values[v]);
+    }
+    sprintf(o, "%s%s", comment[0] != '\0' ? "  " : "", comment);
+    return line;
+}
+
+/* Directives whose values are positional (no keys). */
+static bool is_positional(const char *directive) {
+    static const char *const positional[] = {"image", "background", "ambient_light", "max_depth", "shadow_offset",
+                                             "adc_bailout"};
+    for (size_t k = 0; k < sizeof positional / sizeof positional[0]; k++)
+        if (strcmp(directive, positional[k]) == 0)
+            return true;
+    return false;
+}
+
+bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) {
+    char path[256], value[512];
+    const char *equals = strchr(spec, '=');
+    if (equals == NULL || equals == spec || (size_t)(equals - spec) >= sizeof path || strlen(equals + 1) >= sizeof value)
+        return set_fail(err, err_size, spec, "expected PATH=VALUE, e.g. max_depth=1 or camera.fov=30");
+    snprintf(path, sizeof path, "%.*s", (int)(equals - spec), spec);
+    snprintf(value, sizeof value, "%s", equals + 1);
+    char *values[SET_MAX_WORDS];
+    int value_count = split_words(value, values, SET_MAX_WORDS);
+    if (value_count <= 0)
+        return set_fail(err, err_size, spec, "no value after '='");
+    for (int k = 0; k < value_count; k++)
+        if (strchr(values[k], '#') != NULL || strchr(values[k], '\n') != NULL)
+            return set_fail(err, err_size, spec, "a value may not contain '#' or a line break");
+
+    /* PATH = directive [. name-or-ordinal] [. key] */
+    char *parts[3] = {NULL, NULL, NULL};
+    int part_count = 0;
+    for (char *part = strtok(path, "."); part != NULL; part = strtok(NULL, "."))
+        if (part_count < 3)
+            parts[part_count++] = part;
+        else
+            return set_fail(err, err_size, spec, "PATH has more than three parts");
+    const char *directive = parts[0], *name = NULL, *key = NULL;
+    int ordinal = 0;
+    if (part_count == 3) {
+        if (isdigit((unsigned char)parts[1][0]))
+            ordinal = atoi(parts[1]);
+        else
+            name = parts[1];
+        key = parts[2];
+    } else if (part_count == 2) {
+        key = parts[1];
+    }
+    bool positional = is_positional(directive);
+    if (positional && key != NULL)
+        return set_fail(err, err_size, spec, "%s takes its values directly: write %s=VALUE", directive, directive);
+    if (!positional && key == NULL)
+        return set_fail(err, err_size, spec, "say which key of the %s line, e.g. %s.KEY=VALUE", directive, directive);
+    if (part_count == 3 && name == NULL && ordinal < 1)
+        return set_fail(err, err_size, spec, "line numbers count from 1 (%s.1 is the first %s line)", directive,
+                        directive);
+    if (name != NULL && strcmp(directive, "material") != 0)
+        return set_fail(err, err_size, spec, "only materials have names; use %s.N for the Nth %s line", directive,
+                        directive);
+
+    struct line_span span;
+    char *changed = NULL;
+    if (!find_line(*text, directive, name, ordinal, &span)) {
+        if (!positional) {
+            if (name != NULL)
+                return set_fail(err, err_size, spec, "the scene has no material called '%s'", name);
+            if (ordinal > 0)
+                return set_fail(err, err_size, spec, "the scene has fewer than %d %s lines", ordinal, directive);
+            return set_fail(err, err_size, spec, "the scene has no %s line", directive);
+        }
+        /* A positional directive the scene leaves at its default: add the line at the end. */
+        size_t old = strlen(*text);
+        changed = malloc(old + strlen(directive) + strlen(equals + 1) + 4);
+        if (changed == NULL)
+            return set_fail(err, err_size, spec, "out of memory");
+        sprintf(changed, "%s%s%s %s\n", *text, old > 0 && (*text)[old - 1] != '\n' ? "\n" : "", directive,
+                equals + 1);
+    } else {
+        char *line = malloc(span.length + 1);
+        if (line == NULL)
+            return set_fail(err, err_size, spec, "out of memory");
+        memcpy(line, *text + span.start, span.length);
+        line[span.length] = '\0';
+        char *hash = strchr(line, '#');
+        char comment[512] = "";
+        if (hash != NULL) {
+            snprintf(comment, sizeof comment, "%s", hash);
+            *hash = '\0';
+        }
+        char *words[SET_MAX_WORDS];
+        int count = split_words(line, words, SET_MAX_WORDS);
+        int fixed = name != NULL || strcmp(directive, "mesh") == 0 ? 2 : 1; /* directive, name or file */
+        char *rewritten = count < 0 ? NULL : rewrite_line(words, count, fixed, key, values, value_count, comment);
+        free(line);
+        if (rewritten == NULL)
+            return set_fail(err, err_size, spec, "out of memory");
+        size_t old = strlen(*text), new_length = strlen(rewritten);
+        changed = malloc(old - span.length + new_length + 1);
+        if (changed != NULL) {
+            memcpy(changed, *text, span.start);
+            memcpy(changed + span.start, rewritten, new_length);
+            strcpy(changed + span.start + new_length, *text + span.start + span.length);
+        }
+        free(rewritten);
+        if (changed == NULL)
+            return set_fail(err, err_size, spec, "out of memory");
+    }
+    free(*text);
+    *text = changed;
+    return true;
+}
+
+bool scene_load_changed(const char *path, const char *const *specs, int count, struct scene *s, bool *bad_spec,
+                        char *err, size_t err_size) {
+    memset(s, 0, sizeof *s);
+    *bad_spec = false;
+    char *text = scene_read_text(path, err, err_size);
+    if (text == NULL)
+        return false;
+    for (int k = 0; k < count; k++)
+        if (!scene_set_apply(&text, specs[k], err, err_size)) {
+            free(text);
+            *bad_spec = true;
+            return false;
+        }
+    bool ok = scene_parse(path, text, s, err, err_size);
+    free(text);
+    size_t used = strlen(err);
+    if (!ok && count > 0 && used + 1 < err_size) /* the line in the file may not show the bad value */
+        snprintf(err + used, err_size - used, " (the line as changed by --set)");
+    return ok;
+}

@@ -1,0 +1,126 @@
+/* test_scene_set.c: --set PATH=VALUE changes one value of a scene's text before it is parsed
+ * (common/scene_set.c), and the chapter programs take it on the command line. */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "scene.h"
+#include "scene_set.h"
+
+static const char *const base =
+    "camera eye 0 1 5 target 0 0 0 fov 40  # the view\n"
+    "image 64 48\n"
+    "material glass colour 1 1 1 transmit 0.9 ior 1.5\n"
+    "material clay colour 0.8 0.5 0.3\n"
+    "sphere centre 0 0 0 radius 1 material glass\n"
+    "sphere centre 2 0 0 radius 0.5 material clay\n";
+
+/* Applies spec to a copy of base; returns the new text (caller frees) or NULL with err filled. */
+static char *changed(const char *spec, char *err, size_t err_size) {
+    char *text = strdup(base);
+    if (!scene_set_apply(&text, spec, err, err_size)) {
+        free(text);
+        return NULL;
+    }
+    return text;
+}
+
+Test(scene_set, a_key_of_the_camera_is_replaced_in_its_line_and_the_comment_kept) {
+    char err[256];
+    char *text = changed("camera.fov=30", err, sizeof err);
+    cr_assert_not_null(text, "%s", err);
+    cr_assert(strstr(text, "camera eye 0 1 5 target 0 0 0 fov 30  # the view\nimage 64 48\n") == text, "%s", text);
+    free(text);
+}
+
+Test(scene_set, a_missing_key_is_added_and_a_vector_replaces_three_words) {
+    char err[256];
+    char *text = changed("camera.up=1 0 0", err, sizeof err);
+    cr_assert_not_null(text, "%s", err);
+    cr_assert_not_null(strstr(text, "camera eye 0 1 5 target 0 0 0 fov 40 up 1 0 0  # the view\n"), "%s", text);
+    free(text);
+    text = changed("camera.eye=9 8 7", err, sizeof err);
+    cr_assert_not_null(strstr(text, "camera eye 9 8 7 target 0 0 0 fov 40"), "%s", text);
+    free(text);
+}
+
+Test(scene_set, a_material_is_found_by_name_and_a_shape_by_its_place) {
+    char err[256];
+    char *text = changed("material.glass.ior=1.33", err, sizeof err);
+    cr_assert_not_null(strstr(text, "material glass colour 1 1 1 transmit 0.9 ior 1.33\nmaterial clay"), "%s", text);
+    free(text);
+    text = changed("sphere.2.radius=0.25", err, sizeof err);
+    cr_assert_not_null(strstr(text, "sphere centre 0 0 0 radius 1 material glass\n"
+                                    "sphere centre 2 0 0 radius 0.25 material clay\n"), "%s", text);
+    free(text);
+}
+
+Test(scene_set, a_positional_directive_is_replaced_or_added) {
+    char err[256];
+    char *text = changed("image=32 24", err, sizeof err);
+    cr_assert_not_null(strstr(text, "\nimage 32 24\n"), "%s", text);
+    free(text);
+    text = changed("max_depth=2", err, sizeof err);
+    cr_assert(strlen(text) > 12 && strcmp(text + strlen(text) - 12, "max_depth 2\n") == 0, "%s", text);
+    free(text);
+}
+
+Test(scene_set, changed_scenes_parse_to_the_new_values) {
+    char err[256];
+    char *text = changed("material.glass.ior=1.33", err, sizeof err);
+    cr_assert(scene_set_apply(&text, "max_depth=3", err, sizeof err), "%s", err);
+    struct scene s;
+    cr_assert(scene_parse("test.scene", text, &s, err, sizeof err), "%s", err);
+    cr_assert_float_eq(s.materials[scene_find_material(&s, "glass")].ior, 1.33, 1e-15);
+    cr_assert_eq(s.max_depth, 3);
+    scene_free(&s);
+    free(text);
+}
+
+Test(scene_set, mistakes_are_named_exactly) {
+    static const struct {
+        const char *spec, *message;
+    } cases[] = {
+        {"max_depth", "--set max_depth: expected PATH=VALUE, e.g. max_depth=1 or camera.fov=30"},
+        {"camera.fov=", "--set camera.fov=: no value after '='"},
+        {"camera=1", "--set camera=1: say which key of the camera line, e.g. camera.KEY=VALUE"},
+        {"image.width=3", "--set image.width=3: image takes its values directly: write image=VALUE"},
+        {"material.steel.ior=2", "--set material.steel.ior=2: the scene has no material called 'steel'"},
+        {"sphere.3.radius=1", "--set sphere.3.radius=1: the scene has fewer than 3 sphere lines"},
+        {"sphere.0.radius=1", "--set sphere.0.radius=1: line numbers count from 1 (sphere.1 is the first sphere line)"},
+        {"light.position=1 2 3", "--set light.position=1 2 3: the scene has no light line"},
+        {"sphere.big.radius=1", "--set sphere.big.radius=1: only materials have names; use sphere.N for the Nth sphere line"},
+        {"a.b.c.d=1", "--set a.b.c.d=1: PATH has more than three parts"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char err[256];
+        cr_assert_null(changed(cases[k].spec, err, sizeof err), "%s was accepted", cases[k].spec);
+        cr_assert_str_eq(err, cases[k].message);
+    }
+}
+
+Test(scene_set, a_bad_value_is_the_parsers_error_at_the_scene_line) {
+    struct scene s;
+    bool bad_spec = true;
+    char err[512];
+    const char *specs[] = {"camera.fov=wide"};
+    cr_assert(!scene_load_changed("scenes/02-sphere.scene", specs, 1, &s, &bad_spec, err, sizeof err));
+    cr_assert(!bad_spec);
+    cr_assert_not_null(strstr(err, "scenes/02-sphere.scene:"), "%s", err);
+    cr_assert_not_null(strstr(err, "'wide' (the line as changed by --set)"), "%s", err);
+}
+
+Test(scene_set, the_chapter_programs_take_set_and_say_what_is_wrong) {
+    const char *build = getenv("WHITTED_BUILD");
+    char command[512];
+    snprintf(command, sizeof command,
+             "%s/chapter-08 --set material.glass.ior=1.45 --set max_depth=2 --set image='40 30' "
+             "-o out/test/set-ok.png --quiet", build != NULL ? build : "build");
+    cr_assert_eq(system(command), 0);
+    snprintf(command, sizeof command, "%s/chapter-08 --set material.nope.ior=1 -o out/test/set-bad.png 2>/dev/null",
+             build != NULL ? build : "build");
+    int status = system(command);
+    cr_assert(WIFEXITED(status) && WEXITSTATUS(status) == 2, "a wrong --set is a command-line error (2)");
+}
