@@ -90,6 +90,7 @@ $(BUILD)/chapters/%.o: chapters/%/main.c | $(BUILD)/chapters
 	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
 
 $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
+	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
 
 $(BUILD)/tools/%.o: tools/%.c | $(BUILD)/tools
@@ -98,7 +99,7 @@ $(BUILD)/tools/%.o: tools/%.c | $(BUILD)/tools
 $(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools $(BUILD)/mutants out:
 	mkdir -p $@
 
--include $(wildcard $(BUILD)/*/*.d)
+-include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
 
 # One link rule per chapter, with exactly that chapter's modules.
 define chapter_rules
@@ -127,7 +128,7 @@ chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,
 include bench/bench.mk
 
 # ---- tests -------------------------------------------------------------------------------------
-TEST_SOURCES := $(wildcard tests/*.c)
+TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
 TOOL_OBJECTS := $(BUILD)/tools/image_compare.o
 

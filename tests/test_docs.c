@@ -131,3 +131,29 @@ Test(docs, every_page_links_to_pages_that_exist) {
     cr_assert_gt(links, 50, "only %zu links found", links);
     cr_assert_eq(broken, 0, "%zu links point at missing files (see above)", broken);
 }
+
+Test(docs, every_walkthrough_from_chapter_2_has_a_build_exercise_with_its_check) {
+    /* A ★★★ exercise whose supplied check (tests/exercises/test_exercises.c) the page names. */
+    char *checks = read_text_file("tests/exercises/test_exercises.c");
+    glob_t pages;
+    cr_assert_eq(glob("docs/[0-9][0-9]-*.md", 0, NULL, &pages), 0);
+    size_t seen = 0;
+    for (size_t k = 0; k < pages.gl_pathc; k++) {
+        int chapter = atoi(pages.gl_pathv[k] + strlen("docs/"));
+        if (chapter < 2 || chapter > 10)
+            continue;
+        seen++;
+        char *text = read_text_file(pages.gl_pathv[k]);
+        char filter[64], suite[64];
+        snprintf(filter, sizeof filter, "--filter 'exercise_%d/*'", chapter);
+        snprintf(suite, sizeof suite, "EXERCISE(%d,", chapter);
+        cr_expect_not_null(strstr(text, "★★★"), "%s has no build exercise (★★★)", pages.gl_pathv[k]);
+        cr_expect_not_null(strstr(text, filter), "%s does not say how to run its exercise's check (%s)",
+                           pages.gl_pathv[k], filter);
+        cr_expect_not_null(strstr(checks, suite), "chapter %d has no supplied check in test_exercises.c", chapter);
+        free(text);
+    }
+    globfree(&pages);
+    free(checks);
+    cr_assert_eq(seen, 9, "expected the walkthroughs of chapters 2 to 10");
+}

@@ -1,0 +1,382 @@
+/* checks.c: the checks that grade the walkthroughs' build exercises (see exercises.h). Expected values
+ * are worked out here from geometry, never taken from the code under test. */
+#include "exercises.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene.h"
+#include "shadow.h"
+#include "world.h"
+
+#define CHECK_TOLERANCE 1e-9 /* analytic values are met to rounding, far below this */
+
+/* Writes the message into why; returns false, so a check can `return fail(...)`. */
+static bool fail(char *why, size_t why_size, const char *format, ...) {
+    va_list args;
+    va_start(args, format);
+    vsnprintf(why, why_size, format, args);
+    va_end(args);
+    return false;
+}
+
+static bool near(double a, double b) { return fabs(a - b) <= CHECK_TOLERANCE * fmax(1.0, fabs(b)); }
+
+static ray make_ray(double ox, double oy, double oz, double dx, double dy, double dz) {
+    return (ray){vec3_make(ox, oy, oz), vec3_normalize(vec3_make(dx, dy, dz))};
+}
+
+/* ---- 2.4 the disc ------------------------------------------------------------------------------- */
+
+bool check_disc(disc_fn f, char *why, size_t why_size) {
+    static const struct {
+        const char *what;
+        ray r;
+        double t_max, expected; /* expected t, or -1 for a miss */
+    } cases[] = {
+        {"straight down onto the disc, 0.5 from its centre", {{0.5, 2, 0}, {0, -1, 0}}, INFINITY, 2.0},
+        {"straight down, 1.5 from the centre (outside the radius)", {{1.5, 2, 0}, {0, -1, 0}}, INFINITY, -1},
+        {"straight up from below (a disc has two sides)", {{0.3, -3, 0.4}, {0, 1, 0}}, INFINITY, 3.0},
+        {"onto the rim, exactly 1 from the centre", {{1, 2, 0}, {0, -1, 0}}, INFINITY, 2.0},
+        {"parallel to the disc, in its plane's direction", {{0, 1, 0}, {1, 0, 0}}, INFINITY, -1},
+        {"straight down, but t_max = 1.5 ends the ray before the disc", {{0.5, 2, 0}, {0, -1, 0}}, 1.5, -1},
+        {"pointing away from the disc", {{0.5, 2, 0}, {0, 1, 0}}, INFINITY, -1},
+    };
+    vec3 centre = {0, 0, 0}, normal = {0, 1, 0};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double t = -1;
+        bool hit = f(centre, normal, 1.0, &cases[k].r, RAY_T_MIN, cases[k].t_max, &t);
+        if (cases[k].expected < 0 && hit)
+            return fail(why, why_size, "disc of radius 1 at the origin facing +y, ray %s: expected a miss, your "
+                        "disc_intersect returned a hit at t = %g", cases[k].what, t);
+        if (cases[k].expected >= 0 && !hit)
+            return fail(why, why_size, "disc of radius 1 at the origin facing +y, ray %s: expected a hit at t = %g, "
+                        "your disc_intersect returned a miss", cases[k].what, cases[k].expected);
+        if (hit && !near(t, cases[k].expected))
+            return fail(why, why_size, "disc of radius 1 at the origin facing +y, ray %s: expected t = %g, got %.17g",
+                        cases[k].what, cases[k].expected, t);
+    }
+    /* A tilted disc: a ray along its normal from 4 units away meets its centre at t = 4. */
+    vec3 tilted = vec3_normalize(vec3_make(1, 1, 1)), at = {1, 2, 3};
+    ray r = {vec3_add_scaled(at, tilted, 4.0), vec3_neg(tilted)};
+    double t = -1;
+    if (!f(at, tilted, 0.5, &r, RAY_T_MIN, INFINITY, &t) || !near(t, 4.0))
+        return fail(why, why_size, "disc at (1, 2, 3) facing (1, 1, 1), ray along its normal from 4 away: expected "
+                    "t = 4, got %s %.17g (does your code assume the normal is +y?)", t < 0 ? "a miss," : "", t);
+    return true;
+}
+
+/* ---- 3.4 smooth normals ---------------------------------------------------------------------------- */
+
+bool check_vertex_normals(vertex_normals_fn f, char *why, size_t why_size) {
+    /* An octahedron, wound outwards, and one vertex that no face uses. By symmetry each corner's normal
+     * points straight out. */
+    vec3 v[7] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {5, 5, 5}};
+    struct mesh_face faces[8];
+    int k = 0;
+    for (int sx = 0; sx < 2; sx++)
+        for (int sy = 0; sy < 2; sy++)
+            for (int sz = 0; sz < 2; sz++) {
+                uint32_t a = (uint32_t)sx, b = 2 + (uint32_t)sy, c = 4 + (uint32_t)sz;
+                bool odd = (sx + sy + sz) % 2 == 1; /* wind each face so its normal points outwards */
+                faces[k++] = odd ? (struct mesh_face){{a, c, b}} : (struct mesh_face){{a, b, c}};
+            }
+    struct mesh m = {v, 7, faces, 8};
+    vec3 n[7];
+    for (int i = 0; i < 7; i++)
+        n[i] = vec3_make(NAN, NAN, NAN);
+    f(&m, n);
+    for (int i = 0; i < 6; i++)
+        if (!near(n[i].x, v[i].x) || !near(n[i].y, v[i].y) || !near(n[i].z, v[i].z))
+            return fail(why, why_size, "octahedron with corners at (+-1, 0, 0), (0, +-1, 0), (0, 0, +-1): the normal at "
+                        "corner (%g, %g, %g) should point straight out, (%g, %g, %g); got (%g, %g, %g)", v[i].x, v[i].y,
+                        v[i].z, v[i].x, v[i].y, v[i].z, n[i].x, n[i].y, n[i].z);
+    if (!(n[6].x == 0 && n[6].y == 0 && n[6].z == 0))
+        return fail(why, why_size, "a vertex that no face uses should get (0, 0, 0); got (%g, %g, %g)", n[6].x, n[6].y,
+                    n[6].z);
+    /* Two faces of very different sizes meet at the origin: a large one facing +z (area 50) and a small
+     * one facing +x (area 0.5). Weighted by area, the normal is (1, 0, 100) normalised. */
+    vec3 w[5] = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 1, 0}, {0, 0, 1}};
+    struct mesh_face two[2] = {{{0, 1, 2}}, {{0, 3, 4}}};
+    struct mesh weighted = {w, 5, two, 2};
+    vec3 out[5];
+    f(&weighted, out);
+    vec3 expected = vec3_normalize(vec3_make(1, 0, 100));
+    if (!near(out[0].x, expected.x) || !near(out[0].y, expected.y) || !near(out[0].z, expected.z))
+        return fail(why, why_size, "a vertex shared by a triangle of area 50 facing +z and one of area 0.5 facing +x: "
+                    "expected (%.6f, 0, %.6f), weighted by area; got (%.6f, %.6f, %.6f)%s", expected.x, expected.z,
+                    out[0].x, out[0].y, out[0].z, near(out[0].x, out[0].z) ? " (an unweighted average?)" : "");
+    return true;
+}
+
+/* ---- 4.4 the cylinder ------------------------------------------------------------------------------ */
+
+bool check_cylinder(cylinder_fn f, char *why, size_t why_size) {
+    double s29 = sqrt(29.0);
+    static const double none = -1;
+    const struct {
+        const char *what;
+        ray r;
+        double expected;
+    } cases[] = {
+        {"from (-5, 1, 0) along +x: the near side at x = -1", make_ray(-5, 1, 0, 1, 0, 0), 4.0},
+        {"from the axis (0, 1, 0) along +x: the inside of the wall", make_ray(0, 1, 0, 1, 0, 0), 1.0},
+        {"from (-5, 1, 0.5) along +x: off the axis", make_ray(-5, 1, 0.5, 1, 0, 0), 5.0 - sqrt(0.75)},
+        {"from (-5, 3, 0) along +x: above the top (y = 2)", make_ray(-5, 3, 0, 1, 0, 0), none},
+        {"from (0, 5, 0) straight down the axis (no caps)", make_ray(0, 5, 0, 0, -1, 0), none},
+        {"from (-5, -1, 0) towards (5, 2, 0): rising into the side", make_ray(-5, -1, 0, 5, 2, 0), 4.0 * s29 / 5.0},
+        {"from (-5, -3, 0) towards (5, 2, 0): passes below the base", make_ray(-5, -3, 0, 5, 2, 0), none},
+        {"from (-5, 1, 0) along -x: pointing away", make_ray(-5, 1, 0, -1, 0, 0), none},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double t = -1;
+        bool hit = f(vec3_make(0, 0, 0), 1.0, 2.0, &cases[k].r, RAY_T_MIN, INFINITY, &t);
+        if (hit != (cases[k].expected >= 0) || (hit && !near(t, cases[k].expected)))
+            return fail(why, why_size, "open cylinder of radius 1 from (0, 0, 0) to (0, 2, 0), ray %s: expected %s%.6g, "
+                        "got %s%.6g", cases[k].what, cases[k].expected < 0 ? "a miss" : "t = ",
+                        cases[k].expected < 0 ? NAN : cases[k].expected, hit ? "t = " : "a miss", hit ? t : NAN);
+    }
+    return true;
+}
+
+/* ---- 5.4 the bounding sphere ------------------------------------------------------------------------ */
+
+bool check_bounding_sphere(bounding_sphere_fn f, char *why, size_t why_size) {
+    enum { POINTS = 200 };
+    vec3 v[POINTS];
+    uint64_t state = 12345;
+    for (int k = 0; k < POINTS; k++) { /* a fixed cloud in the box [-3, 5] x [0, 1] x [2, 4] */
+        double u[3];
+        for (int a = 0; a < 3; a++) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            u[a] = (double)(state >> 11) / 9007199254740992.0;
+        }
+        v[k] = vec3_make(-3 + 8 * u[0], u[1], 2 + 2 * u[2]);
+    }
+    struct mesh m = {v, POINTS, NULL, 0};
+    vec3 centre;
+    double radius;
+    f(&m, &centre, &radius);
+    for (int k = 0; k < POINTS; k++) {
+        double d = vec3_length(vec3_sub(v[k], centre));
+        if (d > radius * (1 + 1e-12))
+            return fail(why, why_size, "200 points in the box [-3, 5] x [0, 1] x [2, 4]: point (%g, %g, %g) is %g from "
+                        "your centre (%g, %g, %g), outside your radius %g", v[k].x, v[k].y, v[k].z, d, centre.x,
+                        centre.y, centre.z, radius);
+    }
+    struct aabb box = aabb_empty();
+    for (int k = 0; k < POINTS; k++)
+        box = aabb_grow(box, v[k]);
+    double box_radius = 0.5 * vec3_length(vec3_sub(box.max, box.min));
+    if (radius > box_radius * (1 + 1e-12))
+        return fail(why, why_size, "200 points in the box [-3, 5] x [0, 1] x [2, 4]: your radius %g is larger than "
+                    "that of the sphere around their bounding box, %g", radius, box_radius);
+    return true;
+}
+
+/* ---- 6.4 Blinn's highlight ------------------------------------------------------------------------- */
+
+bool check_blinn(blinn_fn f, char *why, size_t why_size) {
+    vec3 n = {0, 0, 1};
+    const struct {
+        const char *what;
+        vec3 light, eye;
+        double exponent, expected;
+    } cases[] = {
+        {"light and eye mirrored about the normal (H = N)", vec3_normalize(vec3_make(1, 0, 1)),
+         vec3_normalize(vec3_make(-1, 0, 1)), 10, 1.0},
+        {"light on the normal, eye 45 degrees off (H is 22.5 degrees off N)", {0, 0, 1},
+         vec3_normalize(vec3_make(1, 0, 1)), 10, pow(cos(M_PI / 8), 10)},
+        {"light and eye both 60 degrees off on the same side (H 60 degrees off N)",
+         vec3_make(sin(M_PI / 3), 0, cos(M_PI / 3)), vec3_make(sin(M_PI / 3), 0, cos(M_PI / 3)), 4, pow(0.5, 4)},
+        {"light below the surface", {0, 0, -1}, vec3_normalize(vec3_make(1, 0, 1)), 10, 0.0},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double got = f(n, cases[k].light, cases[k].eye, cases[k].exponent);
+        if (!near(got, cases[k].expected))
+            return fail(why, why_size, "normal (0, 0, 1), %s, exponent %g: expected %.9f, got %.9f", cases[k].what,
+                        cases[k].exponent, cases[k].expected, got);
+    }
+    return true;
+}
+
+/* ---- 7.4 soft shadows -------------------------------------------------------------------------------- */
+
+bool check_area_fraction(area_fraction_fn f, char *why, size_t why_size) {
+    /* A ball of radius 0.5 at (0, 1, 0) over the floor, and a 1 x 1 light at height 3 above it. */
+    static const char *const text = "camera eye 0 2 8 target 0 0 0 fov 40\nimage 8 8\n"
+                                    "sphere centre 0 1 0 radius 0.5\n";
+    struct scene s;
+    char err[256];
+    if (!scene_parse("soft-shadow-check.scene", text, &s, err, sizeof err))
+        return fail(why, why_size, "internal: %s", err);
+    struct world w;
+    if (!world_init(&w, &s, err, sizeof err)) {
+        scene_free(&s);
+        return fail(why, why_size, "internal: %s", err);
+    }
+    vec3 corner = {-0.5, 3, -0.5}, edge_u = {1, 0, 0}, edge_v = {0, 0, 1};
+    bool ok = true;
+    double under = f(&w, vec3_make(0, 0, 0), corner, edge_u, edge_v, 4);
+    double aside = f(&w, vec3_make(5, 0, 0), corner, edge_u, edge_v, 4);
+    if (under != 0.0)
+        ok = fail(why, why_size, "the point (0, 0, 0) right under the ball sees none of the light; got %g", under);
+    else if (aside != 1.0)
+        ok = fail(why, why_size, "the point (5, 0, 0), far to the side, sees all of the light; got %g", aside);
+    /* Walking out from under the ball, the share rises from 0 to 1 through the penumbra, in steps of 1/16
+     * with a 4 x 4 grid; with n = 1 it is the hard shadow of a light at the square's centre. */
+    bool penumbra = false;
+    double previous = 0.0;
+    for (double x = 0.0; ok && x <= 3.0; x += 0.05) {
+        vec3 p = {x, 0, 0};
+        double share = f(&w, p, corner, edge_u, edge_v, 4);
+        double sixteenths = share * 16.0;
+        struct light centre = {vec3_make(0, 3, 0), vec3_make(1, 1, 1)};
+        double hard = shadow_opaque(&w, p, &centre).x, one = f(&w, p, corner, edge_u, edge_v, 1);
+        if (fabs(sixteenths - round(sixteenths)) > 1e-9)
+            ok = fail(why, why_size, "at (%g, 0, 0) with a 4 x 4 grid the share must be a whole number of 16ths; got %g",
+                      x, share);
+        else if (share + 1e-12 < previous)
+            ok = fail(why, why_size, "walking out from under the ball the share should never fall; at x = %g it fell "
+                      "from %g to %g", x, previous, share);
+        else if (one != hard)
+            ok = fail(why, why_size, "with n = 1 the one sample is the square's centre (0, 3, 0): at (%g, 0, 0) the hard "
+                      "shadow says %g, yours %g", x, hard, one);
+        penumbra = penumbra || (share > 0.0 && share < 1.0);
+        previous = share;
+    }
+    if (ok && !penumbra)
+        ok = fail(why, why_size, "walking from (0, 0, 0) to (3, 0, 0) no point was in the penumbra (share strictly "
+                  "between 0 and 1): are the samples spread over the light?");
+    world_free(&w);
+    scene_free(&s);
+    return ok;
+}
+
+/* ---- 8.4 Schlick's Fresnel ------------------------------------------------------------------------ */
+
+bool check_schlick(schlick_fn f, char *why, size_t why_size) {
+    double cos_inside = 0.9, sin_out = 1.5 * sqrt(1 - cos_inside * cos_inside);
+    double cos_out = sqrt(1 - sin_out * sin_out);
+    const struct {
+        const char *what;
+        double cos_incident, n1, n2, expected;
+    } cases[] = {
+        {"air to glass (1 to 1.5), head-on", 1.0, 1.0, 1.5, 0.04},
+        {"air to glass, grazing (cos = 0)", 0.0, 1.0, 1.5, 1.0},
+        {"air to glass, 60 degrees (cos = 0.5)", 0.5, 1.0, 1.5, 0.04 + 0.96 * pow(0.5, 5)},
+        {"glass to air, head-on", 1.0, 1.5, 1.0, 0.04},
+        {"glass to air at cos = 0.9 (the cosine on the air side is used)", cos_inside, 1.5, 1.0,
+         0.04 + 0.96 * pow(1 - cos_out, 5)},
+        {"glass to air at cos = 0.5, past the critical angle", 0.5, 1.5, 1.0, 1.0},
+        {"between equal media, head-on", 1.0, 1.33, 1.33, 0.0},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double got = f(cases[k].cos_incident, cases[k].n1, cases[k].n2);
+        if (!near(got, cases[k].expected))
+            return fail(why, why_size, "%s: expected a reflected share of %.9f, got %.9f", cases[k].what,
+                        cases[k].expected, got);
+    }
+    return true;
+}
+
+/* ---- 9.4 the uniform grid ------------------------------------------------------------------------- */
+
+static bool same_cells(int (*a)[3], const int (*b)[3], int n) {
+    for (int k = 0; k < n; k++)
+        if (a[k][0] != b[k][0] || a[k][1] != b[k][1] || a[k][2] != b[k][2])
+            return false;
+    return true;
+}
+
+bool check_grid_walk(grid_walk_fn f, char *why, size_t why_size) {
+    vec3 lo = {0, 0, 0}, hi = {4, 4, 4};
+    int out[64][3];
+    static const int along_x[4][3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+    static const int diagonal[7][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {2, 1, 0}, {2, 2, 0}, {3, 2, 0}, {3, 3, 0}};
+    static const int backwards[3][3] = {{2, 0, 0}, {1, 0, 0}, {0, 0, 0}};
+    ray r = make_ray(-1, 0.5, 0.5, 1, 0, 0);
+    int n = f(lo, hi, 4, &r, out, 64);
+    if (n != 4 || !same_cells(out, along_x, 4))
+        return fail(why, why_size, "4 x 4 x 4 grid over [0, 4]^3, ray from (-1, 0.5, 0.5) along +x: expected the cells "
+                    "(0,0,0) (1,0,0) (2,0,0) (3,0,0); got %d cells, the first (%d,%d,%d)", n, out[0][0], out[0][1],
+                    out[0][2]);
+    r = (ray){vec3_make(0.5, 0.2, 0.5), vec3_normalize(vec3_make(1, 1, 0))};
+    n = f(lo, hi, 4, &r, out, 64);
+    if (n != 7 || !same_cells(out, diagonal, 7))
+        return fail(why, why_size, "ray from (0.5, 0.2, 0.5) along (1, 1, 0): expected 7 cells, (0,0,0) (1,0,0) (1,1,0) "
+                    "(2,1,0) (2,2,0) (3,2,0) (3,3,0); got %d", n);
+    r = make_ray(2.5, 0.5, 0.5, -1, 0, 0);
+    n = f(lo, hi, 4, &r, out, 64);
+    if (n != 3 || !same_cells(out, backwards, 3))
+        return fail(why, why_size, "ray starting inside at (2.5, 0.5, 0.5) along -x: expected (2,0,0) (1,0,0) (0,0,0), "
+                    "only cells at t >= 0; got %d cells", n);
+    r = make_ray(-1, 5, 0.5, 1, 0, 0);
+    n = f(lo, hi, 4, &r, out, 64);
+    if (n != 0)
+        return fail(why, why_size, "ray from (-1, 5, 0.5) along +x passes above the grid: expected 0 cells, got %d", n);
+    r = make_ray(-1, 0.5, 0.5, 1, 0, 0);
+    n = f(lo, hi, 4, &r, out, 2);
+    if (n != 4 || !same_cells(out, along_x, 2))
+        return fail(why, why_size, "with room for only 2 cells, the 4-cell ray must still return 4 and write the first "
+                    "2; got %d", n);
+    /* Random rays through the grid: every cell that a fine walk along the ray visits must be listed, in the
+     * order it is visited. */
+    uint64_t state = 99;
+    for (int k = 0; k < 200; k++) {
+        double u[6];
+        for (int a = 0; a < 6; a++) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            u[a] = (double)(state >> 11) / 9007199254740992.0;
+        }
+        vec3 from = {-2 + 8 * u[0], -2 + 8 * u[1], -2 + 8 * u[2]}, to = {4 * u[3], 4 * u[4], 4 * u[5]};
+        r = (ray){from, vec3_normalize(vec3_sub(to, from))};
+        n = f(lo, hi, 4, &r, out, 64);
+        if (n < 0 || n > 10)
+            return fail(why, why_size, "a ray through a 4 x 4 x 4 grid crosses at most 10 cells; got %d", n);
+        int listed = 0;
+        for (double t = 0; t < 20; t += 1e-3) {
+            vec3 p = ray_at(r, t);
+            if (p.x < 0 || p.y < 0 || p.z < 0 || p.x >= 4 || p.y >= 4 || p.z >= 4)
+                continue;
+            int cell[3] = {(int)p.x, (int)p.y, (int)p.z};
+            while (listed < n && !(out[listed][0] == cell[0] && out[listed][1] == cell[1] && out[listed][2] == cell[2]))
+                listed++;
+            if (listed == n)
+                return fail(why, why_size, "ray from (%g, %g, %g) towards (%g, %g, %g): at t = %g it is in cell (%d,%d,%d), "
+                            "which your list does not have in that order", from.x, from.y, from.z, to.x, to.y, to.z, t,
+                            cell[0], cell[1], cell[2]);
+        }
+    }
+    return true;
+}
+
+/* ---- 10.4 the SAH cost of a split --------------------------------------------------------------------- */
+
+bool check_split_cost(split_cost_fn f, char *why, size_t why_size) {
+    /* Four unit cubes along x: two at x in [0, 2], two at x in [10, 12]. Every box's area is 6; two
+     * side by side make a 2 x 1 x 1 box of area 10; all four span 12 x 1 x 1, area 50. */
+    struct aabb boxes[4] = {{{0, 0, 0}, {1, 1, 1}}, {{1, 0, 0}, {2, 1, 1}}, {{10, 0, 0}, {11, 1, 1}},
+                            {{11, 0, 0}, {12, 1, 1}}};
+    const struct {
+        const char *what;
+        int axis;
+        double plane, expected;
+    } cases[] = {
+        {"x = 5, between the pairs: 1 + (10 * 2 + 10 * 2) / 50", 0, 5.0, 1.8},
+        {"x = -1, all on the right: 1 + (0 + 50 * 4) / 50", 0, -1.0, 5.0},
+        {"x = 0.5, exactly at the first centre, which goes right", 0, 0.5, 5.0},
+        {"x = 0.6, one cube left: 1 + (6 * 1 + 46 * 3) / 50", 0, 0.6, 3.88},
+        {"y = 0.5, every centre on the plane, all right", 1, 0.5, 5.0},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double got = f(boxes, 4, cases[k].axis, cases[k].plane);
+        if (!near(got, cases[k].expected))
+            return fail(why, why_size, "four unit cubes at x = 0, 1, 10, 11, split at %s: expected %g, got %.9g",
+                        cases[k].what, cases[k].expected, got);
+    }
+    return true;
+}

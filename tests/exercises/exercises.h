@@ -1,0 +1,84 @@
+/* exercises.h: the functions the walkthroughs' build exercises (★★★) ask a student to write, and the
+ * checks that grade them.
+ *
+ * Each function is declared weak: until a student writes it (in the module the exercise names), its
+ * address is NULL and its test in test_exercises.c is skipped with a note saying where to start. Once
+ * it exists, the test runs the check below on it. Each check returns true, or false with a message in
+ * the student's terms: the input, what was expected, what came back. tests/exercises/solutions.c holds
+ * one correct answer to each, linked only into build/run-exercise-solutions, which make test runs to
+ * prove that every check passes a right answer and fails a wrong one. */
+#ifndef WHITTED_EXERCISES_H
+#define WHITTED_EXERCISES_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "aabb.h"
+#include "mesh.h"
+#include "ray.h"
+
+#define WEAK __attribute__((weak))
+
+/* Exercise 2.4 (common/disc.c): where r meets the disc of `radius` around `centre` in the plane with
+ * unit normal `normal`, with t_min < t < t_max. Returns true and stores t on a hit; the rim counts. */
+WEAK bool disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
+                         double *t);
+typedef bool (*disc_fn)(vec3, vec3, double, const ray *, double, double, double *);
+bool check_disc(disc_fn f, char *why, size_t why_size);
+
+/* Exercise 3.4 (common/mesh_normals.c): a unit normal for every vertex of m, the average of the normals
+ * of the faces around it weighted by their areas (the cross product of two edges, unnormalised, does
+ * both at once); (0, 0, 0) for a vertex no face uses. normals has m->vertex_count entries. */
+WEAK void mesh_vertex_normals(const struct mesh *m, vec3 *normals);
+typedef void (*vertex_normals_fn)(const struct mesh *, vec3 *);
+bool check_vertex_normals(vertex_normals_fn f, char *why, size_t why_size);
+
+/* Exercise 4.4 (common/cylinder.c): where r meets the side of the open cylinder of `radius` whose axis
+ * runs from `base` up the +y axis for `height`, with t_min < t < t_max (no caps). */
+WEAK bool cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max,
+                             double *t);
+typedef bool (*cylinder_fn)(vec3, double, double, const ray *, double, double, double *);
+bool check_cylinder(cylinder_fn f, char *why, size_t why_size);
+
+/* Exercise 5.4 (common/bounding_sphere.c): a sphere that holds every vertex of m, no larger than the
+ * sphere around m's bounding box. */
+WEAK void mesh_bounding_sphere(const struct mesh *m, vec3 *centre, double *radius);
+typedef void (*bounding_sphere_fn)(const struct mesh *, vec3 *, double *);
+bool check_bounding_sphere(bounding_sphere_fn f, char *why, size_t why_size);
+
+/* Exercise 6.4 (common/phong.c): Blinn's highlight, max(0, N · H)^exponent with H the unit half vector
+ * between the unit vectors towards the light and towards the eye; 0 when the light is behind. */
+WEAK double phong_blinn_highlight(vec3 normal, vec3 to_light, vec3 to_eye, double exponent);
+typedef double (*blinn_fn)(vec3, vec3, vec3, double);
+bool check_blinn(blinn_fn f, char *why, size_t why_size);
+
+/* Exercise 7.4 (common/shadow.c): the share of a rectangular area light (corner, edges edge_u and
+ * edge_v) visible from `point`: the light is cut into n x n equal cells, one shadow ray to each cell's
+ * centre (shadow_opaque), and the result is the fraction that arrive. `world` is a struct world. */
+WEAK double shadow_area_fraction(const void *world, vec3 point, vec3 corner, vec3 edge_u, vec3 edge_v, int n);
+typedef double (*area_fraction_fn)(const void *, vec3, vec3, vec3, vec3, int);
+bool check_area_fraction(area_fraction_fn f, char *why, size_t why_size);
+
+/* Exercise 8.4 (common/whitted.c): Schlick's approximation of the share of light a surface between media
+ * n1 (the ray's side) and n2 reflects, for a ray whose angle to the normal has cosine cos_incident:
+ * R0 + (1 - R0)(1 - c)^5 with R0 = ((n1 - n2) / (n1 + n2))^2, where c is the cosine on the denser
+ * side; 1 when the ray cannot leave (total internal reflection). */
+WEAK double whitted_schlick(double cos_incident, double n1, double n2);
+typedef double (*schlick_fn)(double, double, double);
+bool check_schlick(schlick_fn f, char *why, size_t why_size);
+
+/* Exercise 9.4 (common/grid.c): the cells of a uniform grid that r crosses, in order, for t >= 0. The
+ * grid divides the box [lo, hi] into `cells` equal cells per axis. Writes up to `max` cells as
+ * {x, y, z} indices into out and returns how many the ray crosses (3D-DDA, Amanatides and Woo 1987). */
+WEAK int grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max);
+typedef int (*grid_walk_fn)(vec3, vec3, int, const ray *, int (*)[3], int);
+bool check_grid_walk(grid_walk_fn f, char *why, size_t why_size);
+
+/* Exercise 10.4 (common/bvh.c): the SAH cost of splitting the n boxes at `plane` on `axis`: boxes whose
+ * centre is below the plane go left, the rest right; cost = 1 + (area(L) * count(L) + area(R) *
+ * count(R)) / area(all), with a side's area that of the union of its boxes (0 when it is empty). */
+WEAK double bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
+typedef double (*split_cost_fn)(const struct aabb *, int, int, double);
+bool check_split_cost(split_cost_fn f, char *why, size_t why_size);
+
+#endif

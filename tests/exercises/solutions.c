@@ -1,0 +1,259 @@
+/* solutions.c: one right answer to each build exercise, and one plausible wrong answer, so that the
+ * tests can prove every check passes the first and fails the second (test_exercise_proof.c).
+ *
+ * For lecturers: these are the model answers. They are named solution_* and wrong_*, not by the
+ * names the exercises ask for, so the students' checks in test_exercises.c stay skipped until a
+ * student writes the real function; `make student` leaves this file out of the student copy. */
+#include "solutions.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "shadow.h"
+
+/* ---- 2.4 ---- */
+bool solution_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
+                             double *t) {
+    double facing = vec3_dot(normal, r->direction);
+    if (facing == 0.0)
+        return false;
+    double hit_t = vec3_dot(normal, vec3_sub(centre, r->origin)) / facing;
+    if (!(hit_t > t_min && hit_t < t_max))
+        return false;
+    vec3 offset = vec3_sub(ray_at(*r, hit_t), centre);
+    if (vec3_dot(offset, offset) > radius * radius)
+        return false;
+    *t = hit_t;
+    return true;
+}
+
+bool wrong_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
+                          double *t) {
+    (void)radius; /* the plane, without the radius test */
+    double facing = vec3_dot(normal, r->direction);
+    if (facing == 0.0)
+        return false;
+    double hit_t = vec3_dot(normal, vec3_sub(centre, r->origin)) / facing;
+    if (!(hit_t > t_min && hit_t < t_max))
+        return false;
+    *t = hit_t;
+    return true;
+}
+
+/* ---- 3.4 ---- */
+static void vertex_normals(const struct mesh *m, vec3 *normals, bool by_area) {
+    for (size_t k = 0; k < m->vertex_count; k++)
+        normals[k] = vec3_make(0, 0, 0);
+    for (size_t f = 0; f < m->face_count; f++) {
+        const uint32_t *v = m->faces[f].v;
+        vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
+        vec3 n = vec3_cross(vec3_sub(b, a), vec3_sub(c, a)); /* length: twice the area */
+        if (!by_area)
+            n = vec3_normalize(n);
+        for (int k = 0; k < 3; k++)
+            normals[v[k]] = vec3_add(normals[v[k]], n);
+    }
+    for (size_t k = 0; k < m->vertex_count; k++)
+        if (vec3_length(normals[k]) > 0.0)
+            normals[k] = vec3_normalize(normals[k]);
+}
+
+void solution_mesh_vertex_normals(const struct mesh *m, vec3 *normals) { vertex_normals(m, normals, true); }
+void wrong_mesh_vertex_normals(const struct mesh *m, vec3 *normals) { vertex_normals(m, normals, false); }
+
+/* ---- 4.4 ---- */
+/* With the caps or without them; the exercise's cylinder is open, so the version with its far root
+ * first is the wrong one here: it reports the far wall. */
+static bool cylinder(vec3 base, double radius, double height, const ray *r, double t_min, double t_max, double *t,
+                     bool far_first) {
+    vec3 o = vec3_sub(r->origin, base), d = r->direction;
+    double a = d.x * d.x + d.z * d.z;
+    if (a == 0.0)
+        return false; /* parallel to the axis: never meets the side */
+    double half_b = o.x * d.x + o.z * d.z, c = o.x * o.x + o.z * o.z - radius * radius;
+    double discriminant = half_b * half_b - a * c;
+    if (discriminant < 0.0)
+        return false;
+    double root = sqrt(discriminant);
+    double roots[2] = {(-half_b - root) / a, (-half_b + root) / a};
+    for (int k = 0; k < 2; k++) {
+        double candidate = roots[far_first ? 1 - k : k];
+        double y = o.y + candidate * d.y;
+        if (candidate > t_min && candidate < t_max && y >= 0.0 && y <= height) {
+            *t = candidate;
+            return true;
+        }
+    }
+    return false;
+}
+
+bool solution_cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max,
+                                 double *t) {
+    return cylinder(base, radius, height, r, t_min, t_max, t, false);
+}
+
+bool wrong_cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max,
+                              double *t) {
+    return cylinder(base, radius, height, r, t_min, t_max, t, true);
+}
+
+/* ---- 5.4 ---- */
+/* Ritter's sphere: start from two far-apart points and grow to take in any point outside. */
+void solution_mesh_bounding_sphere(const struct mesh *m, vec3 *centre, double *radius) {
+    struct aabb box = aabb_empty();
+    for (size_t k = 0; k < m->vertex_count; k++)
+        box = aabb_grow(box, m->vertices[k]);
+    *centre = vec3_scale(vec3_add(box.min, box.max), 0.5);
+    *radius = 0.0;
+    for (size_t k = 0; k < m->vertex_count; k++) {
+        vec3 to = vec3_sub(m->vertices[k], *centre);
+        double d = vec3_length(to);
+        if (d > *radius) { /* move the centre towards the point just enough to hold it */
+            double grown = 0.5 * (*radius + d);
+            *centre = vec3_add_scaled(*centre, to, (grown - *radius) / d);
+            *radius = grown;
+        }
+    }
+}
+
+void wrong_mesh_bounding_sphere(const struct mesh *m, vec3 *centre, double *radius) {
+    /* The box's centre with the radius of the box's smallest half-extent: misses the far points. */
+    struct aabb box = aabb_empty();
+    for (size_t k = 0; k < m->vertex_count; k++)
+        box = aabb_grow(box, m->vertices[k]);
+    *centre = vec3_scale(vec3_add(box.min, box.max), 0.5);
+    vec3 half = vec3_scale(vec3_sub(box.max, box.min), 0.5);
+    *radius = fmin(half.x, fmin(half.y, half.z));
+}
+
+/* ---- 6.4 ---- */
+double solution_phong_blinn_highlight(vec3 normal, vec3 to_light, vec3 to_eye, double exponent) {
+    if (vec3_dot(normal, to_light) <= 0.0)
+        return 0.0;
+    vec3 half = vec3_normalize(vec3_add(to_light, to_eye));
+    double alignment = vec3_dot(normal, half);
+    return alignment > 0.0 ? pow(alignment, exponent) : 0.0;
+}
+
+double wrong_phong_blinn_highlight(vec3 normal, vec3 to_light, vec3 to_eye, double exponent) {
+    /* Phong's (R . V)^n under Blinn's name. */
+    vec3 mirror = vec3_sub(vec3_scale(normal, 2.0 * vec3_dot(normal, to_light)), to_light);
+    double alignment = vec3_dot(mirror, to_eye);
+    return alignment > 0.0 ? pow(alignment, exponent) : 0.0;
+}
+
+/* ---- 7.4 ---- */
+static double area_fraction(const void *world, vec3 point, vec3 corner, vec3 edge_u, vec3 edge_v, int n,
+                            bool centred) {
+    int arrived = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            double offset = centred ? 0.5 : 0.0;
+            vec3 p = vec3_add_scaled(vec3_add_scaled(corner, edge_u, (i + offset) / n), edge_v, (j + offset) / n);
+            struct light sample = {p, vec3_make(1, 1, 1)};
+            arrived += shadow_opaque(world, point, &sample).x > 0.0;
+        }
+    return (double)arrived / (n * n);
+}
+
+double solution_shadow_area_fraction(const void *world, vec3 point, vec3 corner, vec3 edge_u, vec3 edge_v, int n) {
+    return area_fraction(world, point, corner, edge_u, edge_v, n, true);
+}
+
+double wrong_shadow_area_fraction(const void *world, vec3 point, vec3 corner, vec3 edge_u, vec3 edge_v, int n) {
+    return area_fraction(world, point, corner, edge_u, edge_v, n, false); /* cell corners, not centres */
+}
+
+/* ---- 8.4 ---- */
+static double schlick(double cos_incident, double n1, double n2, bool use_transmitted_cosine) {
+    double r0 = (n1 - n2) / (n1 + n2);
+    r0 *= r0;
+    double c = cos_incident;
+    if (n1 > n2 && use_transmitted_cosine) {
+        double sin_t = n1 / n2 * sqrt(fmax(0.0, 1.0 - c * c));
+        if (sin_t > 1.0)
+            return 1.0; /* total internal reflection */
+        c = sqrt(1.0 - sin_t * sin_t);
+    }
+    return r0 + (1.0 - r0) * pow(1.0 - c, 5);
+}
+
+double solution_whitted_schlick(double cos_incident, double n1, double n2) {
+    return schlick(cos_incident, n1, n2, true);
+}
+
+double wrong_whitted_schlick(double cos_incident, double n1, double n2) {
+    return schlick(cos_incident, n1, n2, false);
+}
+
+/* ---- 9.4 ---- */
+/* Amanatides and Woo: step to whichever cell boundary is nearest along the ray. */
+static int walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max, bool drop_last) {
+    struct aabb box = {lo, hi};
+    double t_near = 0.0, t_far = INFINITY;
+    if (!aabb_clip(&box, r->origin, aabb_inverse_direction(r->direction), &t_near, &t_far))
+        return 0;
+    double o[3] = {r->origin.x, r->origin.y, r->origin.z}, d[3] = {r->direction.x, r->direction.y, r->direction.z};
+    double low[3] = {lo.x, lo.y, lo.z}, size[3] = {(hi.x - lo.x) / cells, (hi.y - lo.y) / cells, (hi.z - lo.z) / cells};
+    int cell[3], step[3];
+    double next[3], delta[3];
+    for (int a = 0; a < 3; a++) {
+        double entry = o[a] + t_near * d[a];
+        cell[a] = (int)floor((entry - low[a]) / size[a]);
+        cell[a] = cell[a] < 0 ? 0 : cell[a] >= cells ? cells - 1 : cell[a];
+        step[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
+        double boundary = low[a] + (cell[a] + (step[a] > 0)) * size[a];
+        next[a] = step[a] != 0 ? (boundary - o[a]) / d[a] : INFINITY;
+        delta[a] = step[a] != 0 ? size[a] / fabs(d[a]) : INFINITY;
+    }
+    int count = 0;
+    for (;;) {
+        if (count < max)
+            for (int a = 0; a < 3; a++)
+                out[count][a] = cell[a];
+        count++;
+        int axis = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
+        if (next[axis] > t_far)
+            break;
+        cell[axis] += step[axis];
+        if (cell[axis] < 0 || cell[axis] >= cells)
+            break;
+        next[axis] += delta[axis];
+    }
+    return drop_last && count > 1 ? count - 1 : count;
+}
+
+int solution_grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max) {
+    return walk(lo, hi, cells, r, out, max, false);
+}
+
+int wrong_grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max) {
+    return walk(lo, hi, cells, r, out, max, true); /* stops one cell early */
+}
+
+/* ---- 10.4 ---- */
+static double split_cost(const struct aabb *boxes, int n, int axis, double plane, double traversal) {
+    struct aabb all = aabb_empty(), left = aabb_empty(), right = aabb_empty();
+    int n_left = 0;
+    for (int k = 0; k < n; k++) {
+        double centre = 0.5 * (vec3_axis(boxes[k].min, axis) + vec3_axis(boxes[k].max, axis));
+        all = aabb_union(all, boxes[k]);
+        if (centre < plane) {
+            left = aabb_union(left, boxes[k]);
+            n_left++;
+        } else {
+            right = aabb_union(right, boxes[k]);
+        }
+    }
+    double area_left = n_left > 0 ? aabb_surface_area(left) : 0.0;
+    double area_right = n_left < n ? aabb_surface_area(right) : 0.0;
+    return traversal + (area_left * n_left + area_right * (n - n_left)) / aabb_surface_area(all);
+}
+
+double solution_bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane) {
+    return split_cost(boxes, n, axis, plane, 1.0);
+}
+
+double wrong_bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane) {
+    return split_cost(boxes, n, axis, plane, 0.0); /* forgets the cost of the step itself */
+}

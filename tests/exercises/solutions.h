@@ -1,0 +1,28 @@
+/* solutions.h: the model answers to the build exercises and one wrong answer to each (solutions.c). */
+#ifndef WHITTED_EXERCISE_SOLUTIONS_H
+#define WHITTED_EXERCISE_SOLUTIONS_H
+
+#include "exercises.h"
+
+/* Each solution_X keeps the contract of X in exercises.h; each wrong_X has its signature and the flaw
+ * its comment in solutions.c names. */
+bool solution_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max, double *t);
+bool wrong_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max, double *t);
+void solution_mesh_vertex_normals(const struct mesh *m, vec3 *normals);
+void wrong_mesh_vertex_normals(const struct mesh *m, vec3 *normals);
+bool solution_cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max, double *t);
+bool wrong_cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max, double *t);
+void solution_mesh_bounding_sphere(const struct mesh *m, vec3 *centre, double *radius);
+void wrong_mesh_bounding_sphere(const struct mesh *m, vec3 *centre, double *radius);
+double solution_phong_blinn_highlight(vec3 normal, vec3 to_light, vec3 to_eye, double exponent);
+double wrong_phong_blinn_highlight(vec3 normal, vec3 to_light, vec3 to_eye, double exponent);
+double solution_shadow_area_fraction(const void *world, vec3 point, vec3 corner, vec3 edge_u, vec3 edge_v, int n);
+double wrong_shadow_area_fraction(const void *world, vec3 point, vec3 corner, vec3 edge_u, vec3 edge_v, int n);
+double solution_whitted_schlick(double cos_incident, double n1, double n2);
+double wrong_whitted_schlick(double cos_incident, double n1, double n2);
+int solution_grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max);
+int wrong_grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max);
+double solution_bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
+double wrong_bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
+
+#endif
