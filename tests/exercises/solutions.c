@@ -12,8 +12,8 @@
 #include "shadow.h"
 
 /* ---- 2.4 ---- */
-bool solution_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
-                             double *t) {
+static bool disc(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max, double *t,
+                 bool within_radius) {
     double facing = vec3_dot(normal, r->direction);
     if (facing == 0.0)
         return false;
@@ -21,23 +21,20 @@ bool solution_disc_intersect(vec3 centre, vec3 normal, double radius, const ray 
     if (!(hit_t > t_min && hit_t < t_max))
         return false;
     vec3 offset = vec3_sub(ray_at(*r, hit_t), centre);
-    if (vec3_dot(offset, offset) > radius * radius)
+    if (within_radius && vec3_dot(offset, offset) > radius * radius)
         return false;
     *t = hit_t;
     return true;
 }
 
+bool solution_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
+                             double *t) {
+    return disc(centre, normal, radius, r, t_min, t_max, t, true);
+}
+
 bool wrong_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
                           double *t) {
-    (void)radius; /* the plane, without the radius test */
-    double facing = vec3_dot(normal, r->direction);
-    if (facing == 0.0)
-        return false;
-    double hit_t = vec3_dot(normal, vec3_sub(centre, r->origin)) / facing;
-    if (!(hit_t > t_min && hit_t < t_max))
-        return false;
-    *t = hit_t;
-    return true;
+    return disc(centre, normal, radius, r, t_min, t_max, t, false); /* the plane, without the radius test */
 }
 
 /* ---- 3.4 ---- */
