@@ -6,6 +6,7 @@
 #   make test-sanitize  the same suite built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make test-accel-long  the kd-tree and BVH differential tests with millions of rays
 #   make references     re-render the reference images on purpose and say what changed
+#   make gallery        render the gallery of wrong pictures into docs/gallery.md
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
 #   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
@@ -74,7 +75,7 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 include tools/models.mk
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
-.PHONY: all chapters test test-sanitize test-accel-long references compare clean help models \
+.PHONY: all chapters test test-sanitize test-accel-long references compare gallery clean help models \
         $(foreach n,1 2 3 4 5 6 7 8 9 10,chapter-$(n))
 .DEFAULT_GOAL := all
 .SECONDARY:
@@ -173,8 +174,13 @@ test-accel-long: $(BUILD)/run-tests
 references: all $(BUILD)/compare
 	tools/bless-references.sh $(BUILD)
 
+# The gallery of wrong pictures: every fault in tools/gallery/ rendered beside the right picture, into
+# docs/gallery/ and docs/gallery.md.
+gallery: all $(BUILD)/compare
+	tools/gallery.sh $(BUILD)
+
 clean:
 	rm -rf build out
 
 help:
-	@sed -n '2,14p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,13p' Makefile | sed 's/^# \{0,1\}//'

@@ -5,9 +5,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 char *read_text_file(const char *path) {
+    struct stat info;
+    cr_assert(stat(path, &info) == 0 && S_ISREG(info.st_mode), "%s is not a file", path);
     FILE *f = fopen(path, "rb");
     cr_assert_not_null(f, "cannot open %s", path);
     fseek(f, 0, SEEK_END);

@@ -4,7 +4,7 @@
 #define WHITTED_TEST_SUPPORT_H
 
 /* Reads the whole file at `path` into a new NUL-terminated buffer (the caller frees it). Fails the
- * current test if the file cannot be read. */
+ * current test if it is not a regular file or cannot be read. */
 char *read_text_file(const char *path);
 
 /* Runs the shell command `command` with its standard output and error appended to the file `log`,
