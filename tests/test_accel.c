@@ -789,3 +789,46 @@ Test(accel, info_describes_a_consistent_tree) {
     }
     mesh_free(&m);
 }
+
+/* The plain SAH build of kdtree.c (every candidate plane priced by counting) and the event sweep of
+ * kdtree_events.c must give the very same tree: the sweep is only the fast way to the same planes. */
+static void expect_plain_sah_tree_is_the_sweeps(const char *name, const struct mesh *m) {
+    struct kdtree *fast = kdtree_build(m, KD_SPLIT_SAH), *plain = kdtree_build(m, KD_SPLIT_SAH_PLAIN);
+    cr_assert(fast != NULL && plain != NULL, "%s: a build ran out of memory", name);
+    struct kdtree_info info;
+    kdtree_get_info(fast, &info);
+    cr_expect(kdtree_equal(fast, plain), "%s: the plain SAH build differs from the event sweep's tree (%zu nodes)",
+              name, info.nodes);
+    char why[256];
+    cr_expect(kdtree_is_valid(plain, m, why, sizeof why), "%s: plain SAH tree invalid: %s", name, why);
+    kdtree_free(fast);
+    kdtree_free(plain);
+}
+
+Test(accel, kdtree_sah_built_plainly_is_the_tree_the_event_sweep_builds, .timeout = 120) {
+    for (size_t faces = 1; faces <= 1000; faces *= 10)
+        for (int s = 0; s < 3; s++) {
+            char name[64];
+            snprintf(name, sizeof name, "soup of %zu (seed %d)", faces, s);
+            struct mesh m = make_soup(7u * faces + (uint64_t)s, faces);
+            expect_plain_sah_tree_is_the_sweeps(name, &m);
+            mesh_free(&m);
+        }
+    struct mesh sphere = make_sphere(24, 48, vec3_make(0.25, -0.5, 1.0), 1.5), grids = make_grids(12);
+    expect_plain_sah_tree_is_the_sweeps("sphere", &sphere);
+    expect_plain_sah_tree_is_the_sweeps("grids", &grids);
+    mesh_free(&sphere);
+    mesh_free(&grids);
+    /* a mesh of zero size: its boxes are flat on every axis (planar events) */
+    struct builder b = {0};
+    for (int k = 0; k < 6; k++)
+        add_triangle(&b, vec3_make(1, 2, 3), vec3_make(1, 2, 3), vec3_make(1, 2, 3));
+    expect_plain_sah_tree_is_the_sweeps("point", &b.m);
+    mesh_free(&b.m);
+    struct mesh bunny;
+    char err[512];
+    if (mesh_load("scenes/models/bunny.ply", &bunny, err, sizeof err)) {
+        expect_plain_sah_tree_is_the_sweeps("bunny", &bunny);
+        mesh_free(&bunny);
+    }
+}
