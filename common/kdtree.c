@@ -49,10 +49,21 @@
  * ray that the test's rounding calls a hit is always in a leaf holding the triangle; needle-thin
  * triangles (KD_SLIVER_SINE) stay out of the tree and are tested by every ray; and the t comparisons
  * that prune the walk allow a tolerance of KD_T_TOLERANCE (relative to the distances involved) for the
- * rounding of the planes' t. Ties go to the lowest face index, as in the brute-force loop.
+ * rounding of the planes' t. Ties go to the lowest face index, as in the brute-force loop. The pad
+ * outweighs the test's rounding while the ray starts within about 2^30 mesh sizes of the mesh (the pad
+ * is 2^-20 of the size, the rounding about 2^-52 of the distance); a mesh shrunk far below its camera's
+ * distance (scale 1e-40 seen from 10 units away) is beyond that, and there a grazing "hit" is rounding
+ * noise the tree may not reproduce.
  *
- * Files: this one is the algorithm; kdtree_events.c builds the SAH tree fast; kdtree_check.c checks a
- * tree's invariants for the tests; kdtree_private.h holds the node layout they share: nodes are 8
+ * Degenerate input: a box bound that overflows float becomes infinite, a NaN bound (a corner at
+ * infinity or NaN) becomes the infinite one, and the walk prunes nothing when the root box reaches
+ * infinity; the SAH then finds no plane worth its price (costs over an infinite area are NaN) and
+ * the seed's rule skips axes without a finite median, so such a mesh gets a shallow tree that is
+ * slow but exact. The event sweep advances even past NaN positions (kdtree_events.c).
+ *
+ * Files: this one is the algorithm; kdtree_sah.h prices a plane and sorts triangles to its sides;
+ * kdtree_events.c builds the SAH tree fast; kdtree_check.c checks a tree's invariants for the tests;
+ * kdtree_private.h holds what they share, among it the node layout: nodes are 8
  * bytes (pbrt's), the plane as a float, or a leaf's first reference, and one word holding the axis (3
  * for a leaf) in its low two bits and, above them, the index of the far ("above") child or a leaf's
  * triangle count. The near ("below") child always follows its parent. */
@@ -193,12 +204,16 @@ static bool seed_plane(struct kd_builder *bd, const uint32_t *faces, size_t coun
     if (count <= KD_SEED_LEAF_SIZE || depth >= bd->depth_limit)
         return false;
     for (int a = 0; a < 3; a++) {
+        bool finite = true;
         for (size_t k = 0; k < count; k++) {
             const struct fbox *b = &bd->boxes[faces[k]];
             float lo = b->lo[a] > box->lo[a] ? b->lo[a] : box->lo[a];
             float hi = b->hi[a] < box->hi[a] ? b->hi[a] : box->hi[a];
             bd->centres[k] = 0.5f * lo + 0.5f * hi;
+            finite = finite && isfinite(bd->centres[k]);
         }
+        if (!finite)
+            continue; /* boxes reaching infinity (coordinates beyond float): no median on this axis */
         float split = select_nth(bd->centres, count, count / 2);
         size_t whole = 0;
         for (size_t k = 0; k < count; k++)
@@ -414,8 +429,12 @@ struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
         tree_faces[tree++] = (uint32_t)f;
         vec3 tlo = vec3_min(a, vec3_min(b, c)), thi = vec3_max(a, vec3_max(b, c));
         for (int axis = 0; axis < 3; axis++) {
-            boxes[f].lo[axis] = float_below(vec3_axis(tlo, axis) - pad);
-            boxes[f].hi[axis] = float_above(vec3_axis(thi, axis) + pad);
+            /* Clamped both ways: a bound that is not a number (a corner at infinity or NaN, or one the
+             * pad made infinite) becomes infinite, so the box still holds the triangle and no plane,
+             * count or event made from it is NaN. Finite bounds that overflow float round to infinity. */
+            float box_lo = float_below(vec3_axis(tlo, axis) - pad), box_hi = float_above(vec3_axis(thi, axis) + pad);
+            boxes[f].lo[axis] = box_lo == box_lo ? box_lo : -INFINITY;
+            boxes[f].hi[axis] = box_hi == box_hi ? box_hi : INFINITY;
             root.lo[axis] = boxes[f].lo[axis] < root.lo[axis] ? boxes[f].lo[axis] : root.lo[axis];
             root.hi[axis] = boxes[f].hi[axis] > root.hi[axis] ? boxes[f].hi[axis] : root.hi[axis];
         }
@@ -616,6 +635,8 @@ static inline __attribute__((always_inline)) bool traverse(const struct kdtree *
         return q->found;
 
     double tolerance = KD_T_TOLERANCE * (vec3_length(vec3_sub(r->origin, k->centre)) + k->size) / length;
+    if (!(tolerance < INFINITY))
+        tolerance = INFINITY; /* a root box reaching infinity (NaN centre): prune nothing */
     uint32_t mailbox[KD_MAILBOX_SIZE];
     memset(mailbox, 0xff, sizeof mailbox); /* UINT32_MAX: no face */
     struct stack_entry stack[KD_STACK_SIZE];

@@ -90,8 +90,10 @@ bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, si
         double lo[3], hi[3];
         for (int axis = 0; axis < 3; axis++) {
             double x0 = vec3_axis(a, axis), x1 = vec3_axis(m->vertices[v[1]], axis), x2 = vec3_axis(m->vertices[v[2]], axis);
-            lo[axis] = fmin(x0, fmin(x1, x2));
-            hi[axis] = fmax(x0, fmax(x1, x2));
+            lo[axis] = fmin(x0, fmin(x1, x2)); /* fmin and fmax pass over a NaN corner; if all three */
+            hi[axis] = fmax(x0, fmax(x1, x2)); /* are NaN, the build spans the whole axis: so do we */
+            lo[axis] = lo[axis] == lo[axis] ? lo[axis] : -INFINITY;
+            hi[axis] = hi[axis] == hi[axis] ? hi[axis] : INFINITY;
             if (!(lo[axis] >= k->root_lo[axis] && hi[axis] <= k->root_hi[axis]))
                 ok = check_fail(&c, "root box does not hold a triangle", f);
         }

@@ -54,12 +54,18 @@ struct kd_event {
     uint32_t key; /* face << 2 | event_type */
 };
 
+/* The bits of a position: equal for equal positions (never -0, see event_order), and for a NaN too. */
+static inline uint32_t position_bits(float position) {
+    uint32_t bits;
+    memcpy(&bits, &position, sizeof bits);
+    return bits;
+}
+
 /* The order the sweep needs, as one unsigned 64-bit number: the position's bits made to sort like the
  * floats they are (negative numbers flipped, the sign bit set on the others), then the type, then the
  * face (below 2^30, KD_MAX_FACES). Positions are never -0 (kd_build_sah_events adds +0 to each). */
 static uint64_t event_order(const struct kd_event *e) {
-    uint32_t bits;
-    memcpy(&bits, &e->position, sizeof bits);
+    uint32_t bits = position_bits(e->position);
     bits = bits & 0x80000000u ? ~bits : bits | 0x80000000u;
     return (uint64_t)bits << 32 | (uint64_t)(e->key & 3u) << 30 | e->key >> 2;
 }
@@ -115,14 +121,17 @@ static bool build_sah(struct kd_builder *bd, struct kd_event *events[3], size_t 
             const struct kd_event *e = events[a];
             size_t n = event_count[a], left = 0, right = count;
             for (size_t i = 0; i < n;) {
-                /* The events at position p: ends, then flat boxes, then starts. */
+                /* The events at position p: ends, then flat boxes, then starts. Positions are compared
+                 * by their bits, so e[i] itself is always taken by one of the three loops (whatever its
+                 * type) and the sweep advances even past a NaN, which == would never match. */
                 float p = e[i].position;
+                uint32_t at = position_bits(p);
                 size_t ends = 0, planars = 0, starts = 0;
-                for (; i < n && e[i].position == p && (e[i].key & 3u) == EVENT_END; i++)
+                for (; i < n && position_bits(e[i].position) == at && (e[i].key & 3u) == EVENT_END; i++)
                     ends++;
-                for (; i < n && e[i].position == p && (e[i].key & 3u) == EVENT_PLANAR; i++)
+                for (; i < n && position_bits(e[i].position) == at && (e[i].key & 3u) == EVENT_PLANAR; i++)
                     planars++;
-                for (; i < n && e[i].position == p && (e[i].key & 3u) == EVENT_START; i++)
+                for (; i < n && position_bits(e[i].position) == at && (e[i].key & 3u) == EVENT_START; i++)
                     starts++;
                 right -= ends + planars;
                 if (p > box.lo[a] && p < box.hi[a]) {
