@@ -62,7 +62,7 @@ MODULES_05 := $(MODULES_04) aabb box world
 MODULES_06 := $(MODULES_05) phong
 MODULES_07 := $(MODULES_06) shadow
 MODULES_08 := $(MODULES_07) whitted
-MODULES_09 := $(MODULES_08) kdtree accel
+MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh accel_bvh
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh

@@ -182,7 +182,7 @@ bool accel_world_use_kdtree(struct accel_world *w, int split, char *err, size_t 
     }
     struct kdtree_info info;
     kdtree_get_info(tree, &info);
-    w->summary = (struct accel_summary){split == KD_SPLIT_SAH ? "kd-tree (SAH)" : "kd-tree (seed's rule)",
+    w->summary = (struct accel_summary){split != KD_SPLIT_SEED ? "kd-tree (SAH)" : "kd-tree (seed's rule)",
                                         build_ms, info.nodes, info.leaves, info.max_depth, info.sah_cost};
     w->structure = tree;
     w->free_structure = kdtree_free_any;

@@ -1,4 +1,4 @@
-/* kdtree.h: a kd-tree over the triangles of one mesh (chapter 9).
+/* kdtree.h: a kd-tree over the triangles of one mesh (chapter 9): kdtree.c, kdtree_events.c, kdtree_check.c.
  *
  * Space is cut in two by an axis-aligned plane, each half again, and so on; a triangle that crosses a
  * plane belongs to both halves. Two ways to choose the planes: the dissertation's rule (the baseline)
@@ -24,7 +24,10 @@
 enum kd_split {
     KD_SPLIT_SEED, /* the dissertation's rule: on the axis that "holds the most objects" (kdtree.c says how
                       that is read), at the median of the triangles' centres */
-    KD_SPLIT_SAH,  /* surface area heuristic over every triangle bound plane, with an empty-space bonus */
+    KD_SPLIT_SAH,  /* surface area heuristic over every triangle bound plane, with an empty-space bonus,
+                      built in O(N log N) by sorted events (kdtree_events.c) */
+    KD_SPLIT_SAH_PLAIN, /* the same tree as KD_SPLIT_SAH, built plainly in O(N^2) per node (kdtree.c): for
+                           reading, and for the tests that prove the two equal */
 };
 
 struct kdtree; /* opaque */
@@ -73,5 +76,9 @@ void kdtree_get_info(const struct kdtree *k, struct kdtree_info *info);
  * depth within the traversal stack. Returns true when all hold; otherwise false with the first broken
  * one described in why (why_size bytes). For tests: it walks the whole tree once per face. */
 bool kdtree_is_valid(const struct kdtree *k, const struct mesh *m, char *why, size_t why_size);
+
+/* For tests: true when a and b have the same root box, nodes and leaves (with their faces in the same
+ * order), slivers, shape counts and SAH cost (build times aside). */
+bool kdtree_equal(const struct kdtree *a, const struct kdtree *b);
 
 #endif

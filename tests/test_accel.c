@@ -244,6 +244,7 @@ struct accel {
     bool (*closest)(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
     bool (*occluded)(const void *s, const ray *r, double t_min, double t_max);
     void (*for_each_hit)(const void *s, const ray *r, double t_min, double t_max, visit_fn visit, void *ctx);
+    void (*release)(void *s);
 };
 
 static bool bvh_closest_of(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
@@ -255,6 +256,7 @@ static bool bvh_occluded_of(const void *s, const ray *r, double t_min, double t_
 static void bvh_for_each_hit_of(const void *s, const ray *r, double t_min, double t_max, visit_fn visit, void *ctx) {
     bvh_for_each_hit(s, r, t_min, t_max, visit, ctx);
 }
+static void bvh_free_of(void *s) { bvh_free(s); }
 static bool kd_closest_of(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
     return kdtree_closest(s, r, t_min, t_max, t, face);
 }
@@ -264,6 +266,7 @@ static bool kd_occluded_of(const void *s, const ray *r, double t_min, double t_m
 static void kd_for_each_hit_of(const void *s, const ray *r, double t_min, double t_max, visit_fn visit, void *ctx) {
     kdtree_for_each_hit(s, r, t_min, t_max, visit, ctx);
 }
+static void kd_free_of(void *s) { kdtree_free(s); }
 
 #define ACCEL_COUNT 4
 
@@ -277,17 +280,30 @@ static void build_all(const struct mesh *m, const char *mesh_name, struct accel 
     cr_assert(bvh_is_valid(bvh_sah, m, why, sizeof why), "%s: BVH SAH invalid: %s", mesh_name, why);
     cr_assert(kdtree_is_valid(kd_seed, m, why, sizeof why), "%s: kd-tree seed invalid: %s", mesh_name, why);
     cr_assert(kdtree_is_valid(kd_sah, m, why, sizeof why), "%s: kd-tree SAH invalid: %s", mesh_name, why);
-    out[0] = (struct accel){"BVH median", bvh_median, bvh_closest_of, bvh_occluded_of, bvh_for_each_hit_of};
-    out[1] = (struct accel){"BVH SAH", bvh_sah, bvh_closest_of, bvh_occluded_of, bvh_for_each_hit_of};
-    out[2] = (struct accel){"kd-tree seed", kd_seed, kd_closest_of, kd_occluded_of, kd_for_each_hit_of};
-    out[3] = (struct accel){"kd-tree SAH", kd_sah, kd_closest_of, kd_occluded_of, kd_for_each_hit_of};
+    out[0] = (struct accel){"BVH median", bvh_median, bvh_closest_of, bvh_occluded_of, bvh_for_each_hit_of, bvh_free_of};
+    out[1] = (struct accel){"BVH SAH", bvh_sah, bvh_closest_of, bvh_occluded_of, bvh_for_each_hit_of, bvh_free_of};
+    out[2] = (struct accel){"kd-tree seed", kd_seed, kd_closest_of, kd_occluded_of, kd_for_each_hit_of, kd_free_of};
+    out[3] = (struct accel){"kd-tree SAH", kd_sah, kd_closest_of, kd_occluded_of, kd_for_each_hit_of, kd_free_of};
+}
+
+/* Builds the kd-tree over m by each rule (the SAH both ways), checking each one's invariants; returns
+ * how many. */
+static int build_kdtrees(const struct mesh *m, const char *mesh_name, struct accel out[ACCEL_COUNT]) {
+    static const enum kd_split rules[] = {KD_SPLIT_SEED, KD_SPLIT_SAH, KD_SPLIT_SAH_PLAIN};
+    static const char *const names[] = {"kd-tree seed", "kd-tree SAH", "kd-tree SAH (plain build)"};
+    for (int k = 0; k < 3; k++) {
+        char why[256];
+        struct kdtree *tree = kdtree_build(m, rules[k]);
+        cr_assert_not_null(tree, "%s: %s ran out of memory", mesh_name, names[k]);
+        cr_assert(kdtree_is_valid(tree, m, why, sizeof why), "%s: %s invalid: %s", mesh_name, names[k], why);
+        out[k] = (struct accel){names[k], tree, kd_closest_of, kd_occluded_of, kd_for_each_hit_of, kd_free_of};
+    }
+    return 3;
 }
 
 static void free_all(struct accel a[ACCEL_COUNT]) {
-    bvh_free(a[0].structure);
-    bvh_free(a[1].structure);
-    kdtree_free(a[2].structure);
-    kdtree_free(a[3].structure);
+    for (int s = 0; s < ACCEL_COUNT; s++)
+        a[s].release(a[s].structure);
 }
 
 /* ---- the oracle and the comparison ------------------------------------------------------------ */
@@ -301,6 +317,7 @@ struct checker {
     const char *mesh_name;
     const struct mesh *m;
     struct accel accels[ACCEL_COUNT];
+    int accel_count;
     double *t_of_face;   /* this ray's t for every face; NAN where triangle_intersect misses */
     uint32_t *hit_faces; /* the faces with a t, hit_count of them */
     size_t hit_count;
@@ -319,10 +336,9 @@ static bool collect_report(void *ctx, double t, uint32_t face) {
     return true;
 }
 
-static void checker_init(struct checker *c, const char *mesh_name, const struct mesh *m) {
-    *c = (struct checker){.mesh_name = mesh_name, .m = m};
-    build_all(m, mesh_name, c->accels);
-    size_t n = m->face_count + 1;
+/* Sets c up for m with its structures already built into c->accels. */
+static void checker_alloc(struct checker *c) {
+    size_t n = c->m->face_count + 1;
     c->t_of_face = malloc(n * sizeof *c->t_of_face);
     c->hit_faces = malloc(n * sizeof *c->hit_faces);
     c->stamp = calloc(n, sizeof *c->stamp);
@@ -330,8 +346,23 @@ static void checker_init(struct checker *c, const char *mesh_name, const struct 
     cr_assert(c->t_of_face && c->hit_faces && c->stamp && c->reports, "out of memory");
 }
 
+static void checker_init(struct checker *c, const char *mesh_name, const struct mesh *m) {
+    *c = (struct checker){.mesh_name = mesh_name, .m = m};
+    build_all(m, mesh_name, c->accels);
+    c->accel_count = ACCEL_COUNT;
+    checker_alloc(c);
+}
+
+/* The same for the kd-trees alone (build_kdtrees). */
+static void checker_init_kdtrees(struct checker *c, const char *mesh_name, const struct mesh *m) {
+    *c = (struct checker){.mesh_name = mesh_name, .m = m};
+    c->accel_count = build_kdtrees(m, mesh_name, c->accels);
+    checker_alloc(c);
+}
+
 static void checker_free(struct checker *c) {
-    free_all(c->accels);
+    for (int s = 0; s < c->accel_count; s++)
+        c->accels[s].release(c->accels[s].structure);
     free(c->t_of_face);
     free(c->hit_faces);
     free(c->stamp);
@@ -378,7 +409,7 @@ static void check_window(struct checker *c, const ray *r, double t_min, double t
         }
     }
     c->windows++;
-    for (int s = 0; s < ACCEL_COUNT; s++) {
+    for (int s = 0; s < c->accel_count; s++) {
         const struct accel *a = &c->accels[s];
         double t = -1.0;
         uint32_t face = UINT32_MAX - 1;
@@ -433,11 +464,12 @@ enum ray_kind {
 
 struct scene_box {
     vec3 lo, hi, centre;
-    double size; /* largest extent */
+    double size;  /* largest extent */
+    double slack; /* added to distances scaled by size: 1e-3, or the size when smaller (a tiny mesh) */
 };
 
 static struct scene_box box_of(const struct mesh *m) {
-    struct scene_box b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}, {0, 0, 0}, 0};
+    struct scene_box b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}, {0, 0, 0}, 0, 0};
     for (size_t f = 0; f < m->face_count; f++)
         for (int k = 0; k < 3; k++) {
             b.lo = vec3_min(b.lo, m->vertices[m->faces[f].v[k]]);
@@ -448,12 +480,13 @@ static struct scene_box box_of(const struct mesh *m) {
     b.centre = vec3_scale(vec3_add(b.lo, b.hi), 0.5);
     vec3 e = vec3_sub(b.hi, b.lo);
     b.size = fmax(e.x, fmax(e.y, e.z));
+    b.slack = b.size > 0.0 && b.size < 1e-3 ? b.size : 1e-3;
     return b;
 }
 
 /* A point in the mesh's box grown by half its size on every side. */
 static vec3 around(struct rng *g, const struct scene_box *b) {
-    double margin = 0.5 * b->size + 1e-3;
+    double margin = 0.5 * b->size + b->slack;
     return vec3_make(rng_between(g, b->lo.x - margin, b->hi.x + margin), rng_between(g, b->lo.y - margin, b->hi.y + margin),
                      rng_between(g, b->lo.z - margin, b->hi.z + margin));
 }
@@ -529,7 +562,7 @@ static ray make_ray(struct rng *g, const struct mesh *m, const struct scene_box 
     case RAY_ALONG_AXIS_AT_FACE: {
         vec3 target = kind == RAY_ALONG_AXIS_AT_VERTEX ? random_corner(g, m) : random_face_point(g, m);
         vec3 origin = target;
-        set_axis(&origin, axis, vec3_axis(target, axis) - sign * rng_between(g, 0.1, 2.0) * (b->size + 1e-3));
+        set_axis(&origin, axis, vec3_axis(target, axis) - sign * rng_between(g, 0.1, 2.0) * (b->size + b->slack));
         return (ray){origin, axis_direction(g, axis, sign)};
     }
     case RAY_IN_VERTEX_PLANE: {
@@ -788,4 +821,120 @@ Test(accel, info_describes_a_consistent_tree) {
         kdtree_free(k);
     }
     mesh_free(&m);
+}
+
+/* The plain SAH build of kdtree.c (every candidate plane priced by counting) and the event sweep of
+ * kdtree_events.c must give the very same tree: the sweep is only the fast way to the same planes. */
+static void expect_plain_sah_tree_is_the_sweeps(const char *name, const struct mesh *m) {
+    struct kdtree *fast = kdtree_build(m, KD_SPLIT_SAH), *plain = kdtree_build(m, KD_SPLIT_SAH_PLAIN);
+    cr_assert(fast != NULL && plain != NULL, "%s: a build ran out of memory", name);
+    struct kdtree_info info;
+    kdtree_get_info(fast, &info);
+    cr_expect(kdtree_equal(fast, plain), "%s: the plain SAH build differs from the event sweep's tree (%zu nodes)",
+              name, info.nodes);
+    char why[256];
+    cr_expect(kdtree_is_valid(plain, m, why, sizeof why), "%s: plain SAH tree invalid: %s", name, why);
+    kdtree_free(fast);
+    kdtree_free(plain);
+}
+
+Test(accel, kdtree_sah_built_plainly_is_the_tree_the_event_sweep_builds, .timeout = 120) {
+    for (size_t faces = 1; faces <= 1000; faces *= 10)
+        for (int s = 0; s < 3; s++) {
+            char name[64];
+            snprintf(name, sizeof name, "soup of %zu (seed %d)", faces, s);
+            struct mesh m = make_soup(7u * faces + (uint64_t)s, faces);
+            expect_plain_sah_tree_is_the_sweeps(name, &m);
+            mesh_free(&m);
+        }
+    struct mesh sphere = make_sphere(24, 48, vec3_make(0.25, -0.5, 1.0), 1.5), grids = make_grids(12);
+    expect_plain_sah_tree_is_the_sweeps("sphere", &sphere);
+    expect_plain_sah_tree_is_the_sweeps("grids", &grids);
+    mesh_free(&sphere);
+    mesh_free(&grids);
+    /* a mesh of zero size: its boxes are flat on every axis (planar events) */
+    struct builder b = {0};
+    for (int k = 0; k < 6; k++)
+        add_triangle(&b, vec3_make(1, 2, 3), vec3_make(1, 2, 3), vec3_make(1, 2, 3));
+    expect_plain_sah_tree_is_the_sweeps("point", &b.m);
+    mesh_free(&b.m);
+    struct mesh bunny;
+    char err[512];
+    if (mesh_load("scenes/models/bunny.ply", &bunny, err, sizeof err)) {
+        expect_plain_sah_tree_is_the_sweeps("bunny", &bunny);
+        mesh_free(&bunny);
+    }
+}
+
+/* ---- meshes outside float range (issue 16) ----------------------------------------------------- */
+
+/* m with every vertex v replaced by v * scale + shift. */
+static void transform_mesh(struct mesh *m, double scale, vec3 shift) {
+    for (size_t k = 0; k < m->vertex_count; k++)
+        m->vertices[k] = vec3_add(vec3_scale(m->vertices[k], scale), shift);
+}
+
+/* Builds the three kd-trees over m (which must not hang: the test's timeout catches that), checks
+ * that both SAH builds agree, and checks their answers against the brute-force loop on rays_for(m)
+ * rays; frees m. */
+static void check_mesh_kdtrees(const char *name, struct mesh *m, uint64_t seed) {
+    struct checker c;
+    checker_init_kdtrees(&c, name, m);
+    cr_expect(kdtree_equal(c.accels[1].structure, c.accels[2].structure), "%s: the two SAH builds differ", name);
+    check_rays(&c, seed, rays_for(m));
+    checker_free(&c);
+    mesh_free(m);
+}
+
+/* A scene may place a mesh where its coordinates overflow float when the tree rounds its boxes
+ * outward (scale 1e39), near the top of double (1e300, 1e308, where the intersection arithmetic itself
+ * overflows), below float's normal range (1e-40), or far from the origin (translate 1e39, where
+ * double collapses the soup's corners); a mesh may also be flat on an axis, or a single point. The
+ * builds once looped forever on NaN event positions; now every rule finishes and agrees with the
+ * brute-force loop. */
+Test(accel, kdtree_builds_and_matches_brute_force_on_meshes_outside_float_range, .timeout = 120) {
+    static const struct {
+        const char *name;
+        double scale, shift_x;
+    } placed[] = {
+        {"soup scaled by 1e39", 1e39, 0.0},   {"soup scaled by 1e300", 1e300, 0.0},
+        {"soup scaled by 1e308", 1e308, 0.0}, {"soup scaled by 1e-40", 1e-40, 0.0},
+        {"soup moved to x = 1e39", 1.0, 1e39}, {"soup from -1e38 to 1e39", 1.1e39, -1e38},
+    };
+    for (size_t k = 0; k < sizeof placed / sizeof placed[0]; k++) {
+        struct mesh m = make_soup(1601 + k, 300);
+        transform_mesh(&m, placed[k].scale, vec3_make(placed[k].shift_x, 0, 0));
+        check_mesh_kdtrees(placed[k].name, &m, 21 + k);
+    }
+    struct mesh flat = make_soup(1701, 300); /* zero extent on z */
+    for (size_t k = 0; k < flat.vertex_count; k++)
+        flat.vertices[k].z = 0.5;
+    check_mesh_kdtrees("soup flat in z = 0.5", &flat, 31);
+    struct builder point = {0}; /* zero extent on every axis: flat boxes */
+    for (int k = 0; k < 20; k++)
+        add_triangle(&point, vec3_make(1e39, -2, 3), vec3_make(1e39, -2, 3), vec3_make(1e39, -2, 3));
+    check_mesh_kdtrees("point at x = 1e39", &point.m, 32);
+    /* a well-placed soup with a few faces far out: the near faces must still be found */
+    struct mesh mixed = make_soup(1801, 300);
+    for (size_t k = 0; k < 12; k++)
+        mixed.vertices[mixed.faces[k * 20].v[k % 3]].x = k % 2 ? 1e300 : -1e39;
+    check_mesh_kdtrees("soup with corners at 1e300 and -1e39", &mixed, 33);
+}
+
+/* Corners at infinity or NaN (a mesh scaled by 1e308 whose coordinates exceed 1.8 overflows double):
+ * the builds finish, and the tree still answers exactly as the brute-force loop does. */
+Test(accel, kdtree_builds_and_matches_brute_force_with_corners_at_infinity_or_nan, .timeout = 120) {
+    static const double bad[] = {INFINITY, -INFINITY, NAN};
+    for (int k = 0; k < 3; k++) {
+        struct mesh m = make_soup(1901 + (uint64_t)k, 300);
+        for (size_t f = 0; f < 10; f++)
+            m.vertices[m.faces[f * 25].v[f % 3]].y = bad[k];
+        char name[64];
+        snprintf(name, sizeof name, "soup with corners at y = %g", bad[k]);
+        check_mesh_kdtrees(name, &m, 41 + (uint64_t)k);
+    }
+    struct mesh all = make_soup(1999, 100); /* every corner overflowed */
+    transform_mesh(&all, 1e308, vec3_make(0, 0, 0));
+    transform_mesh(&all, 1e308, vec3_make(0, 0, 0));
+    check_mesh_kdtrees("soup scaled by 1e616", &all, 44);
 }
