@@ -159,7 +159,7 @@ $(BUILD)/mutant-highlight-times-pigment: $(BUILD)/chapters/06-phong.o $(BUILD)/m
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 test: all $(BUILD)/run-tests $(MUTANTS)
-	WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
 
 compare: all $(BUILD)/compare
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
