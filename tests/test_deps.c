@@ -62,4 +62,5 @@ Test(deps, without_root_and_without_stb_make_chapter_1_fetches_stb_and_renders, 
     cr_assert_eq(status, 0, "make chapter-1 as nobody failed (see %s)", log);
     cr_assert(fetched, "stb was not fetched into .deps/ (see %s)", log);
     cr_assert(rendered, "no picture was written (see %s)", log);
+    remove(log);
 }
