@@ -24,6 +24,15 @@ char *read_text_file(const char *path) {
     return text;
 }
 
+/* Every test writes its scratch files under out/test/ (TEST_OUT); the tests run in parallel, so the
+ * directory is made once, before any of them starts, rather than by whichever test happens to need it
+ * first. */
+ReportHook(PRE_ALL)(struct criterion_test_set *tests) {
+    (void)tests;
+    mkdir("out", 0755);
+    mkdir("out/test", 0755);
+}
+
 int run_logged(const char *command, const char *log) {
     FILE *l = fopen(log, "a");
     if (l != NULL) {
