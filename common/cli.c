@@ -1,10 +1,12 @@
 /* cli.c: the command line and the load-render-write sequence shared by all chapters (chapter 1). */
 #include "cli.h"
 
-#include "heatmap.h"
+#include "outfile.h"
 #include "scene_set.h"
+#include "text_escape.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,12 +15,12 @@
 #include <time.h>
 #include <unistd.h>
 
-#define CLI_ERROR_SIZE 1024  /* longest error message kept */
+#define CLI_ERROR_SIZE (PATH_MAX + 1024) /* longest error message kept: a whole path and the reason */
 #define CLI_MAX_THREADS 256  /* more threads than this is a typing mistake */
 
 struct options {
     const char *scene;
-    char output[PATH_MAX];
+    const char *output;
     const char *pov;
     const char *heatmap;
     int width, height; /* 0 = as the scene says */
@@ -30,13 +32,27 @@ struct options {
     int set_count;
 };
 
+/* Prints one error message and a newline to standard error, with every non-printable byte of it (which
+ * can only have come from the input it quotes) escaped as \xNN. */
+static void complain(const char *format, ...) __attribute__((format(printf, 1, 2)));
+static void complain(const char *format, ...) {
+    char raw[CLI_ERROR_SIZE], escaped[4 * CLI_ERROR_SIZE]; /* an escape is 4 bytes for 1 */
+    va_list args;
+    va_start(args, format);
+    vsnprintf(raw, sizeof raw, format, args);
+    va_end(args);
+    text_escape(raw, escaped, sizeof escaped);
+    fprintf(stderr, "%s\n", escaped);
+}
+
 static void print_usage(FILE *out, const struct chapter *ch, const char *program) {
     fprintf(out,
             "usage: %s [SCENE] [options]\n"
             "Chapter %d (%s) of the whitted ray tracer: renders SCENE (default %s).\n"
             "\n"
             "options:\n"
-            "  -o FILE          write the picture to FILE (default out/chapter-%02d.png)\n"
+            "  -o FILE          write the picture to FILE (default out/chapter-%02d.png; - for\n"
+            "                   standard output, the counters then go to standard error)\n"
             "  --width N        override the scene's image width\n"
             "  --height N       override the scene's image height\n"
             "  --pov FILE       write the scene's POV-Ray twin to FILE instead of rendering\n"
@@ -60,7 +76,7 @@ static bool option_int(const char *name, const char *text, int lo, int hi, int *
     errno = 0;
     long value = text == NULL ? 0 : strtol(text, &end, 10);
     if (text == NULL || end == text || *end != '\0' || errno != 0 || value < lo || value > hi) {
-        fprintf(stderr, "%s needs a whole number from %d to %d, got '%s'\n", name, lo, hi,
+        complain("%s needs a whole number from %d to %d, got '%s'", name, lo, hi,
                 text == NULL ? "" : text);
         return false;
     }
@@ -71,9 +87,11 @@ static bool option_int(const char *name, const char *text, int lo, int hi, int *
 /* Fills *o from the command line. Returns CLI_OK, CLI_USAGE on an error (message printed), or -1 when
  * --help was printed and the program should stop successfully. */
 static int parse_options(const struct chapter *ch, int argc, char **argv, struct options *o) {
+    static char default_output[32]; /* "out/chapter-NN.png" */
     memset(o, 0, sizeof *o);
     o->scene = ch->default_scene;
-    snprintf(o->output, sizeof o->output, "out/chapter-%02d.png", ch->number);
+    snprintf(default_output, sizeof default_output, "out/chapter-%02d.png", ch->number);
+    o->output = default_output;
     bool scene_given = false;
     for (int k = 1; k < argc; k++) {
         const char *arg = argv[k];
@@ -88,11 +106,17 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
             takes_value = false;
         } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0 || strcmp(arg, "--heatmap") == 0) {
             if (value == NULL || value[0] == '\0') {
-                fprintf(stderr, "%s needs a file name\n", arg);
+                complain("%s needs a file name", arg);
+                return CLI_USAGE;
+            }
+            if (!outfile_name_fits(value)) {
+                complain("%s: the file name is too long (%zu bytes; the system allows %d for a path, "
+                         "%d for one name, less %zu for the temporary file)", arg, strlen(value), PATH_MAX - 1,
+                        NAME_MAX, strlen(OUTFILE_TEMP_SUFFIX));
                 return CLI_USAGE;
             }
             if (strcmp(arg, "-o") == 0) {
-                snprintf(o->output, sizeof o->output, "%s", value);
+                o->output = value;
                 o->output_given = true;
             }
             else if (strcmp(arg, "--pov") == 0)
@@ -101,11 +125,11 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
                 o->heatmap = value;
         } else if (strcmp(arg, "--set") == 0) {
             if (value == NULL || strchr(value, '=') == NULL) {
-                fprintf(stderr, "--set needs PATH=VALUE, e.g. --set max_depth=1\n");
+                complain("--set needs PATH=VALUE, e.g. --set max_depth=1");
                 return CLI_USAGE;
             }
             if (o->set_count == SCENE_SET_MAX) {
-                fprintf(stderr, "at most %d --set options, please\n", SCENE_SET_MAX);
+                complain("at most %d --set options, please", SCENE_SET_MAX);
                 return CLI_USAGE;
             }
             o->sets[o->set_count++] = value;
@@ -123,12 +147,12 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
             if (used < 0)
                 return CLI_USAGE;
             if (used == 0) {
-                fprintf(stderr, "unknown option '%s'\n", arg);
+                complain("unknown option '%s'", arg);
                 return CLI_USAGE;
             }
             takes_value = used == 2;
         } else if (scene_given) {
-            fprintf(stderr, "only one scene file, please (got '%s' and '%s')\n", o->scene, arg);
+            complain("only one scene file, please (got '%s' and '%s')", o->scene, arg);
             return CLI_USAGE;
         } else {
             o->scene = arg;
@@ -137,6 +161,10 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
         }
         if (takes_value)
             k++;
+    }
+    if (o->pov == NULL && o->heatmap != NULL && outfile_same_file(o->output, o->heatmap)) {
+        complain("-o and --heatmap name the same file ('%s' and '%s'); give two", o->output, o->heatmap);
+        return CLI_USAGE;
     }
     return CLI_OK;
 }
@@ -170,42 +198,46 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
     char err[CLI_ERROR_SIZE];
     struct camera cam;
     if (!camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, err, sizeof err)) {
-        fprintf(stderr, "%s: %s\n", s->path, err);
+        complain("%s: %s", s->path, err);
         return CLI_BAD_INPUT;
     }
-    struct image img;
+    struct image img, heatmap = {0};
     if (!image_create(&img, s->width, s->height)) {
-        fprintf(stderr, "out of memory for a %d x %d image\n", s->width, s->height);
+        complain("out of memory for a %d x %d image", s->width, s->height);
+        return CLI_OUTPUT_FAILED;
+    }
+    if (o->heatmap != NULL && !image_create(&heatmap, s->width, s->height)) {
+        image_free(&img);
+        complain("out of memory for the heat-map");
         return CLI_OUTPUT_FAILED;
     }
     if (!o->output_given)
         mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
-    uint32_t *cost = NULL;
-    if (o->heatmap != NULL && (cost = calloc((size_t)s->width * (size_t)s->height, sizeof *cost)) == NULL) {
-        image_free(&img);
-        fprintf(stderr, "out of memory for the heat-map\n");
-        return CLI_OUTPUT_FAILED;
-    }
     struct stats total = {0};
     struct render_job job = {.camera = &cam, .trace = ch->trace, .world = world, .threads = o->threads,
-                             .progress = !o->quiet && isatty(STDERR_FILENO), .cost = cost};
+                             .progress = !o->quiet && isatty(STDERR_FILENO),
+                             .heatmap = o->heatmap != NULL ? &heatmap : NULL};
     double started = seconds_now();
     render_image(&job, &img, &total);
     double elapsed = seconds_now() - started;
     bool written = image_write_png(&img, o->output, err, sizeof err);
-    if (written && cost != NULL)
-        written = heatmap_write(cost, s->width, s->height, o->heatmap, err, sizeof err);
+    if (written && o->heatmap != NULL)
+        written = image_write_png(&heatmap, o->heatmap, err, sizeof err);
     image_free(&img);
-    free(cost);
+    image_free(&heatmap);
     if (!written) {
-        fprintf(stderr, "%s\n", err);
+        complain("%s", err);
         return CLI_OUTPUT_FAILED;
     }
     if (!o->quiet) {
-        printf("chapter %d (%s): wrote %s (%d x %d) in %.3f s\n", ch->number, ch->title, o->output,
-               s->width, s->height, elapsed);
-        if (o->heatmap != NULL)
-            printf("heat-map: %s\n", o->heatmap);
+        char shown[4 * PATH_MAX];
+        text_escape(o->output, shown, sizeof shown);
+        printf("chapter %d (%s): wrote %s (%d x %d) in %.3f s\n", ch->number, ch->title, shown, s->width,
+               s->height, elapsed);
+        if (o->heatmap != NULL) {
+            text_escape(o->heatmap, shown, sizeof shown);
+            printf("heat-map: %s\n", shown);
+        }
         stats_print(stdout, &total);
         if (ch->report != NULL)
             ch->report(world, &total, elapsed, o->stats);
@@ -222,12 +254,18 @@ int cli_run(const struct chapter *ch, int argc, char **argv) {
         print_usage(stderr, ch, argv[0]);
         return status;
     }
+    bool to_stdout = strcmp(o.output, "-") == 0 || (o.heatmap != NULL && strcmp(o.heatmap, "-") == 0) ||
+                     (o.pov != NULL && strcmp(o.pov, "-") == 0);
+    if (to_stdout && !outfile_reserve_stdout()) {
+        complain("cannot set standard output aside for the picture: %s", strerror(errno));
+        return CLI_OUTPUT_FAILED;
+    }
     char err[CLI_ERROR_SIZE];
     struct scene s;
     bool bad_option = false;
     void *world = load_world(ch, &o, &s, &bad_option, err, sizeof err);
     if (world == NULL) {
-        fprintf(stderr, "%s\n", err);
+        complain("%s", err);
         scene_free(&s);
         return bad_option ? CLI_USAGE : CLI_BAD_INPUT;
     }
@@ -237,9 +275,12 @@ int cli_run(const struct chapter *ch, int argc, char **argv) {
         else if (!povray_write_scene(&s, ch->lighting, o.pov, err, sizeof err))
             status = CLI_OUTPUT_FAILED;
         if (status != CLI_OK)
-            fprintf(stderr, "%s\n", err);
-        else if (!o.quiet)
-            printf("chapter %d (%s): wrote POV-Ray twin %s\n", ch->number, ch->title, o.pov);
+            complain("%s", err);
+        else if (!o.quiet) {
+            char shown[4 * PATH_MAX];
+            text_escape(o.pov, shown, sizeof shown);
+            printf("chapter %d (%s): wrote POV-Ray twin %s\n", ch->number, ch->title, shown);
+        }
     } else {
         status = render_and_write(ch, &o, &s, world);
     }

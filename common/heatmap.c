@@ -17,16 +17,3 @@ vec3 heatmap_colour(uint32_t cost) {
     double blend = position - step;
     return vec3_add(vec3_scale(ramp[step], 1.0 - blend), vec3_scale(ramp[step + 1], blend));
 }
-
-bool heatmap_write(const uint32_t *cost, int width, int height, const char *path, char *err, size_t err_size) {
-    struct image picture;
-    if (!image_create(&picture, width, height)) {
-        snprintf(err, err_size, "%s: out of memory", path);
-        return false;
-    }
-    for (size_t k = 0; k < (size_t)width * (size_t)height; k++)
-        picture.pixels[k] = heatmap_colour(cost[k]);
-    bool ok = image_write_png(&picture, path, err, err_size);
-    image_free(&picture);
-    return ok;
-}

@@ -21,8 +21,4 @@
 /* Returns the colour of one cost on the fixed scale. */
 vec3 heatmap_colour(uint32_t cost);
 
-/* Writes the width x height costs as a PNG heat-map at `path`. Returns false and fills err when the
- * file cannot be written. */
-bool heatmap_write(const uint32_t *cost, int width, int height, const char *path, char *err, size_t err_size);
-
 #endif

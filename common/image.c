@@ -12,11 +12,11 @@
 
 bool image_create(struct image *img, int width, int height) {
     img->width = img->height = 0;
-    img->pixels = NULL;
+    img->rgb = NULL;
     if (width < 1 || height < 1 || width > IMAGE_MAX_SIDE || height > IMAGE_MAX_SIDE)
         return false;
-    img->pixels = calloc((size_t)width * (size_t)height, sizeof *img->pixels);
-    if (img->pixels == NULL)
+    img->rgb = calloc((size_t)width * (size_t)height, 3);
+    if (img->rgb == NULL)
         return false;
     img->width = width;
     img->height = height;
@@ -24,8 +24,8 @@ bool image_create(struct image *img, int width, int height) {
 }
 
 void image_free(struct image *img) {
-    free(img->pixels);
-    img->pixels = NULL;
+    free(img->rgb);
+    img->rgb = NULL;
     img->width = img->height = 0;
 }
 
@@ -39,8 +39,7 @@ uint8_t image_quantize(double v) {
 
 /* stb_image_write hands its output to this callback piece by piece; we append it to the file. */
 static void write_to_file(void *context, void *data, int size) {
-    FILE *file = context;
-    fwrite(data, 1, (size_t)size, file);
+    outfile_write(context, data, (size_t)size);
 }
 
 bool image_write_png_bytes(const uint8_t *rgb, int width, int height, const char *path, char *err,
@@ -48,7 +47,7 @@ bool image_write_png_bytes(const uint8_t *rgb, int width, int height, const char
     struct outfile out;
     if (!outfile_open(&out, path, err, err_size))
         return false;
-    if (stbi_write_png_to_func(write_to_file, out.file, width, height, 3, rgb, width * 3) == 0) {
+    if (stbi_write_png_to_func(write_to_file, &out, width, height, 3, rgb, width * 3) == 0) {
         outfile_abandon(&out);
         snprintf(err, err_size, "%s: cannot write: PNG encoding failed", path);
         return false;
@@ -57,20 +56,7 @@ bool image_write_png_bytes(const uint8_t *rgb, int width, int height, const char
 }
 
 bool image_write_png(const struct image *img, const char *path, char *err, size_t err_size) {
-    size_t count = (size_t)img->width * (size_t)img->height;
-    uint8_t *rgb = malloc(count * 3);
-    if (rgb == NULL) {
-        snprintf(err, err_size, "%s: out of memory", path);
-        return false;
-    }
-    for (size_t k = 0; k < count; k++) {
-        rgb[3 * k + 0] = image_quantize(img->pixels[k].x);
-        rgb[3 * k + 1] = image_quantize(img->pixels[k].y);
-        rgb[3 * k + 2] = image_quantize(img->pixels[k].z);
-    }
-    bool ok = image_write_png_bytes(rgb, img->width, img->height, path, err, err_size);
-    free(rgb);
-    return ok;
+    return image_write_png_bytes(img->rgb, img->width, img->height, path, err, err_size);
 }
 
 uint8_t *image_read_rgb(const char *path, int *width, int *height, char *err, size_t err_size) {

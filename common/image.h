@@ -1,8 +1,9 @@
-/* image.h: a linear floating-point RGB framebuffer and its 8-bit PNG file (chapter 1).
+/* image.h: an 8-bit RGB framebuffer and its PNG file (chapter 1).
  *
- * Colours stay unclamped doubles while the picture is made (a highlight may exceed 1); they are
- * clamped and rounded only when written, with the rule POV-Ray uses for File_Gamma=1.0:
- * level = floor(255 * clamp(v, 0, 1) + 0.5). No gamma curve is applied. */
+ * Colours stay unclamped doubles while a pixel is computed (a highlight may exceed 1); they are
+ * clamped and rounded when the pixel is stored, with the rule POV-Ray uses for File_Gamma=1.0:
+ * level = floor(255 * clamp(v, 0, 1) + 0.5). No gamma curve is applied. The frame holds only what the
+ * PNG holds, 3 bytes a pixel, so a 16384 x 16384 picture needs 768 MiB, not the 6 GiB of doubles. */
 #ifndef WHITTED_IMAGE_H
 #define WHITTED_IMAGE_H
 
@@ -17,7 +18,7 @@
 
 struct image {
     int width, height;
-    vec3 *pixels; /* width * height colours, row 0 at the top, owned by the image */
+    uint8_t *rgb; /* width * height * 3 levels, red green blue, row 0 at the top, owned by the image */
 };
 
 /* Allocates a width x height image filled with black. Returns false (image left empty) if the size is
@@ -27,17 +28,21 @@ bool image_create(struct image *img, int width, int height);
 /* Frees the pixels and leaves an empty image. Safe on an empty or already freed image. */
 void image_free(struct image *img);
 
-/* Returns a pointer to pixel (i, j); i < width and j < height are the caller's precondition. */
-static inline vec3 *image_pixel(const struct image *img, int i, int j) {
-    return &img->pixels[(size_t)j * (size_t)img->width + (size_t)i];
-}
-
 /* Returns the 8-bit level of one linear channel value: floor(255 * clamp(v, 0, 1) + 0.5); NaN gives 0. */
 uint8_t image_quantize(double v);
 
-/* Writes the image as an 8-bit RGB PNG at `path`. The PNG is first written to a temporary file in the
- * same directory and renamed over `path` only when complete, so a failure never leaves a half-written
- * image. Returns false and writes "path: reason" into err on failure. */
+/* Stores `colour` as pixel (i, j), each channel quantised by image_quantize; i < width and j < height
+ * are the caller's precondition. */
+static inline void image_set(struct image *img, int i, int j, vec3 colour) {
+    uint8_t *pixel = &img->rgb[3 * ((size_t)j * (size_t)img->width + (size_t)i)];
+    pixel[0] = image_quantize(colour.x);
+    pixel[1] = image_quantize(colour.y);
+    pixel[2] = image_quantize(colour.z);
+}
+
+/* Writes the image as an 8-bit RGB PNG at `path` through outfile.h: to a temporary file renamed over
+ * `path` only when complete, so a failure never leaves a half-written image ("-" is standard output; a
+ * FIFO or device is written directly). Returns false and writes "path: reason" into err on failure. */
 bool image_write_png(const struct image *img, const char *path, char *err, size_t err_size);
 
 /* Writes already-quantised RGB bytes (width * height * 3, rows top first) as a PNG at `path`, with the

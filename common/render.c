@@ -1,6 +1,8 @@
 /* render.c: the parallel pixel loop with progress report and per-pixel cost (chapter 1). */
 #include "render.h"
 
+#include "heatmap.h"
+
 #include <stdio.h>
 #include <time.h>
 #include <unistd.h>
@@ -46,11 +48,10 @@ void render_image(const struct render_job *job, struct image *img, struct stats 
                 ray r = camera_ray(cam, i, j);
                 uint64_t cost_before = render_thread_cost();
                 stats_thread.primary_rays++;
-                *image_pixel(img, i, j) = job->trace(job->world, &r);
-                if (job->cost != NULL) {
+                image_set(img, i, j, job->trace(job->world, &r));
+                if (job->heatmap != NULL) {
                     uint64_t cost = render_thread_cost() - cost_before;
-                    job->cost[(size_t)j * (size_t)img->width + (size_t)i] =
-                        cost > UINT32_MAX ? UINT32_MAX : (uint32_t)cost;
+                    image_set(job->heatmap, i, j, heatmap_colour(cost > UINT32_MAX ? UINT32_MAX : (uint32_t)cost));
                 }
             }
             int done;

@@ -23,11 +23,12 @@ struct render_job {
     const void *world;
     int threads;        /* 0 = as many as OpenMP offers */
     bool progress;      /* print a progress line with an estimate of the time left to stderr */
-    uint32_t *cost;     /* optional (NULL): per pixel, node visits + box and primitive tests spent */
+    struct image *heatmap; /* optional (NULL): the work each pixel cost, drawn by heatmap_colour */
 };
 
-/* Renders every pixel of `img`, which must already have the camera's size, and adds all threads'
- * counters into *total. Cannot fail. */
+/* Renders every pixel of `img` (and of job->heatmap), which must already have the camera's size, and
+ * adds all threads' counters into *total. Each pixel is stored as soon as it is finished, in the 8 bits
+ * the PNG keeps, so no frame of doubles is ever held. Cannot fail. */
 void render_image(const struct render_job *job, struct image *img, struct stats *total);
 
 /* Returns the traversal cost counted so far by the calling thread: node visits plus box, sphere,
