@@ -16,6 +16,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "infile.h"
 #include "mesh_private.h"
 
 #define READ_CHUNK_BYTES ((size_t)1 << 16) /* first buffer size when the file's size is unknown */
@@ -151,8 +152,8 @@ bool mesh_add_triangle(struct mesh *m, size_t *capacity, uint32_t a, uint32_t b,
 
 /* ---- loading ---------------------------------------------------------------------------------- */
 
-/* The size to allocate first: a regular file's own size plus one byte, so that the first read already
- * meets the end of the file; a guess for anything else (a pipe, a device). */
+/* The size to allocate first: the file's own size plus one byte, so that the first read already meets
+ * the end of the file; a guess if its size cannot be known. */
 static bool initial_capacity(const struct mesh_input *in, FILE *file, size_t *capacity) {
     struct stat info;
     *capacity = READ_CHUNK_BYTES;
@@ -181,15 +182,15 @@ static bool grow_buffer(const struct mesh_input *in, char **buffer, size_t *capa
     return true;
 }
 
-/* Reads the whole file into a new buffer with a NUL after its last byte. Works on files whose size is
- * not known in advance (pipes) and refuses more than MESH_MAX_FILE_BYTES. */
+/* Reads the whole file into a new buffer with a NUL after its last byte. Refuses anything but a regular
+ * file (infile.h), and more than MESH_MAX_FILE_BYTES even if the file grows while it is read. */
 static bool read_file(const char *path, char **data, size_t *size, char *err, size_t err_size) {
     struct mesh_input in = {.path = path, .err = err, .err_size = err_size};
     *data = NULL;
     *size = 0;
-    FILE *file = fopen(path, "rb");
+    FILE *file = infile_open(path, err, err_size); /* a regular file, or refused without waiting */
     if (file == NULL)
-        return mesh_fail_file(&in, "cannot open: %s", strerror(errno));
+        return false;
     size_t capacity, used = 0;
     char *buffer = NULL;
     bool ok = initial_capacity(&in, file, &capacity);

@@ -9,6 +9,7 @@
 
 #include "camera.h"
 #include "image.h"
+#include "infile.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -536,11 +537,9 @@ bool scene_parse(const char *name, const char *text, struct scene *s, char *err,
 }
 
 char *scene_read_text(const char *path, char *err, size_t err_size) {
-    FILE *file = fopen(path, "rb");
-    if (file == NULL) {
-        snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
+    FILE *file = infile_open(path, err, err_size); /* a regular file, or refused without waiting */
+    if (file == NULL)
         return NULL;
-    }
     long size = -1;
     struct stat info;
     if (fstat(fileno(file), &info) == 0 && S_ISREG(info.st_mode) && fseek(file, 0, SEEK_END) == 0)
