@@ -10,6 +10,7 @@
 #include "camera.h"
 #include "image.h"
 #include "infile.h"
+#include "name_index.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -30,6 +31,7 @@ struct parser {
     int line;
     char *err;
     size_t err_size;
+    struct name_index *materials; /* material name -> its index in scene.materials */
 };
 
 /* Writes "name:line: message" into the error buffer and returns false, so callers can
@@ -169,7 +171,8 @@ static bool material_reference(const struct parser *p, const struct scene *s,
     *material = 0;
     if (!kv->present[key])
         return true;
-    int found = scene_find_material(s, kv->word[key]);
+    (void)s;
+    int found = name_index_find(p->materials, kv->word[key]);
     if (found < 0)
         return fail(p, "unknown material '%s' (define it with a material line first)", kv->word[key]);
     *material = found;
@@ -221,7 +224,7 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
         return fail(p, "material needs a name");
     if (strlen(tok[0]) >= SCENE_NAME_MAX)
         return fail(p, "material name longer than %d characters", SCENE_NAME_MAX - 1);
-    if (scene_find_material(s, tok[0]) >= 0)
+    if (name_index_find(p->materials, tok[0]) >= 0)
         return fail(p, "material '%s' is already defined", tok[0]);
     if (!parse_keys(p, "material", tok + 1, n - 1, specs, 9, &kv))
         return false;
@@ -246,7 +249,7 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
     if (!(m.ior > 0.0))
         return fail(p, "material '%s': ior must be positive", m.name);
     struct material *slot = grow(&s->materials, &s->material_count, sizeof *slot);
-    if (slot == NULL)
+    if (slot == NULL || !name_index_add(p->materials, m.name, (int)(s->material_count - 1)))
         return fail(p, "out of memory");
     *slot = m;
     return true;
@@ -501,10 +504,13 @@ static bool scene_defaults(struct scene *s, const char *name) {
 }
 
 bool scene_parse(const char *name, const char *text, struct scene *s, char *err, size_t err_size) {
-    struct parser p = {name, 0, err, err_size};
+    struct name_index materials;
+    name_index_init(&materials);
+    struct parser p = {name, 0, err, err_size, &materials};
     char *copy = malloc(strlen(text) + 1);
-    if (copy == NULL || !scene_defaults(s, name)) {
+    if (copy == NULL || !scene_defaults(s, name) || !name_index_add(&materials, "default", 0)) {
         free(copy);
+        name_index_free(&materials);
         scene_free(s);
         snprintf(err, err_size, "%s: out of memory", name);
         return false;
@@ -526,6 +532,7 @@ bool scene_parse(const char *name, const char *text, struct scene *s, char *err,
         line = newline != NULL ? newline + 1 : NULL;
     }
     free(copy);
+    name_index_free(&materials);
     if (ok && !camera_seen)
         ok = (snprintf(err, err_size, "%s: no camera line (a scene needs one)", name), false);
     if (ok && !image_seen)
