@@ -1,6 +1,44 @@
 /* scene_meshes.c: loads the mesh files a scene names and places them in the world (chapter 3). */
 #include "scene.h"
 
+#include <math.h>
+#include <stdio.h>
+
+/* The accelerating structures of chapters 5, 9 and 10 keep boxes in float and the SAH multiplies two
+ * sides of a box in float to get its area. A side s has an area that is a normal float (about 1.2e-38
+ * to 3.4e38) only for s between about 1e-19 and 1e19; beyond that the areas overflow or vanish and the
+ * builds fail (a mesh at 1e39 does not even fit a float box). A placed mesh must stay inside these
+ * limits, a factor of ten within that range: */
+#define SCENE_MESH_MAX_COORD 1e18 /* no coordinate beyond this, so no side beyond 2e18 */
+#define SCENE_MESH_MIN_SIZE 1e-18 /* the mesh's largest side at least this */
+
+/* Checks that the placed mesh m lies within the limits above; otherwise writes
+ * "scene:line: mesh FILE placed out of range: ..." into err and returns false. */
+static bool placed_in_range(const struct scene *s, const struct scene_mesh *m, char *err, size_t err_size) {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t k = 0; k < m->mesh.vertex_count; k++) {
+        vec3 v = m->mesh.vertices[k];
+        double c[3] = {v.x, v.y, v.z};
+        for (int axis = 0; axis < 3; axis++) {
+            if (!(fabs(c[axis]) <= SCENE_MESH_MAX_COORD)) { /* also catches infinity and NaN */
+                snprintf(err, err_size, "%s:%d: mesh %s placed out of range: vertex %zu lands at (%g, %g, %g); "
+                         "coordinates must stay within -%g .. %g", s->path, m->line, m->path, k, v.x, v.y, v.z,
+                         SCENE_MESH_MAX_COORD, SCENE_MESH_MAX_COORD);
+                return false;
+            }
+            lo[axis] = fmin(lo[axis], c[axis]);
+            hi[axis] = fmax(hi[axis], c[axis]);
+        }
+    }
+    double size = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    if (!(size >= SCENE_MESH_MIN_SIZE)) {
+        snprintf(err, err_size, "%s:%d: mesh %s placed out of range: it is %g across; it must be at least %g "
+                 "across", s->path, m->line, m->path, size, SCENE_MESH_MIN_SIZE);
+        return false;
+    }
+    return true;
+}
+
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size) {
     for (size_t k = 0; k < s->mesh_count; k++) {
         struct scene_mesh *m = &s->meshes[k];
@@ -9,6 +47,8 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size) {
         if (!mesh_load(m->path, &m->mesh, err, err_size))
             return false;
         mesh_transform(&m->mesh, m->scale, m->rotate, m->translate);
+        if (!placed_in_range(s, m, err, err_size))
+            return false;
     }
     return true;
 }
