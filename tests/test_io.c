@@ -1,0 +1,382 @@
+/* test_io.c: hostile inputs and outputs: FIFOs, devices, symbolic links and standard output as -o,
+ * FIFOs as inputs, one file named twice, over-long names, control characters in messages, meshes
+ * placed out of range, 100,000 materials, and the memory a large picture takes. */
+#include <criterion/criterion.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "image.h"
+#include "image_test_support.h"
+#include "name_index.h"
+#include "outfile.h"
+#include "scene.h"
+#include "test_support.h"
+#include "text_escape.h"
+
+/* A bound for commands that must not hang: far above what they need (well under a second). */
+#define IO_TIMEOUT "timeout 20"
+
+/* Runs `command` through the shell with stdout and stderr together in `output`; returns the exit status. */
+static int run_capturing(const char *command, char *output, size_t size) {
+    char line[8192];
+    snprintf(line, sizeof line, "%s 2>&1", command);
+    FILE *pipe = popen(line, "r");
+    cr_assert_not_null(pipe);
+    size_t length = fread(output, 1, size - 1, pipe);
+    output[length] = '\0';
+    int status = pclose(pipe);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/* Runs chapter n with `arguments` and expects exit status `status` and `expected` in the output. */
+static void expect_run(int n, const char *arguments, int status, const char *expected) {
+    char command[8192], output[16384];
+    snprintf(command, sizeof command, IO_TIMEOUT " %s %s", chapter_program(n), arguments);
+    int got = run_capturing(command, output, sizeof output);
+    cr_assert_eq(got, status, "'%s' exited with %d, not %d:\n%s", command, got, status, output);
+    cr_assert_not_null(strstr(output, expected), "'%s' did not say '%s':\n%s", command, expected, output);
+}
+
+/* Returns TEST_OUT/name in a static buffer (one of four, so a few can be used together), after making
+ * the folder and removing whatever had that name. */
+static const char *fresh(const char *name) {
+    static char paths[4][256];
+    static int next;
+    char *path = paths[next++ % 4];
+    mkdir("out", 0755);
+    mkdir(TEST_OUT, 0755);
+    snprintf(path, 256, TEST_OUT "/%s", name);
+    unlink(path);
+    return path;
+}
+
+/* Writes `text` to TEST_OUT/name and returns its path. */
+static const char *text_file(const char *name, const char *text) {
+    const char *path = fresh(name);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+    return path;
+}
+
+/* Fails unless `path` is a PNG of width x height. */
+static void expect_png(const char *path, int width, int height) {
+    char err[512];
+    int w = 0, h = 0;
+    uint8_t *rgb = image_read_rgb(path, &w, &h, err, sizeof err);
+    cr_assert_not_null(rgb, "%s", err);
+    cr_assert_eq(w, width);
+    cr_assert_eq(h, height);
+    free(rgb);
+}
+
+/* Reads a whole file (it may hold zero bytes) and sets *size. */
+static char *read_bytes(const char *path, size_t *size) {
+    FILE *f = fopen(path, "rb");
+    cr_assert_not_null(f, "cannot open %s", path);
+    fseek(f, 0, SEEK_END);
+    long length = ftell(f);
+    rewind(f);
+    char *data = malloc((size_t)length + 1);
+    cr_assert_eq(fread(data, 1, (size_t)length, f), (size_t)length);
+    fclose(f);
+    *size = (size_t)length;
+    return data;
+}
+
+/* ---- -o to things that are not regular files -------------------------------------------------- */
+
+Test(io, a_fifo_as_output_gets_the_whole_png) {
+    const char *fifo = fresh("io-out.fifo"), *copy = fresh("io-from-fifo.png");
+    cr_assert_eq(mkfifo(fifo, 0644), 0);
+    char reader[512], arguments[512], output[4096];
+    snprintf(reader, sizeof reader, IO_TIMEOUT " cat %s > %s", fifo, copy);
+    FILE *cat = popen(reader, "r"); /* reads the FIFO in the background until the writer closes it */
+    cr_assert_not_null(cat);
+    snprintf(arguments, sizeof arguments, IO_TIMEOUT " %s -o %s --quiet", chapter_program(2), fifo);
+    cr_assert_eq(run_capturing(arguments, output, sizeof output), 0, "%s", output);
+    cr_assert_eq(pclose(cat), 0);
+    struct stat info;
+    cr_assert_eq(lstat(fifo, &info), 0);
+    cr_assert(S_ISFIFO(info.st_mode), "the FIFO was replaced");
+    expect_png(copy, 320, 240);
+    unlink(fifo);
+}
+
+/* Returns a device like /dev/full (every write fails with "No space left on device") to write to. As
+ * root the test makes its own node, so that a writer that replaces its target (the old bug) replaces
+ * that node and not the system's /dev/full; other users cannot replace /dev/full. */
+static const char *full_device(void) {
+    const char *node = fresh("io-full");
+    if (mknod(node, S_IFCHR | 0666, makedev(1, 7)) == 0)
+        return node;
+    if (geteuid() != 0)
+        return "/dev/full";
+    cr_skip_test("cannot make a device node in " TEST_OUT " (a nodev mount?)");
+    return NULL;
+}
+
+Test(io, a_full_device_fails_with_a_write_error_and_stays_a_device) {
+    const char *full = full_device();
+    char arguments[512], expected[512];
+    snprintf(expected, sizeof expected, "%s: cannot write: No space left on device", full);
+    snprintf(arguments, sizeof arguments, "-o %s --quiet", full);
+    expect_run(2, arguments, 3, expected);
+    snprintf(arguments, sizeof arguments, "-o %s --width 512 --height 512 --quiet", full); /* more than a buffer */
+    expect_run(2, arguments, 3, expected);
+    struct stat info;
+    cr_assert_eq(stat(full, &info), 0);
+    cr_assert(S_ISCHR(info.st_mode), "%s is no longer a device", full);
+}
+
+Test(io, a_symbolic_link_stays_a_link_and_its_target_gets_the_picture) {
+    const char *target = text_file("io-target.png", "not a picture yet");
+    const char *link = fresh("io-link.png");
+    cr_assert_eq(symlink("io-target.png", link), 0);
+    char arguments[512];
+    snprintf(arguments, sizeof arguments, "-o %s --quiet", link);
+    expect_run(2, arguments, 0, "");
+    struct stat info;
+    cr_assert_eq(lstat(link, &info), 0);
+    cr_assert(S_ISLNK(info.st_mode), "the link was replaced by a file");
+    expect_png(target, 320, 240);
+}
+
+Test(io, dash_writes_the_png_to_standard_output_and_nothing_else) {
+    const char *piped = fresh("io-stdout.png"), *log = fresh("io-stdout.log"), *direct = fresh("io-direct.png");
+    char command[512], output[4096];
+    snprintf(command, sizeof command, "%s -o - > %s 2> %s", chapter_program(2), piped, log);
+    cr_assert_eq(system(command), 0);
+    snprintf(command, sizeof command, "%s -o %s --quiet", chapter_program(2), direct);
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    size_t piped_size, direct_size;
+    char *a = read_bytes(piped, &piped_size), *b = read_bytes(direct, &direct_size);
+    cr_assert_eq(piped_size, direct_size, "standard output holds %zu bytes, the PNG %zu", piped_size, direct_size);
+    cr_assert_eq(memcmp(a, b, direct_size), 0);
+    free(a);
+    free(b);
+    char *counters = read_text_file(log);
+    cr_assert_not_null(strstr(counters, "sphere tests"), "the counters did not go to standard error:\n%s", counters);
+    free(counters);
+}
+
+/* ---- FIFOs as inputs --------------------------------------------------------------------------- */
+
+Test(io, a_fifo_as_scene_is_refused_without_waiting) {
+    const char *fifo = fresh("io-scene.fifo");
+    cr_assert_eq(mkfifo(fifo, 0644), 0);
+    char arguments[512], expected[512];
+    snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", fifo);
+    snprintf(expected, sizeof expected, "%s: not a regular file (a FIFO)", fifo);
+    expect_run(2, arguments, 1, expected);
+    unlink(fifo);
+}
+
+Test(io, a_fifo_as_mesh_is_refused_without_waiting) {
+    const char *fifo = fresh("io-mesh.fifo");
+    cr_assert_eq(mkfifo(fifo, 0644), 0);
+    const char *scene = text_file("io-fifo-mesh.scene", "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\n"
+                                                         "mesh io-mesh.fifo\n");
+    char arguments[512], expected[512];
+    snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", scene);
+    snprintf(expected, sizeof expected, "%s: not a regular file (a FIFO)", fifo);
+    expect_run(3, arguments, 1, expected);
+    unlink(fifo);
+}
+
+Test(io, a_directory_as_scene_is_refused) { expect_run(2, "scenes", 1, "scenes: not a regular file (a directory)"); }
+
+/* ---- one file named twice ---------------------------------------------------------------------- */
+
+Test(io, the_picture_and_the_heat_map_may_not_share_a_file) {
+    const char *picture = fresh("io-twice.png");
+    char arguments[512], expected[512];
+    snprintf(arguments, sizeof arguments, "-o %s --heatmap %s", picture, picture);
+    snprintf(expected, sizeof expected, "-o and --heatmap name the same file ('%s' and '%s'); give two", picture,
+             picture);
+    expect_run(2, arguments, 2, expected);
+    cr_assert_neq(access(picture, F_OK), 0, "something was written");
+    /* Two spellings of a file that does not exist yet. */
+    snprintf(arguments, sizeof arguments, "-o %s --heatmap " TEST_OUT "/../test/./io-twice.png", picture);
+    expect_run(2, arguments, 2, "name the same file");
+    /* A link and its target, both existing. */
+    const char *target = text_file("io-twice-target.png", "x"), *link = fresh("io-twice-link.png");
+    cr_assert_eq(symlink("io-twice-target.png", link), 0);
+    snprintf(arguments, sizeof arguments, "-o %s --heatmap %s", link, target);
+    expect_run(2, arguments, 2, "name the same file");
+    /* Two names of different files are fine. */
+    snprintf(arguments, sizeof arguments, "-o %s --heatmap " TEST_OUT "/io-twice-heat.png --quiet", picture);
+    expect_run(2, arguments, 0, "");
+}
+
+Test(io, same_file_compares_inodes_and_resolved_names) {
+    const char *a = text_file("io-same-a", "a"), *b = fresh("io-same-b");
+    cr_assert_eq(link(a, b), 0); /* a hard link: two names, one inode */
+    cr_assert(outfile_same_file(a, b));
+    cr_assert(outfile_same_file("-", "-"));
+    cr_assert(!outfile_same_file(a, "-"));
+    cr_assert(outfile_same_file(TEST_OUT "/io-none", "./" TEST_OUT "/io-none"));
+    cr_assert(!outfile_same_file(TEST_OUT "/io-none", TEST_OUT "/io-none2"));
+    cr_assert(!outfile_same_file(a, TEST_OUT "/io-none"));
+}
+
+/* ---- names longer than the system takes -------------------------------------------------------- */
+
+Test(io, an_output_name_longer_than_the_system_limit_is_refused) {
+    static char arguments[PATH_MAX + 512], name[PATH_MAX + 256];
+    memset(name, 'a', PATH_MAX + 100);
+    name[PATH_MAX + 100] = '\0';
+    snprintf(arguments, sizeof arguments, "-o %s", name);
+    char expected[256];
+    snprintf(expected, sizeof expected, "-o: the file name is too long (%d bytes; the system allows %d for a path, "
+             "%d for one name, less 10 for the temporary file)", PATH_MAX + 100, PATH_MAX - 1, NAME_MAX);
+    expect_run(2, arguments, 2, expected);
+    /* One name (no folder) too long for its temporary file, though short as a path. */
+    memset(name, 'b', NAME_MAX);
+    name[NAME_MAX] = '\0';
+    snprintf(arguments, sizeof arguments, "--heatmap %s", name);
+    expect_run(2, arguments, 2, "--heatmap: the file name is too long");
+    cr_assert(outfile_name_fits("out/ok.png"));
+    cr_assert(outfile_name_fits("-"));
+    cr_assert(!outfile_name_fits(name));
+}
+
+/* ---- control characters in messages ------------------------------------------------------------ */
+
+Test(io, control_characters_in_a_message_are_escaped) {
+    const char *scene = text_file("io-escape.scene", "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\n"
+                                                     "sph\x1b[2Jere centre 0 0 0 radius 1\n");
+    char command[512], output[4096], expected[512];
+    snprintf(command, sizeof command, "%s %s -o " TEST_OUT "/never.png", chapter_program(2), scene);
+    cr_assert_eq(run_capturing(command, output, sizeof output), 1, "%s", output);
+    snprintf(expected, sizeof expected, "%s:3: unknown directive 'sph\\x1b[2Jere'\n", scene);
+    cr_assert_str_eq(output, expected);
+    expect_run(2, "\"$(printf -- '-r\\033]0;x\\007')\"", 2, "unknown option '-r\\x1b]0;x\\x07'");
+}
+
+Test(io, escaping_keeps_utf8_and_escapes_everything_else) {
+    char out[128];
+    text_escape("plain text, caf\xc3\xa9 \xc3\x97 \xe2\x82\xac \xf0\x9f\x90\x87", out, sizeof out);
+    cr_assert_str_eq(out, "plain text, caf\xc3\xa9 \xc3\x97 \xe2\x82\xac \xf0\x9f\x90\x87");
+    text_escape("a\tb\nc\x7f" "d\x1b", out, sizeof out);
+    cr_assert_str_eq(out, "a\\x09b\\x0ac\\x7fd\\x1b");
+    text_escape("\xc2\x9b" "1m", out, sizeof out); /* U+009B, the one-byte CSI of C1 */
+    cr_assert_str_eq(out, "\\xc2\\x9b1m");
+    text_escape("\xc0\xaf \xed\xa0\x80 \xc3 \xff", out, sizeof out); /* overlong, surrogate, cut, invalid */
+    cr_assert_str_eq(out, "\\xc0\\xaf \\xed\\xa0\\x80 \\xc3 \\xff");
+    cr_assert_eq(text_escape("ab\x01" "c", out, 6), 2); /* the escape does not fit whole: stop before it */
+    cr_assert_str_eq(out, "ab");
+}
+
+/* ---- meshes placed out of range ---------------------------------------------------------------- */
+
+/* Renders a one-triangle mesh placed by `placement` and expects the message `what` for line 3. */
+static void expect_out_of_range(const char *placement, const char *what) {
+    text_file("io-range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    char text[256], arguments[512], expected[512];
+    snprintf(text, sizeof text, "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\nmesh io-range.obj %s\n", placement);
+    const char *scene = text_file("io-range.scene", text);
+    for (int n = 3; n <= 10; n += 7) {
+        snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", scene);
+        snprintf(expected, sizeof expected, "%s:3: mesh " TEST_OUT "/io-range.obj placed out of range: %s", scene,
+                 what);
+        expect_run(n, arguments, 1, expected);
+    }
+}
+
+Test(io, a_mesh_scaled_beyond_float_range_is_refused) {
+    expect_out_of_range("scale 1e308", "vertex 1 lands at (1e+308, 0, 0); coordinates must stay within "
+                                       "-1e+18 .. 1e+18");
+}
+
+Test(io, a_mesh_scaled_below_float_range_is_refused) {
+    expect_out_of_range("scale 1e-40", "it is 1e-40 across; it must be at least 1e-18 across");
+}
+
+Test(io, a_mesh_moved_beyond_float_range_is_refused) {
+    expect_out_of_range("translate 1e39 0 0", "vertex 0 lands at (1e+39, 0, 0); coordinates must stay within "
+                                              "-1e+18 .. 1e+18");
+}
+
+Test(io, a_mesh_at_the_edge_of_the_range_renders) {
+    text_file("io-range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const char *scene = text_file("io-edge.scene", "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\n"
+                                                   "mesh io-range.obj scale 1e-18\nmesh io-range.obj translate 1e18 0 0\n");
+    char arguments[512];
+    snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/io-edge.png --quiet", scene);
+    expect_run(10, arguments, 0, "");
+}
+
+/* ---- many materials ---------------------------------------------------------------------------- */
+
+#define IO_MANY 100000 /* materials, and spheres using them: a linear search took 17 s for the materials */
+
+Test(io, a_hundred_thousand_materials_parse_quickly, .timeout = 15) {
+    size_t size = (size_t)IO_MANY * 80 + 256, used = 0;
+    char *text = malloc(size);
+    used += (size_t)snprintf(text + used, size - used, "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\n");
+    for (int k = 0; k < IO_MANY; k++)
+        used += (size_t)snprintf(text + used, size - used, "material m%d diffuse %g\n", k, k / (double)IO_MANY);
+    for (int k = IO_MANY - 1; k >= 0; k -= 7)
+        used += (size_t)snprintf(text + used, size - used, "sphere centre 0 0 0 radius 1 material m%d\n", k);
+    struct scene s;
+    char err[256];
+    cr_assert(scene_parse("many.scene", text, &s, err, sizeof err), "%s", err);
+    cr_assert_eq(s.material_count, IO_MANY + 1);
+    cr_assert_eq(s.spheres[0].material, IO_MANY); /* m99999, after "default" */
+    cr_assert_eq(s.spheres[1].material, IO_MANY - 7);
+    cr_assert_eq(scene_find_material(&s, "m123"), 124);
+    scene_free(&s);
+    free(text);
+}
+
+Test(io, name_index_finds_every_name_and_only_those) {
+    struct name_index ix;
+    name_index_init(&ix);
+    cr_assert_eq(name_index_find(&ix, "anything"), -1);
+    char name[32];
+    for (int k = 0; k < 5000; k++) {
+        snprintf(name, sizeof name, "n%d", k);
+        cr_assert(name_index_add(&ix, name, k));
+    }
+    for (int k = 0; k < 5000; k++) {
+        snprintf(name, sizeof name, "n%d", k);
+        cr_assert_eq(name_index_find(&ix, name), k);
+    }
+    cr_assert_eq(name_index_find(&ix, "n5000"), -1);
+    cr_assert_eq(name_index_find(&ix, ""), -1);
+    cr_assert_eq(name_index_find(&ix, "N1"), -1);
+    name_index_free(&ix);
+}
+
+/* ---- memory --------------------------------------------------------------------------------------- */
+
+/* A 4096 x 4096 picture (16.8 million pixels) with its heat-map. Held as doubles it took 57 bytes a
+ * pixel; held as the PNG's bytes, 3 for the picture, 3 for the heat-map and about 3 while stb encodes. */
+#define IO_BIG_SIDE 4096
+#define IO_MAX_BYTES_PER_PIXEL 12.0
+
+Test(io, a_large_picture_takes_a_few_bytes_per_pixel, .timeout = 120) {
+    const char *build = getenv("WHITTED_BUILD");
+    if (build != NULL && strstr(build, "san") != NULL)
+        cr_skip_test("the sanitizers' shadow memory says nothing about ours");
+    char command[512];
+    snprintf(command, sizeof command, "%s --width %d --height %d --quiet -o %s --heatmap %s", chapter_program(1),
+             IO_BIG_SIDE, IO_BIG_SIDE, fresh("io-big.png"), fresh("io-big-heat.png"));
+    cr_assert_eq(system(command), 0);
+    struct rusage usage;
+    cr_assert_eq(getrusage(RUSAGE_CHILDREN, &usage), 0);
+    double bytes_per_pixel = (double)usage.ru_maxrss * 1024.0 / ((double)IO_BIG_SIDE * IO_BIG_SIDE);
+    cr_log_info("peak %.1f bytes per pixel", bytes_per_pixel);
+    cr_assert_lt(bytes_per_pixel, IO_MAX_BYTES_PER_PIXEL, "peak memory %.1f bytes per pixel", bytes_per_pixel);
+    unlink(TEST_OUT "/io-big.png");
+    unlink(TEST_OUT "/io-big-heat.png");
+}
