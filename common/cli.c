@@ -231,7 +231,7 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
     }
     if (!o->quiet) {
         char shown[4 * PATH_MAX];
-        text_escape(o->output, shown, sizeof shown);
+        text_escape(strcmp(o->output, "-") == 0 ? "standard output" : o->output, shown, sizeof shown);
         printf("chapter %d (%s): wrote %s (%d x %d) in %.3f s\n", ch->number, ch->title, shown, s->width,
                s->height, elapsed);
         if (o->heatmap != NULL) {

@@ -5,8 +5,9 @@
  * draws, how it lights them, and its trace function) and hands over to cli_run. Exit codes:
  *   0  the picture (or POV-Ray twin) was written
  *   1  the scene or a mesh file is wrong (message: "file:line: what is wrong")
- *   2  the command line is wrong (message, then the usage)
- *   3  the output file cannot be written, or memory ran out
+ *   2  the command line is wrong (message, then the usage): also an output name longer than the
+ *      system takes, or -o and --heatmap naming one file
+ *   3  the output file cannot be written (no such folder, disk or device full), or memory ran out
  *
  * `--heatmap FILE` works in every chapter: it writes how much work each pixel's camera ray cost
  * (node visits, box and shape tests, including those of its shadow and secondary rays) as a picture,

@@ -544,8 +544,8 @@ Test(mesh_errors, missing_file_says_cannot_open) {
     expect_error(DATA "does-not-exist.ply", DATA "does-not-exist.ply: cannot open: No such file or directory");
 }
 
-Test(mesh_errors, directory_says_cannot_read) {
-    expect_error("tests/data", "tests/data: cannot read: Is a directory");
+Test(mesh_errors, directory_is_not_a_regular_file) {
+    expect_error("tests/data", "tests/data: not a regular file (a directory)");
 }
 
 Test(mesh_errors, file_larger_than_the_limit_is_refused_before_reading) {
