@@ -51,6 +51,17 @@ int render_with(const char *program, const char *scene, const char *png, const c
     return run(command);
 }
 
+/* A bound for a chapter run that must not hang: far above what any of them needs, sanitizers included. */
+#define CHAPTER_RUN_TIMEOUT "timeout 300"
+
+void expect_chapter_run(int n, const char *arguments, int status, const char *expected) {
+    static char command[16384], output[16384];
+    snprintf(command, sizeof command, CHAPTER_RUN_TIMEOUT " %s %s", chapter_program(n), arguments);
+    int got = run_capturing(command, output, sizeof output);
+    cr_assert_eq(got, status, "'%s' exited with %d, not %d:\n%s", command, got, status, output);
+    cr_assert_not_null(strstr(output, expected), "'%s' did not say '%s':\n%s", command, expected, output);
+}
+
 int render_chapter(int n, const char *scene, const char *png, const char *extra) {
     return render_with(chapter_program(n), scene, png, extra);
 }

@@ -27,6 +27,11 @@ const char *chapter_program(int n);
  * the exit status (or -1 if the program could not be run). */
 int render_chapter(int n, const char *scene, const char *png, const char *extra);
 
+/* Runs chapter n with the command-line words `arguments` (within a generous time bound, so a program
+ * that hangs fails the test) and fails the current test unless it exits with `status` and prints
+ * `expected` (on standard output or error). */
+void expect_chapter_run(int n, const char *arguments, int status, const char *expected);
+
 /* Runs the chapter program `program` (a path) as render_chapter does. */
 int render_with(const char *program, const char *scene, const char *png, const char *extra);
 

@@ -8,27 +8,7 @@
 #include <sys/wait.h>
 
 #include "image_test_support.h"
-
-/* Runs `command` (stdout and stderr together) and returns its exit status; its output goes to `output`. */
-static int run_capturing(const char *command, char *output, size_t size) {
-    char line[1024];
-    snprintf(line, sizeof line, "%s 2>&1", command);
-    FILE *pipe = popen(line, "r");
-    cr_assert_not_null(pipe);
-    size_t length = fread(output, 1, size - 1, pipe);
-    output[length] = '\0';
-    int status = pclose(pipe);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-/* Runs chapter n with `arguments`, expects exit status `status` and `expected` in the output. */
-static void expect_run(int n, const char *arguments, int status, const char *expected) {
-    char command[1024], output[8192];
-    snprintf(command, sizeof command, "%s %s", chapter_program(n), arguments);
-    int got = run_capturing(command, output, sizeof output);
-    cr_assert_eq(got, status, "'%s' exited with %d, not %d:\n%s", command, got, status, output);
-    cr_assert_not_null(strstr(output, expected), "'%s' did not say '%s':\n%s", command, expected, output);
-}
+#include "test_support.h"
 
 /* Writes `text` to a scene file in the test folder and returns its path. */
 static const char *scene_file(const char *name, const char *text) {
@@ -43,28 +23,28 @@ static const char *scene_file(const char *name, const char *text) {
     return path;
 }
 
-Test(cli, help_lists_the_options_and_succeeds) { expect_run(10, "--help", 0, "--accel KIND"); }
+Test(cli, help_lists_the_options_and_succeeds) { expect_chapter_run(10, "--help", 0, "--accel KIND"); }
 
-Test(cli, an_unknown_option_is_a_usage_error) { expect_run(2, "--colour red", 2, "unknown option '--colour'"); }
+Test(cli, an_unknown_option_is_a_usage_error) { expect_chapter_run(2, "--colour red", 2, "unknown option '--colour'"); }
 
 Test(cli, a_bad_number_is_a_usage_error) {
-    expect_run(2, "--width 0", 2, "--width needs a whole number from 1 to 16384, got '0'");
-    expect_run(2, "--threads many", 2, "--threads needs a whole number from 1 to 256, got 'many'");
+    expect_chapter_run(2, "--width 0", 2, "--width needs a whole number from 1 to 16384, got '0'");
+    expect_chapter_run(2, "--threads many", 2, "--threads needs a whole number from 1 to 256, got 'many'");
 }
 
-Test(cli, an_option_without_its_value_is_a_usage_error) { expect_run(2, "-o", 2, "-o needs a file name"); }
+Test(cli, an_option_without_its_value_is_a_usage_error) { expect_chapter_run(2, "-o", 2, "-o needs a file name"); }
 
 Test(cli, two_scenes_are_a_usage_error) {
-    expect_run(2, "a.scene b.scene", 2, "only one scene file, please (got 'a.scene' and 'b.scene')");
+    expect_chapter_run(2, "a.scene b.scene", 2, "only one scene file, please (got 'a.scene' and 'b.scene')");
 }
 
 Test(cli, a_wrong_accel_is_refused_with_the_choices) {
-    expect_run(9, "--accel bvh", 2, "--accel needs one of: none kdtree; got 'bvh'");
-    expect_run(10, "--split middle", 2, "--split needs 'sah' or 'seed' (the seed's rule), got 'middle'");
+    expect_chapter_run(9, "--accel bvh", 2, "--accel needs one of: none kdtree; got 'bvh'");
+    expect_chapter_run(10, "--split middle", 2, "--split needs 'sah' or 'seed' (the seed's rule), got 'middle'");
 }
 
 Test(cli, a_missing_scene_file_is_bad_input) {
-    expect_run(2, "no/such.scene", 1, "no/such.scene: cannot open: No such file or directory");
+    expect_chapter_run(2, "no/such.scene", 1, "no/such.scene: cannot open: No such file or directory");
 }
 
 Test(cli, a_scene_error_names_file_and_line) {
@@ -73,7 +53,7 @@ Test(cli, a_scene_error_names_file_and_line) {
     char arguments[512], expected[512];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", path);
     snprintf(expected, sizeof expected, "%s:3: unknown key 'radus' for sphere", path);
-    expect_run(2, arguments, 1, expected);
+    expect_chapter_run(2, arguments, 1, expected);
 }
 
 Test(cli, a_mesh_error_names_the_mesh_file_and_line) {
@@ -82,11 +62,11 @@ Test(cli, a_mesh_error_names_the_mesh_file_and_line) {
                                                     "mesh bad-mesh.obj\n");
     char arguments[512];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", path);
-    expect_run(3, arguments, 1, TEST_OUT "/bad-mesh.obj:4: index 4 out of range (3 vertices)");
+    expect_chapter_run(3, arguments, 1, TEST_OUT "/bad-mesh.obj:4: index 4 out of range (3 vertices)");
 }
 
 Test(cli, an_unwritable_output_fails_and_leaves_nothing_behind) {
-    expect_run(2, "-o " TEST_OUT "/no/such/folder/x.png", 3,
+    expect_chapter_run(2, "-o " TEST_OUT "/no/such/folder/x.png", 3,
                TEST_OUT "/no/such/folder/x.png: cannot create: No such file or directory");
 }
 
@@ -106,13 +86,13 @@ Test(cli, a_failed_render_keeps_the_previous_picture) {
 Test(cli, a_chapter_ignores_shapes_it_does_not_know_and_says_so_once) {
     char arguments[256];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/ignoring.png", chapter_scene(8));
-    expect_run(2, arguments, 0, "scenes/08-recursion.scene: chapter 2 ignores 1 mesh, 2 planes (not introduced yet)");
+    expect_chapter_run(2, arguments, 0, "scenes/08-recursion.scene: chapter 2 ignores 1 mesh, 2 planes (not introduced yet)");
 }
 
 Test(cli, the_counters_are_printed) {
     char arguments[256];
     snprintf(arguments, sizeof arguments, "-o " TEST_OUT "/counted.png");
-    expect_run(2, arguments, 0, "sphere tests              384000");
+    expect_chapter_run(2, arguments, 0, "sphere tests              384000");
 }
 
 Test(cli, no_progress_line_when_stderr_is_not_a_terminal) {
@@ -123,7 +103,7 @@ Test(cli, no_progress_line_when_stderr_is_not_a_terminal) {
 }
 
 Test(cli, stats_adds_the_structure_and_the_predicted_cost) {
-    expect_run(9, "--stats -o " TEST_OUT "/stats.png", 0, "predicted by the SAH:");
-    expect_run(10, "--accel bvh --split seed --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
+    expect_chapter_run(9, "--stats -o " TEST_OUT "/stats.png", 0, "predicted by the SAH:");
+    expect_chapter_run(10, "--accel bvh --split seed --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
                "acceleration: BVH (median split) over 353546 triangles");
 }

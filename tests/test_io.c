@@ -20,29 +20,8 @@
 #include "test_support.h"
 #include "text_escape.h"
 
-/* A bound for commands that must not hang: far above what they need (well under a second). */
-#define IO_TIMEOUT "timeout 20"
-
-/* Runs `command` through the shell with stdout and stderr together in `output`; returns the exit status. */
-static int run_capturing(const char *command, char *output, size_t size) {
-    char line[8192];
-    snprintf(line, sizeof line, "%s 2>&1", command);
-    FILE *pipe = popen(line, "r");
-    cr_assert_not_null(pipe);
-    size_t length = fread(output, 1, size - 1, pipe);
-    output[length] = '\0';
-    int status = pclose(pipe);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-/* Runs chapter n with `arguments` and expects exit status `status` and `expected` in the output. */
-static void expect_run(int n, const char *arguments, int status, const char *expected) {
-    char command[8192], output[16384];
-    snprintf(command, sizeof command, IO_TIMEOUT " %s %s", chapter_program(n), arguments);
-    int got = run_capturing(command, output, sizeof output);
-    cr_assert_eq(got, status, "'%s' exited with %d, not %d:\n%s", command, got, status, output);
-    cr_assert_not_null(strstr(output, expected), "'%s' did not say '%s':\n%s", command, expected, output);
-}
+/* A bound for the commands run here that are not chapter runs (those have expect_chapter_run's). */
+#define IO_TIMEOUT "timeout 60"
 
 /* Returns TEST_OUT/name in a static buffer (one of four, so a few can be used together), after making
  * the folder and removing whatever had that name. */
@@ -76,20 +55,6 @@ static void expect_png(const char *path, int width, int height) {
     cr_assert_eq(w, width);
     cr_assert_eq(h, height);
     free(rgb);
-}
-
-/* Reads a whole file (it may hold zero bytes) and sets *size. */
-static char *read_bytes(const char *path, size_t *size) {
-    FILE *f = fopen(path, "rb");
-    cr_assert_not_null(f, "cannot open %s", path);
-    fseek(f, 0, SEEK_END);
-    long length = ftell(f);
-    rewind(f);
-    char *data = malloc((size_t)length + 1);
-    cr_assert_eq(fread(data, 1, (size_t)length, f), (size_t)length);
-    fclose(f);
-    *size = (size_t)length;
-    return data;
 }
 
 /* ---- -o to things that are not regular files -------------------------------------------------- */
@@ -129,9 +94,9 @@ Test(io, a_full_device_fails_with_a_write_error_and_stays_a_device) {
     char arguments[512], expected[512];
     snprintf(expected, sizeof expected, "%s: cannot write: No space left on device", full);
     snprintf(arguments, sizeof arguments, "-o %s --quiet", full);
-    expect_run(2, arguments, 3, expected);
+    expect_chapter_run(2, arguments, 3, expected);
     snprintf(arguments, sizeof arguments, "-o %s --width 512 --height 512 --quiet", full); /* more than a buffer */
-    expect_run(2, arguments, 3, expected);
+    expect_chapter_run(2, arguments, 3, expected);
     struct stat info;
     cr_assert_eq(stat(full, &info), 0);
     cr_assert(S_ISCHR(info.st_mode), "%s is no longer a device", full);
@@ -143,7 +108,7 @@ Test(io, a_symbolic_link_stays_a_link_and_its_target_gets_the_picture) {
     cr_assert_eq(symlink("io-target.png", link), 0);
     char arguments[512];
     snprintf(arguments, sizeof arguments, "-o %s --quiet", link);
-    expect_run(2, arguments, 0, "");
+    expect_chapter_run(2, arguments, 0, "");
     struct stat info;
     cr_assert_eq(lstat(link, &info), 0);
     cr_assert(S_ISLNK(info.st_mode), "the link was replaced by a file");
@@ -158,7 +123,7 @@ Test(io, dash_writes_the_png_to_standard_output_and_nothing_else) {
     snprintf(command, sizeof command, "%s -o %s --quiet", chapter_program(2), direct);
     cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
     size_t piped_size, direct_size;
-    char *a = read_bytes(piped, &piped_size), *b = read_bytes(direct, &direct_size);
+    char *a = read_file(piped, &piped_size), *b = read_file(direct, &direct_size);
     cr_assert_eq(piped_size, direct_size, "standard output holds %zu bytes, the PNG %zu", piped_size, direct_size);
     cr_assert_eq(memcmp(a, b, direct_size), 0);
     free(a);
@@ -176,7 +141,7 @@ Test(io, a_fifo_as_scene_is_refused_without_waiting) {
     char arguments[512], expected[512];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", fifo);
     snprintf(expected, sizeof expected, "%s: not a regular file (a FIFO)", fifo);
-    expect_run(2, arguments, 1, expected);
+    expect_chapter_run(2, arguments, 1, expected);
     unlink(fifo);
 }
 
@@ -188,11 +153,11 @@ Test(io, a_fifo_as_mesh_is_refused_without_waiting) {
     char arguments[512], expected[512];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", scene);
     snprintf(expected, sizeof expected, "%s: not a regular file (a FIFO)", fifo);
-    expect_run(3, arguments, 1, expected);
+    expect_chapter_run(3, arguments, 1, expected);
     unlink(fifo);
 }
 
-Test(io, a_directory_as_scene_is_refused) { expect_run(2, "scenes", 1, "scenes: not a regular file (a directory)"); }
+Test(io, a_directory_as_scene_is_refused) { expect_chapter_run(2, "scenes", 1, "scenes: not a regular file (a directory)"); }
 
 /* ---- one file named twice ---------------------------------------------------------------------- */
 
@@ -202,19 +167,19 @@ Test(io, the_picture_and_the_heat_map_may_not_share_a_file) {
     snprintf(arguments, sizeof arguments, "-o %s --heatmap %s", picture, picture);
     snprintf(expected, sizeof expected, "-o and --heatmap name the same file ('%s' and '%s'); give two", picture,
              picture);
-    expect_run(2, arguments, 2, expected);
+    expect_chapter_run(2, arguments, 2, expected);
     cr_assert_neq(access(picture, F_OK), 0, "something was written");
     /* Two spellings of a file that does not exist yet. */
     snprintf(arguments, sizeof arguments, "-o %s --heatmap " TEST_OUT "/../test/./io-twice.png", picture);
-    expect_run(2, arguments, 2, "name the same file");
+    expect_chapter_run(2, arguments, 2, "name the same file");
     /* A link and its target, both existing. */
     const char *target = text_file("io-twice-target.png", "x"), *link = fresh("io-twice-link.png");
     cr_assert_eq(symlink("io-twice-target.png", link), 0);
     snprintf(arguments, sizeof arguments, "-o %s --heatmap %s", link, target);
-    expect_run(2, arguments, 2, "name the same file");
+    expect_chapter_run(2, arguments, 2, "name the same file");
     /* Two names of different files are fine. */
     snprintf(arguments, sizeof arguments, "-o %s --heatmap " TEST_OUT "/io-twice-heat.png --quiet", picture);
-    expect_run(2, arguments, 0, "");
+    expect_chapter_run(2, arguments, 0, "");
 }
 
 Test(io, same_file_compares_inodes_and_resolved_names) {
@@ -238,12 +203,12 @@ Test(io, an_output_name_longer_than_the_system_limit_is_refused) {
     char expected[256];
     snprintf(expected, sizeof expected, "-o: the file name is too long (%d bytes; the system allows %d for a path, "
              "%d for one name, less 10 for the temporary file)", PATH_MAX + 100, PATH_MAX - 1, NAME_MAX);
-    expect_run(2, arguments, 2, expected);
+    expect_chapter_run(2, arguments, 2, expected);
     /* One name (no folder) too long for its temporary file, though short as a path. */
     memset(name, 'b', NAME_MAX);
     name[NAME_MAX] = '\0';
     snprintf(arguments, sizeof arguments, "--heatmap %s", name);
-    expect_run(2, arguments, 2, "--heatmap: the file name is too long");
+    expect_chapter_run(2, arguments, 2, "--heatmap: the file name is too long");
     cr_assert(outfile_name_fits("out/ok.png"));
     cr_assert(outfile_name_fits("-"));
     cr_assert(!outfile_name_fits(name));
@@ -259,7 +224,7 @@ Test(io, control_characters_in_a_message_are_escaped) {
     cr_assert_eq(run_capturing(command, output, sizeof output), 1, "%s", output);
     snprintf(expected, sizeof expected, "%s:3: unknown directive 'sph\\x1b[2Jere'\n", scene);
     cr_assert_str_eq(output, expected);
-    expect_run(2, "\"$(printf -- '-r\\033]0;x\\007')\"", 2, "unknown option '-r\\x1b]0;x\\x07'");
+    expect_chapter_run(2, "\"$(printf -- '-r\\033]0;x\\007')\"", 2, "unknown option '-r\\x1b]0;x\\x07'");
 }
 
 Test(io, escaping_keeps_utf8_and_escapes_everything_else) {
@@ -288,7 +253,7 @@ static void expect_out_of_range(const char *placement, const char *what) {
         snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", scene);
         snprintf(expected, sizeof expected, "%s:3: mesh " TEST_OUT "/io-range.obj placed out of range: %s", scene,
                  what);
-        expect_run(n, arguments, 1, expected);
+        expect_chapter_run(n, arguments, 1, expected);
     }
 }
 
@@ -312,7 +277,7 @@ Test(io, a_mesh_at_the_edge_of_the_range_renders) {
                                                    "mesh io-range.obj scale 1e-18\nmesh io-range.obj translate 1e18 0 0\n");
     char arguments[512];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/io-edge.png --quiet", scene);
-    expect_run(10, arguments, 0, "");
+    expect_chapter_run(10, arguments, 0, "");
 }
 
 /* ---- many materials ---------------------------------------------------------------------------- */

@@ -8,20 +8,38 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
-char *read_text_file(const char *path) {
+char *read_file(const char *path, size_t *size) {
     struct stat info;
     cr_assert(stat(path, &info) == 0 && S_ISREG(info.st_mode), "%s is not a file", path);
     FILE *f = fopen(path, "rb");
     cr_assert_not_null(f, "cannot open %s", path);
     fseek(f, 0, SEEK_END);
-    long size = ftell(f);
+    long length = ftell(f);
     rewind(f);
-    char *text = malloc((size_t)size + 1);
-    cr_assert_not_null(text, "out of memory reading %s", path);
-    cr_assert(fread(text, 1, (size_t)size, f) == (size_t)size, "cannot read %s", path);
-    text[size] = '\0';
+    char *data = malloc((size_t)length + 1);
+    cr_assert_not_null(data, "out of memory reading %s", path);
+    cr_assert(fread(data, 1, (size_t)length, f) == (size_t)length, "cannot read %s", path);
+    data[length] = '\0';
     fclose(f);
-    return text;
+    if (size != NULL)
+        *size = (size_t)length;
+    return data;
+}
+
+char *read_text_file(const char *path) { return read_file(path, NULL); }
+
+int run_capturing(const char *command, char *output, size_t size) {
+    size_t length = strlen(command) + sizeof " 2>&1";
+    char *line = malloc(length);
+    cr_assert_not_null(line);
+    snprintf(line, length, "%s 2>&1", command);
+    FILE *pipe = popen(line, "r");
+    free(line);
+    cr_assert_not_null(pipe);
+    size_t used = fread(output, 1, size - 1, pipe);
+    output[used] = '\0';
+    int status = pclose(pipe);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 /* Every test writes its scratch files under out/test/ (TEST_OUT); the tests run in parallel, so the

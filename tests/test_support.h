@@ -3,9 +3,19 @@
 #ifndef WHITTED_TEST_SUPPORT_H
 #define WHITTED_TEST_SUPPORT_H
 
+#include <stddef.h>
+
 /* Reads the whole file at `path` into a new NUL-terminated buffer (the caller frees it). Fails the
  * current test if it is not a regular file or cannot be read. */
 char *read_text_file(const char *path);
+
+/* Reads the whole file at `path` as read_text_file does, and sets *size (when not NULL) to its length,
+ * for files that may hold zero bytes. */
+char *read_file(const char *path, size_t *size);
+
+/* Runs the shell command `command` with its standard output and error together into `output` (size
+ * bytes, NUL-terminated, cut if longer). Returns its exit status, or -1 if it was killed. */
+int run_capturing(const char *command, char *output, size_t size);
 
 /* Runs the shell command `command` with its standard output and error appended to the file `log`,
  * after a line "$ command". Returns its exit status, or -1 if it could not run or was killed. */
