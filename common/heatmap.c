@@ -2,7 +2,6 @@
 #include "heatmap.h"
 
 #include <math.h>
-#include <stdio.h>
 
 /* The colour ramp, evenly spaced on log(1 + cost): black, blue, red, yellow, white. */
 static const vec3 ramp[] = {{0, 0, 0}, {0.1, 0.2, 0.9}, {0.9, 0.15, 0.1}, {1, 0.9, 0.1}, {1, 1, 1}};
