@@ -1,7 +1,8 @@
 #!/bin/sh
 # student.sh: writes a student copy of the repository, the coursework kit's hand-out (make student).
 #
-#   tools/student.sh DIR [TASKS]    TASKS: task numbers such as "2.1 5.1", or "all" (the default)
+#   tools/student.sh DIR [TASKS]    TASKS: task numbers such as "2.1 5.1", "all" (the default) or "none"
+#   tools/student.sh DIR TASKS --sources-only   only the files with markers (DIR holds the rest already)
 #   tools/student.sh --list         the marked tasks of this repository, one "N.K file what" a line
 #
 # Every file of the repository (what git tracks, plus new files not ignored) is copied to DIR; in the
@@ -27,7 +28,7 @@ fi
 dir=$1
 tasks=${2:-all}
 [ -n "$tasks" ] || tasks=all
-if [ "$tasks" != all ]; then
+if [ "$tasks" != all ] && [ "$tasks" != none ]; then
     known=$(marked | cut -d' ' -f1)
     for t in $tasks; do
         if ! printf '%s\n' $known | grep -qx "$t"; then
@@ -39,7 +40,9 @@ fi
 case "$(cd "$(dirname "$dir")" 2>/dev/null && pwd)/$(basename "$dir")" in
 "$(pwd)"|"$(pwd)"/*) echo "tools/student.sh: $dir is inside the repository; choose a folder outside it" >&2; exit 2 ;;
 esac
-if ! files=$(git ls-files --cached --others --exclude-standard 2>/dev/null); then
+if [ "${3:-}" = "--sources-only" ]; then
+    files=$(marked | cut -d' ' -f2 | sort -u)
+elif ! files=$(git ls-files --cached --others --exclude-standard 2>/dev/null); then
     echo "tools/student.sh: needs the repository's git history to know which files to copy" >&2
     exit 2
 fi
@@ -50,11 +53,12 @@ printf '%s\n' "$files" | while IFS= read -r f; do
     [ -f "$f" ] || continue # deleted but not yet committed
     mkdir -p "$dir/$(dirname "$f")"
     case "$f" in
-    *.c) awk -v tasks="$tasks" -f tools/student_blank.awk "$f" >"$tmp" ;;
+    common/*.c | chapters/*.c) awk -v tasks="$tasks" -f tools/student_blank.awk "$f" >"$tmp" ;;
     *) cp "$f" "$tmp" ;;
     esac
     if ! cmp -s "$tmp" "$dir/$f"; then
-        if cmp -s "$tmp" "$f"; then cp -p "$f" "$dir/$f"; else cp "$tmp" "$dir/$f"; fi
+        # A new file keeps the repository's time stamp, a changed one gets a new one (make rebuilds it).
+        if [ ! -e "$dir/$f" ] && cmp -s "$tmp" "$f"; then cp -p "$f" "$dir/$f"; else cp "$tmp" "$dir/$f"; fi
         chmod --reference="$f" "$dir/$f"
     fi
 done

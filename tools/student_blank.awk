@@ -2,12 +2,12 @@
 # chosen by a stub that compiles, keeps the signature and says which task it is (the coursework kit;
 # tools/student.sh runs it on every C file of a student copy).
 #
-#   awk -v tasks="2.1 5.1" -f tools/student_blank.awk common/sphere.c    (tasks="all": every marked task)
+#   awk -v tasks="2.1 5.1" -f tools/student_blank.awk common/sphere.c    (tasks="all": every marked task, "none": none)
 #
 # The stub casts every parameter to void and returns a harmless zero value. A static helper that only
 # the blanked body called would be "defined but not used", an error under -Werror: a second pass
 # marks such helpers __attribute__((unused)), so they stay in the file for the student to call.
-function chosen(id) { return tasks == "all" || index(" " tasks " ", " " id " ") > 0 }
+function chosen(id) { return tasks == "all" || (tasks != "none" && index(" " tasks " ", " " id " ") > 0) }
 function trim(s) { gsub(/^[ \t\n]+|[ \t\n]+$/, "", s); return s }
 function stub(signature, id, what, file,    open, shut, prefix, name, type, params, n, k, p, out, ret) {
     gsub(/__attribute__\(\([a-z_]*\)\)/, "", signature)

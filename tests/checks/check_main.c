@@ -4,6 +4,7 @@
  *   check N          chapter N's tasks and its picture, then a scoreboard; exit 0 when all pass
  *   check all        every chapter
  *   check --task ID  one task's checks only (for the tests that prove the kit)
+ *   check --needs ID the tasks ID needs, directly or through others (for the same tests)
  *
  * A task's checks run only when the tasks it needs pass theirs; otherwise each of its checks reports
  * "needs task X" and counts as not passed, so a later chapter never fails for an earlier mistake. */
@@ -199,7 +200,26 @@ static int run_task(const struct task *t, bool quiet, int *total, char missing[s
     return passed;
 }
 
+/* Prints the tasks t needs, directly or not, each once (printed[] remembers them). */
+static void print_needs(const struct task *t, bool printed[]) {
+    char id[16];
+    int used;
+    for (const char *p = t->needs; sscanf(p, "%15s%n", id, &used) == 1; p += used) {
+        const struct task *need = find_task(id);
+        if (need == NULL || printed[need - check_tasks])
+            continue;
+        printed[need - check_tasks] = true;
+        printf("%s\n", need->id);
+        print_needs(need, printed);
+    }
+}
+
 int main(int argc, char **argv) {
+    if (argc == 3 && strcmp(argv[1], "--needs") == 0 && find_task(argv[2]) != NULL) {
+        bool printed[64] = {false};
+        print_needs(find_task(argv[2]), printed);
+        return 0;
+    }
     const char *only = NULL;
     int chapter = 0;
     if (argc == 3 && strcmp(argv[1], "--task") == 0 && find_task(argv[2]) != NULL)
@@ -209,7 +229,7 @@ int main(int argc, char **argv) {
     else if (argc == 2 && atoi(argv[1]) >= 1 && atoi(argv[1]) <= 10)
         chapter = atoi(argv[1]);
     else {
-        fprintf(stderr, "usage: %s N | all | --task N.K   (N = 1..10; make check-N runs it)\n", argv[0]);
+        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K   (N = 1..10; make check-N runs it)\n", argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);
