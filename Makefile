@@ -10,6 +10,8 @@
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
 #   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
+#   make check-N        grade chapter N's coursework tasks (make check: all), docs/coursework.md
+#   make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": some)
 #   make clean          remove build/ and out/
 #
 # Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
@@ -183,7 +185,7 @@ clean:
 	rm -rf build out
 
 help:
-	@sed -n '2,13p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,15p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---- the coursework kit (docs/coursework.md) -----------------------------------------------------
 #   make student DIR=path [TASKS="2.1 5.1"]  a student copy with the marked tasks' bodies blanked

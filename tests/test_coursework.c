@@ -48,8 +48,8 @@ Test(coursework, student_copy_fails_on_stubs_and_passes_with_each_reference_body
     remove(log);
     cr_assert_eq(run(log, "tools/student.sh %s", dir), 0, "make student failed: see %s", log);
     /* This build's objects, older than the blanked files, so that only those are compiled again. */
-    cr_assert_eq(run(log, "mkdir -p %s/%s && cp -rp %s/common %s/tools %s/checks %s/%s/ && touch $(grep -l "
-                          "'TODO (chapter' %s/common/*.c)", dir, build, build, build, build, dir, build, dir), 0,
+    cr_assert_eq(run(log, "mkdir -p %s/%s && cp -rp %s/common %s/tools %s/checks %s/chapters %s/%s/ && touch $(grep -l "
+                          "'TODO (chapter' %s/common/*.c)", dir, build, build, build, build, build, dir, build, dir), 0,
                  "cannot seed the copy's build: see %s", log);
     cr_assert_eq(run(log, "make -C %s %s -j2 %s/check", dir, san, build), 0, "the student copy does not build: see %s", log);
 
@@ -63,6 +63,12 @@ Test(coursework, student_copy_fails_on_stubs_and_passes_with_each_reference_body
         strcat(all, " ");
     }
     cr_assert_geq(tasks, 12, "only %zu tasks are marked", tasks);
+    char command[256];
+    snprintf(command, sizeof command, "cd %s && WHITTED_BUILD=%s ./%s/check --task 7.1", dir, build, build);
+    char *waiting = output_of(command);
+    cr_expect_not_null(strstr(waiting, "7.1: a blocker in between: needs task 2.1 (ray-sphere intersection"),
+                       "a task whose needs fail should say so; the report was:\n%s", waiting);
+    free(waiting);
 
     /* Each task with its reference body (and those of the tasks it needs): its checks pass. */
     for (char *id = all; *id != '\0';) {
@@ -70,7 +76,6 @@ Test(coursework, student_copy_fails_on_stubs_and_passes_with_each_reference_body
         int used;
         sscanf(id, "%15s %n", task, &used);
         id += used;
-        char command[256];
         snprintf(command, sizeof command, "%s/check --needs %s", build, task);
         char *listed = output_of(command), needs[1024], blank[1024] = "";
         snprintf(needs, sizeof needs, "\n%s", listed); /* every task on a line of its own, "\nN.K\n" */
@@ -97,12 +102,29 @@ Test(coursework, student_copy_fails_on_stubs_and_passes_with_each_reference_body
     /* The far root first: the check says so in the student's terms. */
     cr_assert_eq(run(log, "tools/student.sh %s none --sources-only && sed -i 's/double near = -b - root;/double near = "
                           "-b + root;/' %s/common/sphere.c && make -C %s %s -j2 %s/check", dir, dir, dir, san, build), 0);
-    char command[256];
     snprintf(command, sizeof command, "cd %s && WHITTED_BUILD=%s ./%s/check --task 2.1", dir, build, build);
     char *report = output_of(command);
     cr_expect_not_null(strstr(report, "sphere_intersect: the hit is 4.0 along the ray for a sphere 5 away with radius 1; "
                                       "your code returned 6.0: the far root?"), "the report was:\n%s", report);
     free(report);
+
+    /* Pixels stored mirrored left to right (render.c, not a task, so the unit checks pass): the picture
+     * check draws and names the difference. */
+    cr_assert_eq(run(log, "tools/student.sh %s none --sources-only && sed -i 's|\\*image_pixel(img, i, j) = job|"
+                          "*image_pixel(img, img->width - 1 - i, j) = job|' %s/common/render.c && grep -q 'width - 1 - i' "
+                          "%s/common/render.c && make -C %s %s -j2 %s/check %s/chapter-01", dir, dir, dir, dir, san, build,
+                     build), 0, "cannot build the mirrored picture: see %s", log);
+    snprintf(command, sizeof command, "cd %s && WHITTED_BUILD=%s ./%s/check --task 1.P", dir, build, build);
+    report = output_of(command);
+    cr_expect_not_null(strstr(report, "it looks mirrored left to right"), "the report was:\n%s", report);
+    cr_expect_not_null(strstr(report, "out/check/chapter-01-expected-got-difference.png"), "the report was:\n%s", report);
+    free(report);
+    char panel[128];
+    snprintf(panel, sizeof panel, "%s/out/check/chapter-01-expected-got-difference.png", dir);
+    FILE *drawn = fopen(panel, "rb");
+    cr_expect_not_null(drawn, "%s was not written", panel);
+    if (drawn != NULL)
+        fclose(drawn);
     char cleanup[128];
     snprintf(cleanup, sizeof cleanup, "rm -rf %s %s.log", dir, dir);
     cr_expect_eq(system(cleanup), 0);

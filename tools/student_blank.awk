@@ -19,8 +19,9 @@ function stub(signature, id, what, file,    open, shut, prefix, name, type, para
     prefix = trim(prefix)
     name = prefix; sub(/^.*[ *]/, "", name)
     type = trim(substr(prefix, 1, length(prefix) - length(name)))
-    out = "    /* TODO (chapter " int(id) ", task " id "): " what ". Its contract: the comment above it, or above\n" \
-          "     * its declaration in the header. make check-" int(id) " grades it. */\n"
+    out = "    /* TODO (chapter " int(id) ", task " id "): " what ".\n" \
+          "     * Its contract is in the comment above this function or above its declaration in the header;\n" \
+          "     * make check-" int(id) " grades it. */\n"
     n = split(params, p, ",")
     for (k = 1; k <= n; k++) {
         p[k] = trim(p[k]); sub(/\[[^]]*\]$/, "", p[k])
