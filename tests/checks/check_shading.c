@@ -25,6 +25,18 @@ static bool parse(const char *text, struct scene *s, char *why, size_t why_size)
     return false;
 }
 
+/* parse, then the scene's world (world_init). False with the reason in why; free both otherwise. */
+static bool parse_world(const char *text, struct scene *s, struct world *w, char *why, size_t why_size) {
+    if (!parse(text, s, why, why_size))
+        return false;
+    char err[256];
+    if (world_init(w, s, err, sizeof err))
+        return true;
+    snprintf(why, why_size, "world_init failed: %s", err);
+    scene_free(s);
+    return false;
+}
+
 /* ---- 6.1 phong_reflect ----------------------------------------------------------------------- */
 
 CHECK(check_reflect) {
@@ -97,15 +109,9 @@ static bool shadow_case(const char *what, const char *spheres, vec3 point, vec3 
     char text[1024];
     snprintf(text, sizeof text, "light position %.17g %.17g %.17g\n%s", light.x, light.y, light.z, spheres);
     struct scene s;
-    if (!parse(text, &s, why, why_size))
-        return false;
     struct world w;
-    char err[256];
-    if (!world_init(&w, &s, err, sizeof err)) {
-        snprintf(why, why_size, "world_init failed: %s", err);
-        scene_free(&s);
+    if (!parse_world(text, &s, &w, why, why_size))
         return false;
-    }
     vec3 got = shadow_opaque(&w, point, &s.lights[0]);
     world_free(&w);
     scene_free(&s);
@@ -179,15 +185,9 @@ CHECK(check_refract_total_internal_reflection) {
 /* The colour whitted_trace sees along r in the scene `text`. */
 static bool trace_case(const char *what, const char *text, ray r, vec3 expected, char *why, size_t why_size) {
     struct scene s;
-    if (!parse(text, &s, why, why_size))
-        return false;
     struct world w;
-    char err[256];
-    if (!world_init(&w, &s, err, sizeof err)) {
-        snprintf(why, why_size, "world_init failed: %s", err);
-        scene_free(&s);
+    if (!parse_world(text, &s, &w, why, why_size))
         return false;
-    }
     vec3 got = whitted_trace(&w, &r);
     world_free(&w);
     scene_free(&s);
