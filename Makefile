@@ -10,6 +10,8 @@
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
 #   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
+#   make check-N        grade chapter N's coursework tasks (make check: all), docs/coursework.md
+#   make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": some)
 #   make clean          remove build/ and out/
 #
 # Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
@@ -183,4 +185,34 @@ clean:
 	rm -rf build out
 
 help:
-	@sed -n '2,13p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,15p' Makefile | sed 's/^# \{0,1\}//'
+
+# ---- the coursework kit (docs/coursework.md) -----------------------------------------------------
+#   make student DIR=path [TASKS="2.1 5.1"]  a student copy with the marked tasks' bodies blanked
+#   make check-N (N = 1..10), make check       grade chapter N (or all): each task, then a scoreboard
+CHECK_OBJECTS := $(patsubst tests/checks/%.c,$(BUILD)/checks/%.o,$(wildcard tests/checks/*.c))
+
+$(BUILD)/checks/%.o: tests/checks/%.c
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
+
+$(BUILD)/check: $(CHECK_OBJECTS) $(TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
+define check_rule
+check-$(1): $(BUILD)/check | out
+	@n=$$$$(printf '%02d' $(1)); \
+	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
+	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
+endef
+$(foreach n,1 2 3 4 5 6 7 8 9 10,$(eval $(call check_rule,$(n))))
+
+check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out
+	WHITTED_BUILD=$(BUILD) ./$(BUILD)/check all
+
+student:
+	@test -n "$(DIR)" || { echo 'make student DIR=path [TASKS="2.1 5.1"]: say where the copy goes' >&2; exit 2; }
+	tools/student.sh "$(DIR)" "$(TASKS)"
+
+.PHONY: check student $(foreach n,1 2 3 4 5 6 7 8 9 10,check-$(n))
+test: $(BUILD)/check

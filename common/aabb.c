@@ -41,6 +41,7 @@ double aabb_surface_area(struct aabb b) {
 vec3 aabb_inverse_direction(vec3 d) { return vec3_make(1.0 / d.x, 1.0 / d.y, 1.0 / d.z); }
 
 /* Narrows [*t_near, *t_far] to the t where origin + t d lies between the planes lo and hi of one axis. */
+/* TASK 5.1: the slab test, one axis */
 static void clip_to_slab(double origin, double inv, double lo, double hi, double *t_near, double *t_far) {
     double t0 = (lo - origin) * inv;
     double t1 = (hi - origin) * inv;

@@ -39,6 +39,7 @@ bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov
     return true;
 }
 
+/* TASK 1.1: the primary ray through a pixel centre */
 ray camera_ray(const struct camera *cam, int i, int j) {
     /* Pixel centre in [-1, 1] image-plane coordinates: x grows to the right, y grows upwards. */
     double x = 2.0 * (i + 0.5) / cam->width - 1.0;

@@ -133,6 +133,7 @@ bool kd_sah_may_split(const struct kd_builder *bd, size_t count, size_t depth, c
  * the cost changes linearly, so the cheapest plane is at a bound), priced with the counts kd_classify
  * gives. The cheapest wins if it beats the leaf; among equal costs the lowest axis, then the lowest
  * position. Returns false for a leaf. O(count^2): kdtree_events.c finds the same plane in one sweep. */
+/* TASK 9.2: the surface area heuristic, plainly */
 static bool sah_plane(const struct kd_builder *bd, const uint32_t *faces, size_t count, const struct fbox *box,
                       size_t depth, int *best_axis, float *best_split) {
     double best_cost = kd_leaf_cost(count);
@@ -197,6 +198,7 @@ static float select_nth(float *values, size_t n, size_t nth) {
  * triangles' centres (of their boxes clipped to the region); the axis whose plane leaves the most
  * triangles whole wins (ties to x, then y). Returns false for a leaf: at KD_SEED_LEAF_SIZE triangles, at
  * the depth limit, or when more than KD_SEED_MAX_STRADDLING of them would straddle the plane. */
+/* TASK 9.1: the dissertation's split rule */
 static bool seed_plane(struct kd_builder *bd, const uint32_t *faces, size_t count, const struct fbox *box,
                        size_t depth, int *best_axis, float *best_split) {
     *best_axis = -1;
@@ -600,6 +602,7 @@ struct stack_entry {
 
 /* Walks the tree for one query (specialised per kind at compile time), after the slivers. Returns
  * q->found. */
+/* TASK 9.3: front-to-back traversal */
 static inline __attribute__((always_inline)) bool traverse(const struct kdtree *k, const ray *r, double t_min,
                                                            double t_max, enum query kind, struct query_state *q) {
     q->found = false;

@@ -5,10 +5,12 @@
 
 #include "world.h"
 
+/* TASK 6.1: the mirror direction */
 vec3 phong_reflect(vec3 direction, vec3 normal) {
     return vec3_add_scaled(direction, normal, -2.0 * vec3_dot(direction, normal));
 }
 
+/* TASK 6.2: ambient, diffuse and Phong highlight */
 vec3 phong_shade(const struct scene *s, const struct phong_surface *at, phong_shadow_fn shadow,
                  const void *world) {
     const struct material *m = at->material;

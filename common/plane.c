@@ -19,6 +19,7 @@ bool plane_closest(const struct plane *planes, size_t count, const ray *r, doubl
     return true;
 }
 
+/* TASK 4.1: ray-plane intersection */
 bool plane_intersect(const struct plane *p, const ray *r, double t_min, double t_max, double *t) {
     stats_thread.plane_tests++;
     double denominator = vec3_dot(p->normal, r->direction);

@@ -23,6 +23,7 @@ static bool stop_at_first(void *context, double t, int material) {
     return false;
 }
 
+/* TASK 7.1: the shadow ray: is the light blocked? */
 vec3 shadow_opaque(const void *world, vec3 point, const struct light *light) {
     const struct world *w = world;
     double t_min, t_max;

@@ -7,6 +7,7 @@
 
 #include "stats.h"
 
+/* TASK 2.1: ray-sphere intersection, the nearest root */
 bool sphere_intersect(const struct sphere *s, const ray *r, double t_min, double t_max, double *t) {
     stats_thread.sphere_tests++;
     vec3 oc = vec3_sub(r->origin, s->centre);
@@ -41,6 +42,7 @@ bool sphere_closest(const struct sphere *spheres, size_t count, const ray *r, do
     return true;
 }
 
+/* TASK 2.2: the sphere's outward normal */
 vec3 sphere_normal(const struct sphere *s, vec3 p) {
     return vec3_scale(vec3_sub(p, s->centre), 1.0 / s->radius);
 }

@@ -1,0 +1,231 @@
+/* check_accel.c: the coursework checks of chapters 9 and 10: the kd-tree's split rules and traversal,
+ * the BVH's builds and traversal, on small meshes whose right answers are known (the coursework kit). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "bvh.h"
+#include "check.h"
+#include "kdtree.h"
+
+/* Hits are compared to their exact values within this: far above rounding, far below a mistake. */
+#define ACCEL_TOLERANCE 1e-9
+
+/* Triangles in the test meshes: 64 makes a tree six levels deep, small enough to describe. */
+#define ROW_TRIANGLES 64
+
+/* A mesh of `count` triangles, each 0.5 wide in the plane z = z0 + k * dz and centred at
+ * (x0 + k * dx, y0 + k * dy): with d = 0 all are stacked, else they form a row with gaps. Aborts when
+ * memory runs out (a check program, not a library). */
+static void add_triangle(struct mesh *m, vec3 centre) {
+    size_t v = m->vertex_count;
+    m->vertices[v] = vec3_add(centre, vec3_make(-0.25, -0.25, 0));
+    m->vertices[v + 1] = vec3_add(centre, vec3_make(0.25, -0.25, 0));
+    m->vertices[v + 2] = vec3_add(centre, vec3_make(-0.25, 0.25, 0));
+    m->faces[m->face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
+    m->vertex_count += 3;
+}
+
+static struct mesh new_mesh(size_t faces) {
+    struct mesh m = {calloc(3 * faces, sizeof(vec3)), 0, calloc(faces, sizeof(struct mesh_face)), 0};
+    if (m.vertices == NULL || m.faces == NULL)
+        abort();
+    return m;
+}
+
+/* ROW_TRIANGLES triangles in a row along `axis`, 1 apart. */
+static struct mesh row(int axis) {
+    struct mesh m = new_mesh(ROW_TRIANGLES);
+    for (int k = 0; k < ROW_TRIANGLES; k++)
+        add_triangle(&m, vec3_make(axis == 0 ? k : 0, axis == 1 ? k : 0, axis == 2 ? k : 0));
+    return m;
+}
+
+/* Two clusters of ROW_TRIANGLES / 2 triangles, around x = 0 and x = 100: a tree should cut the gap. */
+static struct mesh two_clusters(void) {
+    struct mesh m = new_mesh(ROW_TRIANGLES);
+    for (int k = 0; k < ROW_TRIANGLES; k++)
+        add_triangle(&m, vec3_make((k % 2) * 100.0 + (k / 2 % 4) * 0.3, (k / 8) * 0.3, 0));
+    return m;
+}
+
+/* Three layers at z = 0, -1, -2, each a 4 x 4 grid of triangle pairs covering [0, 4]^2 (ROW_TRIANGLES
+ * * 1.5 faces): a ray down -z from z = 5 first meets the layer z = 0, at t = 5. */
+static struct mesh layers(void) {
+    struct mesh m = new_mesh(96);
+    for (int z = 0; z < 3; z++)
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) {
+                size_t v = m.vertex_count;
+                m.vertices[v] = vec3_make(i, j, -z);
+                m.vertices[v + 1] = vec3_make(i + 1, j, -z);
+                m.vertices[v + 2] = vec3_make(i + 1, j + 1, -z);
+                m.vertices[v + 3] = vec3_make(i, j + 1, -z);
+                m.faces[m.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
+                m.faces[m.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 2, (uint32_t)v + 3}};
+                m.vertex_count += 4;
+            }
+    return m;
+}
+
+/* ---- 9.1 the seed's rule ----------------------------------------------------------------------- */
+
+static bool seed_case(int axis, char *why, size_t why_size) {
+    static const char *const names[] = {"x", "y", "z"};
+    struct mesh m = row(axis);
+    struct kdtree *k = kdtree_build(&m, KD_SPLIT_SEED);
+    struct kdtree_info info = {0};
+    char invalid[512] = "";
+    bool valid = k != NULL && kdtree_is_valid(k, &m, invalid, sizeof invalid);
+    if (k != NULL)
+        kdtree_get_info(k, &info);
+    kdtree_free(k);
+    mesh_free(&m);
+    /* Median planes halve 64 triangles five times: 32 leaves of 2 at depth 5 if no triangle straddled;
+     * a plane through a triangle's centre copies it into both halves, which may add a level. */
+    if (valid && info.leaves >= ROW_TRIANGLES / 2 && info.max_depth <= 8)
+        return true;
+    if (!valid)
+        snprintf(why, why_size, "kdtree_build(KD_SPLIT_SEED) on %d triangles in a row along %s made a broken tree: %s",
+                 ROW_TRIANGLES, names[axis], k == NULL ? "it returned NULL" : invalid);
+    else
+        snprintf(why, why_size, "kdtree_build(KD_SPLIT_SEED) on %d separate triangles in a row along %s: median planes "
+                 "on the %s axis should give at least %d leaves of at most 2 triangles, depth about 6; your tree has %zu "
+                 "leaves, depth %zu%s", ROW_TRIANGLES, names[axis], names[axis], ROW_TRIANGLES / 2, info.leaves,
+                 info.max_depth, info.leaves <= 1 ? ": seed_plane never chose a plane? (the axis whose median leaves "
+                 "the most triangles whole)" : "");
+    return false;
+}
+
+CHECK(check_seed_row_x) { return seed_case(0, why, why_size); }
+CHECK(check_seed_row_z) { return seed_case(2, why, why_size); }
+
+/* ---- 9.2 the SAH, plainly ---------------------------------------------------------------------- */
+
+CHECK(check_sah_plain) {
+    struct mesh m = two_clusters();
+    struct kdtree *plain = kdtree_build(&m, KD_SPLIT_SAH_PLAIN), *fast = kdtree_build(&m, KD_SPLIT_SAH);
+    struct kdtree_info info = {0};
+    if (plain != NULL)
+        kdtree_get_info(plain, &info);
+    bool same = plain != NULL && fast != NULL && kdtree_equal(plain, fast);
+    kdtree_free(plain);
+    kdtree_free(fast);
+    mesh_free(&m);
+    if (same && info.empty_leaves > 0)
+        return true;
+    snprintf(why, why_size, "kdtree_build(KD_SPLIT_SAH_PLAIN) on two clusters of %d triangles at x = 0 and x = 100: "
+             "the heuristic cuts the empty gap away (an empty leaf) and gives the very tree of the sorted sweep in "
+             "kdtree_events.c, which prices the same planes; yours has %zu nodes, %zu empty leaves and is %s%s",
+             ROW_TRIANGLES / 2, info.nodes, info.empty_leaves, same ? "the same tree" : "a different tree",
+             info.leaves <= 1 ? ": sah_plane never chose a plane? (try every bound of every box)" : "");
+    return false;
+}
+
+/* ---- 9.3 and 10.3: traversal -------------------------------------------------------------------- */
+
+typedef bool (*closest_fn)(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
+
+static bool kd_closest(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return kdtree_closest(tree, r, t_min, t_max, t, face);
+}
+static bool bvh_closest_fn(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return bvh_closest(tree, r, t_min, t_max, t, face);
+}
+
+/* Rays into the three layers: down from above (nearest z = 0, t = 5), up from below (nearest z = -2,
+ * t = 3), from above but starting between the layers, and beside the grid (a miss). */
+static bool layered_rays(const char *what, const void *tree, closest_fn closest, char *why, size_t why_size) {
+    const struct { ray r; double t; const char *say; } cases[] = {
+        {{{1.3, 2.6, 5}, {0, 0, -1}}, 5.0, "from (1.3, 2.6, 5) down -z: the top layer z = 0 is nearest"},
+        {{{3.7, 0.2, -5}, {0, 0, 1}}, 3.0, "from (3.7, 0.2, -5) up +z: the bottom layer z = -2 is nearest"},
+        {{{2.5, 2.5, -0.5}, {0, 0, -1}}, 0.5, "from (2.5, 2.5, -0.5) down -z, between the layers: z = -1 is nearest"},
+        {{{0.5, 0.5, 5}, {0, 0.6, -0.8}}, NAN, "from (0.5, 0.5, 5) along (0, 0.6, -0.8): z = 0 at y = 4.25 is beside "
+                                                "the grid, z = -1 at y = 5 too; no hit"},
+        {{{-3, 2.2, -1.5}, {1, 0, 0}}, NAN, "from (-3, 2.2, -1.5) along +x, between the layers: no hit"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double expected = cases[k].t;
+        double t = NAN;
+        uint32_t face = 0;
+        bool hit = closest(tree, &cases[k].r, 1e-9, INFINITY, &t, &face);
+        if (isnan(expected) ? !hit : hit && fabs(t - expected) < ACCEL_TOLERANCE)
+            continue;
+        snprintf(why, why_size, "%s, three layers of triangles at z = 0, -1, -2 over [0, 4]^2, a ray %s: expected %s%.2f; "
+                 "got %s%.2f%s", what, cases[k].say, isnan(expected) ? "a miss" : "a hit at t = ",
+                 isnan(expected) ? 0.0 : expected, hit ? "a hit at t = " : "no hit", hit ? t : 0.0,
+                 hit && !isnan(expected) && t > expected ? ": a farther layer; visit the near child first and stop "
+                                                           "only when nothing nearer can be left" : "");
+        return false;
+    }
+    return true;
+}
+
+CHECK(check_kd_traversal) {
+    struct mesh m = layers();
+    struct kdtree *k = kdtree_build(&m, KD_SPLIT_SAH);
+    bool ok = k != NULL && layered_rays("kdtree_closest", k, kd_closest, why, why_size);
+    if (k == NULL)
+        snprintf(why, why_size, "kdtree_build returned NULL");
+    kdtree_free(k);
+    mesh_free(&m);
+    return ok;
+}
+
+CHECK(check_kd_occluded) {
+    struct mesh m = layers();
+    struct kdtree *k = kdtree_build(&m, KD_SPLIT_SAH);
+    ray down = {{1.5, 1.5, 5}, {0, 0, -1}};
+    bool ok = k != NULL && kdtree_occluded(k, &down, 1e-9, 10.0) && !kdtree_occluded(k, &down, 1e-9, 4.0);
+    kdtree_free(k);
+    mesh_free(&m);
+    if (!ok)
+        snprintf(why, why_size, "kdtree_occluded: a ray from (1.5, 1.5, 5) down -z over three layers of triangles "
+                 "(z = 0, -1, -2) is blocked within t < 10 and clear within t < 4 (the first layer is 5 away)");
+    return ok;
+}
+
+/* ---- 10.1, 10.2 the BVH builds ------------------------------------------------------------------ */
+
+static bool bvh_case(const char *what, struct mesh m, enum bvh_split split, size_t min_leaves, char *why,
+                     size_t why_size) {
+    struct bvh *b = bvh_build(&m, split);
+    struct bvh_info info = {0};
+    char invalid[512] = "";
+    bool valid = b != NULL && bvh_is_valid(b, &m, invalid, sizeof invalid);
+    if (b != NULL)
+        bvh_get_info(b, &info);
+    bvh_free(b);
+    mesh_free(&m);
+    if (valid && info.leaves >= min_leaves)
+        return true;
+    if (!valid)
+        snprintf(why, why_size, "bvh_build on %s made a broken hierarchy: %s", what,
+                 b == NULL ? "it returned NULL" : invalid);
+    else
+        snprintf(why, why_size, "bvh_build on %s: expected at least %zu leaves; yours has %zu (depth %zu)%s", what,
+                 min_leaves, info.leaves, info.max_depth, info.leaves <= 1 ? ": the split never divides the triangles?" : "");
+    return false;
+}
+
+CHECK(check_bvh_median) {
+    /* Halving 64 triangles until at most two are left: 32 leaves. */
+    return bvh_case("64 triangles in a row along x, median split", row(0), BVH_SPLIT_MEDIAN, ROW_TRIANGLES / 2, why,
+                    why_size);
+}
+
+CHECK(check_bvh_sah) {
+    return bvh_case("two clusters of 32 triangles 100 apart, SAH split (the gap must be cut)", two_clusters(),
+                    BVH_SPLIT_SAH, 2, why, why_size);
+}
+
+CHECK(check_bvh_traversal) {
+    struct mesh m = layers();
+    struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
+    bool ok = b != NULL && layered_rays("bvh_closest", b, bvh_closest_fn, why, why_size);
+    if (b == NULL)
+        snprintf(why, why_size, "bvh_build returned NULL");
+    bvh_free(b);
+    mesh_free(&m);
+    return ok;
+}

@@ -1,0 +1,262 @@
+/* check_geometry.c: the coursework checks of chapters 1 to 5: camera rays, spheres, triangles, planes,
+ * the slab test and boxes, against values worked out by hand (the coursework kit). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "aabb.h"
+#include "box.h"
+#include "camera.h"
+#include "check.h"
+#include "plane.h"
+#include "sphere.h"
+#include "triangle.h"
+
+/* Hits are compared to their exact values within this: far above rounding, far below any mistake. */
+#define GEOMETRY_TOLERANCE 1e-9
+
+/* ---- 1.1 camera_ray -------------------------------------------------------------------------- */
+
+/* A 2 x 2 picture, fov 90, from the origin looking down -z with +y up: the half-width and
+ * half-height of the image plane at distance 1 are both 1, so pixel (i, j)'s centre is at
+ * x = -0.5 or 0.5, y = 0.5 or -0.5, and its ray is that point normalised. */
+static bool camera_pixel(int i, int j, char *why, size_t why_size) {
+    struct camera cam;
+    char err[256];
+    if (!camera_init(&cam, vec3_make(0, 0, 0), vec3_make(0, 0, -1), vec3_make(0, 1, 0), 90.0, 2, 2, err, sizeof err)) {
+        snprintf(why, why_size, "camera_init refused a plain camera: %s", err);
+        return false;
+    }
+    vec3 expected = vec3_normalize(vec3_make(i == 0 ? -0.5 : 0.5, j == 0 ? 0.5 : -0.5, -1.0));
+    ray r = camera_ray(&cam, i, j);
+    char e[64], g[64];
+    if (!check_vec_near(r.origin, vec3_make(0, 0, 0), GEOMETRY_TOLERANCE)) {
+        snprintf(why, why_size, "camera_ray(cam, %d, %d): the ray must start at the eye (0, 0, 0); yours starts at %s",
+                 i, j, check_vec_text(r.origin, g));
+        return false;
+    }
+    if (check_vec_near(r.direction, expected, GEOMETRY_TOLERANCE))
+        return true;
+    const char *hint = "";
+    if (!check_near(vec3_length(r.direction), 1.0, 1e-6))
+        hint = ": not of unit length (normalise it)";
+    else if (check_vec_near(r.direction, vec3_make(expected.x, -expected.y, expected.z), GEOMETRY_TOLERANCE))
+        hint = ": upside down? Row j = 0 is the top of the picture";
+    else if (check_vec_near(r.direction, vec3_make(-expected.x, expected.y, expected.z), GEOMETRY_TOLERANCE))
+        hint = ": mirrored left to right? Column i = 0 is the left edge";
+    else if (check_vec_near(r.direction, vec3_normalize(vec3_make(i == 0 ? -1 : 0, j == 0 ? 1 : 0, -1)), 1e-6))
+        hint = ": through the pixel's corner? Aim at its centre, i + 0.5";
+    snprintf(why, why_size,
+             "camera_ray(cam, %d, %d) for a 2 x 2 picture, fov 90, eye at the origin looking down -z: the direction "
+             "should be %s, yours is %s%s",
+             i, j, check_vec_text(expected, e), check_vec_text(r.direction, g), hint);
+    return false;
+}
+
+CHECK(check_camera_top_left) { return camera_pixel(0, 0, why, why_size); }
+CHECK(check_camera_bottom_right) { return camera_pixel(1, 1, why, why_size); }
+
+/* ---- 2.1 sphere_intersect, 2.2 sphere_normal ---------------------------------------------------- */
+
+static const ray down_z = {{0, 0, 0}, {0, 0, -1}};
+
+/* Asks sphere_intersect about ray r and a sphere, expecting a hit at `expected` (NAN: a miss). */
+static bool sphere_case(const char *what, vec3 centre, double radius, const ray *r, double t_max, double expected,
+                        char *why, size_t why_size) {
+    struct sphere s = {centre, radius, 0};
+    double t = NAN;
+    bool hit = sphere_intersect(&s, r, 1e-9, t_max, &t);
+    if (isnan(expected)) {
+        if (!hit)
+            return true;
+        snprintf(why, why_size, "sphere_intersect: %s: expected a miss; your code returned a hit at t = %.1f", what, t);
+        return false;
+    }
+    if (hit && check_near(t, expected, GEOMETRY_TOLERANCE))
+        return true;
+    if (!hit) {
+        snprintf(why, why_size, "sphere_intersect: the hit is %.1f along the ray for %s; your code returned no hit",
+                 expected, what);
+        return false;
+    }
+    double far = vec3_dot(vec3_sub(centre, r->origin), r->direction) + radius;
+    snprintf(why, why_size, "sphere_intersect: the hit is %.1f along the ray for %s; your code returned %.1f%s",
+             expected, what, t, check_near(t, far, 1e-6) && !check_near(far, expected, 1e-6) ? ": the far root?" : "");
+    return false;
+}
+
+CHECK(check_sphere_in_front) {
+    return sphere_case("a sphere 5 away with radius 1", vec3_make(0, 0, -5), 1.0, &down_z, INFINITY, 4.0, why,
+                       why_size);
+}
+
+CHECK(check_sphere_from_inside) {
+    return sphere_case("a ray starting at the centre of a sphere of radius 2 (it leaves through the far side)",
+                       vec3_make(0, 0, 0), 2.0, &down_z, INFINITY, 2.0, why, why_size);
+}
+
+CHECK(check_sphere_misses) {
+    ray beside = {{3, 0, 0}, {0, 0, -1}};
+    return sphere_case("a ray passing 3 from the centre of a sphere of radius 1", vec3_make(0, 0, -5), 1.0, &beside,
+                       INFINITY, NAN, why, why_size) &&
+           sphere_case("a sphere behind the ray (5 away, the ray points away from it)", vec3_make(0, 0, 5), 1.0,
+                       &down_z, INFINITY, NAN, why, why_size) &&
+           sphere_case("a sphere 5 away with radius 1, but t_max = 3", vec3_make(0, 0, -5), 1.0, &down_z, 3.0, NAN,
+                       why, why_size);
+}
+
+CHECK(check_sphere_normal) {
+    struct sphere s = {{1, 2, 3}, 2.0, 0};
+    vec3 expected = vec3_normalize(vec3_make(1, -1, 1));
+    vec3 p = vec3_add_scaled(s.centre, expected, 2.0);
+    vec3 got = sphere_normal(&s, p);
+    if (check_vec_near(got, expected, GEOMETRY_TOLERANCE))
+        return true;
+    char e[64], g[64], q[64];
+    snprintf(why, why_size, "sphere_normal at %s on the sphere of radius 2 around (1, 2, 3): expected %s, got %s%s",
+             check_vec_text(p, q), check_vec_text(expected, e), check_vec_text(got, g),
+             check_near(vec3_length(got), 2.0, 1e-6) ? ": divide by the radius to make it unit length"
+             : check_vec_near(got, vec3_scale(expected, -1), 1e-9) ? ": it points inwards" : "");
+    return false;
+}
+
+/* ---- 3.1 triangle_intersect (Moller-Trumbore) ------------------------------------------------ */
+
+CHECK(check_triangle_hit) {
+    vec3 a = {0, 0, -2}, b = {4, 0, -2}, c = {0, 4, -2};
+    ray r = {{1, 2, 0}, {0, 0, -1}};
+    double t = NAN, u = NAN, v = NAN;
+    bool hit = triangle_intersect(a, b, c, &r, 1e-9, INFINITY, &t, &u, &v);
+    if (hit && check_near(t, 2.0, GEOMETRY_TOLERANCE) && check_near(u, 0.25, GEOMETRY_TOLERANCE) &&
+        check_near(v, 0.5, GEOMETRY_TOLERANCE))
+        return true;
+    if (!hit)
+        snprintf(why, why_size, "triangle_intersect: a ray from (1, 2, 0) down -z meets the triangle (0, 0, -2), "
+                 "(4, 0, -2), (0, 4, -2) at t = 2; your code returned no hit");
+    else
+        snprintf(why, why_size, "triangle_intersect: a ray from (1, 2, 0) down -z meets the triangle (0, 0, -2), "
+                 "(4, 0, -2), (0, 4, -2) at t = 2 with u = 0.25, v = 0.5; yours gave t = %g, u = %g, v = %g%s", t, u, v,
+                 check_near(u, 0.5, 1e-9) && check_near(v, 0.25, 1e-9) ? ": u and v swapped?" : "");
+    return false;
+}
+
+CHECK(check_triangle_misses) {
+    vec3 a = {0, 0, -2}, b = {4, 0, -2}, c = {0, 4, -2};
+    const struct { ray r; const char *what; } cases[] = {
+        {{{3, 3, 0}, {0, 0, -1}}, "a ray from (3, 3, 0) down -z, outside the edge from (4, 0, -2) to (0, 4, -2)"},
+        {{{-1, 1, 0}, {0, 0, -1}}, "a ray from (-1, 1, 0) down -z, beyond the edge x = 0"},
+        {{{1, 1, 0}, {0, 0, 1}}, "a ray from (1, 1, 0) pointing away from the triangle (up +z)"},
+        {{{1, 1, -1}, {1, 0, 0}}, "a ray parallel to the triangle's plane"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double t = NAN, u, v;
+        if (triangle_intersect(a, b, c, &cases[k].r, 1e-9, INFINITY, &t, &u, &v)) {
+            snprintf(why, why_size, "triangle_intersect: %s must miss the triangle (0, 0, -2), (4, 0, -2), (0, 4, -2); "
+                     "your code returned a hit at t = %g", cases[k].what, t);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* ---- 4.1 plane_intersect ----------------------------------------------------------------------- */
+
+CHECK(check_plane_hit) {
+    /* The floor y = -1: normal (0, 1, 0), distance -1. A ray down from the origin meets it at t = 1,
+     * one at 45 degrees at t = sqrt(2). */
+    struct plane floor = {{0, 1, 0}, -1.0, 0};
+    ray rays[2] = {{{0, 0, 0}, {0, -1, 0}}, {{0, 0, 0}, {0, -M_SQRT1_2, -M_SQRT1_2}}};
+    double expected[2] = {1.0, M_SQRT2};
+    for (int k = 0; k < 2; k++) {
+        double t = NAN;
+        bool hit = plane_intersect(&floor, &rays[k], 1e-9, INFINITY, &t);
+        if (hit && check_near(t, expected[k], GEOMETRY_TOLERANCE))
+            continue;
+        char d[64];
+        snprintf(why, why_size, "plane_intersect: the plane y = -1 (normal (0, 1, 0), distance -1) and a ray from the "
+                 "origin along %s: the hit is %.4f along the ray; your code returned %s%.4f%s",
+                 check_vec_text(rays[k].direction, d), expected[k], hit ? "" : "no hit, t = ", hit ? t : NAN,
+                 hit && check_near(t, -expected[k], 1e-9) ? ": the sign of the distance?" : "");
+        return false;
+    }
+    return true;
+}
+
+CHECK(check_plane_misses) {
+    struct plane floor = {{0, 1, 0}, -1.0, 0};
+    const struct { ray r; const char *what; } cases[] = {
+        {{{0, 0, 0}, {1, 0, 0}}, "a ray parallel to it"},
+        {{{0, 0, 0}, {0, 1, 0}}, "a ray pointing up, away from it"},
+    };
+    for (int k = 0; k < 2; k++) {
+        double t = NAN;
+        if (plane_intersect(&floor, &cases[k].r, 1e-9, INFINITY, &t)) {
+            snprintf(why, why_size, "plane_intersect: the plane y = -1 and %s from the origin: expected a miss; your "
+                     "code returned a hit at t = %g", cases[k].what, t);
+            return false;
+        }
+    }
+    return true;
+}
+
+/* ---- 5.1 the slab test, 5.2 box_intersect ------------------------------------------------------ */
+
+/* The box [-1, 1]^3 and a ray: where aabb_hit says it enters (NAN: a miss). */
+static bool slab_case(const char *what, ray r, double expected, char *why, size_t why_size) {
+    struct aabb b = {{-1, -1, -1}, {1, 1, 1}};
+    double entry = NAN;
+    bool hit = aabb_hit(&b, r.origin, aabb_inverse_direction(r.direction), 0.0, INFINITY, &entry);
+    if (isnan(expected) ? !hit : hit && check_near(entry, expected, GEOMETRY_TOLERANCE))
+        return true;
+    char o[64], d[64];
+    if (isnan(expected))
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s from %s "
+                 "along %s: expected a miss; it said the ray enters at t = %g", what, check_vec_text(r.origin, o),
+                 check_vec_text(r.direction, d), entry);
+    else
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s from %s "
+                 "along %s: the ray enters at t = %g; it said %s%g%s", what, check_vec_text(r.origin, o),
+                 check_vec_text(r.direction, d), expected, hit ? "t = " : "a miss, ", hit ? entry : NAN,
+                 hit && check_near(entry, expected + 2.0, 1e-9) ? ": the exit, not the entry? (swap t0 and t1 when 1/d < 0)"
+                                                                  : "");
+    return false;
+}
+
+CHECK(check_slab_hits) {
+    return slab_case("a ray", (ray){{0, 0, 5}, {0, 0, -1}}, 4.0, why, why_size) &&
+           slab_case("a ray in the negative direction's opposite", (ray){{0, 0, -5}, {0, 0, 1}}, 4.0, why, why_size) &&
+           slab_case("a ray from below", (ray){{0.5, -3, 0.5}, {0, 1, 0}}, 2.0, why, why_size) &&
+           slab_case("a diagonal ray", (ray){{5, 5, 5}, vec3_normalize(vec3_make(-1, -1, -1))}, 4.0 * sqrt(3.0), why,
+                     why_size);
+}
+
+CHECK(check_slab_misses) {
+    return slab_case("a ray passing beside it", (ray){{3, 0, 5}, {0, 0, -1}}, NAN, why, why_size) &&
+           slab_case("a ray pointing away", (ray){{0, 0, 5}, {0, 0, 1}}, NAN, why, why_size) &&
+           slab_case("a ray that passes a corner", (ray){{0, 3, 5}, vec3_normalize(vec3_make(0, -1, -0.9))}, NAN, why,
+                     why_size);
+}
+
+static bool box_case(const char *what, ray r, double expected, char *why, size_t why_size) {
+    struct box b = {{-1, -1, -1}, {1, 1, 1}, 0};
+    double t = NAN;
+    bool hit = box_intersect(&b, &r, 1e-9, INFINITY, &t);
+    if (isnan(expected) ? !hit : hit && check_near(t, expected, GEOMETRY_TOLERANCE))
+        return true;
+    snprintf(why, why_size, "box_intersect: the box [-1, 1]^3 and %s: expected %s%g; your code returned %s%g", what,
+             isnan(expected) ? "a miss" : "a hit at t = ", isnan(expected) ? 0.0 : expected, hit ? "a hit at t = " : "no hit",
+             hit ? t : 0.0);
+    if (!isnan(expected) && !hit)
+        snprintf(why + strlen(why), why_size - strlen(why), "%s",
+                 expected < 2 ? ": a ray starting inside hits the box where it leaves" : "");
+    return false;
+}
+
+CHECK(check_box_outside) {
+    return box_case("a ray from (0, 0, 5) down -z", (ray){{0, 0, 5}, {0, 0, -1}}, 4.0, why, why_size) &&
+           box_case("a ray from (3, 0, 5) down -z", (ray){{3, 0, 5}, {0, 0, -1}}, NAN, why, why_size);
+}
+
+CHECK(check_box_inside) {
+    return box_case("a ray from its centre along +x", (ray){{0, 0, 0}, {1, 0, 0}}, 1.0, why, why_size);
+}
