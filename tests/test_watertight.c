@@ -42,6 +42,12 @@
 #define EDGE_PERIOD 16
 #define EDGE_ROWS 64
 #define AIMS_PER_EDGE 8
+/* The close-up of the face view in docs/03-triangle.md: 4 camera rays and 7 shadow rays leak there
+ * with Moller-Trumbore. */
+#define CROP_LEFT 96
+#define CROP_TOP 160
+#define CROP_SIZE 128
+#define CROP_ZOOM 4
 #define WATERTIGHT_OUT TEST_OUT "/watertight"
 
 /* Outside the cube, behind the camera of the face view: the shadow rays from the pixels of the
@@ -390,6 +396,25 @@ static struct picture_leaks count_picture_leaks(const char *png) {
     return l;
 }
 
+/* Writes the square of CROP_SIZE pixels at (CROP_LEFT, CROP_TOP) of the picture at `png`, each pixel
+ * drawn as a CROP_ZOOM x CROP_ZOOM block, to `out`: the close-up that docs/03-triangle.md shows. */
+static void write_close_up(const char *png, const char *out) {
+    int width, height;
+    char err[256];
+    uint8_t *rgb = image_read_rgb(png, &width, &height, err, sizeof err);
+    cr_assert_not_null(rgb, "%s", err);
+    cr_assert(CROP_LEFT + CROP_SIZE <= width && CROP_TOP + CROP_SIZE <= height);
+    int side = CROP_SIZE * CROP_ZOOM;
+    uint8_t *close_up = malloc(3 * (size_t)side * side);
+    for (int y = 0; y < side; y++)
+        for (int x = 0; x < side; x++)
+            memcpy(&close_up[3 * ((size_t)y * side + x)],
+                   &rgb[3 * ((size_t)(CROP_TOP + y / CROP_ZOOM) * width + CROP_LEFT + x / CROP_ZOOM)], 3);
+    cr_assert(image_write_png_bytes(close_up, side, side, out, err, sizeof err), "%s", err);
+    free(close_up);
+    free(rgb);
+}
+
 static struct picture_leaks render_leaks(const char *program, const char *scene, const char *tag,
                                          const char *extra) {
     char png[256];
@@ -411,6 +436,8 @@ Test(watertight, chapters_9_and_10_draw_the_cube_from_inside_without_a_leak, .ti
             cr_assert_eq(l.red, 0, "chapter %d, %s: %ld camera rays slipped through", n, views[k]->name, l.red);
             cr_assert_eq(l.lit, 0, "chapter %d, %s: %ld shadow rays slipped through", n, views[k]->name, l.lit);
         }
+        if (views[k] == &cube_face)
+            write_close_up(WATERTIGHT_OUT "/cube-face-chapter-10.png", WATERTIGHT_OUT "/close-up-watertight.png");
     }
 }
 
@@ -422,6 +449,9 @@ Test(watertight, chapter_10_with_moller_trumbore_draws_the_leak, .timeout = 300)
         char tag[64];
         snprintf(tag, sizeof tag, "cube-face-moller-trumbore-%s", structures[k] + 8);
         struct picture_leaks l = render_leaks(mutant_program("moller-trumbore"), scene, tag, structures[k]);
+        if (k == 0)
+            write_close_up(WATERTIGHT_OUT "/cube-face-moller-trumbore-bvh.png",
+                           WATERTIGHT_OUT "/close-up-moller-trumbore.png");
         cr_assert_gt(l.red, 0, "%s: Moller-Trumbore let no camera ray through: the check above proves nothing",
                      structures[k]);
         cr_assert_gt(l.lit, 0, "%s: Moller-Trumbore let no shadow ray through: the check above proves nothing",
