@@ -4,11 +4,11 @@
  * The meshes (tools/closed_mesh.c) share their vertices: a cube whose faces are 64 x 64 grids of
  * squares split along a diagonal (49,152 triangles), and an icosphere subdivided five times (20,480).
  * The views look from inside, so every ray must hit the mesh: the cube from its centre straight at a
- * face (the pixels of the picture's diagonal aim exactly at the face's diagonal edges) and straight at
- * one of its edges, the icosphere from a point off its centre. The light is outside, so every shadow
+ * face (a sixteenth of the pixels aim exactly at the face's diagonal edges) and straight at one of its
+ * edges, the icosphere from a point off its centre, plus rays aimed at every edge of the icosphere. The light is outside, so every shadow
  * ray from a point inside must be blocked.
  *
- * Three levels: chapter 3's brute-force loop on the rays of the picture's diagonal; whole 1024 x 1024
+ * Three levels: chapter 3's brute-force loop on rays aimed exactly at diagonal edges; whole 1024 x 1024
  * pictures traced with the kd-tree in this process, camera rays and shadow rays; and the programs of
  * chapters 9 and 10 rendering the scene with a red background, beside chapter 10 built with
  * Moller-Trumbore (the Makefile's mutant-moller-trumbore), which must show red pixels, so the check is
@@ -41,7 +41,7 @@
  * Moller-Trumbore lets 5 of them through). */
 #define EDGE_PERIOD 16
 #define EDGE_ROWS 64
-#define AIMS_PER_EDGE 8
+#define AIMS_PER_EDGE 8 /* rays through points of each icosphere edge, its first corner included */
 /* The close-up of the face view in docs/03-triangle.md: 4 camera rays and 7 shadow rays leak there
  * with Moller-Trumbore. */
 #define CROP_LEFT 96
@@ -50,13 +50,13 @@
 #define CROP_ZOOM 4
 #define WATERTIGHT_OUT TEST_OUT "/watertight"
 
-/* Outside the cube, behind the camera of the face view: the shadow rays from the pixels of the
- * picture's diagonal cross the face z = -1 on its diagonal edges (on the line x = y). */
 /* Shadow rays are checked only where the light is at least this cosine inside the face they start on
  * (about 6 degrees, twice the angle between neighbouring faces of the icosphere): there the ray crosses
  * the inside for a chord of 0.2 or more, far beyond SHADOW_T_MIN, before it reaches the far side. */
 #define SHADOW_MIN_COSINE 0.1
 
+/* Outside the cube, behind the camera of the face view: the shadow rays cross the face z = -1, and
+ * some meet its diagonal edges exactly (Moller-Trumbore lets 30 of them through). */
 static const vec3 cube_light = {0, 0, -3};
 static const vec3 icosphere_light = {1.7, 2.3, -1.9};
 
