@@ -30,7 +30,7 @@ bool triangle_crossing_mt(vec3 a, vec3 b, vec3 c, const ray *r, double *t, doubl
 struct triangle_ray {
     ray ray;           /* the ray itself */
     int kx, ky, kz;    /* the world axes (0, 1, 2 for x, y, z) used as x, y and z */
-    double sx, sy, sz; /* the shear: sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1 / d[kz] */
+    double sx, sy, sz; /* the shear: sz = 1 / d[kz], sx = d[kx] sz, sy = d[ky] sz */
 };
 
 /* Returns r made ready for triangle_crossing_prepared: one division and a few comparisons, worth
@@ -41,8 +41,8 @@ static inline struct triangle_ray triangle_ray_make(const ray *r) {
     double along_x = fabs(d.x), along_y = fabs(d.y), along_z = fabs(d.z);
     int kz = along_x > along_y ? (along_x > along_z ? 0 : 2) : (along_y > along_z ? 1 : 2);
     int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
-    double dz = vec3_axis(d, kz);
-    return (struct triangle_ray){*r, kx, ky, kz, vec3_axis(d, kx) / dz, vec3_axis(d, ky) / dz, 1.0 / dz};
+    double sz = 1.0 / vec3_axis(d, kz);
+    return (struct triangle_ray){*r, kx, ky, kz, vec3_axis(d, kx) * sz, vec3_axis(d, ky) * sz, sz};
 }
 
 /* The edge function of the edge from p to q, seen from the ray: twice the signed area of the 2D

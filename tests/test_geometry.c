@@ -388,14 +388,24 @@ static const vec3 shared_from = {0.75, 0.9375, 1}, shared_to = {0.78125, 0.96875
 static const vec3 below_edge = {0.78125, 0.9375, 1}, above_edge = {0.75, 0.96875, 1};
 static const vec3 toward_edge = {0.48906634013963241, 0.60658916530460039, 0.62678840087982934};
 
-Test(triangle, ray_through_a_shared_edge_hits_both_triangles_at_the_same_t) {
+Test(triangle, ray_through_that_shared_edge_hits_at_least_one_of_the_triangles) {
     ray r = {{0, 0, 0}, toward_edge}; /* the camera's ray, bit for bit */
     struct tri_hit below = triangle_probe(shared_from, below_edge, shared_to, r);
     struct tri_hit above = triangle_probe(shared_from, shared_to, above_edge, r);
-    cr_assert(below.hit && above.hit, "the tie rule: on the edge counts as inside for both");
-    cr_assert_eq(below.t, above.t);
-    cr_assert_eq(below.u, 0.0, "exactly on the edge: b's weight is 0");
-    cr_assert_eq(above.v, 0.0, "exactly on the edge: c's weight is 0");
+    cr_assert(below.hit || above.hit, "the ray slipped between the two triangles");
+}
+
+Test(triangle, tie_rule_a_ray_exactly_on_a_shared_edge_hits_both_triangles_at_the_same_t) {
+    /* The square [-1, 1]^2 at z = -2 split along its diagonal; the ray comes straight down onto the
+     * diagonal, where the shared edge function is exactly 0 (every product is exact). */
+    vec3 low = {-1, -1, -2}, high = {1, 1, -2}, right = {1, -1, -2}, left = {-1, 1, -2};
+    struct tri_hit below = triangle_probe(low, right, high, ray_down_z_from(0.25, 0.25));
+    struct tri_hit above = triangle_probe(low, high, left, ray_down_z_from(0.25, 0.25));
+    cr_assert(below.hit && above.hit, "on the edge counts as inside for both");
+    cr_assert_eq(below.t, 2.0);
+    cr_assert_eq(above.t, 2.0);
+    cr_assert_eq(below.u, 0.0, "on the edge from a to c: b's weight is 0");
+    cr_assert_eq(above.v, 0.0, "on the edge from a to b: c's weight is 0");
 }
 
 Test(triangle, moller_trumbore_misses_both_triangles_on_that_edge) {
