@@ -18,7 +18,8 @@
 #define OUTPUT_MAX (1 << 20)
 
 /* Copies the line `line` (length n) into `out`, with every number that is followed by " s" or " ms"
- * replaced by "#", and trailing blanks removed. */
+ * replaced by "#" and the blanks before it made one (the programs right-align durations, and a slow
+ * run's wider number eats a blank), and trailing blanks removed. */
 static void normalise(const char *line, size_t n, char *out, size_t size) {
     size_t o = 0;
     for (size_t k = 0; k < n && o + 2 < size;) {
@@ -30,6 +31,10 @@ static void normalise(const char *line, size_t n, char *out, size_t size) {
                              (end + 2 == n || !isalpha((unsigned char)line[end + 2]))) ||
                             (end + 3 <= n && strncmp(line + end, " ms", 3) == 0);
             if (duration) {
+                while (o > 0 && out[o - 1] == ' ')
+                    o--;
+                if (o > 0)
+                    out[o++] = ' ';
                 out[o++] = '#';
                 k = end;
                 continue;
