@@ -73,10 +73,12 @@ static void naive_destroy(void *structure) { (void)structure; }
 static bool naive_closest(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
     const struct mesh *m = structure;
     bool found = false;
+    struct triangle_ray prepared = triangle_ray_make(r); /* once for all faces, as triangle_mesh_closest does */
     double u, v;
     for (size_t k = 0; k < m->face_count; k++) {
         const uint32_t *c = m->faces[k].v;
-        if (triangle_intersect(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], r, t_min, t_max, &t_max, &u, &v)) {
+        if (triangle_intersect_prepared(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], &prepared, t_min,
+                                        t_max, &t_max, &u, &v)) {
             found = true;
             *face = (uint32_t)k;
         }
@@ -88,10 +90,12 @@ static bool naive_closest(const void *structure, const ray *r, double t_min, dou
 
 static bool naive_occluded(const void *structure, const ray *r, double t_min, double t_max) {
     const struct mesh *m = structure;
+    struct triangle_ray prepared = triangle_ray_make(r);
     double t, u, v;
     for (size_t k = 0; k < m->face_count; k++) {
         const uint32_t *c = m->faces[k].v;
-        if (triangle_intersect(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], r, t_min, t_max, &t, &u, &v))
+        if (triangle_intersect_prepared(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], &prepared, t_min,
+                                        t_max, &t, &u, &v))
             return true;
     }
     return false;

@@ -108,8 +108,10 @@
 #define KD_BOX_PAD (1.0 / 1048576.0)
 
 /* Needle-thin triangles (the sine of the angle between edges b - a and c - a below this, yet not zero)
- * stay out of the tree and are tested by every ray: their Moller-Trumbore "hits" may lie far outside
- * them (see BVH_SLIVER_SINE in bvh.c, the same value and reasons). */
+ * stay out of the tree and are tested by every ray (see BVH_SLIVER_SINE in bvh.c, the same value). The
+ * reason was Moller-Trumbore, whose "hits" on them may lie far outside them; the watertight test that
+ * replaced it keeps every hit within rounding of the triangle (triangle.c), so this is now a margin of
+ * safety that costs the few slivers of real meshes a test per ray. */
 #define KD_SLIVER_SINE 1e-6
 
 /* Tolerance of the t comparisons that prune the walk, relative to the ray's distance from the mesh
@@ -512,11 +514,12 @@ void kdtree_get_info(const struct kdtree *k, struct kdtree_info *info) { *info =
 
 /* ==== traversal =============================================================================== */
 
-/* Whether r's line crosses the triangle, and where: triangle_crossing (triangle.h), the arithmetic
- * triangle_intersect uses, so t is bit-identical to the brute-force loop's. Does not count. */
-static inline bool triangle_hit(const struct kd_triangle *tri, const ray *r, double *t) {
+/* Whether the ray's line crosses the triangle, and where: the watertight test (triangle.h) on the ray
+ * made ready once per query, the arithmetic triangle_intersect uses, so t is bit-identical to the
+ * brute-force loop's. Does not count. */
+static inline bool triangle_hit(const struct kd_triangle *tri, const struct triangle_ray *r, double *t) {
     double u, v;
-    return triangle_crossing(tri->a, tri->b, tri->c, r, t, &u, &v);
+    return triangle_crossing_prepared(tri->a, tri->b, tri->c, r, t, &u, &v);
 }
 
 enum query {
@@ -560,7 +563,7 @@ static bool report_once(struct query_state *q, double t, uint32_t face) {
 
 /* Tests faces[0..count) for query q, skipping (and recording) those in the mailbox when one is
  * given. Returns false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
-static inline __attribute__((always_inline)) bool test_faces(const struct kdtree *k, const ray *r,
+static inline __attribute__((always_inline)) bool test_faces(const struct kdtree *k, const struct triangle_ray *r,
                                                              const uint32_t *faces, uint32_t count, double t_min,
                                                              double t_max, enum query kind, struct query_state *q,
                                                              uint32_t *mailbox, uint64_t *tests) {
@@ -609,9 +612,11 @@ static inline __attribute__((always_inline)) bool traverse(const struct kdtree *
     q->t = t_max;
     double length = vec3_length(r->direction);
     if (k->face_count == 0 || length == 0.0)
-        return false; /* a zero direction hits nothing: Moller-Trumbore's determinant is 0 */
+        return false; /* a zero direction hits nothing: the triangle test's shear is NaN */
     uint64_t tests = 0;
-    bool running = test_faces(k, r, k->slivers, (uint32_t)k->sliver_count, t_min, t_max, kind, q, NULL, &tests);
+    struct triangle_ray prepared = triangle_ray_make(r);
+    bool running =
+        test_faces(k, &prepared, k->slivers, (uint32_t)k->sliver_count, t_min, t_max, kind, q, NULL, &tests);
     stats_thread.triangle_tests += tests;
     if (!running)
         return q->found;
@@ -675,7 +680,7 @@ static inline __attribute__((always_inline)) bool traverse(const struct kdtree *
             continue;
         }
 
-        if (!test_faces(k, r, &k->refs[n->first], n->bits >> 2, t_min, t_max, kind, q, mailbox, &tests))
+        if (!test_faces(k, &prepared, &k->refs[n->first], n->bits >> 2, t_min, t_max, kind, q, mailbox, &tests))
             break;
         /* Next: the most recently postponed subtree that starts no later than the best hit (give or take
          * the tolerance); those starting beyond it cannot hold anything nearer. */

@@ -1,7 +1,8 @@
-/* triangle.h: the triangle and the Moller-Trumbore ray intersection (chapter 3). */
+/* triangle.h: the triangle and the watertight ray-triangle test (chapter 3). */
 #ifndef WHITTED_TRIANGLE_H
 #define WHITTED_TRIANGLE_H
 
+#include <math.h>
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -14,45 +15,112 @@ struct triangle {
     int material; /* index into scene.materials */
 };
 
-/* The arithmetic of Moller-Trumbore on the triangle with corners a, b, c, the form the acceleration
- * structures store. It is shared by triangle_intersect and by the kd-tree and BVH, so that all of them
- * find the same t to the last bit. Returns true and stores t, u and v when the ray's line crosses the
- * triangle, at any t (the caller checks its window). A ray parallel to the plane, and a triangle with
- * two equal corners, never cross. Counts nothing. */
-static inline bool triangle_crossing(vec3 a, vec3 b, vec3 c, const ray *r, double *t, double *u, double *v) {
-    vec3 edge1 = vec3_sub(b, a), edge2 = vec3_sub(c, a);
-    vec3 p = vec3_cross(r->direction, edge2);
-    double det = vec3_dot(edge1, p);
+/* Moller-Trumbore, the test chapter 3 teaches first: solves O + tD = (1-u-v)a + ub + vc by Cramer's
+ * rule. Same contract as triangle_crossing, but each triangle rounds its own u and v, so a ray that
+ * meets an edge shared by two triangles can miss both (see docs/03-triangle.md). Kept for teaching and
+ * for the tests that show the leak; the tracer does not use it. Counts nothing. */
+bool triangle_crossing_mt(vec3 a, vec3 b, vec3 c, const ray *r, double *t, double *u, double *v);
+
+/* A ray made ready for the watertight test of Woop, Benthin and Wald ("Watertight Ray/Triangle
+ * Intersection", JCGT 2(1), 2013). The world's axes are renamed so that the direction's longest
+ * component is along z (world axis kz), and the shear
+ *     x' = x - sx z,   y' = y - sy z,   z' = sz z
+ * makes the direction (0, 0, 1). In those coordinates, with the origin moved to (0, 0, 0), the ray is
+ * the z axis. The record depends on the ray alone, so every triangle sees it the same way. */
+struct triangle_ray {
+    ray ray;           /* the ray itself */
+    int kx, ky, kz;    /* the world axes (0, 1, 2 for x, y, z) used as x, y and z */
+    double sx, sy, sz; /* the shear: sz = 1 / d[kz], sx = d[kx] sz, sy = d[ky] sz */
+};
+
+/* Returns r made ready for triangle_crossing_prepared: one division and a few comparisons, worth
+ * doing once per ray when the ray meets many triangles. A zero or NaN direction gives NaN shears,
+ * with which every triangle misses. */
+static inline struct triangle_ray triangle_ray_make(const ray *r) {
+    vec3 d = r->direction;
+    double along_x = fabs(d.x), along_y = fabs(d.y), along_z = fabs(d.z);
+    int kz = along_x > along_y ? (along_x > along_z ? 0 : 2) : (along_y > along_z ? 1 : 2);
+    int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
+    double sz = 1.0 / vec3_axis(d, kz);
+    return (struct triangle_ray){*r, kx, ky, kz, vec3_axis(d, kx) * sz, vec3_axis(d, ky) * sz, sz};
+}
+
+/* The edge function of the edge from p to q, seen from the ray: twice the signed area of the 2D
+ * triangle (0, 0), p, q in the sheared plane. Zero when the ray meets the edge's line. The same two
+ * corners always give the same number, and given in the other order its exact negative (the products
+ * are the same two, subtracted the other way), so two triangles that share an edge agree on it. */
+static inline double triangle_edge_function(double px, double py, double qx, double qy) {
+    return px * qy - py * qx;
+}
+
+/* The watertight test on the triangle with corners a, b, c, the form the acceleration structures
+ * store. Returns true and stores t, u and v (P = (1-u-v)a + ub + vc) when the ray's line crosses the
+ * triangle, at any t (the caller checks its window). Points on edges and corners count as inside, for
+ * both triangles that share them. A ray that sees the triangle edge-on (all three edge functions
+ * zero: parallel to its plane, or a triangle without area) never crosses. Counts nothing. */
+static inline bool triangle_crossing_prepared(vec3 a, vec3 b, vec3 c, const struct triangle_ray *s, double *t,
+                                              double *u, double *v) {
+#ifdef WHITTED_MUTANT_MOLLER_TRUMBORE
+    /* The tests' deliberately leaky tracer (Makefile: mutant-moller-trumbore) uses Moller-Trumbore. */
+    return triangle_crossing_mt(a, b, c, &s->ray, t, u, v);
+#endif
+    /* The corners relative to the origin, in the ray's axes, sheared so that the ray runs along z: the
+     * question is now whether the point (0, 0) lies in the 2D triangle (ax, ay), (bx, by), (cx, cy).
+     * Each corner is transformed on its own, so a corner that two triangles share lands on the same
+     * point for both. */
+    vec3 o = s->ray.origin, pa = vec3_sub(a, o), pb = vec3_sub(b, o), pc = vec3_sub(c, o);
+    double az = vec3_axis(pa, s->kz), bz = vec3_axis(pb, s->kz), cz = vec3_axis(pc, s->kz);
+    double ax = vec3_axis(pa, s->kx) - s->sx * az, ay = vec3_axis(pa, s->ky) - s->sy * az;
+    double bx = vec3_axis(pb, s->kx) - s->sx * bz, by = vec3_axis(pb, s->ky) - s->sy * bz;
+    double cx = vec3_axis(pc, s->kx) - s->sx * cz, cy = vec3_axis(pc, s->ky) - s->sy * cz;
+
+    /* (0, 0) is inside when it is on the same side of all three edges: all edge functions >= 0 or all
+     * <= 0 (both windings, as triangles are two-sided). Zero means on the edge, which is inside for
+     * both triangles that share it; NaN (a NaN corner or direction) fails both tests. */
+    double w_a = triangle_edge_function(bx, by, cx, cy); /* opposite a: a's barycentric weight */
+    double w_b = triangle_edge_function(cx, cy, ax, ay);
+    double w_c = triangle_edge_function(ax, ay, bx, by);
+    bool inside_positive = w_a >= 0.0 && w_b >= 0.0 && w_c >= 0.0;
+    bool inside_negative = w_a <= 0.0 && w_b <= 0.0 && w_c <= 0.0;
+    if (!inside_positive && !inside_negative)
+        return false;
+    double det = w_a + w_b + w_c; /* twice the 2D triangle's signed area */
     if (det == 0.0)
         return false;
-    double inv_det = 1.0 / det;
-    vec3 to_origin = vec3_sub(r->origin, a);
-    double hit_u = vec3_dot(to_origin, p) * inv_det;
-    if (hit_u < 0.0 || hit_u > 1.0)
-        return false;
-    vec3 q = vec3_cross(to_origin, edge1);
-    double hit_v = vec3_dot(r->direction, q) * inv_det;
-    if (hit_v < 0.0 || hit_u + hit_v > 1.0)
-        return false;
-    /* Two equal corners give det = 0 only in exact arithmetic: rounding can leave a tiny det and noise
-     * for u and v that passes the tests above, and such a triangle has no normal to shade with. Its
-     * area is checked here, on the rare path of a crossing, so the common path of a miss pays nothing. */
-    vec3 area = vec3_cross(edge1, edge2);
+    /* Exactly collinear corners have no normal to shade with, even if rounding gave their 2D image an
+     * area. Checked here, on the rare path of a crossing, so the common path of a miss pays nothing. */
+    vec3 area = vec3_cross(vec3_sub(b, a), vec3_sub(c, a));
     if (area.x == 0.0 && area.y == 0.0 && area.z == 0.0)
         return false;
-    *t = vec3_dot(edge2, q) * inv_det;
-    *u = hit_u;
-    *v = hit_v;
+
+    /* The depths of the corners along the ray, weighted by their barycentric coordinates. */
+    double inv_det = 1.0 / det;
+    *t = (w_a * az + w_b * bz + w_c * cz) * s->sz * inv_det;
+    *u = w_b * inv_det;
+    *v = w_c * inv_det;
     return true;
 }
 
-/* Finds where ray r meets the triangle (a, b, c) with t_min < t < t_max. On a hit returns true and
- * stores t and the barycentric coordinates u, v of the hit (P = (1-u-v)a + ub + vc); points on edges
- * and corners count as inside. Both faces are hit (two-sided). A ray parallel to the triangle's plane,
- * or a triangle of zero area, is a miss. No absolute epsilon is used, so tiny triangles are hit too.
- * Counts one triangle test. */
+/* The watertight test (triangle_crossing_prepared) for a ray not made ready beforehand. The kd-tree
+ * and the BVH of chapters 9 and 10 call it, or the prepared form, on the corners the mesh holds, so
+ * they find exactly the t and the face the brute-force loop finds. Counts nothing. */
+static inline bool triangle_crossing(vec3 a, vec3 b, vec3 c, const ray *r, double *t, double *u, double *v) {
+    struct triangle_ray s = triangle_ray_make(r);
+    return triangle_crossing_prepared(a, b, c, &s, t, u, v);
+}
+
+/* Finds where ray r meets the triangle (a, b, c) with t_min < t < t_max, by the watertight test. On a
+ * hit returns true and stores t and the barycentric coordinates u, v of the hit (P = (1-u-v)a + ub +
+ * vc); points on edges and corners count as inside. Both faces are hit (two-sided). A ray parallel to
+ * the triangle's plane, or a triangle of zero area, is a miss. No absolute epsilon is used, so tiny
+ * triangles are hit too. Counts one triangle test. */
 bool triangle_intersect(vec3 a, vec3 b, vec3 c, const ray *r, double t_min, double t_max, double *t,
                         double *u, double *v);
+
+/* triangle_intersect for a ray made ready by triangle_ray_make: the same answer, without the per-ray
+ * work. Counts one triangle test. */
+bool triangle_intersect_prepared(vec3 a, vec3 b, vec3 c, const struct triangle_ray *s, double t_min, double t_max,
+                                 double *t, double *u, double *v);
 
 /* Tests r against triangles[0..count) for hits with t_min < t < h->t and keeps the nearest in *h.
  * Returns true when *h was replaced. */

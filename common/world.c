@@ -144,10 +144,11 @@ static bool cross_boxes(const struct scene *s, const ray *r, double t_min, doubl
 static bool cross_triangles(const struct world *w, const ray *r, double t_min, double t_max,
                             world_crossing_visitor visit, void *context) {
     const struct scene *s = w->scene;
+    struct triangle_ray prepared = triangle_ray_make(r); /* once for every triangle below */
     double t, u, v;
     for (size_t k = 0; k < s->triangle_count; k++) {
         const struct triangle *tri = &s->triangles[k];
-        if (triangle_intersect(tri->a, tri->b, tri->c, r, t_min, t_max, &t, &u, &v) &&
+        if (triangle_intersect_prepared(tri->a, tri->b, tri->c, &prepared, t_min, t_max, &t, &u, &v) &&
             !visit(context, t, tri->material))
             return false;
     }
@@ -160,8 +161,8 @@ static bool cross_triangles(const struct world *w, const ray *r, double t_min, d
         }
         for (size_t f = 0; f < m->face_count; f++) {
             const uint32_t *corner = m->faces[f].v;
-            if (triangle_intersect(m->vertices[corner[0]], m->vertices[corner[1]], m->vertices[corner[2]], r,
-                                   t_min, t_max, &t, &u, &v) &&
+            if (triangle_intersect_prepared(m->vertices[corner[0]], m->vertices[corner[1]], m->vertices[corner[2]],
+                                            &prepared, t_min, t_max, &t, &u, &v) &&
                 !visit(context, t, s->meshes[k].material))
                 return false;
         }

@@ -372,11 +372,12 @@ static void checker_free(struct checker *c) {
 /* The brute-force pass: every face's t for ray r, whatever the window. */
 static void trace_brute_force(struct checker *c, const ray *r) {
     c->hit_count = 0;
+    struct triangle_ray prepared = triangle_ray_make(r); /* triangle_intersect, without redoing this per face */
     for (size_t f = 0; f < c->m->face_count; f++) {
         const uint32_t *v = c->m->faces[f].v;
         double t, u, w;
-        if (triangle_intersect(c->m->vertices[v[0]], c->m->vertices[v[1]], c->m->vertices[v[2]], r, -INFINITY,
-                               INFINITY, &t, &u, &w)) {
+        if (triangle_intersect_prepared(c->m->vertices[v[0]], c->m->vertices[v[1]], c->m->vertices[v[2]], &prepared,
+                                        -INFINITY, INFINITY, &t, &u, &w)) {
             c->t_of_face[f] = t;
             c->hit_faces[c->hit_count++] = (uint32_t)f;
         } else {

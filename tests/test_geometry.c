@@ -377,6 +377,63 @@ Test(triangle, back_face_is_hit_with_the_same_t) {
     cr_assert_eq(below.t, 2.0);
 }
 
+Test(triangle, zero_or_nan_direction_misses) {
+    cr_assert(!triangle_probe(tri_a, tri_b, tri_c, make_ray(vec3_make(0.5, -0.5, 0), vec3_make(0, 0, 0))).hit);
+    cr_assert(!triangle_probe(tri_a, tri_b, tri_c, make_ray(vec3_make(0.5, -0.5, 0), vec3_make(0, NAN, -1))).hit);
+}
+
+/* The ray of pixel (112, 16) in the face view of tests/test_watertight.c meets the diagonal edge that
+ * these two triangles of the tessellated cube share (the example of docs/03-triangle.md). */
+static const vec3 shared_from = {0.75, 0.9375, 1}, shared_to = {0.78125, 0.96875, 1};
+static const vec3 below_edge = {0.78125, 0.9375, 1}, above_edge = {0.75, 0.96875, 1};
+static const vec3 toward_edge = {0.48906634013963241, 0.60658916530460039, 0.62678840087982934};
+
+Test(triangle, ray_through_that_shared_edge_hits_at_least_one_of_the_triangles) {
+    ray r = {{0, 0, 0}, toward_edge}; /* the camera's ray, bit for bit */
+    struct tri_hit below = triangle_probe(shared_from, below_edge, shared_to, r);
+    struct tri_hit above = triangle_probe(shared_from, shared_to, above_edge, r);
+    cr_assert(below.hit || above.hit, "the ray slipped between the two triangles");
+}
+
+Test(triangle, tie_rule_a_ray_exactly_on_a_shared_edge_hits_both_triangles_at_the_same_t) {
+    /* The square [-1, 1]^2 at z = -2 split along its diagonal; the ray comes straight down onto the
+     * diagonal, where the shared edge function is exactly 0 (every product is exact). */
+    vec3 low = {-1, -1, -2}, high = {1, 1, -2}, right = {1, -1, -2}, left = {-1, 1, -2};
+    struct tri_hit below = triangle_probe(low, right, high, ray_down_z_from(0.25, 0.25));
+    struct tri_hit above = triangle_probe(low, high, left, ray_down_z_from(0.25, 0.25));
+    cr_assert(below.hit && above.hit, "on the edge counts as inside for both");
+    cr_assert_eq(below.t, 2.0);
+    cr_assert_eq(above.t, 2.0);
+    cr_assert_eq(below.u, 0.0, "on the edge from a to c: b's weight is 0");
+    cr_assert_eq(above.v, 0.0, "on the edge from a to b: c's weight is 0");
+}
+
+Test(triangle, moller_trumbore_misses_both_triangles_on_that_edge) {
+    ray r = {{0, 0, 0}, toward_edge}; /* the camera's ray, bit for bit */
+    double t, u, v;
+    cr_assert(!triangle_crossing_mt(shared_from, below_edge, shared_to, &r, &t, &u, &v), "u comes out about -2.8e-15");
+    cr_assert(!triangle_crossing_mt(shared_from, shared_to, above_edge, &r, &t, &u, &v), "v comes out about -1.4e-15");
+    ray inside = make_ray(vec3_make(0, 0, 0), vec3_make(0.77, 0.94, 1)); /* well inside the first */
+    cr_assert(triangle_crossing_mt(shared_from, below_edge, shared_to, &inside, &t, &u, &v));
+    cr_assert_float_eq(t, vec3_length(vec3_make(0.77, 0.94, 1)), CLOSE, "make_ray normalises the direction");
+}
+
+/* The watertight test relies on a*b - c*d being two rounded products and a rounded difference (the
+ * Makefile's -ffp-contract=off): then an edge seen from its other end gives exactly the negative. */
+Test(triangle, edge_function_is_exactly_antisymmetric) {
+    uint64_t state = 12345;
+    for (int k = 0; k < 100000; k++) {
+        double c[4];
+        for (int i = 0; i < 4; i++) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            c[i] = ((double)(state >> 11) * 0x1.0p-53 - 0.5) * 8.0;
+        }
+        double forward = triangle_edge_function(c[0], c[1], c[2], c[3]);
+        double backward = triangle_edge_function(c[2], c[3], c[0], c[1]);
+        cr_assert(forward == -backward, "e(p, q) = %a but e(q, p) = %a", forward, backward);
+    }
+}
+
 /* A right triangle with legs `size` at z = -1, probed through its centroid-ish point. */
 static struct tri_hit probe_tiny(double size) {
     vec3 a = vec3_make(0, 0, -1), b = vec3_make(size, 0, -1), c = vec3_make(0, size, -1);
