@@ -88,7 +88,10 @@ void figure_shadow(FILE *out) {
     svg_view(&s, 0, 0, 660, 240, 1);
     /* the point is drawn acne_depth_px pixels inside; the left panel has 66 pixels per unit */
     const double acne_depth_px = 22, left_scale = 66;
-    svg_text_px(&s, 690, 28, "middle", SVG_INK, "acne, enlarged %.0e times more", acne_depth_px / -g.inside / left_scale);
+    double enlarged = acne_depth_px / -g.inside / left_scale;
+    int power = (int)floor(log10(enlarged));
+    svg_text_px(&s, 690, 28, "middle", SVG_INK, "acne, drawn about %.0f × 10^%d times larger", enlarged / pow(10, power),
+                power);
     svg_rect(&s, (svg_point){-190, -70}, (svg_point){200, 0}, SVG_SURFACE, SVG_THIN, 0.12);
     svg_line(&s, (svg_point){-190, 0}, (svg_point){200, 0}, SVG_SURFACE, SVG_SOLID);
     svg_text(&s, (svg_point){200, -70}, -6, -8, "end", SVG_SURFACE, "inside the sphere");
