@@ -7,6 +7,7 @@
 #   make test-accel-long  the kd-tree and BVH differential tests with millions of rays
 #   make references     re-render the reference images on purpose and say what changed
 #   make gallery        render the gallery of wrong pictures into docs/gallery.md
+#   make figures        redraw the walkthroughs' figures, docs/figures/*.svg, from tools/figures/
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
 #   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
@@ -80,13 +81,14 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 include tools/models.mk
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
-.PHONY: all chapters test test-sanitize test-accel-long references compare gallery clean help models \
+.PHONY: all chapters test test-sanitize test-accel-long references compare gallery figures clean help models \
         $(foreach n,1 2 3 4 5 6 7 8 9 10,chapter-$(n))
 .DEFAULT_GOAL := all
 .SECONDARY:
 .SECONDEXPANSION:
 
-all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(BUILD)/compare $(SCENE_MODELS)
+all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(BUILD)/compare $(BUILD)/figures \
+     $(SCENE_MODELS)
 
 # ---- compiling ---------------------------------------------------------------------------------
 $(BUILD)/common/%.o: common/%.c | $(BUILD)/common
@@ -194,11 +196,24 @@ references: all $(BUILD)/compare
 gallery: all $(BUILD)/compare
 	tools/gallery.sh $(BUILD)
 
+# The walkthroughs' figures: tools/figures/ draws them as SVG with the chapters' own functions, into
+# docs/figures/ (tests/test_figures.c checks that the committed ones are what it draws now).
+FIGURE_OBJECTS := $(patsubst tools/figures/%.c,$(BUILD)/tools/figures/%.o,$(wildcard tools/figures/*.c))
+$(BUILD)/tools/figures/%.o: tools/figures/%.c
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/figures: $(FIGURE_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
+figures: $(BUILD)/figures
+	./$(BUILD)/figures docs/figures
+
 clean:
 	rm -rf build out
 
 help:
-	@sed -n '2,15p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,16p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---- the coursework kit (docs/coursework.md) -----------------------------------------------------
 #   make student DIR=path [TASKS="2.1 5.1"]  a student copy with the marked tasks' bodies blanked

@@ -1,6 +1,7 @@
 /* cli.c: the command line and the load-render-write sequence shared by all chapters (chapter 1). */
 #include "cli.h"
 
+#include "heatmap.h"
 #include "outfile.h"
 #include "scene_set.h"
 #include "text_escape.h"
@@ -206,7 +207,8 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
         complain("out of memory for a %d x %d image", s->width, s->height);
         return CLI_OUTPUT_FAILED;
     }
-    if (o->heatmap != NULL && !image_create(&heatmap, s->width, s->height)) {
+    if (o->heatmap != NULL &&
+        !image_create(&heatmap, s->width, s->height + heatmap_bar_height(s->width, s->height))) {
         image_free(&img);
         complain("out of memory for the heat-map");
         return CLI_OUTPUT_FAILED;
@@ -221,8 +223,10 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
     render_image(&job, &img, &total);
     double elapsed = seconds_now() - started;
     bool written = image_write_png(&img, o->output, err, sizeof err);
-    if (written && o->heatmap != NULL)
+    if (written && o->heatmap != NULL) {
+        heatmap_draw_bar(&heatmap, s->height);
         written = image_write_png(&heatmap, o->heatmap, err, sizeof err);
+    }
     image_free(&img);
     image_free(&heatmap);
     if (!written) {

@@ -5,7 +5,11 @@
  * drawn on one fixed logarithmic scale, black (no work) through blue, red and yellow to white
  * (HEATMAP_MAX_COST tests or more), so heat-maps of different chapters and structures can be set side
  * by side. Mind what a unit is: a BVH node visit also counts a box test for each of its (up to four)
- * children, a kd-tree step counts none, so equal colours are equal counts, not equal times. */
+ * children, a kd-tree step counts none, so equal colours are equal counts, not equal times.
+ *
+ * Under the picture, the heat-map gets a colour bar (heatmap_draw_bar): the scale from 0 to
+ * HEATMAP_MAX_COST with a tick and its number at each cost in heatmap_ticks, the numbers drawn with a
+ * built-in bitmap font of digits. */
 #ifndef WHITTED_HEATMAP_H
 #define WHITTED_HEATMAP_H
 
@@ -20,5 +24,26 @@
 
 /* Returns the colour of one cost on the fixed scale. */
 vec3 heatmap_colour(uint32_t cost);
+
+/* The costs marked on the colour bar: 0, then the powers of ten, then HEATMAP_MAX_COST. */
+#define HEATMAP_TICKS 6
+extern const uint32_t heatmap_ticks[HEATMAP_TICKS];
+
+/* Returns how many rows the colour bar adds under a width x height heat-map: 0 when the picture with
+ * its bar would be taller than IMAGE_MAX_SIDE (then it has no bar). Cannot fail. */
+int heatmap_bar_height(int width, int height);
+
+/* Returns the size of the bar's digits for a picture `width` pixels wide: image pixels per pixel of
+ * the 5 x 7 font. Cannot fail. */
+int heatmap_bar_scale(int width);
+
+/* Returns the column of the colour bar at which `cost` lies (costs above HEATMAP_MAX_COST at its end),
+ * for a picture `width` pixels wide with room for the numbers (at least 56 times heatmap_bar_scale). */
+int heatmap_bar_x(int width, uint32_t cost);
+
+/* Draws the colour bar into rows top .. img->height - 1 of img, which the caller made
+ * heatmap_bar_height(width, top) rows taller than the picture above them. A picture too narrow for the
+ * numbers gets the ramp alone, across its whole width; with no rows to draw in, nothing is drawn. */
+void heatmap_draw_bar(struct image *img, int top);
 
 #endif
