@@ -110,8 +110,8 @@ Test(coursework, student_copy_fails_on_stubs_and_passes_with_each_reference_body
 
     /* Pixels stored mirrored left to right (render.c, not a task, so the unit checks pass): the picture
      * check draws and names the difference. */
-    cr_assert_eq(run(log, "tools/student.sh %s none --sources-only && sed -i 's|\\*image_pixel(img, i, j) = job|"
-                          "*image_pixel(img, img->width - 1 - i, j) = job|' %s/common/render.c && grep -q 'width - 1 - i' "
+    cr_assert_eq(run(log, "tools/student.sh %s none --sources-only && sed -i 's|image_set(img, i, j, job|"
+                          "image_set(img, img->width - 1 - i, j, job|' %s/common/render.c && grep -q 'width - 1 - i' "
                           "%s/common/render.c && make -C %s %s -j2 %s/check %s/chapter-01", dir, dir, dir, dir, san, build,
                      build), 0, "cannot build the mirrored picture: see %s", log);
     snprintf(command, sizeof command, "cd %s && WHITTED_BUILD=%s ./%s/check --task 1.P", dir, build, build);
