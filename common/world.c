@@ -8,11 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "box.h"
-#include "plane.h"
-#include "sphere.h"
 #include "stats.h"
-#include "triangle.h"
 
 struct aabb world_mesh_bounds(const struct mesh *m) {
     struct aabb bounds = aabb_empty();
@@ -27,6 +23,13 @@ struct aabb world_mesh_bounds(const struct mesh *m) {
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size) {
     w->scene = s;
     w->accel = NULL;
+    w->mesh_bounds = NULL;
+    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
+        if (s->shapes[kind].count > 0 && shape_kinds[kind].behaviour == NULL) {
+            snprintf(err, err_size, "%s: this program does not link the code of %s (add its module to the "
+                     "chapter's MODULES_NN in the Makefile)", s->path, shape_kinds[kind].plural);
+            return false;
+        }
     w->mesh_bounds = calloc(s->mesh_count + 1, sizeof *w->mesh_bounds);
     if (w->mesh_bounds == NULL) {
         snprintf(err, err_size, "out of memory");
@@ -74,24 +77,33 @@ static bool accel_closest(const struct world_accel *a, const ray *r, double t_mi
     return true;
 }
 
+/* The triangles: the `triangle` directives and each mesh behind its bounding box, or the structure. */
+static bool closest_triangle(const struct world *w, const ray *r, double t_min, struct hit *h) {
+    const struct scene *s = w->scene;
+    if (w->accel != NULL)
+        return accel_closest(w->accel, r, t_min, h);
+    bool found = triangle_closest(s->triangles, s->triangle_count, r, t_min, h);
+    vec3 inv_direction = aabb_inverse_direction(r->direction);
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        const struct mesh *m = &s->meshes[k].mesh;
+        if (aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL))
+            found |= triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h);
+        else
+            stats_thread.triangle_tests_culled += m->face_count;
+    }
+    return found;
+}
+
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
     const struct scene *s = w->scene;
-    bool found = sphere_closest(s->spheres, s->sphere_count, r, t_min, h);
-    found |= box_closest(s->boxes, s->box_count, r, t_min, h);
-    if (w->accel != NULL) {
-        found |= accel_closest(w->accel, r, t_min, h);
-    } else {
-        found |= triangle_closest(s->triangles, s->triangle_count, r, t_min, h);
-        vec3 inv_direction = aabb_inverse_direction(r->direction);
-        for (size_t k = 0; k < s->mesh_count; k++) {
-            const struct mesh *m = &s->meshes[k].mesh;
-            if (aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL))
-                found |= triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h);
-            else
-                stats_thread.triangle_tests_culled += m->face_count;
-        }
+    bool found = false;
+    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
+        const struct scene_shapes *shapes = &s->shapes[kind];
+        if (kind == SHAPE_TRIANGLES)
+            found |= closest_triangle(w, r, t_min, h);
+        else if (shapes->count > 0)
+            found |= shape_kinds[kind].behaviour->closest(shapes->items, shapes->count, r, t_min, h);
     }
-    found |= plane_closest(s->planes, s->plane_count, r, t_min, h);
     return found;
 }
 
@@ -111,47 +123,21 @@ static bool visit_accel_face(void *context, double t, uint32_t face) {
     return !v->stopped;
 }
 
-/* Returns false if the visitor asked to stop. */
-static bool cross_spheres(const struct scene *s, const ray *r, double t_min, double t_max,
-                          world_crossing_visitor visit, void *context) {
-    for (size_t k = 0; k < s->sphere_count; k++) {
-        double t_near, t_far;
-        if (!sphere_intersect(&s->spheres[k], r, t_min, t_max, &t_near))
-            continue;
-        if (!visit(context, t_near, s->spheres[k].material))
-            return false;
-        if (sphere_intersect(&s->spheres[k], r, t_near, t_max, &t_far) &&
-            !visit(context, t_far, s->spheres[k].material))
-            return false;
-    }
-    return true;
-}
-
-static bool cross_boxes(const struct scene *s, const ray *r, double t_min, double t_max,
-                        world_crossing_visitor visit, void *context) {
-    for (size_t k = 0; k < s->box_count; k++) {
-        double t_near, t_far;
-        if (!box_intersect(&s->boxes[k], r, t_min, t_max, &t_near))
-            continue;
-        if (!visit(context, t_near, s->boxes[k].material))
-            return false;
-        if (box_intersect(&s->boxes[k], r, t_near, t_max, &t_far) && !visit(context, t_far, s->boxes[k].material))
-            return false;
-    }
-    return true;
-}
-
+/* The crossings of the triangles: the `triangle` directives and each mesh behind its bounding box, or
+ * the structure's. Returns false if the visitor asked to stop. */
 static bool cross_triangles(const struct world *w, const ray *r, double t_min, double t_max,
                             world_crossing_visitor visit, void *context) {
     const struct scene *s = w->scene;
-    struct triangle_ray prepared = triangle_ray_make(r); /* once for every triangle below */
-    double t, u, v;
-    for (size_t k = 0; k < s->triangle_count; k++) {
-        const struct triangle *tri = &s->triangles[k];
-        if (triangle_intersect_prepared(tri->a, tri->b, tri->c, &prepared, t_min, t_max, &t, &u, &v) &&
-            !visit(context, t, tri->material))
-            return false;
+    if (w->accel != NULL) {
+        struct accel_visit forward = {w->accel, visit, context, false};
+        w->accel->for_each_hit(w->accel->structure, r, t_min, t_max, visit_accel_face, &forward);
+        return !forward.stopped;
     }
+    if (!shape_kinds[SHAPE_TRIANGLES].behaviour->crossings(s->triangles, s->triangle_count, r, t_min, t_max,
+                                                           visit, context))
+        return false;
+    struct triangle_ray prepared = triangle_ray_make(r); /* once for every mesh triangle below */
+    double t, u, v;
     vec3 inv_direction = aabb_inverse_direction(r->direction);
     for (size_t k = 0; k < s->mesh_count; k++) {
         const struct mesh *m = &s->meshes[k].mesh;
@@ -173,19 +159,15 @@ static bool cross_triangles(const struct world *w, const ray *r, double t_min, d
 void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
                              world_crossing_visitor visit, void *context) {
     const struct scene *s = w->scene;
-    if (!cross_spheres(s, r, t_min, t_max, visit, context) || !cross_boxes(s, r, t_min, t_max, visit, context))
-        return;
-    if (w->accel != NULL) {
-        struct accel_visit forward = {w->accel, visit, context, false};
-        w->accel->for_each_hit(w->accel->structure, r, t_min, t_max, visit_accel_face, &forward);
-        if (forward.stopped)
-            return;
-    } else if (!cross_triangles(w, r, t_min, t_max, visit, context)) {
-        return;
-    }
-    for (size_t k = 0; k < s->plane_count; k++) {
-        double t;
-        if (plane_intersect(&s->planes[k], r, t_min, t_max, &t) && !visit(context, t, s->planes[k].material))
+    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
+        const struct scene_shapes *shapes = &s->shapes[kind];
+        bool go_on = true;
+        if (kind == SHAPE_TRIANGLES)
+            go_on = cross_triangles(w, r, t_min, t_max, visit, context);
+        else if (shapes->count > 0)
+            go_on = shape_kinds[kind].behaviour->crossings(shapes->items, shapes->count, r, t_min, t_max, visit,
+                                                           context);
+        if (!go_on)
             return;
     }
 }

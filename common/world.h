@@ -40,7 +40,8 @@ struct world {
 };
 
 /* Computes the bounding box of every mesh of s (meshes already loaded). Returns false and writes
- * "out of memory" into err on failure. Free with world_free. */
+ * "out of memory" into err on failure, or "scene: this program does not link the code of discs ..."
+ * when s holds shapes of a kind whose module the program does not link. Free with world_free. */
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size);
 
 /* Frees what world_init allocated. Safe on a zeroed world. */
@@ -56,7 +57,8 @@ void world_destroy(void *world);
 /* Returns the bounding box of mesh m (the empty box for a mesh without vertices). */
 struct aabb world_mesh_bounds(const struct mesh *m);
 
-/* Finds the nearest surface with t_min < t < h->t along r among all shapes, and keeps it in *h.
+/* Finds the nearest surface with t_min < t < h->t along r among all shapes, kind by kind in the order
+ * of shape_kinds.h, and keeps it in *h.
  * Returns true when *h was replaced. Without w->accel, a mesh whose bounding box r misses within
  * (t_min, h->t) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);
@@ -65,7 +67,7 @@ bool world_closest(const struct world *w, const ray *r, double t_min, struct hit
  * crossings of a sphere or box, each triangle, each plane. Stops as soon as visit returns false.
  * Used for shadows (chapters 7 and 8). Without w->accel, a mesh whose bounding box r misses within
  * (t_min, t_max) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
-typedef bool (*world_crossing_visitor)(void *context, double t, int material);
+typedef shape_crossing_visitor world_crossing_visitor;
 void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
                              world_crossing_visitor visit, void *context);
 
