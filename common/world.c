@@ -20,6 +20,16 @@ struct aabb world_mesh_bounds(const struct mesh *m) {
     return bounds;
 }
 
+/* Where a kind of shape the scene has comes in the search: 0 for shapes with a bounding box (spheres,
+ * boxes: few, and a near hit shortens the ray before the meshes' boxes are tested), 1 for the
+ * triangles, 2 for shapes without bounds (planes), which no box can turn away. */
+static int search_rank(const struct scene *s, size_t kind) {
+    if (kind == SHAPE_TRIANGLES)
+        return 1;
+    vec3 min, max;
+    return shape_kinds[kind].behaviour->bounds(s->shapes[kind].items, &min, &max) ? 0 : 2;
+}
+
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size) {
     w->scene = s;
     w->accel = NULL;
@@ -30,6 +40,11 @@ bool world_init(struct world *w, const struct scene *s, char *err, size_t err_si
                      "chapter's MODULES_NN in the Makefile)", s->path, shape_kinds[kind].plural);
             return false;
         }
+    w->kind_count = 0;
+    for (int rank = 0; rank <= 2; rank++)
+        for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
+            if ((kind == SHAPE_TRIANGLES || s->shapes[kind].count > 0) && search_rank(s, kind) == rank)
+                w->kinds[w->kind_count++] = kind;
     w->mesh_bounds = calloc(s->mesh_count + 1, sizeof *w->mesh_bounds);
     if (w->mesh_bounds == NULL) {
         snprintf(err, err_size, "out of memory");
@@ -97,11 +112,12 @@ static bool closest_triangle(const struct world *w, const ray *r, double t_min, 
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
     const struct scene *s = w->scene;
     bool found = false;
-    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
+    for (size_t k = 0; k < w->kind_count; k++) {
+        size_t kind = w->kinds[k];
         const struct scene_shapes *shapes = &s->shapes[kind];
         if (kind == SHAPE_TRIANGLES)
             found |= closest_triangle(w, r, t_min, h);
-        else if (shapes->count > 0)
+        else
             found |= shape_kinds[kind].behaviour->closest(shapes->items, shapes->count, r, t_min, h);
     }
     return found;
@@ -159,12 +175,13 @@ static bool cross_triangles(const struct world *w, const ray *r, double t_min, d
 void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
                              world_crossing_visitor visit, void *context) {
     const struct scene *s = w->scene;
-    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
+    for (size_t k = 0; k < w->kind_count; k++) {
+        size_t kind = w->kinds[k];
         const struct scene_shapes *shapes = &s->shapes[kind];
-        bool go_on = true;
+        bool go_on;
         if (kind == SHAPE_TRIANGLES)
             go_on = cross_triangles(w, r, t_min, t_max, visit, context);
-        else if (shapes->count > 0)
+        else
             go_on = shape_kinds[kind].behaviour->crossings(shapes->items, shapes->count, r, t_min, t_max, visit,
                                                            context);
         if (!go_on)

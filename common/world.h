@@ -37,6 +37,10 @@ struct world {
     const struct scene *scene;
     struct aabb *mesh_bounds;        /* one box per scene mesh; owned */
     const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
+    /* The kinds of shape the queries visit (enum shape_kind_index), in this order: those the scene
+     * has and that have bounding boxes, then the triangles (always), then those without bounds. */
+    size_t kinds[SHAPE_KIND_COUNT];
+    size_t kind_count;
 };
 
 /* Computes the bounding box of every mesh of s (meshes already loaded). Returns false and writes
@@ -58,7 +62,7 @@ void world_destroy(void *world);
 struct aabb world_mesh_bounds(const struct mesh *m);
 
 /* Finds the nearest surface with t_min < t < h->t along r among all shapes, kind by kind in the order
- * of shape_kinds.h, and keeps it in *h.
+ * of w->kinds, and keeps it in *h.
  * Returns true when *h was replaced. Without w->accel, a mesh whose bounding box r misses within
  * (t_min, h->t) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);
