@@ -1,4 +1,5 @@
-/* plane.h: the infinite plane n . P = d and its ray intersection (chapter 4). */
+/* plane.h: the infinite plane n . P = d and its ray intersection (chapter 4; its scene line, at the
+ * end, is read from chapter 1 on: shape.h explains the two halves of a shape's module). */
 #ifndef WHITTED_PLANE_H
 #define WHITTED_PLANE_H
 

@@ -1,8 +1,10 @@
 /* scene.h: the scene description and its text file format, docs/scene-format.md (chapter 1).
  *
  * A scene file is parsed into plain data: camera, image size, colours, materials, lights and shapes.
- * Parsing needs no intersection code, so chapter 1 can read the same files as chapter 10. Meshes are
- * only named here (file and transform); chapters that draw them load them with scene_load_meshes. */
+ * Parsing needs no intersection code, so chapter 1 can read the same files as chapter 10: each kind of
+ * shape brings the syntax of its line in its header (shape.h), and the kinds are listed in
+ * shape_kinds.h. Meshes are only named here (file and transform); chapters that draw them load them
+ * with scene_load_meshes. */
 #ifndef WHITTED_SCENE_H
 #define WHITTED_SCENE_H
 

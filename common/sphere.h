@@ -1,4 +1,5 @@
-/* sphere.h: the sphere and its ray intersection, the first shape of all (chapter 2). */
+/* sphere.h: the sphere and its ray intersection, the first shape of all (chapter 2; its scene line,
+ * at the end, is read from chapter 1 on: shape.h explains the two halves of a shape's module). */
 #ifndef WHITTED_SPHERE_H
 #define WHITTED_SPHERE_H
 

@@ -1,4 +1,5 @@
-/* triangle.h: the triangle and the watertight ray-triangle test (chapter 3). */
+/* triangle.h: the triangle and the watertight ray-triangle test (chapter 3; its scene line, at the end,
+ * is read from chapter 1 on: shape.h explains the two halves of a shape's module). */
 #ifndef WHITTED_TRIANGLE_H
 #define WHITTED_TRIANGLE_H
 
