@@ -48,6 +48,8 @@ Test(shapes, the_table_lists_every_kind_with_its_chapter_and_bit) {
         cr_assert(kind->material_offset + sizeof(int) <= kind->size, "%s: material outside the struct",
                   kind->keyword);
         cr_assert_not_null(kind->syntax, "%s", kind->keyword);
+        cr_assert_lt(kind->syntax->key_count, KEY_MAX, "%s: the parser adds `material` to at most KEY_MAX - 1 keys",
+                     kind->keyword);
         cr_assert_not_null(kind->behaviour, "%s: the tests link every module, so every kind has behaviour",
                            kind->keyword);
     }
