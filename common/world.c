@@ -42,9 +42,14 @@ bool world_init(struct world *w, const struct scene *s, char *err, size_t err_si
         }
     w->kind_count = 0;
     for (int rank = 0; rank <= 2; rank++)
-        for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
-            if ((kind == SHAPE_TRIANGLES || s->shapes[kind].count > 0) && search_rank(s, kind) == rank)
-                w->kinds[w->kind_count++] = kind;
+        for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
+            if ((kind != SHAPE_TRIANGLES && s->shapes[kind].count == 0) || search_rank(s, kind) != rank)
+                continue;
+            const struct shape_behaviour *b = kind == SHAPE_TRIANGLES ? NULL : shape_kinds[kind].behaviour;
+            w->kinds[w->kind_count++] = (struct world_kind){kind, s->shapes[kind].items, s->shapes[kind].count,
+                                                            b != NULL ? b->closest : NULL,
+                                                            b != NULL ? b->crossings : NULL};
+        }
     w->mesh_bounds = calloc(s->mesh_count + 1, sizeof *w->mesh_bounds);
     if (w->mesh_bounds == NULL) {
         snprintf(err, err_size, "out of memory");
@@ -110,15 +115,12 @@ static bool closest_triangle(const struct world *w, const ray *r, double t_min, 
 }
 
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
-    const struct scene *s = w->scene;
     bool found = false;
-    for (size_t k = 0; k < w->kind_count; k++) {
-        size_t kind = w->kinds[k];
-        const struct scene_shapes *shapes = &s->shapes[kind];
-        if (kind == SHAPE_TRIANGLES)
+    for (const struct world_kind *k = w->kinds; k < w->kinds + w->kind_count; k++) {
+        if (k->closest == NULL)
             found |= closest_triangle(w, r, t_min, h);
         else
-            found |= shape_kinds[kind].behaviour->closest(shapes->items, shapes->count, r, t_min, h);
+            found |= k->closest(k->items, k->count, r, t_min, h);
     }
     return found;
 }
@@ -174,16 +176,12 @@ static bool cross_triangles(const struct world *w, const ray *r, double t_min, d
 
 void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
                              world_crossing_visitor visit, void *context) {
-    const struct scene *s = w->scene;
-    for (size_t k = 0; k < w->kind_count; k++) {
-        size_t kind = w->kinds[k];
-        const struct scene_shapes *shapes = &s->shapes[kind];
+    for (const struct world_kind *k = w->kinds; k < w->kinds + w->kind_count; k++) {
         bool go_on;
-        if (kind == SHAPE_TRIANGLES)
+        if (k->crossings == NULL)
             go_on = cross_triangles(w, r, t_min, t_max, visit, context);
         else
-            go_on = shape_kinds[kind].behaviour->crossings(shapes->items, shapes->count, r, t_min, t_max, visit,
-                                                           context);
+            go_on = k->crossings(k->items, k->count, r, t_min, t_max, visit, context);
         if (!go_on)
             return;
     }

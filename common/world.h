@@ -33,13 +33,24 @@ struct world_accel {
                          world_hit_visitor visit, void *context);
 };
 
+/* One kind of shape the world searches: its array and its queries, looked up once by world_init. */
+struct world_kind {
+    size_t kind;        /* index into shape_kinds (enum shape_kind_index) */
+    const void *items;  /* the scene's array of that kind */
+    size_t count;
+    /* the kind's behaviour (shape.h); NULL for the triangles, which the world searches itself */
+    bool (*closest)(const void *items, size_t count, const ray *r, double t_min, struct hit *h);
+    bool (*crossings)(const void *items, size_t count, const ray *r, double t_min, double t_max,
+                      shape_crossing_visitor visit, void *context);
+};
+
 struct world {
     const struct scene *scene;
     struct aabb *mesh_bounds;        /* one box per scene mesh; owned */
     const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
-    /* The kinds of shape the queries visit (enum shape_kind_index), in this order: those the scene
-     * has and that have bounding boxes, then the triangles (always), then those without bounds. */
-    size_t kinds[SHAPE_KIND_COUNT];
+    /* The kinds of shape the queries visit, in this order: those the scene has and that have bounding
+     * boxes, then the triangles (always), then those without bounds. */
+    struct world_kind kinds[SHAPE_KIND_COUNT];
     size_t kind_count;
 };
 

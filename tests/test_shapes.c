@@ -164,15 +164,16 @@ Test(shapes, the_world_searches_bounded_kinds_then_triangles_then_unbounded_kind
     size_t expected[] = {SHAPE_SPHERES, SHAPE_BOXES, SHAPE_TRIANGLES, SHAPE_PLANES};
     cr_assert_eq(w.kind_count, 4);
     for (size_t k = 0; k < 4; k++)
-        cr_assert_eq(w.kinds[k], expected[k], "place %zu: kind %zu, expected %zu", k, w.kinds[k], expected[k]);
+        cr_assert_eq(w.kinds[k].kind, expected[k], "place %zu: kind %zu, expected %zu", k, w.kinds[k].kind,
+                     expected[k]);
     world_free(&w);
     /* Kinds without shapes are not visited, except the triangles, which also stand for the meshes. */
     s.sphere_count = 0;
     s.plane_count = 0;
     cr_assert(world_init(&w, &s, err, sizeof err), "%s", err);
     cr_assert_eq(w.kind_count, 2);
-    cr_assert_eq(w.kinds[0], SHAPE_BOXES);
-    cr_assert_eq(w.kinds[1], SHAPE_TRIANGLES);
+    cr_assert_eq(w.kinds[0].kind, SHAPE_BOXES);
+    cr_assert_eq(w.kinds[1].kind, SHAPE_TRIANGLES);
     world_free(&w);
     scene_free(&s);
 }
