@@ -1,9 +1,10 @@
 /* accel.h: plugs an acceleration structure into the world's triangle queries (chapter 9; the BVH
  * half, accel_world_use_bvh, arrives with chapter 10 in accel_bvh.c).
  *
- * Spheres, boxes and planes are few and stay in their loops. Triangles are many: every `triangle`
- * directive and every mesh face of the scene is gathered into one mesh, the structure is built over
- * it, and the world asks the structure instead of looping over the triangles. */
+ * Spheres, boxes and planes (every kind of shape but triangles) are few and stay in their loops.
+ * Triangles are many: every `triangle` directive and every mesh face of the scene is gathered into one
+ * mesh, the structure is built over it, and the world asks the structure instead of looping over the
+ * triangles. */
 #ifndef WHITTED_ACCEL_H
 #define WHITTED_ACCEL_H
 

@@ -34,3 +34,34 @@ bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_m
     h->material = nearest->material;
     return true;
 }
+
+/* ---- the box as one kind of shape (shape.h) ----------------------------------------------------- */
+
+static bool closest_boxes(const void *items, size_t count, const ray *r, double t_min, struct hit *h) {
+    return box_closest(items, count, r, t_min, h);
+}
+
+/* Both crossings of each box: where r enters and, searching on from there, where it leaves. */
+static bool box_crossings(const void *items, size_t count, const ray *r, double t_min, double t_max,
+                          shape_crossing_visitor visit, void *context) {
+    const struct box *boxes = items;
+    for (size_t k = 0; k < count; k++) {
+        double t_near, t_far;
+        if (!box_intersect(&boxes[k], r, t_min, t_max, &t_near))
+            continue;
+        if (!visit(context, t_near, boxes[k].material))
+            return false;
+        if (box_intersect(&boxes[k], r, t_near, t_max, &t_far) && !visit(context, t_far, boxes[k].material))
+            return false;
+    }
+    return true;
+}
+
+static bool box_bounds(const void *item, vec3 *min, vec3 *max) {
+    const struct box *b = item;
+    *min = b->min;
+    *max = b->max;
+    return true;
+}
+
+const struct shape_behaviour box_behaviour = {closest_boxes, box_crossings, box_bounds};

@@ -28,7 +28,8 @@ struct chapter {
     int number;                     /* 1 .. 10 */
     const char *title;              /* e.g. "camera" */
     const char *default_scene;      /* path used when no scene is given, relative to the repository */
-    unsigned features;              /* the shapes drawn: a mask of enum scene_feature */
+    unsigned features;              /* the shapes drawn: a mask of enum scene_feature, or
+                                       SCENE_EVERY_SHAPE for every kind introduced up to `number` */
     enum pov_lighting lighting;     /* what trace computes, for the POV-Ray twin */
     /* Optional: loads the mesh files of the scene (scene_load_meshes, from chapter 3 on). */
     bool (*load_meshes)(struct scene *s, char *err, size_t err_size);

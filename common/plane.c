@@ -31,3 +31,30 @@ bool plane_intersect(const struct plane *p, const ray *r, double t_min, double t
     *t = hit_t;
     return true;
 }
+
+/* ---- the plane as one kind of shape (shape.h) --------------------------------------------------- */
+
+static bool closest_planes(const void *items, size_t count, const ray *r, double t_min, struct hit *h) {
+    return plane_closest(items, count, r, t_min, h);
+}
+
+static bool plane_crossings(const void *items, size_t count, const ray *r, double t_min, double t_max,
+                            shape_crossing_visitor visit, void *context) {
+    const struct plane *planes = items;
+    for (size_t k = 0; k < count; k++) {
+        double t;
+        if (plane_intersect(&planes[k], r, t_min, t_max, &t) && !visit(context, t, planes[k].material))
+            return false;
+    }
+    return true;
+}
+
+/* An infinite plane fits in no box. */
+static bool plane_bounds(const void *item, vec3 *min, vec3 *max) {
+    (void)item;
+    (void)min;
+    (void)max;
+    return false;
+}
+
+const struct shape_behaviour plane_behaviour = {closest_planes, plane_crossings, plane_bounds};

@@ -76,22 +76,6 @@ static bool parse_int(const struct parser *p, const char *token, const char *wha
 
 /* ---- key tables -------------------------------------------------------------------------------- */
 
-/* One key a directive accepts: its name and how many values follow it (0 = one word, not a number). */
-struct key_spec {
-    const char *name;
-    int count;
-};
-
-#define KEY_MAX 10          /* no directive has more keys */
-#define KEY_MAX_NUMBERS 3   /* no key takes more numbers */
-
-/* The values found for each key of a table, by position in the table. */
-struct key_values {
-    bool present[KEY_MAX];
-    double number[KEY_MAX][KEY_MAX_NUMBERS];
-    const char *word[KEY_MAX];
-};
-
 /* Reads tokens[0..count) as key/value pairs against `specs` (n_specs entries). Rejects unknown keys,
  * keys given twice and keys with too few values. */
 static bool parse_keys(const struct parser *p, const char *directive, char **tokens, int count,
@@ -127,10 +111,6 @@ static bool parse_keys(const struct parser *p, const char *directive, char **tok
         k += 1 + needed;
     }
     return true;
-}
-
-static vec3 key_vec3(const struct key_values *kv, int key) {
-    return vec3_make(kv->number[key][0], kv->number[key][1], kv->number[key][2]);
 }
 
 /* Fails unless every key named in `required` (indices into the table, ending with -1) is present. */
@@ -270,104 +250,28 @@ static bool parse_light(const struct parser *p, struct scene *s, char **tok, int
     return true;
 }
 
-static bool parse_sphere(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { CENTRE, RADIUS, MATERIAL };
-    static const struct key_spec specs[] = {{"centre", 3}, {"radius", 1}, {"material", 0}};
-    static const int required[] = {CENTRE, RADIUS, -1};
+/* Reads the line of a shape of kind `kind` (shape_kinds[kind]): its own keys and `material`, then
+ * the kind's make. */
+static bool parse_shape(const struct parser *p, struct scene *s, size_t kind, char **tok, int n) {
+    const struct shape_kind *k = &shape_kinds[kind];
+    const struct shape_syntax *syntax = k->syntax;
+    struct key_spec specs[KEY_MAX];
+    memcpy(specs, syntax->keys, (size_t)syntax->key_count * sizeof *specs);
+    int material_key = syntax->key_count;
+    specs[material_key] = (struct key_spec){"material", 0};
     struct key_values kv;
     int material;
-    if (!parse_keys(p, "sphere", tok, n, specs, 3, &kv) ||
-        !require_keys(p, "sphere", specs, &kv, required) || !material_reference(p, s, &kv, MATERIAL, &material))
+    if (!parse_keys(p, k->keyword, tok, n, specs, material_key + 1, &kv) ||
+        !require_keys(p, k->keyword, specs, &kv, syntax->required) ||
+        !material_reference(p, s, &kv, material_key, &material))
         return false;
-    if (!(kv.number[RADIUS][0] > 0.0))
-        return fail(p, "sphere radius must be positive, got %g", kv.number[RADIUS][0]);
-    struct sphere *sphere = grow(&s->spheres, &s->sphere_count, sizeof *sphere);
-    if (sphere == NULL)
+    char *item = grow(&s->shapes[kind].items, &s->shapes[kind].count, k->size);
+    if (item == NULL)
         return fail(p, "out of memory");
-    *sphere = (struct sphere){key_vec3(&kv, CENTRE), kv.number[RADIUS][0], material};
-    return true;
-}
-
-/* A plane comes in three forms: `normal N distance d` (POV-Ray's N.P = d), `normal N point P`, or the
- * seed's three points `a A b B c C`. All are stored as a unit normal and a distance. */
-static bool parse_plane(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { NORMAL, DISTANCE, POINT, A, B, C, MATERIAL };
-    static const struct key_spec specs[] = {{"normal", 3}, {"distance", 1}, {"point", 3}, {"a", 3},
-                                            {"b", 3},      {"c", 3},        {"material", 0}};
-    struct key_values kv;
-    int material;
-    if (!parse_keys(p, "plane", tok, n, specs, 7, &kv) || !material_reference(p, s, &kv, MATERIAL, &material))
-        return false;
-    bool any_point_key = kv.present[A] || kv.present[B] || kv.present[C];
-    bool by_distance = kv.present[NORMAL] && kv.present[DISTANCE] && !kv.present[POINT] && !any_point_key;
-    bool by_point = kv.present[NORMAL] && kv.present[POINT] && !kv.present[DISTANCE] && !any_point_key;
-    bool by_points = kv.present[A] && kv.present[B] && kv.present[C] && !kv.present[NORMAL] &&
-                     !kv.present[DISTANCE] && !kv.present[POINT];
-    if (by_distance + by_point + by_points != 1)
-        return fail(p, "plane needs 'normal' with 'distance' or 'point', or three points 'a', 'b', 'c'");
-    vec3 normal;
-    vec3 point = vec3_make(0, 0, 0);
-    if (by_points) {
-        point = key_vec3(&kv, A);
-        vec3 ab = vec3_sub(key_vec3(&kv, B), point), ac = vec3_sub(key_vec3(&kv, C), point);
-        /* Scale both edges to at most 1 first, so that far-apart points cannot overflow the product. */
-        double ab_size = fmax(fabs(ab.x), fmax(fabs(ab.y), fabs(ab.z)));
-        double ac_size = fmax(fabs(ac.x), fmax(fabs(ac.y), fabs(ac.z)));
-        if (ab_size > 0.0 && ac_size > 0.0)
-            normal = vec3_cross(vec3_scale(ab, 1.0 / ab_size), vec3_scale(ac, 1.0 / ac_size));
-        else
-            normal = vec3_make(0, 0, 0);
-        if (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0)
-            return fail(p, "plane points a, b, c lie on one line");
-    } else {
-        normal = key_vec3(&kv, NORMAL);
-        if (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0)
-            return fail(p, "plane normal must not be zero");
-        point = kv.present[POINT] ? key_vec3(&kv, POINT) : point;
-    }
-    struct plane *plane = grow(&s->planes, &s->plane_count, sizeof *plane);
-    if (plane == NULL)
-        return fail(p, "out of memory");
-    /* Divide by the largest component first: |normal| of components like 1e200 would overflow. */
-    double largest = fmax(fabs(normal.x), fmax(fabs(normal.y), fabs(normal.z)));
-    plane->normal = vec3_normalize(vec3_scale(normal, 1.0 / largest));
-    plane->distance = by_distance ? kv.number[DISTANCE][0] : vec3_dot(plane->normal, point);
-    plane->material = material;
-    return true;
-}
-
-static bool parse_triangle(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { A, B, C, MATERIAL };
-    static const struct key_spec specs[] = {{"a", 3}, {"b", 3}, {"c", 3}, {"material", 0}};
-    static const int required[] = {A, B, C, -1};
-    struct key_values kv;
-    int material;
-    if (!parse_keys(p, "triangle", tok, n, specs, 4, &kv) ||
-        !require_keys(p, "triangle", specs, &kv, required) || !material_reference(p, s, &kv, MATERIAL, &material))
-        return false;
-    struct triangle *triangle = grow(&s->triangles, &s->triangle_count, sizeof *triangle);
-    if (triangle == NULL)
-        return fail(p, "out of memory");
-    *triangle = (struct triangle){key_vec3(&kv, A), key_vec3(&kv, B), key_vec3(&kv, C), material};
-    return true;
-}
-
-static bool parse_box(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { MIN, MAX, MATERIAL };
-    static const struct key_spec specs[] = {{"min", 3}, {"max", 3}, {"material", 0}};
-    static const int required[] = {MIN, MAX, -1};
-    struct key_values kv;
-    int material;
-    if (!parse_keys(p, "box", tok, n, specs, 3, &kv) || !require_keys(p, "box", specs, &kv, required) ||
-        !material_reference(p, s, &kv, MATERIAL, &material))
-        return false;
-    vec3 lo = key_vec3(&kv, MIN), hi = key_vec3(&kv, MAX);
-    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
-        return fail(p, "box min must be below max on every axis");
-    struct box *box = grow(&s->boxes, &s->box_count, sizeof *box);
-    if (box == NULL)
-        return fail(p, "out of memory");
-    *box = (struct box){lo, hi, material};
+    char why[256];
+    if (!syntax->make(&kv, item, why, sizeof why))
+        return fail(p, "%s", why);
+    memcpy(item + k->material_offset, &material, sizeof material);
     return true;
 }
 
@@ -409,6 +313,32 @@ static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int 
     mesh->line = p->line;
     return true;
 }
+
+/* ---- the kinds of shape ------------------------------------------------------------------------ */
+
+/* Each kind's behaviour is referenced weakly: a program that does not link the kind's module (chapter
+ * 1 links none) gets NULL, and never needs it, since scene_drop_unsupported removes the shapes of
+ * kinds introduced after its chapter. */
+#define SHAPE_KIND(type, array, FEATURE, chapter) \
+    extern const struct shape_behaviour type##_behaviour __attribute__((weak));
+#include "shape_kinds.h"
+#undef SHAPE_KIND
+
+#define SHAPE_KIND(type, array, FEATURE, chapter)                                                         \
+    [SHAPE_##FEATURE] = {#type, #array, chapter, SCENE_##FEATURE, sizeof(struct type),                     \
+                         offsetof(struct type, material), &type##_syntax, &type##_behaviour},
+const struct shape_kind shape_kinds[SHAPE_KIND_COUNT] = {
+#include "shape_kinds.h"
+};
+#undef SHAPE_KIND
+
+/* The two views of the scene's shapes (scene.h) must name the same memory. */
+#define SHAPE_KIND(type, array, FEATURE, chapter)                                                         \
+    _Static_assert(offsetof(struct scene, array) == offsetof(struct scene, shapes[SHAPE_##FEATURE].items) && \
+                   offsetof(struct scene, type##_count) == offsetof(struct scene, shapes[SHAPE_##FEATURE].count), \
+                   "struct scene: the " #array " do not overlay shapes[SHAPE_" #FEATURE "]");
+#include "shape_kinds.h"
+#undef SHAPE_KIND
 
 /* ---- lines and files --------------------------------------------------------------------------- */
 
@@ -472,16 +402,11 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
         return parse_material(p, s, args, count);
     if (strcmp(directive, "light") == 0)
         return parse_light(p, s, args, count);
-    if (strcmp(directive, "sphere") == 0)
-        return parse_sphere(p, s, args, count);
-    if (strcmp(directive, "plane") == 0)
-        return parse_plane(p, s, args, count);
-    if (strcmp(directive, "triangle") == 0)
-        return parse_triangle(p, s, args, count);
-    if (strcmp(directive, "box") == 0)
-        return parse_box(p, s, args, count);
     if (strcmp(directive, "mesh") == 0)
         return parse_mesh(p, s, args, count);
+    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
+        if (strcmp(directive, shape_kinds[kind].keyword) == 0)
+            return parse_shape(p, s, kind, args, count);
     return fail(p, "unknown directive '%s'", directive);
 }
 
@@ -589,19 +514,23 @@ bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
     return ok;
 }
 
-void scene_free(struct scene *s) {
+/* Frees the meshes of s and forgets them. */
+static void drop_meshes(struct scene *s) {
     for (size_t k = 0; k < s->mesh_count; k++) {
         free(s->meshes[k].path);
         free(s->meshes[k].mesh.vertices);
         free(s->meshes[k].mesh.faces);
     }
+    s->mesh_count = 0;
+}
+
+void scene_free(struct scene *s) {
+    drop_meshes(s);
     free(s->path);
     free(s->materials);
     free(s->lights);
-    free(s->spheres);
-    free(s->planes);
-    free(s->triangles);
-    free(s->boxes);
+    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
+        free(s->shapes[kind].items);
     free(s->meshes);
     memset(s, 0, sizeof *s);
 }
@@ -623,28 +552,16 @@ static void note_count(char *note, size_t size, size_t count, const char *one, c
 
 void scene_drop_unsupported(struct scene *s, unsigned supported, int chapter, FILE *note) {
     char what[256] = "";
-    if (!(supported & SCENE_SPHERES)) {
-        note_count(what, sizeof what, s->sphere_count, "sphere", "spheres");
-        s->sphere_count = 0;
-    }
-    if (!(supported & SCENE_TRIANGLES)) {
-        note_count(what, sizeof what, s->triangle_count, "triangle", "triangles");
-        note_count(what, sizeof what, s->mesh_count, "mesh", "meshes");
-        s->triangle_count = 0;
-        for (size_t k = 0; k < s->mesh_count; k++) {
-            free(s->meshes[k].path);
-            free(s->meshes[k].mesh.vertices);
-            free(s->meshes[k].mesh.faces);
+    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
+        const struct shape_kind *k = &shape_kinds[kind];
+        if ((supported & k->feature) && k->chapter <= chapter)
+            continue;
+        note_count(what, sizeof what, s->shapes[kind].count, k->keyword, k->plural);
+        s->shapes[kind].count = 0;
+        if (kind == SHAPE_TRIANGLES) { /* meshes are triangles too */
+            note_count(what, sizeof what, s->mesh_count, "mesh", "meshes");
+            drop_meshes(s);
         }
-        s->mesh_count = 0;
-    }
-    if (!(supported & SCENE_PLANES)) {
-        note_count(what, sizeof what, s->plane_count, "plane", "planes");
-        s->plane_count = 0;
-    }
-    if (!(supported & SCENE_BOXES)) {
-        note_count(what, sizeof what, s->box_count, "box", "boxes");
-        s->box_count = 0;
     }
     if (what[0] != '\0' && note != NULL)
         fprintf(note, "%s: chapter %d ignores %s (not introduced yet)\n", s->path, chapter, what);

@@ -1,8 +1,10 @@
 /* scene.h: the scene description and its text file format, docs/scene-format.md (chapter 1).
  *
  * A scene file is parsed into plain data: camera, image size, colours, materials, lights and shapes.
- * Parsing needs no intersection code, so chapter 1 can read the same files as chapter 10. Meshes are
- * only named here (file and transform); chapters that draw them load them with scene_load_meshes. */
+ * Parsing needs no intersection code, so chapter 1 can read the same files as chapter 10: each kind of
+ * shape brings the syntax of its line in its header (shape.h), and the kinds are listed in
+ * shape_kinds.h. Meshes are only named here (file and transform); chapters that draw them load them
+ * with scene_load_meshes. */
 #ifndef WHITTED_SCENE_H
 #define WHITTED_SCENE_H
 
@@ -10,11 +12,9 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "box.h"
 #include "mesh.h"
-#include "plane.h"
-#include "sphere.h"
-#include "triangle.h"
+#include "shape.h"
+#include "shape_kinds.h"
 
 #define SCENE_NAME_MAX 64 /* longest material name, including the terminating zero */
 
@@ -47,12 +47,33 @@ struct scene_mesh {
     struct mesh mesh;    /* empty until scene_load_meshes */
 };
 
-/* Which kinds of directive a chapter draws; see scene_drop_unsupported. */
+/* The kinds of shape, by their position in shape_kinds.h: SHAPE_SPHERES, SHAPE_TRIANGLES, ... */
+#define SHAPE_KIND(type, array, FEATURE, chapter) SHAPE_##FEATURE,
+enum shape_kind_index {
+#include "shape_kinds.h"
+    SHAPE_KIND_COUNT
+};
+#undef SHAPE_KIND
+
+/* Which kinds of shape a chapter draws, one bit per kind: SCENE_SPHERES, SCENE_TRIANGLES (`triangle`
+ * and `mesh`), SCENE_PLANES, SCENE_BOXES, ...; see scene_drop_unsupported. */
+#define SHAPE_KIND(type, array, FEATURE, chapter) SCENE_##FEATURE = 1u << SHAPE_##FEATURE,
 enum scene_feature {
-    SCENE_SPHERES = 1 << 0,
-    SCENE_TRIANGLES = 1 << 1, /* `triangle` and `mesh` */
-    SCENE_PLANES = 1 << 2,
-    SCENE_BOXES = 1 << 3,
+#include "shape_kinds.h"
+};
+#undef SHAPE_KIND
+
+/* Every kind of shape introduced up to the chapter: what chapters that search through the world
+ * (chapter 5 on) draw, so that a new kind needs no change to them. */
+#define SCENE_EVERY_SHAPE (~0u)
+
+/* Every kind of shape, in the order of shape_kinds.h. Defined in scene.c. */
+extern const struct shape_kind shape_kinds[SHAPE_KIND_COUNT];
+
+/* The shapes of one kind: an array of count structs of that kind (struct sphere, ...). */
+struct scene_shapes {
+    void *items;
+    size_t count;
 };
 
 struct scene {
@@ -67,11 +88,17 @@ struct scene {
 
     struct material *materials; size_t material_count; /* materials[0] is "default" */
     struct light *lights;       size_t light_count;
-    struct sphere *spheres;     size_t sphere_count;
-    struct plane *planes;       size_t plane_count;
-    struct triangle *triangles; size_t triangle_count;
-    struct box *boxes;          size_t box_count;
     struct scene_mesh *meshes;  size_t mesh_count;
+    /* The shapes, one array per kind, seen two ways: by kind, shapes[SHAPE_SPHERES], for code that
+     * treats every kind alike; and by name, spheres and sphere_count, for code about one kind. */
+    union {
+        struct scene_shapes shapes[SHAPE_KIND_COUNT];
+        struct {
+#define SHAPE_KIND(type, array, FEATURE, chapter) struct type *array; size_t type##_count;
+#include "shape_kinds.h"
+#undef SHAPE_KIND
+        };
+    };
 };
 
 /* Reads the scene file at `path` into *s. On success returns true; free *s with scene_free. On
@@ -96,10 +123,10 @@ void scene_free(struct scene *s);
  * wrong" in err; meshes loaded so far stay owned by *s. Defined in scene_meshes.c (chapter 3 on). */
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 
-/* Removes the directives of every kind not in `supported` (a mask of enum scene_feature), so that a
- * chapter can read any scene file and draw what it knows. If something was removed, prints one line
- * to `note` (when not NULL) saying what was ignored, e.g. "scene.txt: chapter 2 ignores 3 triangles,
- * 1 plane (not introduced yet)". */
+/* Removes the shapes of every kind not in `supported` (a mask of enum scene_feature) or introduced
+ * after `chapter` (meshes go with SCENE_TRIANGLES), so that a chapter can read any scene file and draw
+ * what it knows. If something was removed, prints one line to `note` (when not NULL) saying what was
+ * ignored, e.g. "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */
 void scene_drop_unsupported(struct scene *s, unsigned supported, int chapter, FILE *note);
 
 /* Returns the index of the material called `name`, or -1 if there is none. */

@@ -46,3 +46,35 @@ bool sphere_closest(const struct sphere *spheres, size_t count, const ray *r, do
 vec3 sphere_normal(const struct sphere *s, vec3 p) {
     return vec3_scale(vec3_sub(p, s->centre), 1.0 / s->radius);
 }
+
+/* ---- the sphere as one kind of shape (shape.h) -------------------------------------------------- */
+
+static bool closest_spheres(const void *items, size_t count, const ray *r, double t_min, struct hit *h) {
+    return sphere_closest(items, count, r, t_min, h);
+}
+
+/* Both crossings of each sphere: where r enters and, searching on from there, where it leaves. */
+static bool sphere_crossings(const void *items, size_t count, const ray *r, double t_min, double t_max,
+                             shape_crossing_visitor visit, void *context) {
+    const struct sphere *spheres = items;
+    for (size_t k = 0; k < count; k++) {
+        double t_near, t_far;
+        if (!sphere_intersect(&spheres[k], r, t_min, t_max, &t_near))
+            continue;
+        if (!visit(context, t_near, spheres[k].material))
+            return false;
+        if (sphere_intersect(&spheres[k], r, t_near, t_max, &t_far) && !visit(context, t_far, spheres[k].material))
+            return false;
+    }
+    return true;
+}
+
+static bool sphere_bounds(const void *item, vec3 *min, vec3 *max) {
+    const struct sphere *s = item;
+    vec3 extent = vec3_make(s->radius, s->radius, s->radius);
+    *min = vec3_sub(s->centre, extent);
+    *max = vec3_add(s->centre, extent);
+    return true;
+}
+
+const struct shape_behaviour sphere_behaviour = {closest_spheres, sphere_crossings, sphere_bounds};

@@ -132,3 +132,32 @@ bool triangle_mesh_closest(const struct mesh *m, int material, const ray *r, dou
 vec3 triangle_normal(vec3 a, vec3 b, vec3 c) {
     return vec3_normalize(vec3_cross(vec3_sub(b, a), vec3_sub(c, a)));
 }
+
+/* ---- the `triangle` directive as one kind of shape (shape.h) ------------------------------------ */
+
+static bool closest_triangles(const void *items, size_t count, const ray *r, double t_min, struct hit *h) {
+    return triangle_closest(items, count, r, t_min, h);
+}
+
+static bool triangle_crossings(const void *items, size_t count, const ray *r, double t_min, double t_max,
+                               shape_crossing_visitor visit, void *context) {
+    const struct triangle *triangles = items;
+    struct triangle_ray prepared = triangle_ray_make(r); /* once for every triangle below */
+    double t, u, v;
+    for (size_t k = 0; k < count; k++) {
+        const struct triangle *tri = &triangles[k];
+        if (triangle_intersect_prepared(tri->a, tri->b, tri->c, &prepared, t_min, t_max, &t, &u, &v) &&
+            !visit(context, t, tri->material))
+            return false;
+    }
+    return true;
+}
+
+static bool triangle_bounds(const void *item, vec3 *min, vec3 *max) {
+    const struct triangle *t = item;
+    *min = vec3_min(t->a, vec3_min(t->b, t->c));
+    *max = vec3_max(t->a, vec3_max(t->b, t->c));
+    return true;
+}
+
+const struct shape_behaviour triangle_behaviour = {closest_triangles, triangle_crossings, triangle_bounds};

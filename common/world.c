@@ -8,11 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "box.h"
-#include "plane.h"
-#include "sphere.h"
 #include "stats.h"
-#include "triangle.h"
 
 struct aabb world_mesh_bounds(const struct mesh *m) {
     struct aabb bounds = aabb_empty();
@@ -24,9 +20,36 @@ struct aabb world_mesh_bounds(const struct mesh *m) {
     return bounds;
 }
 
+/* Where a kind of shape the scene has comes in the search: 0 for shapes with a bounding box (spheres,
+ * boxes: few, and a near hit shortens the ray before the meshes' boxes are tested), 1 for the
+ * triangles, 2 for shapes without bounds (planes), which no box can turn away. */
+static int search_rank(const struct scene *s, size_t kind) {
+    if (kind == SHAPE_TRIANGLES)
+        return 1;
+    vec3 min, max;
+    return shape_kinds[kind].behaviour->bounds(s->shapes[kind].items, &min, &max) ? 0 : 2;
+}
+
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size) {
     w->scene = s;
     w->accel = NULL;
+    w->mesh_bounds = NULL;
+    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
+        if (s->shapes[kind].count > 0 && shape_kinds[kind].behaviour == NULL) {
+            snprintf(err, err_size, "%s: this program does not link the code of %s (add its module to the "
+                     "chapter's MODULES_NN in the Makefile)", s->path, shape_kinds[kind].plural);
+            return false;
+        }
+    w->kind_count = 0;
+    for (int rank = 0; rank <= 2; rank++)
+        for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
+            if ((kind != SHAPE_TRIANGLES && s->shapes[kind].count == 0) || search_rank(s, kind) != rank)
+                continue;
+            const struct shape_behaviour *b = kind == SHAPE_TRIANGLES ? NULL : shape_kinds[kind].behaviour;
+            w->kinds[w->kind_count++] = (struct world_kind){kind, s->shapes[kind].items, s->shapes[kind].count,
+                                                            b != NULL ? b->closest : NULL,
+                                                            b != NULL ? b->crossings : NULL};
+        }
     w->mesh_bounds = calloc(s->mesh_count + 1, sizeof *w->mesh_bounds);
     if (w->mesh_bounds == NULL) {
         snprintf(err, err_size, "out of memory");
@@ -74,24 +97,31 @@ static bool accel_closest(const struct world_accel *a, const ray *r, double t_mi
     return true;
 }
 
-bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
+/* The triangles: the `triangle` directives and each mesh behind its bounding box, or the structure. */
+static bool closest_triangle(const struct world *w, const ray *r, double t_min, struct hit *h) {
     const struct scene *s = w->scene;
-    bool found = sphere_closest(s->spheres, s->sphere_count, r, t_min, h);
-    found |= box_closest(s->boxes, s->box_count, r, t_min, h);
-    if (w->accel != NULL) {
-        found |= accel_closest(w->accel, r, t_min, h);
-    } else {
-        found |= triangle_closest(s->triangles, s->triangle_count, r, t_min, h);
-        vec3 inv_direction = aabb_inverse_direction(r->direction);
-        for (size_t k = 0; k < s->mesh_count; k++) {
-            const struct mesh *m = &s->meshes[k].mesh;
-            if (aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL))
-                found |= triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h);
-            else
-                stats_thread.triangle_tests_culled += m->face_count;
-        }
+    if (w->accel != NULL)
+        return accel_closest(w->accel, r, t_min, h);
+    bool found = triangle_closest(s->triangles, s->triangle_count, r, t_min, h);
+    vec3 inv_direction = aabb_inverse_direction(r->direction);
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        const struct mesh *m = &s->meshes[k].mesh;
+        if (aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL))
+            found |= triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h);
+        else
+            stats_thread.triangle_tests_culled += m->face_count;
     }
-    found |= plane_closest(s->planes, s->plane_count, r, t_min, h);
+    return found;
+}
+
+bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
+    bool found = false;
+    for (const struct world_kind *k = w->kinds; k < w->kinds + w->kind_count; k++) {
+        if (k->closest == NULL)
+            found |= closest_triangle(w, r, t_min, h);
+        else
+            found |= k->closest(k->items, k->count, r, t_min, h);
+    }
     return found;
 }
 
@@ -111,47 +141,21 @@ static bool visit_accel_face(void *context, double t, uint32_t face) {
     return !v->stopped;
 }
 
-/* Returns false if the visitor asked to stop. */
-static bool cross_spheres(const struct scene *s, const ray *r, double t_min, double t_max,
-                          world_crossing_visitor visit, void *context) {
-    for (size_t k = 0; k < s->sphere_count; k++) {
-        double t_near, t_far;
-        if (!sphere_intersect(&s->spheres[k], r, t_min, t_max, &t_near))
-            continue;
-        if (!visit(context, t_near, s->spheres[k].material))
-            return false;
-        if (sphere_intersect(&s->spheres[k], r, t_near, t_max, &t_far) &&
-            !visit(context, t_far, s->spheres[k].material))
-            return false;
-    }
-    return true;
-}
-
-static bool cross_boxes(const struct scene *s, const ray *r, double t_min, double t_max,
-                        world_crossing_visitor visit, void *context) {
-    for (size_t k = 0; k < s->box_count; k++) {
-        double t_near, t_far;
-        if (!box_intersect(&s->boxes[k], r, t_min, t_max, &t_near))
-            continue;
-        if (!visit(context, t_near, s->boxes[k].material))
-            return false;
-        if (box_intersect(&s->boxes[k], r, t_near, t_max, &t_far) && !visit(context, t_far, s->boxes[k].material))
-            return false;
-    }
-    return true;
-}
-
+/* The crossings of the triangles: the `triangle` directives and each mesh behind its bounding box, or
+ * the structure's. Returns false if the visitor asked to stop. */
 static bool cross_triangles(const struct world *w, const ray *r, double t_min, double t_max,
                             world_crossing_visitor visit, void *context) {
     const struct scene *s = w->scene;
-    struct triangle_ray prepared = triangle_ray_make(r); /* once for every triangle below */
-    double t, u, v;
-    for (size_t k = 0; k < s->triangle_count; k++) {
-        const struct triangle *tri = &s->triangles[k];
-        if (triangle_intersect_prepared(tri->a, tri->b, tri->c, &prepared, t_min, t_max, &t, &u, &v) &&
-            !visit(context, t, tri->material))
-            return false;
+    if (w->accel != NULL) {
+        struct accel_visit forward = {w->accel, visit, context, false};
+        w->accel->for_each_hit(w->accel->structure, r, t_min, t_max, visit_accel_face, &forward);
+        return !forward.stopped;
     }
+    if (!shape_kinds[SHAPE_TRIANGLES].behaviour->crossings(s->triangles, s->triangle_count, r, t_min, t_max,
+                                                           visit, context))
+        return false;
+    struct triangle_ray prepared = triangle_ray_make(r); /* once for every mesh triangle below */
+    double t, u, v;
     vec3 inv_direction = aabb_inverse_direction(r->direction);
     for (size_t k = 0; k < s->mesh_count; k++) {
         const struct mesh *m = &s->meshes[k].mesh;
@@ -172,20 +176,13 @@ static bool cross_triangles(const struct world *w, const ray *r, double t_min, d
 
 void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
                              world_crossing_visitor visit, void *context) {
-    const struct scene *s = w->scene;
-    if (!cross_spheres(s, r, t_min, t_max, visit, context) || !cross_boxes(s, r, t_min, t_max, visit, context))
-        return;
-    if (w->accel != NULL) {
-        struct accel_visit forward = {w->accel, visit, context, false};
-        w->accel->for_each_hit(w->accel->structure, r, t_min, t_max, visit_accel_face, &forward);
-        if (forward.stopped)
-            return;
-    } else if (!cross_triangles(w, r, t_min, t_max, visit, context)) {
-        return;
-    }
-    for (size_t k = 0; k < s->plane_count; k++) {
-        double t;
-        if (plane_intersect(&s->planes[k], r, t_min, t_max, &t) && !visit(context, t, s->planes[k].material))
+    for (const struct world_kind *k = w->kinds; k < w->kinds + w->kind_count; k++) {
+        bool go_on;
+        if (k->crossings == NULL)
+            go_on = cross_triangles(w, r, t_min, t_max, visit, context);
+        else
+            go_on = k->crossings(k->items, k->count, r, t_min, t_max, visit, context);
+        if (!go_on)
             return;
     }
 }

@@ -33,14 +33,30 @@ struct world_accel {
                          world_hit_visitor visit, void *context);
 };
 
+/* One kind of shape the world searches: its array and its queries, looked up once by world_init. */
+struct world_kind {
+    size_t kind;        /* index into shape_kinds (enum shape_kind_index) */
+    const void *items;  /* the scene's array of that kind */
+    size_t count;
+    /* the kind's behaviour (shape.h); NULL for the triangles, which the world searches itself */
+    bool (*closest)(const void *items, size_t count, const ray *r, double t_min, struct hit *h);
+    bool (*crossings)(const void *items, size_t count, const ray *r, double t_min, double t_max,
+                      shape_crossing_visitor visit, void *context);
+};
+
 struct world {
     const struct scene *scene;
     struct aabb *mesh_bounds;        /* one box per scene mesh; owned */
     const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
+    /* The kinds of shape the queries visit, in this order: those the scene has and that have bounding
+     * boxes, then the triangles (always), then those without bounds. */
+    struct world_kind kinds[SHAPE_KIND_COUNT];
+    size_t kind_count;
 };
 
 /* Computes the bounding box of every mesh of s (meshes already loaded). Returns false and writes
- * "out of memory" into err on failure. Free with world_free. */
+ * "out of memory" into err on failure, or "scene: this program does not link the code of discs ..."
+ * when s holds shapes of a kind whose module the program does not link. Free with world_free. */
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size);
 
 /* Frees what world_init allocated. Safe on a zeroed world. */
@@ -56,7 +72,8 @@ void world_destroy(void *world);
 /* Returns the bounding box of mesh m (the empty box for a mesh without vertices). */
 struct aabb world_mesh_bounds(const struct mesh *m);
 
-/* Finds the nearest surface with t_min < t < h->t along r among all shapes, and keeps it in *h.
+/* Finds the nearest surface with t_min < t < h->t along r among all shapes, kind by kind in the order
+ * of w->kinds, and keeps it in *h.
  * Returns true when *h was replaced. Without w->accel, a mesh whose bounding box r misses within
  * (t_min, h->t) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);
@@ -65,7 +82,7 @@ bool world_closest(const struct world *w, const ray *r, double t_min, struct hit
  * crossings of a sphere or box, each triangle, each plane. Stops as soon as visit returns false.
  * Used for shadows (chapters 7 and 8). Without w->accel, a mesh whose bounding box r misses within
  * (t_min, t_max) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
-typedef bool (*world_crossing_visitor)(void *context, double t, int material);
+typedef shape_crossing_visitor world_crossing_visitor;
 void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
                              world_crossing_visitor visit, void *context);
 

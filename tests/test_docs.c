@@ -144,13 +144,15 @@ Test(docs, every_walkthrough_from_chapter_2_has_a_build_exercise_with_its_check)
             continue;
         seen++;
         char *text = read_text_file(pages.gl_pathv[k]);
-        char filter[64], suite[64];
+        char filter[64], suite[64], own_test[64];
         snprintf(filter, sizeof filter, "--filter 'exercise_%d/*'", chapter);
         snprintf(suite, sizeof suite, "EXERCISE(%d,", chapter);
+        snprintf(own_test, sizeof own_test, "Test(exercise_%d,", chapter); /* a check written out in full */
         cr_expect_not_null(strstr(text, "★★★"), "%s has no build exercise (★★★)", pages.gl_pathv[k]);
         cr_expect_not_null(strstr(text, filter), "%s does not say how to run its exercise's check (%s)",
                            pages.gl_pathv[k], filter);
-        cr_expect_not_null(strstr(checks, suite), "chapter %d has no supplied check in test_exercises.c", chapter);
+        cr_expect(strstr(checks, suite) != NULL || strstr(checks, own_test) != NULL,
+                  "chapter %d has no supplied check in test_exercises.c", chapter);
         free(text);
     }
     globfree(&pages);

@@ -66,3 +66,33 @@ Test(layering, every_chapter_links_with_its_own_modules, .timeout = 300) {
         cr_assert_eq(link_chapter(n, n, output, sizeof output), 0,
                      "chapter %d failed to link with its own modules:\n%s", n, output);
 }
+
+/* Chapter 1 reads every scene (each kind of shape brings its syntax in its header, compiled into the
+ * scene reader) without linking any intersection code (which each kind's .c file holds). */
+Test(layering, chapter_1_reads_every_scene_without_any_intersection_code, .timeout = 120) {
+    const char *build = getenv("WHITTED_BUILD");
+    build = build != NULL ? build : "build";
+    char command[1024];
+    snprintf(command, sizeof command, "nm %s/chapter-01", build);
+    FILE *pipe = popen(command, "r");
+    cr_assert_not_null(pipe);
+    char line[512];
+    size_t symbols = 0;
+    while (fgets(line, sizeof line, pipe) != NULL) {
+        symbols++;
+        char type = '\0', name[256] = "";
+        if (sscanf(line, "%*s %c %255s", &type, name) != 2)
+            continue; /* an undefined symbol: no address */
+        cr_assert(strstr(name, "_intersect") == NULL && strstr(name, "_closest") == NULL &&
+                      strstr(name, "_behaviour") == NULL,
+                  "chapter 1 contains %s: it should link no shape's intersection code", name);
+    }
+    cr_assert_eq(pclose(pipe), 0);
+    cr_assert_gt(symbols, 100, "nm printed too little: is %s/chapter-01 built?", build);
+    snprintf(command, sizeof command,
+             "for s in scenes/*.scene; do %s/chapter-01 \"$s\" --quiet --width 4 --height 3 -o out/test/layering-01.png "
+             "|| exit 1; done",
+             build);
+    cr_assert_eq(system(command), 0, "chapter 1 refused a scene (see above)");
+    remove("out/test/layering-01.png");
+}

@@ -22,7 +22,7 @@ int main(int argc, char **argv) {
         .number = 5,
         .title = "aabb",
         .default_scene = "scenes/05-aabb.scene",
-        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .features = SCENE_EVERY_SHAPE,
         .lighting = POV_HEADLIGHT,
         .load_meshes = scene_load_meshes,
         .prepare = world_create,

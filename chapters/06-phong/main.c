@@ -16,7 +16,7 @@ int main(int argc, char **argv) {
         .number = 6,
         .title = "phong",
         .default_scene = "scenes/06-phong.scene",
-        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .features = SCENE_EVERY_SHAPE,
         .lighting = POV_PHONG,
         .load_meshes = scene_load_meshes,
         .prepare = world_create,

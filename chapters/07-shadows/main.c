@@ -16,7 +16,7 @@ int main(int argc, char **argv) {
         .number = 7,
         .title = "shadows",
         .default_scene = "scenes/07-shadows.scene",
-        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .features = SCENE_EVERY_SHAPE,
         .lighting = POV_PHONG_SHADOWS,
         .load_meshes = scene_load_meshes,
         .prepare = world_create,

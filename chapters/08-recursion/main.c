@@ -11,7 +11,7 @@ int main(int argc, char **argv) {
         .number = 8,
         .title = "recursion",
         .default_scene = "scenes/08-recursion.scene",
-        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .features = SCENE_EVERY_SHAPE,
         .lighting = POV_WHITTED,
         .load_meshes = scene_load_meshes,
         .prepare = world_create,

@@ -24,7 +24,7 @@ int main(int argc, char **argv) {
         .number = 9,
         .title = "kdtree",
         .default_scene = "scenes/09-kdtree.scene",
-        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .features = SCENE_EVERY_SHAPE,
         .lighting = POV_WHITTED,
         .load_meshes = scene_load_meshes,
         .prepare = prepare,

@@ -29,9 +29,112 @@ static ray make_ray(double ox, double oy, double oz, double dx, double dy, doubl
     return (ray){vec3_make(ox, oy, oz), vec3_normalize(vec3_make(dx, dy, dz))};
 }
 
-/* ---- 2.4 the disc ------------------------------------------------------------------------------- */
+/* ---- 2.4 the disc, a kind of shape --------------------------------------------------------------- */
 
-bool check_disc(disc_fn f, char *why, size_t why_size) {
+#define DISC_ITEM_MAX 256 /* bytes for one disc: a centre, a normal, a radius and a material need 60 */
+
+/* One disc, in memory the size and alignment of any struct. */
+struct disc_item {
+    _Alignas(max_align_t) unsigned char bytes[DISC_ITEM_MAX];
+};
+
+/* Makes a disc of `kind` in *item with the keys centre, normal and radius (material 0). Returns the
+ * kind's make's answer; on false, its reason is in why. */
+static bool make_disc(const struct shape_kind *kind, struct disc_item *item, vec3 centre, vec3 normal,
+                      double radius, char *why, size_t why_size) {
+    const struct shape_syntax *syntax = kind->syntax;
+    static const char *const names[] = {"centre", "normal", "radius"};
+    struct key_values kv;
+    memset(&kv, 0, sizeof kv);
+    for (int n = 0; n < 3; n++)
+        for (int k = 0; k < syntax->key_count && k < KEY_MAX; k++)
+            if (strcmp(syntax->keys[k].name, names[n]) == 0) {
+                kv.present[k] = true;
+                vec3 v = n == 0 ? centre : normal;
+                double values[3] = {n == 2 ? radius : v.x, v.y, v.z};
+                memcpy(kv.number[k], values, sizeof values);
+            }
+    memset(item, 0, sizeof *item);
+    why[0] = '\0';
+    return syntax->make(&kv, item->bytes, why, why_size);
+}
+
+static void set_material(const struct shape_kind *kind, struct disc_item *item, int material) {
+    memcpy(item->bytes + kind->material_offset, &material, sizeof material);
+}
+
+/* Counts the crossings the kind reports along r; stores the last t in *t. */
+struct crossing_count {
+    int count;
+    double t;
+    int material;
+};
+
+static bool count_crossing(void *context, double t, int material) {
+    struct crossing_count *c = context;
+    c->count++;
+    c->t = t;
+    c->material = material;
+    return true;
+}
+
+/* The parts of the kind that every check below needs; false with the reason when one is missing. */
+static bool disc_kind_complete(const struct shape_kind *kind, char *why, size_t why_size) {
+    if (kind->syntax == NULL || kind->syntax->make == NULL || kind->syntax->write_pov == NULL)
+        return fail(why, why_size, "the disc has no syntax: does disc.h end with SHAPE_KIND(disc, discs, DISCS, 2), "
+                    "and does it define disc_syntax with a make and a write_pov?");
+    if (kind->behaviour == NULL || kind->behaviour->closest == NULL || kind->behaviour->crossings == NULL ||
+        kind->behaviour->bounds == NULL)
+        return fail(why, why_size, "the disc has no behaviour: does disc.c define disc_behaviour (closest, "
+                    "crossings, bounds), and is disc in MODULES_02 of the Makefile?");
+    if (kind->size > DISC_ITEM_MAX || kind->material_offset + sizeof(int) > kind->size)
+        return fail(why, why_size, "struct disc is %zu bytes with its material at %zu: expected a small struct "
+                    "with an int material", kind->size, kind->material_offset);
+    static const struct key_spec wanted[] = {{"centre", 3}, {"normal", 3}, {"radius", 1}};
+    for (int n = 0; n < 3; n++) {
+        bool found = false;
+        for (int k = 0; k < kind->syntax->key_count; k++)
+            found |= strcmp(kind->syntax->keys[k].name, wanted[n].name) == 0 && kind->syntax->keys[k].count ==
+                     wanted[n].count;
+        if (!found)
+            return fail(why, why_size, "the disc's keys should include '%s' with %d number%s", wanted[n].name,
+                        wanted[n].count, wanted[n].count == 1 ? "" : "s");
+    }
+    return true;
+}
+
+/* The scene line's checks, and the POV-Ray form of a disc facing +y given as normal (0, 2, 0). */
+static bool check_disc_syntax(const struct shape_kind *kind, char *why, size_t why_size) {
+    struct disc_item item;
+    char reason[256];
+    vec3 origin = {0, 0, 0}, up = {0, 1, 0};
+    if (make_disc(kind, &item, origin, up, 0.0, reason, sizeof reason))
+        return fail(why, why_size, "`disc ... radius 0` was accepted: a disc needs a radius above 0");
+    if (reason[0] == '\0')
+        return fail(why, why_size, "`disc ... radius 0` was refused without a reason in why");
+    if (make_disc(kind, &item, origin, vec3_make(0, 0, 0), 1.0, reason, sizeof reason))
+        return fail(why, why_size, "`disc ... normal 0 0 0` was accepted: a zero normal gives no plane");
+    if (!make_disc(kind, &item, origin, vec3_make(0, 2, 0), 1.0, reason, sizeof reason))
+        return fail(why, why_size, "`disc centre 0 0 0 normal 0 2 0 radius 1` was refused: %s", reason);
+    char *text = NULL;
+    size_t length = 0;
+    FILE *out = open_memstream(&text, &length);
+    if (out == NULL)
+        return fail(why, why_size, "out of memory");
+    kind->syntax->write_pov(out, item.bytes);
+    fclose(out);
+    static const char expected[] = "disc { <0, 0, 0>, <0, 1, 0>, 1";
+    bool same = text != NULL && strcmp(text, expected) == 0;
+    if (!same)
+        fail(why, why_size, "POV-Ray form of `disc centre 0 0 0 normal 0 2 0 radius 1`: expected \"%s\" (the "
+             "normal made unit length, no texture, no closing brace), got \"%s\"", expected, text != NULL ? text : "");
+    free(text);
+    return same;
+}
+
+bool check_disc(const struct shape_kind *kind, char *why, size_t why_size) {
+    if (!disc_kind_complete(kind, why, why_size) || !check_disc_syntax(kind, why, why_size))
+        return false;
     static const struct {
         const char *what;
         ray r;
@@ -45,27 +148,82 @@ bool check_disc(disc_fn f, char *why, size_t why_size) {
         {"straight down, but t_max = 1.5 ends the ray before the disc", {{0.5, 2, 0}, {0, -1, 0}}, 1.5, -1},
         {"pointing away from the disc", {{0.5, 2, 0}, {0, 1, 0}}, INFINITY, -1},
     };
-    vec3 centre = {0, 0, 0}, normal = {0, 1, 0};
+    char reason[256];
+    struct disc_item item;
+    make_disc(kind, &item, vec3_make(0, 0, 0), vec3_make(0, 1, 0), 1.0, reason, sizeof reason);
+    set_material(kind, &item, 7);
+    const struct shape_behaviour *b = kind->behaviour;
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
-        double t = -1;
-        bool hit = f(centre, normal, 1.0, &cases[k].r, RAY_T_MIN, cases[k].t_max, &t);
+        struct hit h = hit_nothing(cases[k].t_max);
+        bool hit = b->closest(item.bytes, 1, &cases[k].r, RAY_T_MIN, &h);
         if (cases[k].expected < 0 && hit)
             return fail(why, why_size, "disc of radius 1 at the origin facing +y, ray %s: expected a miss, your "
-                        "disc_intersect returned a hit at t = %g", cases[k].what, t);
+                        "closest returned a hit at t = %g", cases[k].what, h.t);
         if (cases[k].expected >= 0 && !hit)
             return fail(why, why_size, "disc of radius 1 at the origin facing +y, ray %s: expected a hit at t = %g, "
-                        "your disc_intersect returned a miss", cases[k].what, cases[k].expected);
-        if (hit && !near(t, cases[k].expected))
+                        "your closest returned a miss", cases[k].what, cases[k].expected);
+        if (hit && !near(h.t, cases[k].expected))
             return fail(why, why_size, "disc of radius 1 at the origin facing +y, ray %s: expected t = %g, got %.17g",
-                        cases[k].what, cases[k].expected, t);
+                        cases[k].what, cases[k].expected, h.t);
+        if (hit && (!near(fabs(h.normal.y), 1.0) || !near(h.normal.x, 0.0) || !near(h.normal.z, 0.0) ||
+                    h.material != 7))
+            return fail(why, why_size, "disc of radius 1 at the origin facing +y, material 7, ray %s: expected the "
+                        "normal (0, +-1, 0) and material 7, got (%g, %g, %g) and %d", cases[k].what, h.normal.x,
+                        h.normal.y, h.normal.z, h.material);
+        struct crossing_count crossings = {0, 0.0, -1};
+        b->crossings(item.bytes, 1, &cases[k].r, RAY_T_MIN, cases[k].t_max, count_crossing, &crossings);
+        int expected_count = cases[k].expected < 0 ? 0 : 1;
+        if (crossings.count != expected_count || (expected_count == 1 && (!near(crossings.t, cases[k].expected) ||
+                                                                          crossings.material != 7)))
+            return fail(why, why_size, "disc of radius 1 at the origin facing +y, ray %s: expected %d crossing%s, "
+                        "your crossings reported %d", cases[k].what, expected_count, expected_count == 1 ? " at t = 2 "
+                        "or 3 with material 7" : "s", crossings.count);
     }
-    /* A tilted disc: a ray along its normal from 4 units away meets its centre at t = 4. */
+    /* Two discs in one array, the second nearer: the search must step through the array by the size of a
+     * disc and keep the nearest. */
+    struct disc_item pair[2];
+    make_disc(kind, &pair[0], vec3_make(0, 0, 0), vec3_make(0, 1, 0), 1.0, reason, sizeof reason);
+    make_disc(kind, &pair[1], vec3_make(0, 1, 0), vec3_make(0, 1, 0), 1.0, reason, sizeof reason);
+    unsigned char both[2 * DISC_ITEM_MAX];
+    memcpy(both, pair[0].bytes, kind->size);
+    memcpy(both + kind->size, pair[1].bytes, kind->size);
+    memcpy(both + kind->material_offset, &(int){3}, sizeof(int));
+    memcpy(both + kind->size + kind->material_offset, &(int){4}, sizeof(int));
+    ray down = make_ray(0.2, 2, 0.1, 0, -1, 0);
+    struct hit h = hit_nothing(INFINITY);
+    if (!b->closest(both, 2, &down, RAY_T_MIN, &h) || !near(h.t, 1.0) || h.material != 4)
+        return fail(why, why_size, "discs at y = 0 (material 3) and y = 1 (material 4), ray straight down from "
+                    "y = 2: expected the nearer at t = 1 with material 4, got t = %g, material %d", h.t, h.material);
+    /* A tilted disc, given with a normal that is not unit length: a ray along its normal from 4 units
+     * away meets its centre at t = 4. */
     vec3 tilted = vec3_normalize(vec3_make(1, 1, 1)), at = {1, 2, 3};
+    make_disc(kind, &item, at, vec3_make(1, 1, 1), 0.5, reason, sizeof reason);
     ray r = {vec3_add_scaled(at, tilted, 4.0), vec3_neg(tilted)};
-    double t = -1;
-    if (!f(at, tilted, 0.5, &r, RAY_T_MIN, INFINITY, &t) || !near(t, 4.0))
+    h = hit_nothing(INFINITY);
+    if (!b->closest(item.bytes, 1, &r, RAY_T_MIN, &h) || !near(h.t, 4.0))
         return fail(why, why_size, "disc at (1, 2, 3) facing (1, 1, 1), ray along its normal from 4 away: expected "
-                    "t = 4, got %s %.17g (does your code assume the normal is +y?)", t < 0 ? "a miss," : "", t);
+                    "t = 4, got %s %.17g (does your code assume the normal is +y, or unit length?)",
+                    hit_found(&h) ? "" : "a miss,", h.t);
+    /* Its box must hold the rim, and be no larger than the cube around the sphere through the rim. */
+    vec3 min, max;
+    if (!b->bounds(item.bytes, &min, &max))
+        return fail(why, why_size, "your bounds say the disc has no bounding box; it has one");
+    vec3 u = vec3_normalize(vec3_cross(tilted, vec3_make(0, 0, 1))), v = vec3_cross(tilted, u);
+    for (int k = 0; k < 64; k++) {
+        double angle = 2.0 * M_PI * k / 64.0;
+        vec3 rim = vec3_add(at, vec3_add(vec3_scale(u, 0.5 * cos(angle)), vec3_scale(v, 0.5 * sin(angle))));
+        for (int a = 0; a < 3; a++)
+            if (vec3_axis(rim, a) < vec3_axis(min, a) - CHECK_TOLERANCE ||
+                vec3_axis(rim, a) > vec3_axis(max, a) + CHECK_TOLERANCE)
+                return fail(why, why_size, "disc at (1, 2, 3) facing (1, 1, 1), radius 0.5: the rim point (%g, %g, %g) "
+                            "is outside your bounds (%g, %g, %g) to (%g, %g, %g)", rim.x, rim.y, rim.z, min.x, min.y,
+                            min.z, max.x, max.y, max.z);
+    }
+    for (int a = 0; a < 3; a++)
+        if (vec3_axis(min, a) < vec3_axis(at, a) - 0.5 - CHECK_TOLERANCE ||
+            vec3_axis(max, a) > vec3_axis(at, a) + 0.5 + CHECK_TOLERANCE)
+            return fail(why, why_size, "disc at (1, 2, 3) of radius 0.5: your bounds (%g, %g, %g) to (%g, %g, %g) "
+                        "reach beyond the radius", min.x, min.y, min.z, max.x, max.y, max.z);
     return true;
 }
 

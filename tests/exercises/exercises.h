@@ -3,7 +3,8 @@
  *
  * Each function is declared weak: until a student writes it (in the module the exercise names), its
  * address is NULL and its test in test_exercises.c is skipped with a note saying where to start. Once
- * it exists, the test runs the check below on it. Each check returns true, or false with a message in
+ * it exists, the test runs the check below on it. Exercise 2.4 is a whole kind of shape: its test is
+ * skipped until the kind is registered (shape_kinds.h). Each check returns true, or false with a message in
  * the student's terms: the input, what was expected, what came back. tests/exercises/solutions.c holds
  * one correct answer to each, linked only into build/run-exercise-solutions, which make test runs to
  * prove that every check passes a right answer and fails a wrong one. */
@@ -16,15 +17,17 @@
 #include "aabb.h"
 #include "mesh.h"
 #include "ray.h"
+#include "shape.h"
 
 #define WEAK __attribute__((weak))
 
-/* Exercise 2.4 (common/disc.c): where r meets the disc of `radius` around `centre` in the plane with
- * unit normal `normal`, with t_min < t < t_max. Returns true and stores t on a hit; the rim counts. */
-WEAK bool disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
-                         double *t);
-typedef bool (*disc_fn)(vec3, vec3, double, const ray *, double, double, double *);
-bool check_disc(disc_fn f, char *why, size_t why_size);
+/* Exercise 2.4 (common/disc.h, common/disc.c and one line in common/shape_kinds.h): the disc, a new kind
+ * of shape, read from the scene line `disc centre X Y Z normal X Y Z radius R [material NAME]`. Instead
+ * of a weak function, its test looks for the kind "disc" in shape_kinds[] and grades what it finds:
+ * its syntax (a zero normal or a radius <= 0 is refused, the normal is made unit length), its POV-Ray
+ * form `disc { <centre>, <normal>, radius`, and its behaviour: the nearest hit among several discs (t,
+ * the disc's unit normal, the material; the rim counts), the crossings and the bounding box. */
+bool check_disc(const struct shape_kind *kind, char *why, size_t why_size);
 
 /* Exercise 3.4 (common/mesh_normals.c): a unit normal for every vertex of m, the average of the normals
  * of the faces around it weighted by their areas (the cross product of two edges, unnormalised, does

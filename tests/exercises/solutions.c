@@ -7,35 +7,127 @@
 #include "solutions.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "shadow.h"
 
-/* ---- 2.4 ---- */
-static bool disc(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max, double *t,
+/* ---- 2.4: the disc, a kind of shape: what common/disc.h and common/disc.c hold in a model answer.
+ * Named model_disc here, so that it cannot clash with a student's struct disc. ---- */
+
+struct model_disc {
+    vec3 centre;
+    vec3 normal;   /* unit length */
+    double radius; /* > 0 */
+    int material;
+};
+
+enum { MODEL_DISC_CENTRE, MODEL_DISC_NORMAL, MODEL_DISC_RADIUS };
+
+/* In disc.h: the syntax, `disc centre X Y Z normal X Y Z radius R`. */
+static bool model_disc_make(const struct key_values *kv, void *item, char *why, size_t why_size) {
+    struct model_disc *d = item;
+    d->centre = key_vec3(kv, MODEL_DISC_CENTRE);
+    vec3 normal = key_vec3(kv, MODEL_DISC_NORMAL);
+    d->radius = kv->number[MODEL_DISC_RADIUS][0];
+    if (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0) {
+        snprintf(why, why_size, "disc normal must not be zero");
+        return false;
+    }
+    if (!(d->radius > 0.0)) {
+        snprintf(why, why_size, "disc radius must be positive, got %g", d->radius);
+        return false;
+    }
+    d->normal = vec3_normalize(normal);
+    return true;
+}
+
+static void model_disc_write_pov(FILE *out, const void *item) {
+    const struct model_disc *d = item;
+    fprintf(out, "disc { ");
+    shape_write_vector(out, d->centre);
+    fprintf(out, ", ");
+    shape_write_vector(out, d->normal);
+    fprintf(out, ", %.17g", d->radius);
+}
+
+static const struct key_spec model_disc_keys[] = {{"centre", 3}, {"normal", 3}, {"radius", 1}};
+static const int model_disc_required[] = {MODEL_DISC_CENTRE, MODEL_DISC_NORMAL, MODEL_DISC_RADIUS, -1};
+static const struct shape_syntax model_disc_syntax = {model_disc_keys, 3, model_disc_required, model_disc_make,
+                                                      model_disc_write_pov};
+
+/* In disc.c: the intersection, t as for a plane, n . (C - O) / (n . D), kept when within the radius. */
+static bool disc(const struct model_disc *d, const ray *r, double t_min, double t_max, double *t,
                  bool within_radius) {
-    double facing = vec3_dot(normal, r->direction);
+    double facing = vec3_dot(d->normal, r->direction);
     if (facing == 0.0)
         return false;
-    double hit_t = vec3_dot(normal, vec3_sub(centre, r->origin)) / facing;
+    double hit_t = vec3_dot(d->normal, vec3_sub(d->centre, r->origin)) / facing;
     if (!(hit_t > t_min && hit_t < t_max))
         return false;
-    vec3 offset = vec3_sub(ray_at(*r, hit_t), centre);
-    if (within_radius && vec3_dot(offset, offset) > radius * radius)
+    vec3 offset = vec3_sub(ray_at(*r, hit_t), d->centre);
+    if (within_radius && vec3_dot(offset, offset) > d->radius * d->radius)
         return false;
     *t = hit_t;
     return true;
 }
 
-bool solution_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
-                             double *t) {
-    return disc(centre, normal, radius, r, t_min, t_max, t, true);
+static bool disc_closest(const void *items, size_t count, const ray *r, double t_min, struct hit *h,
+                         bool within_radius) {
+    const struct model_disc *discs = items, *nearest = NULL;
+    for (size_t k = 0; k < count; k++)
+        if (disc(&discs[k], r, t_min, h->t, &h->t, within_radius))
+            nearest = &discs[k];
+    if (nearest == NULL)
+        return false;
+    h->normal = nearest->normal;
+    h->material = nearest->material;
+    return true;
 }
 
-bool wrong_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max,
-                          double *t) {
-    return disc(centre, normal, radius, r, t_min, t_max, t, false); /* the plane, without the radius test */
+static bool model_disc_closest(const void *items, size_t count, const ray *r, double t_min, struct hit *h) {
+    return disc_closest(items, count, r, t_min, h, true);
 }
+
+static bool wrong_disc_closest(const void *items, size_t count, const ray *r, double t_min, struct hit *h) {
+    return disc_closest(items, count, r, t_min, h, false); /* the plane, without the radius test */
+}
+
+static bool model_disc_crossings(const void *items, size_t count, const ray *r, double t_min, double t_max,
+                                 shape_crossing_visitor visit, void *context) {
+    const struct model_disc *discs = items;
+    for (size_t k = 0; k < count; k++) {
+        double t;
+        if (disc(&discs[k], r, t_min, t_max, &t, true) && !visit(context, t, discs[k].material))
+            return false;
+    }
+    return true;
+}
+
+/* On axis i the rim reaches radius * sqrt(1 - n_i^2) either side of the centre. */
+static bool model_disc_bounds(const void *item, vec3 *min, vec3 *max) {
+    const struct model_disc *d = item;
+    vec3 n = d->normal;
+    vec3 extent = vec3_make(d->radius * sqrt(fmax(0.0, 1.0 - n.x * n.x)), d->radius * sqrt(fmax(0.0, 1.0 - n.y * n.y)),
+                            d->radius * sqrt(fmax(0.0, 1.0 - n.z * n.z)));
+    *min = vec3_sub(d->centre, extent);
+    *max = vec3_add(d->centre, extent);
+    return true;
+}
+
+static const struct shape_behaviour model_disc_behaviour = {model_disc_closest, model_disc_crossings,
+                                                            model_disc_bounds};
+static const struct shape_behaviour wrong_disc_behaviour = {wrong_disc_closest, model_disc_crossings,
+                                                            model_disc_bounds};
+
+/* What SHAPE_KIND(disc, discs, DISCS, 2) makes of the model answer in scene.c's table. */
+const struct shape_kind solution_disc_kind = {"disc", "discs", 2, 0, sizeof(struct model_disc),
+                                              offsetof(struct model_disc, material), &model_disc_syntax,
+                                              &model_disc_behaviour};
+const struct shape_kind wrong_disc_kind = {"disc", "discs", 2, 0, sizeof(struct model_disc),
+                                           offsetof(struct model_disc, material), &model_disc_syntax,
+                                           &wrong_disc_behaviour};
 
 /* ---- 3.4 ---- */
 static void vertex_normals(const struct mesh *m, vec3 *normals, bool by_area) {

@@ -6,8 +6,7 @@
 
 /* Each solution_X keeps the contract of X in exercises.h; each wrong_X has its signature and the flaw
  * its comment in solutions.c names. */
-bool solution_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max, double *t);
-bool wrong_disc_intersect(vec3 centre, vec3 normal, double radius, const ray *r, double t_min, double t_max, double *t);
+extern const struct shape_kind solution_disc_kind, wrong_disc_kind; /* the wrong one forgets the radius */
 void solution_mesh_vertex_normals(const struct mesh *m, vec3 *normals);
 void wrong_mesh_vertex_normals(const struct mesh *m, vec3 *normals);
 bool solution_cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max, double *t);

@@ -12,7 +12,7 @@
         cr_log_info("the wrong answer is told: %s", why);                                                  \
     }
 
-PROOF(disc, check_disc, solution_disc_intersect, wrong_disc_intersect)
+PROOF(disc, check_disc, &solution_disc_kind, &wrong_disc_kind)
 PROOF(vertex_normals, check_vertex_normals, solution_mesh_vertex_normals, wrong_mesh_vertex_normals)
 PROOF(cylinder, check_cylinder, solution_cylinder_intersect, wrong_cylinder_intersect)
 PROOF(bounding_sphere, check_bounding_sphere, solution_mesh_bounding_sphere, wrong_mesh_bounding_sphere)
