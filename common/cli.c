@@ -243,6 +243,7 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
             printf("heat-map: %s\n", shown);
         }
         stats_print(stdout, &total);
+        stats_warn_limits(stderr, &total);
         if (ch->report != NULL)
             ch->report(world, &total, elapsed, o->stats);
     }

@@ -60,8 +60,31 @@ void world_destroy(void *world) {
     free(world);
 }
 
+int world_object_number(const struct scene *s, enum world_object_kind kind, size_t index) {
+    size_t before[] = {0, s->sphere_count, s->box_count, s->triangle_count, s->mesh_count};
+    size_t number = index;
+    for (int k = 0; k <= (int)kind; k++)
+        number += before[k];
+    return (int)number;
+}
+
+/* The object a face of the acceleration structure belongs to: the `triangle` directives come first,
+ * then the faces of each mesh in order. */
+static int accel_face_object(const struct scene *s, uint32_t face) {
+    if (face < s->triangle_count)
+        return world_object_number(s, WORLD_TRIANGLE, face);
+    size_t first = s->triangle_count;
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        first += s->meshes[k].mesh.face_count;
+        if (face < first)
+            return world_object_number(s, WORLD_MESH, k);
+    }
+    return -1; /* not reached: the structure holds only these faces */
+}
+
 /* Triangles through the acceleration structure: one query replaces all triangle and mesh loops. */
-static bool accel_closest(const struct world_accel *a, const ray *r, double t_min, struct hit *h) {
+static bool accel_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
+    const struct world_accel *a = w->accel;
     double t;
     uint32_t face;
     if (!a->closest(a->structure, r, t_min, h->t, &t, &face))
@@ -71,27 +94,40 @@ static bool accel_closest(const struct world_accel *a, const ray *r, double t_mi
     h->t = t;
     h->normal = triangle_normal(v[corner[0]], v[corner[1]], v[corner[2]]);
     h->material = a->materials[face];
+    h->object = accel_face_object(w->scene, face);
     return true;
+}
+
+/* Sets h->object when `found`: the shape just tested replaced the hit. */
+static bool note_object(bool found, struct hit *h, const struct scene *s, enum world_object_kind kind, size_t k) {
+    if (found)
+        h->object = world_object_number(s, kind, k);
+    return found;
 }
 
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
     const struct scene *s = w->scene;
-    bool found = sphere_closest(s->spheres, s->sphere_count, r, t_min, h);
-    found |= box_closest(s->boxes, s->box_count, r, t_min, h);
+    bool found = false;
+    for (size_t k = 0; k < s->sphere_count; k++)
+        found |= note_object(sphere_closest(&s->spheres[k], 1, r, t_min, h), h, s, WORLD_SPHERE, k);
+    for (size_t k = 0; k < s->box_count; k++)
+        found |= note_object(box_closest(&s->boxes[k], 1, r, t_min, h), h, s, WORLD_BOX, k);
     if (w->accel != NULL) {
-        found |= accel_closest(w->accel, r, t_min, h);
+        found |= accel_closest(w, r, t_min, h);
     } else {
-        found |= triangle_closest(s->triangles, s->triangle_count, r, t_min, h);
+        for (size_t k = 0; k < s->triangle_count; k++)
+            found |= note_object(triangle_closest(&s->triangles[k], 1, r, t_min, h), h, s, WORLD_TRIANGLE, k);
         vec3 inv_direction = aabb_inverse_direction(r->direction);
         for (size_t k = 0; k < s->mesh_count; k++) {
             const struct mesh *m = &s->meshes[k].mesh;
             if (aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL))
-                found |= triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h);
+                found |= note_object(triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h), h, s, WORLD_MESH, k);
             else
                 stats_thread.triangle_tests_culled += m->face_count;
         }
     }
-    found |= plane_closest(s->planes, s->plane_count, r, t_min, h);
+    for (size_t k = 0; k < s->plane_count; k++)
+        found |= note_object(plane_closest(&s->planes[k], 1, r, t_min, h), h, s, WORLD_PLANE, k);
     return found;
 }
 
