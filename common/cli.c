@@ -3,6 +3,7 @@
 
 #include "heatmap.h"
 #include "outfile.h"
+#include "scene_scale.h"
 #include "scene_set.h"
 #include "text_escape.h"
 
@@ -189,6 +190,8 @@ static void *load_world(const struct chapter *ch, const struct options *o, struc
     scene_drop_unsupported(s, ch->features, ch->number, o->quiet ? NULL : stderr);
     if (ch->load_meshes != NULL && !ch->load_meshes(s, err, err_size))
         return NULL;
+    if (!o->quiet)
+        scene_scale_warn(s, stderr);
     if (ch->prepare == NULL)
         return s;
     return ch->prepare(s, err, err_size);

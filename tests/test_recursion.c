@@ -8,6 +8,7 @@
 
 #include "image_test_support.h"
 #include "interior.h"
+#include "scene_scale.h"
 #include "stats.h"
 #include "test_support.h"
 
@@ -233,4 +234,44 @@ Test(runaway, adc_bailout_prunes_the_tree_as_povray_does, .timeout = 60) {
     cr_assert(render_povray(8, scene, TEST_OUT "/panes-16-povray.png"));
     struct image_difference d = compare_png(TEST_OUT "/panes-16.scene.png", TEST_OUT "/panes-16-povray.png");
     cr_assert(image_difference_agrees(&d), "mean %.4f", d.mean);
+}
+
+/* ---- scale --------------------------------------------------------------------------------------- */
+
+Test(scale, a_millimetre_scene_is_warned_about, .timeout = 60) {
+    const char *scene = TEST_OUT "/millimetres.scene";
+    FILE *f = fopen(scene, "w");
+    cr_assert_not_null(f);
+    /* a 30 mm marble on a table, seen from 200 mm, written in metres */
+    fprintf(f, "camera eye 0 0.05 0.2 target 0 0.015 0 fov 40\nimage 8 6\nlight position -0.2 0.4 0.3\n"
+               "material glass colour 1 1 1 transmit 0.9 ior 1.5\nplane normal 0 1 0 distance 0\n"
+               "sphere centre 0 0.015 0 radius 0.015 material glass\n");
+    fclose(f);
+    char *err;
+    cr_assert_eq(run_hostile(scene, "", &err), 0, "%s", err);
+    cr_assert_not_null(strstr(err, "millimetres.scene: warning: the scene is 0.215 units across, only 215 times the "
+                                   "shadow-ray margin 0.001 (and 2150 times the ray margin 0.0001)"), "%s", err);
+    cr_assert_not_null(strstr(err, "scale the scene up 10 times or more"), "%s", err);
+    free(err);
+}
+
+Test(scale, no_shipped_scene_is_warned_about, .timeout = 120) {
+    FILE *pipe = popen("ls scenes/*.scene", "r");
+    cr_assert_not_null(pipe);
+    char path[512];
+    int scenes = 0;
+    while (fgets(path, sizeof path, pipe) != NULL) {
+        path[strcspn(path, "\n")] = '\0';
+        struct scene s;
+        char err[512];
+        cr_assert(scene_load(path, &s, err, sizeof err), "%s", err);
+        cr_assert(scene_load_meshes(&s, err, sizeof err), "%s", err);
+        FILE *sink = fopen("/dev/null", "w");
+        cr_assert_not(scene_scale_warn(&s, sink), "%s is %g across and was warned about", path, scene_extent(&s));
+        fclose(sink);
+        scene_free(&s);
+        scenes++;
+    }
+    pclose(pipe);
+    cr_assert_geq(scenes, 12);
 }
