@@ -275,3 +275,31 @@ Test(scale, no_shipped_scene_is_warned_about, .timeout = 120) {
     pclose(pipe);
     cr_assert_geq(scenes, 12);
 }
+
+/* ---- adc_bailout in the scene and the twin --------------------------------------------------------- */
+
+Test(adc_bailout, defaults_to_povrays_value_and_goes_into_the_twin, .timeout = 60) {
+    char command[1024];
+    snprintf(command, sizeof command, "%s scenes/08-glass-of-water.scene --pov " TEST_OUT "/adc-default.pov --quiet",
+             chapter_program(8));
+    cr_assert_eq(system(command), 0);
+    char *pov = read_text_file(TEST_OUT "/adc-default.pov");
+    cr_assert_not_null(strstr(pov, "  adc_bailout 0.0039215686274509803\n"), "%s", pov);
+    free(pov);
+    snprintf(command, sizeof command,
+             "%s scenes/08-glass-of-water.scene --set adc_bailout=0.25 --pov " TEST_OUT "/adc-set.pov --quiet",
+             chapter_program(8));
+    cr_assert_eq(system(command), 0);
+    pov = read_text_file(TEST_OUT "/adc-set.pov");
+    cr_assert_not_null(strstr(pov, "  adc_bailout 0.25\n"), "%s", pov);
+    free(pov);
+}
+
+Test(adc_bailout, out_of_range_is_a_clear_error) {
+    struct scene s;
+    char err[512];
+    cr_assert_not(scene_parse("bad.scene", "adc_bailout 1.5\n", &s, err, sizeof err));
+    cr_assert_str_eq(err, "bad.scene:1: 'adc_bailout' must be between 0 and 1, got 1.5");
+    cr_assert_not(scene_parse("bad.scene", "\nadc_bailout\n", &s, err, sizeof err));
+    cr_assert_str_eq(err, "bad.scene:2: adc_bailout needs one number");
+}
