@@ -32,6 +32,7 @@ bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_m
     struct aabb bounds = aabb_of_box(nearest);
     h->normal = aabb_normal(&bounds, ray_at(*r, h->t));
     h->material = nearest->material;
+    h->object = (int)(nearest - boxes); /* world_closest turns it into the object's number */
     return true;
 }
 

@@ -3,6 +3,7 @@
 
 #include "heatmap.h"
 #include "outfile.h"
+#include "scene_scale.h"
 #include "scene_set.h"
 #include "text_escape.h"
 
@@ -189,6 +190,8 @@ static void *load_world(const struct chapter *ch, const struct options *o, struc
     scene_drop_unsupported(s, ch->features, ch->number, o->quiet ? NULL : stderr);
     if (ch->load_meshes != NULL && !ch->load_meshes(s, err, err_size))
         return NULL;
+    if (!o->quiet)
+        scene_scale_warn(s, stderr);
     if (ch->prepare == NULL)
         return s;
     return ch->prepare(s, err, err_size);
@@ -243,6 +246,7 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
             printf("heat-map: %s\n", shown);
         }
         stats_print(stdout, &total);
+        stats_warn_limits(stderr, &total);
         if (ch->report != NULL)
             ch->report(world, &total, elapsed, o->stats);
     }

@@ -15,10 +15,11 @@ struct hit {
     double t;      /* distance along the ray; INFINITY while nothing has been found */
     vec3 normal;   /* unit geometric normal as the shape defines it (not yet turned to face the ray) */
     int material;  /* index into scene.materials */
+    int object;    /* which object was hit, as world.h numbers them (chapter 8's interior list needs it) */
 };
 
 /* Returns an empty hit: nothing found yet, so anything closer than t_max will do. */
-static inline struct hit hit_nothing(double t_max) { return (struct hit){t_max, {0, 0, 0}, 0}; }
+static inline struct hit hit_nothing(double t_max) { return (struct hit){t_max, {0, 0, 0}, 0, -1}; }
 
 /* Returns true when a surface was found (t is finite). */
 static inline bool hit_found(const struct hit *h) { return isfinite(h->t); }

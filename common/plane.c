@@ -16,6 +16,7 @@ bool plane_closest(const struct plane *planes, size_t count, const ray *r, doubl
         return false;
     h->normal = nearest->normal;
     h->material = nearest->material;
+    h->object = (int)(nearest - planes); /* world_closest turns it into the object's number */
     return true;
 }
 

@@ -24,6 +24,7 @@
 #define SCENE_FILE_MAX_BYTES (64L * 1024 * 1024) /* scene files are small; meshes live elsewhere */
 #define MAX_DEPTH_LIMIT 64      /* deeper recursion adds nothing visible and only costs time */
 #define DEFAULT_MAX_DEPTH 5     /* POV-Ray's default max_trace_level */
+#define DEFAULT_ADC_BAILOUT (1.0 / 255.0) /* POV-Ray's default: one level of an 8-bit pixel */
 
 /* Where we are while parsing: for messages. */
 struct parser {
@@ -392,6 +393,15 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
             return fail(p, "max_depth needs one whole number");
         return parse_int(p, args[0], "max_depth", 1, MAX_DEPTH_LIMIT, &s->max_depth);
     }
+    if (strcmp(directive, "adc_bailout") == 0) {
+        if (count != 1)
+            return fail(p, "adc_bailout needs one number");
+        if (!parse_number(p, args[0], "adc_bailout", &s->adc_bailout))
+            return false;
+        if (s->adc_bailout < 0.0 || s->adc_bailout > 1.0)
+            return fail(p, "'adc_bailout' must be between 0 and 1, got %s", args[0]);
+        return true;
+    }
     if (strcmp(directive, "shadow_offset") == 0) {
         if (count != 1 || (strcmp(args[0], "on") != 0 && strcmp(args[0], "off") != 0))
             return fail(p, "shadow_offset needs 'on' or 'off'");
@@ -424,6 +434,7 @@ static bool scene_defaults(struct scene *s, const char *name) {
     s->up = vec3_make(0, 1, 0);
     s->ambient_light = vec3_make(1, 1, 1);
     s->max_depth = DEFAULT_MAX_DEPTH;
+    s->adc_bailout = DEFAULT_ADC_BAILOUT;
     s->shadow_offset = true;
     return true;
 }

@@ -85,6 +85,7 @@ struct scene {
     vec3 ambient_light;   /* global ambient light (POV-Ray ambient_light), default 1 1 1 */
     int max_depth;        /* rays of this level or deeper are black; the camera ray is level 1 */
     bool shadow_offset;   /* false: shadow rays accept hits from t > 0 (chapter 7's acne demo) */
+    double adc_bailout;   /* secondary rays weighing less are not traced (POV-Ray's adc_bailout), 0..1 */
 
     struct material *materials; size_t material_count; /* materials[0] is "default" */
     struct light *lights;       size_t light_count;

@@ -39,6 +39,7 @@ bool sphere_closest(const struct sphere *spheres, size_t count, const ray *r, do
         return false;
     h->normal = sphere_normal(nearest, ray_at(*r, h->t));
     h->material = nearest->material;
+    h->object = (int)(nearest - spheres); /* world_closest turns it into the object's number */
     return true;
 }
 

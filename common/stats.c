@@ -4,6 +4,8 @@
 #include <inttypes.h>
 #include <string.h>
 
+#include "ray.h"
+
 _Thread_local struct stats stats_thread;
 
 void stats_add(struct stats *into, const struct stats *from) {
@@ -17,6 +19,10 @@ void stats_add(struct stats *into, const struct stats *from) {
     into->plane_tests += from->plane_tests;
     into->box_tests += from->box_tests;
     into->node_visits += from->node_visits;
+    into->adc_saves += from->adc_saves;
+    into->crossings_capped += from->crossings_capped;
+    into->budget_cut += from->budget_cut;
+    into->interior_overflows += from->interior_overflows;
 }
 
 void stats_reset_thread(void) { memset(&stats_thread, 0, sizeof stats_thread); }
@@ -45,6 +51,10 @@ void stats_print(FILE *out, const struct stats *s) {
     print_counter(out, "plane tests", s->plane_tests);
     print_counter(out, "box tests", s->box_tests);
     print_counter(out, "node visits", s->node_visits);
+    print_counter(out, "adc saves", s->adc_saves);
+    print_counter(out, "crossings capped", s->crossings_capped);
+    print_counter(out, "budget cuts", s->budget_cut);
+    print_counter(out, "interior full", s->interior_overflows);
     if (s->primary_rays == 0)
         return;
     fprintf(out, "per pixel (with its shadow and secondary rays):\n");
@@ -55,4 +65,19 @@ void stats_print(FILE *out, const struct stats *s) {
     print_ratio(out, "plane tests", s->plane_tests, s->primary_rays);
     print_ratio(out, "box tests", s->box_tests, s->primary_rays);
     print_ratio(out, "node visits", s->node_visits, s->primary_rays);
+}
+
+void stats_warn_limits(FILE *out, const struct stats *s) {
+    if (s->crossings_capped != 0)
+        fprintf(out, "warning: %" PRIu64 " rays passed through %d surfaces without bending and were stopped there "
+                "(RAY_MAX_CROSSINGS); those pixels are darker than POV-Ray's\n",
+                s->crossings_capped, RAY_MAX_CROSSINGS);
+    if (s->budget_cut != 0)
+        fprintf(out, "warning: %" PRIu64 " secondary rays were not traced: their camera ray had spawned %d already "
+                "(RAY_TREE_BUDGET); raise adc_bailout or lower max_depth\n",
+                s->budget_cut, RAY_TREE_BUDGET);
+    if (s->interior_overflows != 0)
+        fprintf(out, "warning: %" PRIu64 " times a ray entered an object while already inside %d "
+                "(RAY_INTERIOR_CAPACITY); those objects were not remembered\n",
+                s->interior_overflows, RAY_INTERIOR_CAPACITY);
 }

@@ -26,6 +26,11 @@ struct stats {
     uint64_t plane_tests;
     uint64_t box_tests;      /* box primitives and bounding boxes (chapter 5 on) */
     uint64_t node_visits;    /* kd-tree or BVH nodes visited (chapters 9 and 10) */
+    /* Chapter 8's limits (docs/08-recursion.md, "Ray trees that cannot run away"): */
+    uint64_t adc_saves;          /* secondary rays not traced, their weight being under adc_bailout */
+    uint64_t crossings_capped;   /* rays stopped after RAY_MAX_CROSSINGS pass-throughs */
+    uint64_t budget_cut;         /* secondary rays not traced, the camera ray's RAY_TREE_BUDGET spent */
+    uint64_t interior_overflows; /* objects entered but not remembered, the interior list being full */
 };
 
 /* The calling thread's counters. Intersection code increments fields directly:
@@ -42,5 +47,10 @@ void stats_reset_thread(void);
  * total number of rays, then each counter divided by the number of camera rays. Cannot fail (write
  * errors on `out` are the caller's to check). */
 void stats_print(FILE *out, const struct stats *s);
+
+/* Prints one warning line to `out` for each of chapter 8's limits that cut a ray tree short (crossings
+ * capped, ray budget spent, interior list full), saying how often and which limit; prints nothing when
+ * none did. adc_bailout savings are not warnings: they are POV-Ray's rule. Cannot fail. */
+void stats_warn_limits(FILE *out, const struct stats *s);
 
 #endif

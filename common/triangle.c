@@ -109,6 +109,7 @@ bool triangle_closest(const struct triangle *triangles, size_t count, const ray 
         return false;
     h->normal = triangle_normal(nearest->a, nearest->b, nearest->c);
     h->material = nearest->material;
+    h->object = (int)(nearest - triangles); /* world_closest turns it into the object's number */
     return true;
 }
 

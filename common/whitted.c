@@ -4,9 +4,19 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "interior.h"
 #include "phong.h"
 #include "shadow.h"
 #include "stats.h"
+
+/* POV-Ray's test for "the two indices are the same, nothing bends": |n1 / n2 - 1| below its EPSILON. */
+#define WHITTED_SAME_IOR 1e-10
+
+/* POV-Ray's weights of red, green and blue in a grey value (its RED_INTENSITY and so on), used to
+ * decide whether a surface lets enough light through to be worth a refracted ray. */
+#define WHITTED_GREY_RED 0.297
+#define WHITTED_GREY_GREEN 0.589
+#define WHITTED_GREY_BLUE 0.114
 
 bool whitted_refract(vec3 direction, vec3 normal, double eta, vec3 *out) {
     double c = -vec3_dot(direction, normal);
@@ -17,54 +27,107 @@ bool whitted_refract(vec3 direction, vec3 normal, double eta, vec3 *out) {
     return true;
 }
 
-static vec3 trace(const struct world *w, const ray *r, int level);
+/* What every ray of one camera ray's tree shares. */
+struct tree {
+    const struct world *w;
+    int budget; /* secondary rays this tree may still spawn (RAY_TREE_BUDGET) */
+};
 
-/* Traces a secondary ray of the given level, counting it in *counter only when it is within the depth
- * limit: a ray past the limit is black without being traced. */
-static vec3 spawn(const struct world *w, ray r, int level, uint64_t *counter) {
-    if (level > w->scene->max_depth)
+static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level, double weight);
+
+/* Traces a secondary ray of the given level and weight, counting it in *counter, unless it is past the
+ * depth limit, its weight is under adc_bailout, or the tree's budget is spent: then it is black. */
+static vec3 spawn(struct tree *t, ray r, const struct interior_list *inside, int level, double weight,
+                  uint64_t *counter) {
+    const struct scene *s = t->w->scene;
+    if (level > s->max_depth)
         return vec3_make(0, 0, 0);
+    if (weight < s->adc_bailout) {
+        stats_thread.adc_saves++;
+        return vec3_make(0, 0, 0);
+    }
+    if (t->budget == 0) {
+        stats_thread.budget_cut++;
+        return vec3_make(0, 0, 0);
+    }
+    t->budget--;
     (*counter)++;
-    return trace(w, &r, level);
+    return trace(t, r, *inside, level, weight);
 }
 
-/* The light arriving through a transparent surface, or by total internal reflection. Sets
- * *total_reflection when the ray could not leave. */
-static vec3 transmitted(const struct world *w, const ray *r, const struct hit *h, vec3 point, vec3 facing,
-                        int level, bool *total_reflection) {
-    const struct material *m = &w->scene->materials[h->material];
-    bool entering = vec3_dot(r->direction, h->normal) < 0.0; /* against the outward normal */
-    double eta = entering ? 1.0 / m->ior : m->ior;
-    vec3 direction;
-    *total_reflection = !whitted_refract(r->direction, facing, eta, &direction);
-    if (*total_reflection) {
-        ray mirror = {point, vec3_normalize(phong_reflect(r->direction, facing))};
-        return spawn(w, mirror, level + 1, &stats_thread.reflected_rays);
+static double largest(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+
+/* The colour seen along r, a ray of the given level and weight inside the objects of `inside`.
+ * A crossing into the same index of refraction goes straight on at the same level (POV-Ray's rule):
+ * the loop follows it, adding what each surface contributes times the light let through so far. */
+static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level, double weight) {
+    const struct scene *s = t->w->scene; /* level <= max_depth: spawn checked it (max_depth >= 1) */
+    vec3 sum = vec3_make(0, 0, 0), through = vec3_make(1, 1, 1);
+    for (int crossings = 0;; crossings++) {
+        struct hit h = hit_nothing(INFINITY);
+        if (!world_closest(t->w, &r, ray_t_min(r.origin), &h))
+            return vec3_add(sum, vec3_mul(through, s->background));
+        const struct material *m = &s->materials[h.material];
+        vec3 point = ray_at(r, h.t);
+        vec3 facing = hit_facing_normal(&h, r.direction);
+        struct phong_surface at = {point, facing, r.direction, m, 1.0 - m->filter - m->transmit};
+        vec3 colour = phong_shade(s, &at, shadow_filtered, t->w);
+
+        /* Light through the surface: colour * filter + transmit per channel, refracted only when its
+         * grey value passes adc_bailout; the new ray's weight is this ray's times its largest channel. */
+        vec3 filter = vec3_add_scaled(vec3_make(m->transmit, m->transmit, m->transmit), m->colour, m->filter);
+        double grey = WHITTED_GREY_RED * filter.x + WHITTED_GREY_GREEN * filter.y + WHITTED_GREY_BLUE * filter.z;
+        double filter_weight = weight * largest(filter);
+        bool total_reflection = false, straight_on = false;
+        struct interior_list beyond = inside;
+        if (fmin(1.0, fabs(grey)) > s->adc_bailout) {
+            double eta = interior_cross(&beyond, h.object, m->ior);
+            vec3 direction;
+            if (fabs(eta - 1.0) < WHITTED_SAME_IOR) {
+                straight_on = true; /* nothing bends: the loop goes on below */
+            } else if (whitted_refract(r.direction, facing, eta, &direction)) {
+                ray refracted = {point, vec3_normalize(direction)};
+                vec3 seen = spawn(t, refracted, &beyond, level + 1, filter_weight, &stats_thread.refracted_rays);
+                colour = vec3_add(colour, vec3_mul(filter, seen));
+            } else { /* total internal reflection: all of it, unfiltered, and the ray stays inside */
+                total_reflection = true;
+                ray mirror = {point, vec3_normalize(phong_reflect(r.direction, facing))};
+                colour = vec3_add(colour, spawn(t, mirror, &inside, level + 1, filter_weight,
+                                                &stats_thread.reflected_rays));
+            }
+        }
+        if (!total_reflection && m->reflection > 0.0) {
+            ray mirror = {point, vec3_normalize(phong_reflect(r.direction, facing))};
+            vec3 seen = spawn(t, mirror, &inside, level + 1, weight * m->reflection, &stats_thread.reflected_rays);
+            colour = vec3_add_scaled(colour, seen, m->reflection);
+        }
+        sum = vec3_add(sum, vec3_mul(through, colour));
+        if (!straight_on)
+            return sum;
+
+        /* Straight on through the surface: the same checks as spawn, and the crossing cap. */
+        if (filter_weight < s->adc_bailout) {
+            stats_thread.adc_saves++;
+            return sum;
+        }
+        if (crossings + 1 >= RAY_MAX_CROSSINGS) {
+            stats_thread.crossings_capped++;
+            return sum;
+        }
+        if (t->budget == 0) {
+            stats_thread.budget_cut++;
+            return sum;
+        }
+        t->budget--;
+        stats_thread.refracted_rays++;
+        through = vec3_mul(through, filter);
+        weight = filter_weight;
+        inside = beyond;
+        r.origin = point;
     }
-    ray through = {point, vec3_normalize(direction)};
-    int next_level = m->ior == 1.0 ? level : level + 1; /* nothing bends: not a new level */
-    vec3 weight = vec3_add_scaled(vec3_make(m->transmit, m->transmit, m->transmit), m->colour, m->filter);
-    return vec3_mul(weight, spawn(w, through, next_level, &stats_thread.refracted_rays));
 }
 
-static vec3 trace(const struct world *w, const ray *r, int level) {
-    const struct scene *s = w->scene; /* level <= max_depth: spawn checked it (max_depth >= 1) */
-    struct hit h = hit_nothing(INFINITY);
-    if (!world_closest(w, r, RAY_T_MIN, &h))
-        return s->background;
-    const struct material *m = &s->materials[h.material];
-    vec3 point = ray_at(*r, h.t);
-    vec3 facing = hit_facing_normal(&h, r->direction);
-    struct phong_surface at = {point, facing, r->direction, m, 1.0 - m->filter - m->transmit};
-    vec3 colour = phong_shade(s, &at, shadow_filtered, w);
-    bool total_reflection = false;
-    if (m->filter > 0.0 || m->transmit > 0.0)
-        colour = vec3_add(colour, transmitted(w, r, &h, point, facing, level, &total_reflection));
-    if (!total_reflection && m->reflection > 0.0) {
-        ray mirror = {point, vec3_normalize(phong_reflect(r->direction, facing))};
-        colour = vec3_add_scaled(colour, spawn(w, mirror, level + 1, &stats_thread.reflected_rays), m->reflection);
-    }
-    return colour;
+vec3 whitted_trace(const void *world, const ray *r) {
+    struct tree t = {world, RAY_TREE_BUDGET};
+    return trace(&t, *r, interior_at_point(world, r->origin), 1, 1.0);
 }
-
-vec3 whitted_trace(const void *world, const ray *r) { return trace(world, r, 1); }

@@ -1,14 +1,18 @@
 /* whitted.h: recursive ray tracing, Whitted 1980: reflection, refraction and light through glass, as
  * POV-Ray 3.7 computes them (chapter 8; chapters 9 and 10 reuse it unchanged with faster worlds).
  *
- * Colour seen along a ray of level L (the camera ray is level 1) that hits a surface:
+ * Colour seen along a ray of level L (the camera ray is level 1) and weight W that hits a surface:
  *   local  = phong_shade with opacity 1 - filter - transmit and filtered shadows
  *   + (colour * filter + transmit) * trace(refracted ray)      if the surface lets light through
  *   + 1.0 * trace(reflected ray)  instead, on total internal reflection (then no mirror term)
  *   + reflection * trace(reflected ray)                        otherwise
- * A ray that would be of level max_depth + 1 is black. A refraction into ior exactly 1 bends nothing
- * and does not use up a level (POV-Ray's rule). Secondary rays start on the surface itself and accept
- * hits from RAY_T_MIN on. */
+ * The indices of refraction come from the ray's interior list (interior.h): nested glass works as in
+ * POV-Ray. A ray that would be of level max_depth + 1 is black, and so is one whose weight (W times
+ * reflection, or times the largest channel of colour * filter + transmit) is under the scene's
+ * adc_bailout. A crossing between equal indices bends nothing and does not use up a level (POV-Ray's
+ * rule); it is followed by a loop, at most RAY_MAX_CROSSINGS times, and one camera ray spawns at most
+ * RAY_TREE_BUDGET secondary rays (ray.h). Secondary rays start on the surface itself and accept hits
+ * from ray_t_min(their origin) on. */
 #ifndef WHITTED_WHITTED_H
 #define WHITTED_WHITTED_H
 

@@ -83,8 +83,41 @@ void world_destroy(void *world) {
     free(world);
 }
 
+int world_shape_object_number(const struct scene *s, size_t kind, size_t index) {
+    size_t number = index;
+    for (size_t before = 0; before < kind; before++)
+        number += s->shapes[before].count;
+    return (int)number;
+}
+
+int world_object_number(const struct scene *s, enum world_object_kind kind, size_t index) {
+    switch (kind) {
+    case WORLD_SPHERE: return world_shape_object_number(s, SHAPE_SPHERES, index);
+    case WORLD_BOX: return world_shape_object_number(s, SHAPE_BOXES, index);
+    case WORLD_TRIANGLE: return world_shape_object_number(s, SHAPE_TRIANGLES, index);
+    case WORLD_PLANE: return world_shape_object_number(s, SHAPE_PLANES, index);
+    case WORLD_MESH: break;
+    }
+    return world_shape_object_number(s, SHAPE_KIND_COUNT, index); /* the meshes come after every shape */
+}
+
+/* The object a face of the acceleration structure belongs to: the `triangle` directives come first,
+ * then the faces of each mesh in order. */
+static int accel_face_object(const struct scene *s, uint32_t face) {
+    if (face < s->triangle_count)
+        return world_object_number(s, WORLD_TRIANGLE, face);
+    size_t first = s->triangle_count;
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        first += s->meshes[k].mesh.face_count;
+        if (face < first)
+            return world_object_number(s, WORLD_MESH, k);
+    }
+    return -1; /* not reached: the structure holds only these faces */
+}
+
 /* Triangles through the acceleration structure: one query replaces all triangle and mesh loops. */
-static bool accel_closest(const struct world_accel *a, const ray *r, double t_min, struct hit *h) {
+static bool accel_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
+    const struct world_accel *a = w->accel;
     double t;
     uint32_t face;
     if (!a->closest(a->structure, r, t_min, h->t, &t, &face))
@@ -94,22 +127,28 @@ static bool accel_closest(const struct world_accel *a, const ray *r, double t_mi
     h->t = t;
     h->normal = triangle_normal(v[corner[0]], v[corner[1]], v[corner[2]]);
     h->material = a->materials[face];
+    h->object = accel_face_object(w->scene, face);
     return true;
 }
 
-/* The triangles: the `triangle` directives and each mesh behind its bounding box, or the structure. */
+/* The triangles: the `triangle` directives and each mesh behind its bounding box, or the structure.
+ * Sets h->object to the number of the object that replaced the hit. */
 static bool closest_triangle(const struct world *w, const ray *r, double t_min, struct hit *h) {
     const struct scene *s = w->scene;
     if (w->accel != NULL)
-        return accel_closest(w->accel, r, t_min, h);
+        return accel_closest(w, r, t_min, h);
     bool found = triangle_closest(s->triangles, s->triangle_count, r, t_min, h);
+    if (found)
+        h->object = world_object_number(s, WORLD_TRIANGLE, (size_t)h->object);
     vec3 inv_direction = aabb_inverse_direction(r->direction);
     for (size_t k = 0; k < s->mesh_count; k++) {
         const struct mesh *m = &s->meshes[k].mesh;
-        if (aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL))
-            found |= triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h);
-        else
+        if (!aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL)) {
             stats_thread.triangle_tests_culled += m->face_count;
+        } else if (triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h)) {
+            h->object = world_object_number(s, WORLD_MESH, k); /* a whole mesh is one object */
+            found = true;
+        }
     }
     return found;
 }
@@ -117,10 +156,13 @@ static bool closest_triangle(const struct world *w, const ray *r, double t_min, 
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
     bool found = false;
     for (const struct world_kind *k = w->kinds; k < w->kinds + w->kind_count; k++) {
-        if (k->closest == NULL)
+        if (k->closest == NULL) {
             found |= closest_triangle(w, r, t_min, h);
-        else
-            found |= k->closest(k->items, k->count, r, t_min, h);
+        } else if (k->closest(k->items, k->count, r, t_min, h)) {
+            /* A kind's closest leaves the index within its array; the world numbers every object. */
+            h->object = world_shape_object_number(w->scene, k->kind, (size_t)h->object);
+            found = true;
+        }
     }
     return found;
 }

@@ -72,8 +72,20 @@ void world_destroy(void *world);
 /* Returns the bounding box of mesh m (the empty box for a mesh without vertices). */
 struct aabb world_mesh_bounds(const struct mesh *m);
 
+/* Every object of a scene has a number, kept in struct hit.object (chapter 8's interior list tells
+ * objects apart by it): the shapes kind by kind in the order of shape_kinds.h, then the meshes (one
+ * number for a whole mesh, which is one object with one inside). */
+enum world_object_kind { WORLD_SPHERE, WORLD_BOX, WORLD_TRIANGLE, WORLD_MESH, WORLD_PLANE };
+
+/* Returns the number of the index-th object of the given kind in s. Cannot fail. */
+int world_object_number(const struct scene *s, enum world_object_kind kind, size_t index);
+
+/* Returns the number of the index-th shape of kind `kind` (an index into shape_kinds) in s; with kind
+ * SHAPE_KIND_COUNT, of the index-th mesh. Cannot fail. */
+int world_shape_object_number(const struct scene *s, size_t kind, size_t index);
+
 /* Finds the nearest surface with t_min < t < h->t along r among all shapes, kind by kind in the order
- * of w->kinds, and keeps it in *h.
+ * of w->kinds, and keeps it in *h (with the object's number in h->object).
  * Returns true when *h was replaced. Without w->accel, a mesh whose bounding box r misses within
  * (t_min, h->t) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);

@@ -787,7 +787,7 @@ static vec3 headlight_colour(vec3 n, vec3 d) {
     struct material materials[2] = {{.name = "default", .colour = {1, 1, 1}},
                                     {.name = "orange", .colour = {0.8, 0.4, 0.2}}};
     struct scene s = {.materials = materials, .material_count = 2};
-    struct hit h = {2.0, n, 1};
+    struct hit h = {2.0, n, 1, -1};
     return headlight_shade(&s, &h, vec3_normalize(d));
 }
 

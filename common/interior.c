@@ -1,0 +1,109 @@
+/* interior.c: the ray's interior list and POV-Ray 3.7's crossing rule (chapter 8). */
+#include "interior.h"
+
+#include "stats.h"
+
+bool interior_contains(const struct interior_list *list, int object) {
+    for (int k = 0; k < list->count; k++)
+        if (list->object[k] == object)
+            return true;
+    return false;
+}
+
+/* Removes entry k, keeping the order of the others. */
+static void remove_at(struct interior_list *list, int k) {
+    for (int j = k + 1; j < list->count; j++) {
+        list->object[j - 1] = list->object[j];
+        list->ior[j - 1] = list->ior[j];
+    }
+    list->count--;
+}
+
+static void push(struct interior_list *list, int object, double ior) {
+    if (list->count == RAY_INTERIOR_CAPACITY) {
+        stats_thread.interior_overflows++;
+        return;
+    }
+    list->object[list->count] = object;
+    list->ior[list->count] = ior;
+    list->count++;
+}
+
+double interior_cross(struct interior_list *list, int object, double ior) {
+    if (list->count == 0) { /* from the air into the object */
+        push(list, object, ior);
+        return 1.0 / ior;
+    }
+    int top = list->count - 1;
+    if (list->object[top] == object) { /* out of the innermost object, into the one around it or air */
+        remove_at(list, top);
+        return list->count == 0 ? ior : ior / list->ior[list->count - 1];
+    }
+    for (int k = 0; k < top; k++) {
+        if (list->object[k] == object) { /* out of an overlap: it belonged to the object entered last */
+            remove_at(list, k);
+            return 1.0;
+        }
+    }
+    double from = list->ior[top]; /* into a new object from the innermost one */
+    push(list, object, ior);
+    return from / ior;
+}
+
+/* ---- a camera inside glass --------------------------------------------------------------------- */
+
+/* Returns true when p is in box b or on its surface. */
+static bool aabb_contains(const struct aabb *b, vec3 p) {
+    return p.x >= b->min.x && p.x <= b->max.x && p.y >= b->min.y && p.y <= b->max.y && p.z >= b->min.z &&
+           p.z <= b->max.z;
+}
+
+static bool is_transparent(const struct scene *s, int material) {
+    return s->materials[material].filter > 0.0 || s->materials[material].transmit > 0.0;
+}
+
+static void add(struct interior_list *list, const struct scene *s, int object, int material) {
+    push(list, object, s->materials[material].ior);
+}
+
+/* Counts the faces of m that the ray from `point` along +z crosses: odd means inside. */
+static bool mesh_contains(const struct mesh *m, vec3 point) {
+    ray up = {point, vec3_make(0, 0, 1)};
+    int crossings = 0;
+    for (size_t f = 0; f < m->face_count; f++) {
+        const uint32_t *c = m->faces[f].v;
+        double t, u, v;
+        if (triangle_intersect(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], &up, 0.0, INFINITY, &t, &u, &v))
+            crossings++;
+    }
+    return crossings % 2 == 1;
+}
+
+struct interior_list interior_at_point(const struct world *w, vec3 point) {
+    const struct scene *s = w->scene;
+    struct interior_list list = interior_empty();
+    for (size_t k = 0; k < s->sphere_count; k++) {
+        const struct sphere *sp = &s->spheres[k];
+        vec3 d = vec3_sub(point, sp->centre);
+        if (is_transparent(s, sp->material) && vec3_dot(d, d) < sp->radius * sp->radius)
+            add(&list, s, world_object_number(s, WORLD_SPHERE, k), sp->material);
+    }
+    for (size_t k = 0; k < s->box_count; k++) {
+        const struct box *b = &s->boxes[k];
+        struct aabb bounds = {b->min, b->max};
+        if (is_transparent(s, b->material) && aabb_contains(&bounds, point))
+            add(&list, s, world_object_number(s, WORLD_BOX, k), b->material);
+    }
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        const struct scene_mesh *m = &s->meshes[k];
+        if (is_transparent(s, m->material) && aabb_contains(&w->mesh_bounds[k], point) &&
+            mesh_contains(&m->mesh, point))
+            add(&list, s, world_object_number(s, WORLD_MESH, k), m->material);
+    }
+    for (size_t k = 0; k < s->plane_count; k++) {
+        const struct plane *p = &s->planes[k];
+        if (is_transparent(s, p->material) && vec3_dot(point, p->normal) < p->distance)
+            add(&list, s, world_object_number(s, WORLD_PLANE, k), p->material);
+    }
+    return list;
+}

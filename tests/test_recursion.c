@@ -1,0 +1,305 @@
+/* test_recursion.c: chapter 8's interior list (POV-Ray's rule for nested glass), adc_bailout and the
+ * limits that keep a ray tree finite: the rule itself, nested scenes against POV-Ray, and hostile
+ * scenes that crashed or ran away before. */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image_test_support.h"
+#include "interior.h"
+#include "scene_scale.h"
+#include "stats.h"
+#include "test_support.h"
+
+/* Asserts that crossing `object` (index `ior`) with *list gives the ratio `expected`. */
+#define CROSSING_GIVES(list, object, ior, expected)                                                         \
+    do {                                                                                                    \
+        double eta_ = interior_cross((list), (object), (ior));                                              \
+        cr_assert_float_eq(eta_, (expected), 1e-15, "crossing %d: %.17g, expected %.17g", (object), eta_, \
+                           (double)(expected));                                                             \
+    } while (0)
+
+/* ---- the rule ------------------------------------------------------------------------------------- */
+
+Test(interior, entering_from_the_air_uses_index_one) {
+    struct interior_list list = interior_empty();
+    CROSSING_GIVES(&list, 7, 1.5, 1.0 / 1.5);
+    cr_assert_eq(list.count, 1);
+    cr_assert(interior_contains(&list, 7));
+}
+
+Test(interior, glass_in_water_bends_by_the_ratio_of_the_two) {
+    struct interior_list list = interior_empty();
+    interior_cross(&list, 1, 1.33);                                 /* into the water */
+    CROSSING_GIVES(&list, 2, 1.5, 1.33 / 1.5); /* water -> glass */
+    CROSSING_GIVES(&list, 2, 1.5, 1.5 / 1.33); /* glass -> water */
+    cr_assert_eq(list.count, 1);
+    CROSSING_GIVES(&list, 1, 1.33, 1.33);     /* water -> air */
+    cr_assert_eq(list.count, 0);
+}
+
+Test(interior, an_air_bubble_in_water_has_index_below_its_surroundings) {
+    struct interior_list list = interior_empty();
+    interior_cross(&list, 1, 1.33);
+    CROSSING_GIVES(&list, 2, 1.0, 1.33); /* water -> air: n1 / n2 > 1 */
+    CROSSING_GIVES(&list, 2, 1.0, 1.0 / 1.33);
+}
+
+Test(interior, leaving_an_overlap_bends_nothing) {
+    struct interior_list list = interior_empty();
+    interior_cross(&list, 1, 1.33); /* (A */
+    interior_cross(&list, 2, 1.5);  /* (B */
+    CROSSING_GIVES(&list, 1, 1.33, 1.0); /* A) while in B: the overlap was B's */
+    cr_assert_eq(list.count, 1);
+    cr_assert_eq(list.object[0], 2);
+    CROSSING_GIVES(&list, 2, 1.5, 1.5); /* B) into the air */
+}
+
+Test(interior, the_same_index_on_both_sides_is_exactly_one) {
+    struct interior_list list = interior_empty();
+    interior_cross(&list, 1, 1.5);
+    CROSSING_GIVES(&list, 2, 1.5, 1.0);
+    CROSSING_GIVES(&list, 3, 1.0, 1.5);
+}
+
+Test(interior, a_full_list_counts_an_overflow_and_keeps_its_objects) {
+    struct interior_list list = interior_empty();
+    stats_reset_thread();
+    for (int k = 0; k < RAY_INTERIOR_CAPACITY; k++)
+        interior_cross(&list, k, 1.5);
+    cr_assert_eq(stats_thread.interior_overflows, 0);
+    CROSSING_GIVES(&list, 99, 1.2, 1.5 / 1.2);
+    cr_assert_eq(stats_thread.interior_overflows, 1);
+    cr_assert_eq(list.count, RAY_INTERIOR_CAPACITY);
+    cr_assert_not(interior_contains(&list, 99));
+}
+
+Test(interior, the_camera_starts_inside_what_contains_it) {
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load("tests/data/nested/camera-in-water.scene", &s, err, sizeof err), "%s", err);
+    struct world w;
+    cr_assert(world_init(&w, &s, err, sizeof err));
+    struct interior_list at_eye = interior_at_point(&w, s.eye);
+    cr_assert_eq(at_eye.count, 1, "the eye is in the water only");
+    cr_assert_eq(at_eye.object[0], world_object_number(&s, WORLD_SPHERE, 0));
+    cr_assert_float_eq(at_eye.ior[0], 1.33, 1e-15);
+    cr_assert_eq(interior_at_point(&w, vec3_make(0.2, 1, 1)).count, 2, "the glass ball's centre is in both");
+    cr_assert_eq(interior_at_point(&w, vec3_make(0, 5, 10)).count, 0);
+    world_free(&w);
+    scene_free(&s);
+}
+
+Test(interior, a_closed_mesh_contains_its_centre_and_not_a_point_beside_it) {
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load("tests/data/nested/mesh-in-box.scene", &s, err, sizeof err), "%s", err);
+    cr_assert(scene_load_meshes(&s, err, sizeof err), "%s", err);
+    struct world w;
+    cr_assert(world_init(&w, &s, err, sizeof err));
+    /* off the centre: the +z ray from the very centre runs along edges (the mesh is turned 30 degrees
+     * about y), where the count of crossings means nothing */
+    struct interior_list centre = interior_at_point(&w, vec3_make(0, 1.05, 0.02));
+    cr_assert_eq(centre.count, 2, "box and octahedron");
+    cr_assert_eq(centre.object[1], world_object_number(&s, WORLD_MESH, 0));
+    cr_assert_eq(interior_at_point(&w, vec3_make(1.0, 1, 0)).count, 1, "in the box, beside the octahedron");
+    world_free(&w);
+    scene_free(&s);
+}
+
+Test(ray_limits, t_min_grows_only_far_from_the_origin) {
+    cr_assert_eq(ray_t_min(vec3_make(0, 0, 0)), RAY_T_MIN);
+    cr_assert_eq(ray_t_min(vec3_make(-99999, 3, 50000)), RAY_T_MIN, "unit-scale scenes keep RAY_T_MIN");
+    cr_assert_float_eq(ray_t_min(vec3_make(0, 0, -5e12)), 5e3, 1e-9);
+}
+
+/* ---- nested scenes against POV-Ray --------------------------------------------------------------- */
+
+static void check_agreement(const char *scene, const char *tag) {
+    char ours[256], theirs[256], what[128];
+    snprintf(ours, sizeof ours, TEST_OUT "/nested-%s-ours.png", tag);
+    snprintf(theirs, sizeof theirs, TEST_OUT "/nested-%s-povray.png", tag);
+    snprintf(what, sizeof what, "%s vs POV-Ray", tag);
+    cr_assert_eq(render_chapter(8, scene, ours, ""), 0, "chapter 8 failed on %s", scene);
+    cr_assert(render_povray(8, scene, theirs), "POV-Ray failed on the twin of %s", scene);
+    struct image_difference d = compare_png(ours, theirs);
+    report_difference(what, &d);
+    cr_assert(image_difference_agrees(&d), "%s disagrees with POV-Ray: within 2: %.3f%%, mean %.4f", scene,
+              100.0 * d.within_2, d.mean);
+}
+
+#define NESTED(tag, file)                                                                                   \
+    Test(nested_glass, tag##_agrees_with_povray, .timeout = 120) {                                        \
+        check_agreement("tests/data/nested/" file ".scene", #tag);                                          \
+    }
+NESTED(glass_in_water, "glass-in-water")
+NESTED(air_bubble_in_water, "bubble-in-water")
+NESTED(triangle_seen_from_the_front, "triangle-front")
+NESTED(triangle_seen_from_behind, "triangle-back")
+NESTED(mesh_in_a_box, "mesh-in-box")
+NESTED(camera_inside_water, "camera-in-water")
+
+Test(nested_glass, glass_of_water_agrees_with_povray, .timeout = 120) {
+    check_agreement("scenes/08-glass-of-water.scene", "glass_of_water");
+}
+
+Test(nested_glass, glass_of_water_matches_its_reference, .timeout = 120) {
+    const char *png = TEST_OUT "/glass-of-water.png";
+    cr_assert_eq(render_chapter(8, "scenes/08-glass-of-water.scene", png, ""), 0);
+    struct image_difference d = compare_png(png, "reference_images/08-glass-of-water.png");
+    report_difference("glass of water vs reference", &d);
+    cr_assert(regression_passes(&d), "max %d, mean %.4f, within 1: %.3f%%", d.max, d.mean, 100.0 * d.within_1);
+}
+
+/* ---- ray trees that cannot run away --------------------------------------------------------------- */
+
+/* Runs chapter 8 on `scene` under `timeout 20` with `extra` options; returns the exit status and keeps
+ * standard error in *err (the caller frees it). */
+static int run_hostile(const char *scene, const char *extra, char **err) {
+    char log[256], command[1024];
+    snprintf(log, sizeof log, "%s.stderr", scene);
+    snprintf(command, sizeof command, "timeout 20 %s %s -o %s.png %s > /dev/null 2> %s", chapter_program(8), scene,
+             scene, extra, log);
+    int status = system(command);
+    *err = read_text_file(log);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static FILE *open_scene(const char *path, const char *camera, const char *image) {
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "camera %s\nimage %s\nlight position 0 10 10 colour 1 1 1\n", camera, image);
+    return f;
+}
+
+Test(runaway, ten_thousand_clear_spheres_in_a_row_stop_at_the_crossing_cap, .timeout = 60) {
+    const char *scene = TEST_OUT "/clear-row.scene";
+    FILE *f = open_scene(scene, "eye 0 0 0 target 0 0 -1 fov 40", "1 1");
+    fprintf(f, "material clear colour 1 1 1 ambient 0 diffuse 0 transmit 1 ior 1\n");
+    for (int k = 0; k < 10000; k++)
+        fprintf(f, "sphere centre 0 0 %d radius 0.4 material clear\n", -2 - k);
+    fclose(f);
+    char *err;
+    int status = run_hostile(scene, "--threads 1", &err);
+    cr_assert_eq(status, 0, "exit %d (it overflowed the stack before), stderr:\n%s", status, err);
+    cr_assert_not_null(strstr(err, "warning: 1 rays passed through 1000 surfaces without bending"), "%s", err);
+    free(err);
+}
+
+Test(runaway, a_clear_sphere_far_from_the_origin_is_left_behind, .timeout = 60) {
+    const char *scene = TEST_OUT "/far-clear.scene";
+    FILE *f = open_scene(scene, "eye 0 0 0 target 0 0 -1e13 fov 40", "5 5");
+    fprintf(f, "material clear colour 1 1 1 ambient 0 diffuse 0 transmit 1 ior 1\n"
+               "sphere centre 0 0 -1e13 radius 5e12 material clear\n");
+    fclose(f);
+    char *err;
+    int status = run_hostile(scene, "--threads 1", &err);
+    cr_assert_eq(status, 0, "exit %d (it met its own surface again and again before), stderr:\n%s", status, err);
+    cr_assert_null(strstr(err, "warning"), "two crossings per ray, no limit reached:\n%s", err);
+    free(err);
+    /* and POV-Ray, which leaves the surface too, draws the same */
+    cr_assert(render_povray(8, scene, TEST_OUT "/far-clear-povray.png"));
+    struct image_difference d = compare_png(TEST_OUT "/far-clear.scene.png", TEST_OUT "/far-clear-povray.png");
+    cr_assert(image_difference_agrees(&d), "mean %.4f", d.mean);
+}
+
+/* 20 parallel panes of glass that reflect and transmit: two rays per hit. */
+static void write_panes(const char *scene, const char *settings) {
+    FILE *f = open_scene(scene, "eye 0 0 10 target 0 0 0 fov 30", "8 8");
+    fprintf(f, "%s\nmaterial glass colour 1 1 1 ambient 0 diffuse 0 reflection 0.5 transmit 0.5 ior 1.5\n", settings);
+    for (int k = 0; k < 20; k++)
+        fprintf(f, "plane normal 0 0 1 distance %g material glass\n", -0.5 * k);
+    fclose(f);
+}
+
+Test(runaway, without_adc_bailout_a_deep_tree_stops_at_the_ray_budget, .timeout = 60) {
+    const char *scene = TEST_OUT "/panes-64.scene";
+    write_panes(scene, "max_depth 64\nadc_bailout 0");
+    char *err;
+    int status = run_hostile(scene, "--threads 1", &err);
+    cr_assert_eq(status, 0, "exit %d (it never finished before), stderr:\n%s", status, err);
+    cr_assert_not_null(strstr(err, "secondary rays were not traced: their camera ray had spawned 65536 already"),
+                       "%s", err);
+    free(err);
+}
+
+Test(runaway, adc_bailout_prunes_the_tree_as_povray_does, .timeout = 60) {
+    const char *scene = TEST_OUT "/panes-16.scene";
+    write_panes(scene, "max_depth 16");
+    char *err;
+    cr_assert_eq(run_hostile(scene, "--threads 1", &err), 0, "%s", err);
+    cr_assert_null(strstr(err, "warning"), "adc_bailout alone bounds it:\n%s", err);
+    free(err);
+    cr_assert(render_povray(8, scene, TEST_OUT "/panes-16-povray.png"));
+    struct image_difference d = compare_png(TEST_OUT "/panes-16.scene.png", TEST_OUT "/panes-16-povray.png");
+    cr_assert(image_difference_agrees(&d), "mean %.4f", d.mean);
+}
+
+/* ---- scale --------------------------------------------------------------------------------------- */
+
+Test(scale, a_millimetre_scene_is_warned_about, .timeout = 60) {
+    const char *scene = TEST_OUT "/millimetres.scene";
+    FILE *f = fopen(scene, "w");
+    cr_assert_not_null(f);
+    /* a 30 mm marble on a table, seen from 200 mm, written in metres */
+    fprintf(f, "camera eye 0 0.05 0.2 target 0 0.015 0 fov 40\nimage 8 6\nlight position -0.2 0.4 0.3\n"
+               "material glass colour 1 1 1 transmit 0.9 ior 1.5\nplane normal 0 1 0 distance 0\n"
+               "sphere centre 0 0.015 0 radius 0.015 material glass\n");
+    fclose(f);
+    char *err;
+    cr_assert_eq(run_hostile(scene, "", &err), 0, "%s", err);
+    cr_assert_not_null(strstr(err, "millimetres.scene: warning: the scene is 0.215 units across, only 215 times the "
+                                   "shadow-ray margin 0.001 (and 2150 times the ray margin 0.0001)"), "%s", err);
+    cr_assert_not_null(strstr(err, "scale the scene up 10 times or more"), "%s", err);
+    free(err);
+}
+
+Test(scale, no_shipped_scene_is_warned_about, .timeout = 120) {
+    FILE *pipe = popen("ls scenes/*.scene", "r");
+    cr_assert_not_null(pipe);
+    char path[512];
+    int scenes = 0;
+    while (fgets(path, sizeof path, pipe) != NULL) {
+        path[strcspn(path, "\n")] = '\0';
+        struct scene s;
+        char err[512];
+        cr_assert(scene_load(path, &s, err, sizeof err), "%s", err);
+        cr_assert(scene_load_meshes(&s, err, sizeof err), "%s", err);
+        FILE *sink = fopen("/dev/null", "w");
+        cr_assert_not(scene_scale_warn(&s, sink), "%s is %g across and was warned about", path, scene_extent(&s));
+        fclose(sink);
+        scene_free(&s);
+        scenes++;
+    }
+    pclose(pipe);
+    cr_assert_geq(scenes, 12);
+}
+
+/* ---- adc_bailout in the scene and the twin --------------------------------------------------------- */
+
+Test(adc_bailout, defaults_to_povrays_value_and_goes_into_the_twin, .timeout = 60) {
+    char command[1024];
+    snprintf(command, sizeof command, "%s scenes/08-glass-of-water.scene --pov " TEST_OUT "/adc-default.pov --quiet",
+             chapter_program(8));
+    cr_assert_eq(system(command), 0);
+    char *pov = read_text_file(TEST_OUT "/adc-default.pov");
+    cr_assert_not_null(strstr(pov, "  adc_bailout 0.0039215686274509803\n"), "%s", pov);
+    free(pov);
+    snprintf(command, sizeof command,
+             "%s scenes/08-glass-of-water.scene --set adc_bailout=0.25 --pov " TEST_OUT "/adc-set.pov --quiet",
+             chapter_program(8));
+    cr_assert_eq(system(command), 0);
+    pov = read_text_file(TEST_OUT "/adc-set.pov");
+    cr_assert_not_null(strstr(pov, "  adc_bailout 0.25\n"), "%s", pov);
+    free(pov);
+}
+
+Test(adc_bailout, out_of_range_is_a_clear_error) {
+    struct scene s;
+    char err[512];
+    cr_assert_not(scene_parse("bad.scene", "adc_bailout 1.5\n", &s, err, sizeof err));
+    cr_assert_str_eq(err, "bad.scene:1: 'adc_bailout' must be between 0 and 1, got 1.5");
+    cr_assert_not(scene_parse("bad.scene", "\nadc_bailout\n", &s, err, sizeof err));
+    cr_assert_str_eq(err, "bad.scene:2: adc_bailout needs one number");
+}
