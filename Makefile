@@ -13,6 +13,7 @@
 #   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
 #   make check-N        grade chapter N's coursework tasks (make check: all), docs/coursework.md
 #   make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": some)
+#   make fuzz           the libFuzzer harnesses (scene, PLY, OBJ, renderer), FUZZ_SECONDS each
 #   make clean          remove build/ and out/
 #
 # Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
@@ -134,6 +135,9 @@ chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,
 
 # ---- benchmarks (bench/bench.mk): make bench, make bench-accel ----------------------------------
 include bench/bench.mk
+
+# ---- fuzzing (fuzz/fuzz.mk): make fuzz, make fuzz-smoke -----------------------------------------
+include fuzz/fuzz.mk
 
 # ---- tests -------------------------------------------------------------------------------------
 TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c)

@@ -2,12 +2,14 @@
 # install-deps.sh: makes sure the Debian packages a make target needs are there, installing only what
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
-#   tools/install-deps.sh [NEED...]     NEED: build (the default), test, compare, bench
+#   tools/install-deps.sh [NEED...]     NEED: build (the default), test, compare, bench, fuzz
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
 #   test     build + Criterion (libcriterion-dev) and POV-Ray: make test
 #   compare  build + POV-Ray: make compare
 #   bench    build + Intel Embree 3 (libembree-dev): make bench
+#   fuzz     clang with its libFuzzer and sanitizer runtimes (clang; on systems where the runtimes are
+#            a package of their own, libclang-rt-N-dev for clang N): make fuzz
 #
 # How it installs: as root with apt-get; otherwise with `sudo apt-get` when sudo needs no password.
 # Without either (a lab machine), the only library the chapters need, stb, is fetched into .deps/ with
@@ -24,6 +26,11 @@ have_command() { command -v "$1" >/dev/null 2>&1; }
 have_pkgconfig() { have_command pkg-config && pkg-config --exists "$1"; }
 # stb unpacked into .deps/ by an earlier run without root.
 have_local_stb() { compgen -G ".deps/root/usr/lib/*/libstb.a" >/dev/null && [ -d .deps/root/usr/include/stb ]; }
+# clang links a libFuzzer program: clang is there and so are its runtimes.
+have_libfuzzer() {
+    have_command clang && printf 'int LLVMFuzzerTestOneInput(const char *d, unsigned long n) { return d[0] + (int)n; }\n' |
+        clang -fsanitize=fuzzer,address,undefined -x c - -o /dev/null >/dev/null 2>&1
+}
 have_stb() { { [ "${WHITTED_DEPS:-}" != local ] && have_pkgconfig stb; } || have_local_stb; }
 
 missing=()
@@ -45,9 +52,16 @@ for need in "${needs[@]}"; do
         ;;
     compare) have_command povray || want povray ;;
     bench) [ -e /usr/include/embree3/rtcore.h ] || want libembree-dev ;;
+    fuzz)
+        if ! have_command clang; then
+            want clang
+        elif ! have_libfuzzer; then
+            want "libclang-rt-$(clang -dumpversion | cut -d. -f1)-dev"
+        fi
+        ;;
     build) ;;
     *)
-        echo "install-deps.sh: unknown need '$need' (build, test, compare or bench)" >&2
+        echo "install-deps.sh: unknown need '$need' (build, test, compare, bench or fuzz)" >&2
         exit 2
         ;;
     esac

@@ -1,0 +1,81 @@
+# fuzz/fuzz.mk: the libFuzzer harnesses (make fuzz). A GNU make fragment included from the top-level
+# Makefile, which defines BUILD, LDLIBS and ALL_MODULES.
+#
+#   make fuzz         build the four harnesses with clang and run each for FUZZ_SECONDS (default 120);
+#                     crashes are saved under out/fuzz/HARNESS/, the growing corpus under out/fuzz/corpus/
+#   make fuzz-smoke   the same harnesses for a fixed number of runs with a fixed seed (CI, when clang
+#                     is there: well under a minute)
+#
+# The harnesses and the common/ modules they test are compiled by clang with libFuzzer, AddressSanitizer
+# and UndefinedBehaviorSanitizer, into build/libfuzzer/ (whatever BUILD is: the objects are clang's, not
+# gcc's). fuzz/run.sh runs them; docs/fuzzing.md explains the whole. clang comes from Debian's `clang`
+# package, installed by tools/install-deps.sh fuzz (make test does not need it).
+
+FUZZ_SECONDS ?= 120
+FUZZ_BUILD := build/libfuzzer
+FUZZ_HARNESSES := scene ply obj render
+FUZZ_CC := clang
+FUZZ_SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_CFLAGS := -std=c11 -D_DEFAULT_SOURCE -g -O1 -Wall -Wextra -Werror -Wno-unknown-pragmas -Icommon \
+               $(FUZZ_SANITIZERS) -fsanitize=fuzzer-no-link
+FUZZ_LDFLAGS := $(FUZZ_SANITIZERS) -fsanitize=fuzzer
+# What each harness links besides its own file and fuzz_support: the renderer needs chapter 10's
+# modules up to the structures, not the picture, the command line or POV-Ray.
+FUZZ_MODULES_scene := scene stats camera
+FUZZ_MODULES_ply := mesh mesh_ply mesh_obj stats
+FUZZ_MODULES_obj := $(FUZZ_MODULES_ply)
+FUZZ_MODULES_render := scene stats camera sphere triangle mesh mesh_ply mesh_obj plane aabb box world phong \
+                       shadow whitted kdtree kdtree_events kdtree_check accel bvh accel_bvh
+FUZZ_EXTRA_ply := fuzz_mesh
+FUZZ_EXTRA_obj := fuzz_mesh
+FUZZ_EXTRA_render := render_check
+
+.PHONY: fuzz fuzz-build fuzz-smoke
+
+fuzz: fuzz-build
+	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
+fuzz-smoke: fuzz-build
+	fuzz/run.sh --smoke $(FUZZ_BUILD)
+
+# clang is installed first, in its own step, so that a machine without it still runs make test.
+fuzz-build:
+	tools/install-deps.sh fuzz
+	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(addprefix $(FUZZ_BUILD)/fuzz_,$(FUZZ_HARNESSES))
+
+# clang lacks GCC's __builtin_shuffle(v, (int4){i, j, k, l}), which the 4-wide BVH uses; a file that
+# uses it is compiled from a copy spelling it the clang way, __builtin_shufflevector(v, v, i, j, k, l),
+# with a #line so that messages and stack traces still name common/FILE.c.
+FUZZ_SHUFFLE_SED := s/__builtin_shuffle\(([a-z_0-9]+), \(int4\)\{([0-9, ]+)\}\)/__builtin_shufflevector(\1, \1, \2)/g
+$(FUZZ_BUILD)/common/%.o: common/%.c | $(FUZZ_BUILD)/common
+	@if grep -q __builtin_shuffle $<; then \
+	    { echo '#line 1 "$<"'; sed -E '$(FUZZ_SHUFFLE_SED)' $<; } > $(@:.o=-clang.c); \
+	    echo "$(FUZZ_CC) ... -c $(@:.o=-clang.c) (from $<, with clang's __builtin_shufflevector)"; \
+	    $(FUZZ_CC) $(FUZZ_CFLAGS) -MMD -MP -MT $@ -MF $(@:.o=.d) -c $(@:.o=-clang.c) -o $@; \
+	else \
+	    echo "$(FUZZ_CC) ... -c $< -o $@"; \
+	    $(FUZZ_CC) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@; \
+	fi
+
+$(FUZZ_BUILD)/%.o: fuzz/%.c | $(FUZZ_BUILD)/common
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
+
+$(FUZZ_BUILD)/common:
+	mkdir -p $@
+
+fuzz_objects = $(FUZZ_BUILD)/fuzz_$(1).o $(FUZZ_BUILD)/fuzz_support.o \
+               $(addprefix $(FUZZ_BUILD)/,$(addsuffix .o,$(FUZZ_EXTRA_$(1)))) \
+               $(addprefix $(FUZZ_BUILD)/common/,$(addsuffix .o,$(FUZZ_MODULES_$(1))))
+$(foreach h,$(FUZZ_HARNESSES),$(eval $(FUZZ_BUILD)/fuzz_$(h): $(call fuzz_objects,$(h))))
+$(addprefix $(FUZZ_BUILD)/fuzz_,$(FUZZ_HARNESSES)):
+	$(FUZZ_CC) $(FUZZ_LDFLAGS) $^ -o $@ -lm
+
+-include $(wildcard $(FUZZ_BUILD)/*.d $(FUZZ_BUILD)/common/*.d)
+
+# The renderer's check also runs in the tests, on the saved inputs (tests/test_fuzz_regressions.c),
+# compiled there by gcc like every test.
+$(BUILD)/run-tests: $(BUILD)/fuzz/render_check.o
+$(BUILD)/fuzz/render_check.o: fuzz/render_check.c | $(BUILD)/common
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
+-include $(wildcard $(BUILD)/fuzz/*.d)

@@ -1,0 +1,33 @@
+/* fuzz_mesh.c: one fuzz input through a mesh reader and the checks on what it gives (make fuzz). */
+#include "fuzz_mesh.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "fuzz_support.h"
+#include "mesh_private.h"
+
+bool fuzz_mesh_is_ply(const uint8_t *data, size_t size) {
+    return (size >= 4 && memcmp(data, "ply\n", 4) == 0) || (size >= 5 && memcmp(data, "ply\r\n", 5) == 0);
+}
+
+void fuzz_mesh_read(const uint8_t *data, size_t size, bool ply, const char *name) {
+    char *text = fuzz_copy_with_nul(data, size);
+    char err[512] = "";
+    struct mesh m = {0};
+    struct mesh_input in = {.path = name, .data = text, .size = size, .err = err, .err_size = sizeof err};
+    bool ok = ply ? mesh_read_ply(&in, &m) : mesh_read_obj(&in, &m);
+    if (ok) {
+        for (size_t k = 0; k < m.vertex_count; k++)
+            if (!vec3_is_finite(m.vertices[k]))
+                fuzz_abort("vertex %zu of %zu is not finite", k, m.vertex_count);
+        for (size_t f = 0; f < m.face_count; f++)
+            for (int c = 0; c < 3; c++)
+                if (m.faces[f].v[c] >= m.vertex_count)
+                    fuzz_abort("face %zu corner %d is vertex %u of %zu", f, c, m.faces[f].v[c], m.vertex_count);
+    } else if (!fuzz_message_names(err, name)) {
+        fuzz_abort("refused with a message that does not start with '%s:': '%s'", name, err);
+    }
+    mesh_free(&m); /* on failure a reader may leave a half-built mesh, which mesh_load frees */
+    free(text);
+}

@@ -1,0 +1,105 @@
+/* fuzz_scene.c: libFuzzer harness for the scene parser, scene_parse on text in memory (make fuzz).
+ *
+ * Every input is a scene text. The parser must either refuse it with "fuzz.scene:LINE: what is wrong"
+ * (or "fuzz.scene: what is wrong"), or accept it and give a scene that keeps the promises the
+ * chapters rely on: a size within the limits, a depth of at least 1, finite numbers, positive radii,
+ * boxes with min < max, and every material index naming a material. Inputs holding a zero byte are
+ * skipped: scene_read_text refuses those before the parser sees them, so no file could reach it. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fuzz_support.h"
+#include "scene.h"
+
+#define NAME "fuzz.scene"
+
+/* A plane's normal is normalised by the parser; rounding leaves its length within a few units in the
+ * last place of 1, far inside this. */
+#define PLANE_NORMAL_TOLERANCE 1e-9
+
+static void check_material(const struct scene *s, int material, const char *what, size_t k) {
+    if (material < 0 || (size_t)material >= s->material_count)
+        fuzz_abort("%s %zu has material %d of %zu", what, k, material, s->material_count);
+}
+
+static void check_finite(vec3 v, const char *what, size_t k) {
+    if (!vec3_is_finite(v))
+        fuzz_abort("%s %zu has a non-finite vector (%g %g %g)", what, k, v.x, v.y, v.z);
+}
+
+/* The promises of an accepted scene. */
+static void check_scene(const struct scene *s) {
+    if (s->width < 1 || s->height < 1 || s->max_depth < 1)
+        fuzz_abort("accepted image %d x %d, max_depth %d", s->width, s->height, s->max_depth);
+    if (!vec3_is_finite(s->eye) || !vec3_is_finite(s->target) || !vec3_is_finite(s->up) || !isfinite(s->fov))
+        fuzz_abort("accepted a camera with a non-finite number");
+    if (s->material_count == 0 || strcmp(s->materials[0].name, "default") != 0)
+        fuzz_abort("materials[0] is not the default material");
+    for (size_t k = 0; k < s->material_count; k++) {
+        const struct material *m = &s->materials[k];
+        double numbers[] = {m->ambient, m->diffuse, m->phong, m->phong_size, m->reflection, m->filter, m->transmit,
+                            m->ior};
+        for (size_t n = 0; n < sizeof numbers / sizeof *numbers; n++)
+            if (!isfinite(numbers[n]))
+                fuzz_abort("material %zu has a non-finite value", k);
+        check_finite(m->colour, "material", k);
+        if (memchr(m->name, '\0', sizeof m->name) == NULL)
+            fuzz_abort("material %zu has an unterminated name", k);
+    }
+    for (size_t k = 0; k < s->light_count; k++) {
+        check_finite(s->lights[k].position, "light", k);
+        check_finite(s->lights[k].colour, "light", k);
+    }
+    for (size_t k = 0; k < s->sphere_count; k++) {
+        check_finite(s->spheres[k].centre, "sphere", k);
+        if (!(s->spheres[k].radius > 0.0) || !isfinite(s->spheres[k].radius))
+            fuzz_abort("sphere %zu has radius %g", k, s->spheres[k].radius);
+        check_material(s, s->spheres[k].material, "sphere", k);
+    }
+    for (size_t k = 0; k < s->plane_count; k++) {
+        check_finite(s->planes[k].normal, "plane", k);
+        double length = vec3_length(s->planes[k].normal);
+        if (!isfinite(s->planes[k].distance) || !(fabs(length - 1.0) < PLANE_NORMAL_TOLERANCE))
+            fuzz_abort("plane %zu has distance %g and a normal of length %g", k, s->planes[k].distance, length);
+        check_material(s, s->planes[k].material, "plane", k);
+    }
+    for (size_t k = 0; k < s->triangle_count; k++) {
+        check_finite(s->triangles[k].a, "triangle", k);
+        check_finite(s->triangles[k].b, "triangle", k);
+        check_finite(s->triangles[k].c, "triangle", k);
+        check_material(s, s->triangles[k].material, "triangle", k);
+    }
+    for (size_t k = 0; k < s->box_count; k++) {
+        const struct box *b = &s->boxes[k];
+        check_finite(b->min, "box", k);
+        check_finite(b->max, "box", k);
+        if (!(b->min.x < b->max.x && b->min.y < b->max.y && b->min.z < b->max.z))
+            fuzz_abort("box %zu does not have min < max", k);
+        check_material(s, b->material, "box", k);
+    }
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        const struct scene_mesh *m = &s->meshes[k];
+        if (m->path == NULL || !isfinite(m->scale))
+            fuzz_abort("mesh %zu has no path or a non-finite scale", k);
+        check_finite(m->rotate, "mesh", k);
+        check_finite(m->translate, "mesh", k);
+        check_material(s, m->material, "mesh", k);
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    if (memchr(data, '\0', size) != NULL)
+        return 0;
+    char *text = fuzz_copy_with_nul(data, size);
+    struct scene s;
+    char err[512] = "";
+    if (scene_parse(NAME, text, &s, err, sizeof err)) {
+        check_scene(&s);
+        scene_free(&s);
+    } else if (!fuzz_message_names(err, NAME)) {
+        fuzz_abort("refused with a message that does not start with '" NAME ":': '%s'", err);
+    }
+    free(text);
+    return 0;
+}

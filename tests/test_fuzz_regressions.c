@@ -1,0 +1,132 @@
+/* test_fuzz_regressions.c: every input the fuzzers (make fuzz, docs/fuzzing.md) found a fault with,
+ * replayed through the normal build: each now gives a clean answer, not a crash.
+ *
+ * The inputs live in tests/data/fuzz/HARNESS/, one file each, with a comment saying what they broke when
+ * the format allows one. A scene or mesh input must load, or be refused with a message that starts
+ * with its file name ("file:line: what is wrong"); a renderer input must pass the renderer fuzzer's
+ * whole check (fuzz/render_check.h): every structure agrees with brute force and every hit is finite.
+ * An input that triggers a defect still being fixed is skipped with the defect's name (the list is in
+ * fuzz/render_check.c); deleting the entry there makes it run. Each file is its own test, so a crash
+ * names the file. */
+#include <criterion/criterion.h>
+#include <criterion/parameterized.h>
+#include <glob.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../fuzz/render_check.h"
+#include "mesh.h"
+#include "scene.h"
+#include "test_support.h"
+
+#define FUZZ_INPUTS_MAX 256
+
+struct input {
+    char path[256];
+};
+
+/* Fills inputs[] with the files matching `pattern`, sorted; returns how many. */
+static size_t find_inputs(const char *pattern, struct input *inputs) {
+    glob_t found;
+    size_t count = 0;
+    if (glob(pattern, 0, NULL, &found) != 0)
+        return 0;
+    for (size_t k = 0; k < found.gl_pathc && count < FUZZ_INPUTS_MAX; k++)
+        snprintf(inputs[count++].path, sizeof inputs[0].path, "%s", found.gl_pathv[k]);
+    globfree(&found);
+    return count;
+}
+
+/* Asserts that err is a message about the file `path`: "path:" and then something. */
+static void expect_names_file(const char *err, const char *path) {
+    size_t n = strlen(path);
+    cr_expect(strncmp(err, path, n) == 0 && err[n] == ':' && err[n + 1] != '\0',
+              "the message does not start with '%s:': '%s'", path, err);
+}
+
+/* ---- the scene parser ------------------------------------------------------------------------- */
+
+static struct input scene_inputs[FUZZ_INPUTS_MAX];
+
+ParameterizedTestParameters(fuzz_regressions, scene_input_loads_or_is_refused_cleanly) {
+    return cr_make_param_array(struct input, scene_inputs, find_inputs("tests/data/fuzz/scene/*", scene_inputs));
+}
+
+ParameterizedTest(struct input *in, fuzz_regressions, scene_input_loads_or_is_refused_cleanly) {
+    struct scene s;
+    char err[512] = "";
+    if (scene_load(in->path, &s, err, sizeof err))
+        scene_free(&s);
+    else
+        expect_names_file(err, in->path);
+}
+
+/* ---- the mesh readers ------------------------------------------------------------------------- */
+
+static struct input mesh_inputs[FUZZ_INPUTS_MAX];
+
+ParameterizedTestParameters(fuzz_regressions, mesh_input_loads_or_is_refused_cleanly) {
+    size_t count = find_inputs("tests/data/fuzz/ply/*", mesh_inputs);
+    count += find_inputs("tests/data/fuzz/obj/*", mesh_inputs + count);
+    return cr_make_param_array(struct input, mesh_inputs, count);
+}
+
+ParameterizedTest(struct input *in, fuzz_regressions, mesh_input_loads_or_is_refused_cleanly) {
+    struct mesh m;
+    char err[512] = "";
+    if (mesh_load(in->path, &m, err, sizeof err)) {
+        for (size_t f = 0; f < m.face_count; f++)
+            for (int c = 0; c < 3; c++)
+                cr_assert_lt(m.faces[f].v[c], m.vertex_count);
+        mesh_free(&m);
+    } else {
+        expect_names_file(err, in->path);
+    }
+}
+
+/* ---- the renderer ----------------------------------------------------------------------------- */
+
+/* Runs the renderer fuzzer's check on the scene file at path. */
+static void expect_render_check_passes(const char *path) {
+    char *text = read_text_file(path);
+    char why[1024];
+    enum render_check_result result = render_check_scene(path, text, why, sizeof why);
+    free(text);
+    if (result == RENDER_CHECK_KNOWN_DEFECT)
+        cr_skip_test("%s: %s", path, why);
+    cr_expect_eq(result, RENDER_CHECK_PASSED, "%s: %s", path, why);
+}
+
+static struct input render_inputs[FUZZ_INPUTS_MAX];
+
+ParameterizedTestParameters(fuzz_regressions, render_input_passes_the_renderer_check) {
+    return cr_make_param_array(struct input, render_inputs, find_inputs("tests/data/fuzz/render/*", render_inputs));
+}
+
+ParameterizedTest(struct input *in, fuzz_regressions, render_input_passes_the_renderer_check) {
+    expect_render_check_passes(in->path);
+}
+
+/* The check itself on the chapters' scenes (their meshes replaced by the tiny ones): every structure
+ * agrees with brute force on real scenes with glass, mirrors, boxes and meshes. */
+static struct input chapter_scenes[FUZZ_INPUTS_MAX];
+
+ParameterizedTestParameters(fuzz_regressions, chapter_scene_passes_the_renderer_check) {
+    return cr_make_param_array(struct input, chapter_scenes, find_inputs("scenes/*.scene", chapter_scenes));
+}
+
+ParameterizedTest(struct input *in, fuzz_regressions, chapter_scene_passes_the_renderer_check) {
+    expect_render_check_passes(in->path);
+}
+
+/* The known-defect list recognises what it names, so the skipped inputs above are skipped for the
+ * reason given and not by accident. */
+Test(fuzz_regressions, a_mesh_outside_float_range_is_a_known_defect) {
+    char why[1024];
+    const char *text = "camera eye 0 0 5  target 0 0 0  fov 40\nimage 4 3\nmesh a.ply translate 1e39 0 0\n";
+    cr_expect_eq(render_check_scene("float-range.scene", text, why, sizeof why), RENDER_CHECK_KNOWN_DEFECT, "%s", why);
+    cr_expect(strstr(why, "outside float range") != NULL, "%s", why);
+    const char *inside = "camera eye 0 0 5  target 0 0 0  fov 40\nimage 4 3\nmesh a.ply translate 1e30 0 0\n";
+    cr_expect_eq(render_check_scene("float-range.scene", inside, why, sizeof why), RENDER_CHECK_PASSED, "%s", why);
+}
