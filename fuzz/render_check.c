@@ -44,6 +44,11 @@
  * eye and every other shape lie that near (render_check_scene). 2^10: bvh.c's "a thousand". */
 #define RENDER_CHECK_NEAR_SIZES 1024.0
 
+/* The structures' own invariant checks (kdtree_is_valid, bvh_is_valid) walk the whole tree once per
+ * face, so they cost faces x nodes: they run only on scenes of at most this many triangles (the tiny
+ * meshes have 1 to 8 faces, so a handful of meshes), to keep the fuzzer's pace. */
+#define RENDER_CHECK_VALIDATE_FACES 64
+
 /* ---- the tiny meshes -------------------------------------------------------------------------- */
 
 struct tiny_mesh {
@@ -366,6 +371,14 @@ static bool build_worlds(struct checker *c, const struct scene *s) {
     if (!built)
         return broken(c, "%s", err);
     size_t faces = c->worlds[WORLD_BRUTE].triangles.face_count;
+    if (faces <= RENDER_CHECK_VALIDATE_FACES) {
+        for (int k = WORLD_KD_SEED; k <= WORLD_KD_SAH; k++)
+            if (!kdtree_is_valid(c->worlds[k].structure, &c->worlds[k].triangles, err, sizeof err))
+                return broken(c, "%s: %s", world_names[k], err);
+        for (int k = WORLD_BVH_MEDIAN; k <= WORLD_BVH_SAH; k++)
+            if (!bvh_is_valid(c->worlds[k].structure, &c->worlds[k].triangles, err, sizeof err))
+                return broken(c, "%s: %s", world_names[k], err);
+    }
     c->face_t = malloc((faces + 1) * sizeof *c->face_t);
     c->reported = malloc(faces + 1);
     c->bounds = world_mesh_bounds(&c->worlds[WORLD_BRUTE].triangles);

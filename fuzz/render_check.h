@@ -20,10 +20,13 @@
  * tiny meshes made in memory (chosen by its file name, so no file is opened) placed by its transform;
  * builds the brute-force world and the four structures (kd-tree with the seed's rule and the SAH, BVH
  * with the median and the SAH); traces the camera rays of the capped picture in every world. Checks:
- * a refused scene's message starts with "name:"; every hit is at a finite t with a finite normal; each
- * structure's closest, occluded and for-each-hit queries give exactly the brute-force loop's answer;
- * the nearest hit of every world is the brute-force world's; whitted_trace sees the same colour in
- * every world (to RENDER_CHECK_COLOUR_TOLERANCE, render_check.c says why not exactly).
+ * a refused scene's message starts with "name:"; each structure keeps its invariants (kdtree_is_valid,
+ * bvh_is_valid, on small scenes); every hit is at a finite t with a finite normal; on the camera rays
+ * and the shadow rays of their hits, each structure's closest, occluded and for-each-hit queries give
+ * exactly the brute-force loop's answer, and every world's nearest hit and crossings are the
+ * brute-force world's; whitted_trace sees the same colour in every world (to
+ * RENDER_CHECK_COLOUR_TOLERANCE, render_check.c says why not exactly). The exact checks take only rays
+ * starting near the triangles, where exactness is promised (RENDER_CHECK_NEAR_SIZES).
  * Returns RENDER_CHECK_PASSED when all hold (a cleanly refused scene passes); RENDER_CHECK_FAILED with
  * the first broken check described in why (why_size bytes); or RENDER_CHECK_KNOWN_DEFECT, without
  * building or tracing anything, when the scene has what triggers a defect being fixed (render_check.c

@@ -58,7 +58,7 @@ for harness in scene ply obj render; do
         corpus=out/fuzz/corpus/$harness
         mkdir -p "$corpus"
     fi
-    log=out/fuzz/$harness.log
+    log=out/fuzz/$([ $smoke = yes ] && echo smoke-)$harness.log
     before=$(ls "$artifacts" | wc -l)
     echo "fuzz: $harness for $([ $smoke = yes ] && echo "$SMOKE_RUNS runs" || echo "$seconds s"), log in $log"
     "$build/fuzz_$harness" "${options[@]}" "$corpus" "${folders[@]}" >"$log" 2>&1
