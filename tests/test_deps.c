@@ -29,7 +29,7 @@ Test(deps, the_installer_names_what_each_target_needs) {
     remove(log);
     cr_assert_eq(run_logged("tools/install-deps.sh build test compare", log), 0);
     cr_assert_eq(run_logged("tools/install-deps.sh everything", log), 2);
-    cr_assert(file_contains(log, "install-deps.sh: unknown need 'everything' (build, test, compare or bench)"));
+    cr_assert(file_contains(log, "install-deps.sh: unknown need 'everything' (build, test, compare, bench or fuzz)"));
 }
 
 Test(deps, without_root_and_without_stb_make_chapter_1_fetches_stb_and_renders, .timeout = 300) {
@@ -44,7 +44,7 @@ Test(deps, without_root_and_without_stb_make_chapter_1_fetches_stb_and_renders, 
     snprintf(log, sizeof log, "%s.log", dir);
     remove(log);
     snprintf(command, sizeof command,
-             "cp -r Makefile common chapters tools scenes bench %s/ && rm -rf %s/scenes/models/teapot-* && "
+             "cp -r Makefile common chapters tools scenes bench fuzz %s/ && rm -rf %s/scenes/models/teapot-* && "
              "chown -R nobody:nogroup %s",
              dir, dir, dir);
     cr_assert_eq(run_logged(command, log), 0, "could not make the copy (see %s)", log);

@@ -33,7 +33,7 @@ field() { sed -n "s/^$2: //p" "$1" | head -n 1; }
 work=out/gallery/work-$$
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$work"
-cp -r Makefile common chapters tools bench "$work"/
+cp -r Makefile common chapters tools bench fuzz "$work"/
 mkdir -p "$work/scenes" && cp scenes/*.scene "$work/scenes/" && cp -r scenes/models "$work/scenes/"
 # The copy builds the way $build was built (build/san: with the sanitizers).
 san=0
