@@ -19,13 +19,14 @@ FUZZ_SANITIZERS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-o
 FUZZ_CFLAGS := -std=c11 -D_DEFAULT_SOURCE -g -O1 -Wall -Wextra -Werror -Wno-unknown-pragmas -Icommon \
                $(FUZZ_SANITIZERS) -fsanitize=fuzzer-no-link
 FUZZ_LDFLAGS := $(FUZZ_SANITIZERS) -fsanitize=fuzzer
-# What each harness links besides its own file and fuzz_support: the renderer needs chapter 10's
-# modules up to the structures, not the picture, the command line or POV-Ray.
-FUZZ_MODULES_scene := scene stats camera
-FUZZ_MODULES_ply := mesh mesh_ply mesh_obj stats
+# What each harness links besides its own file and fuzz_support: the modules of the chapter that
+# introduces what it tests (the Makefile's MODULES_NN), without those for the picture, the output
+# files and the command line (render.c also needs OpenMP, which this clang build leaves out).
+FUZZ_NOT_LINKED := image outfile povray render heatmap cli scene_set headlight
+FUZZ_MODULES_scene := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_01))
+FUZZ_MODULES_ply := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_03))
 FUZZ_MODULES_obj := $(FUZZ_MODULES_ply)
-FUZZ_MODULES_render := scene stats camera sphere triangle mesh mesh_ply mesh_obj plane aabb box world phong \
-                       shadow whitted kdtree kdtree_events kdtree_check accel bvh accel_bvh
+FUZZ_MODULES_render := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_10))
 FUZZ_EXTRA_ply := fuzz_mesh
 FUZZ_EXTRA_obj := fuzz_mesh
 FUZZ_EXTRA_render := render_check

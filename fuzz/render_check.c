@@ -2,13 +2,13 @@
  * brute-force loop (the renderer fuzzer's check; not part of any chapter).
  *
  * The fuzzer writes scene text, so what it can reach is whatever a scene file can ask for: any camera,
- * materials, lights, shapes, and meshes placed with any scale, rotation and translation. Mesh files
- * are not read (their readers have fuzzers of their own, and a fuzzer must not wander the file
- * system): each `mesh` directive gets one of the tiny meshes below, chosen by its file name, so the
- * fuzzer can still pick among them by changing the name. */
+ * materials, lights, shapes, and meshes placed with any scale, rotation and translation. The mesh
+ * files it names are not read (their readers have fuzzers of their own, and a fuzzer must not wander
+ * the file system): each `mesh` directive is pointed at one of the tiny meshes below, chosen by its
+ * file name so the fuzzer can still pick among them, written once as OBJ files to a folder of our own
+ * and loaded by scene_load_meshes as the programs load theirs. */
 #include "render_check.h"
 
-#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdarg.h>
@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "accel.h"
 #include "bvh.h"
@@ -93,23 +94,66 @@ static const struct tiny_mesh *tiny_mesh_for(const char *path) {
     return &tiny_meshes[hash % TINY_MESH_COUNT];
 }
 
-/* Gives every mesh directive of s its tiny mesh, placed by the directive's transform, as
- * scene_load_meshes does with the file. Returns false when memory runs out. */
-static bool place_tiny_meshes(struct scene *s) {
+/* The folder holding the tiny meshes as OBJ files, written on the first call (a new folder under /tmp
+ * for each process, removed at exit); NULL when it cannot be made. */
+static char tiny_folder[64];
+
+static void remove_tiny_files(void) {
+    char path[96];
+    for (size_t k = 0; k < TINY_MESH_COUNT; k++) {
+        snprintf(path, sizeof path, "%s/tiny-%zu.obj", tiny_folder, k);
+        remove(path);
+    }
+    rmdir(tiny_folder);
+}
+
+static const char *tiny_mesh_folder(void) {
+    if (tiny_folder[0] != '\0')
+        return tiny_folder;
+    snprintf(tiny_folder, sizeof tiny_folder, "/tmp/whitted-tiny-meshes-XXXXXX");
+    if (mkdtemp(tiny_folder) == NULL)
+        return NULL;
+    atexit(remove_tiny_files);
+    for (size_t k = 0; k < TINY_MESH_COUNT; k++) {
+        char path[96];
+        snprintf(path, sizeof path, "%s/tiny-%zu.obj", tiny_folder, k);
+        FILE *f = fopen(path, "w");
+        if (f == NULL)
+            return NULL;
+        const struct tiny_mesh *t = &tiny_meshes[k];
+        for (size_t v = 0; v < t->vertex_count; v++)
+            fprintf(f, "v %.17g %.17g %.17g\n", t->vertices[v].x, t->vertices[v].y, t->vertices[v].z);
+        for (size_t face = 0; face < t->face_count; face++)
+            fprintf(f, "f %u %u %u\n", t->faces[face].v[0] + 1, t->faces[face].v[1] + 1, t->faces[face].v[2] + 1);
+        if (fclose(f) != 0)
+            return NULL;
+    }
+    return tiny_folder;
+}
+
+/* Points every mesh directive of s at the file of its tiny mesh and loads them all with
+ * scene_load_meshes, which places each by its transform and refuses one placed out of range, as for
+ * the chapters' programs. Returns its answer, with its message in err; false with a message also when
+ * the tiny files cannot be written or memory runs out. */
+static bool load_tiny_meshes(struct scene *s, char *err, size_t err_size) {
+    const char *folder = tiny_mesh_folder();
+    if (folder == NULL) {
+        snprintf(err, err_size, "cannot write the tiny meshes under /tmp");
+        return false;
+    }
     for (size_t k = 0; k < s->mesh_count; k++) {
         struct scene_mesh *sm = &s->meshes[k];
-        const struct tiny_mesh *tiny = tiny_mesh_for(sm->path);
-        sm->mesh.vertices = malloc(tiny->vertex_count * sizeof *sm->mesh.vertices);
-        sm->mesh.faces = malloc(tiny->face_count * sizeof *sm->mesh.faces);
-        if (sm->mesh.vertices == NULL || sm->mesh.faces == NULL)
+        size_t which = (size_t)(tiny_mesh_for(sm->path) - tiny_meshes);
+        char *path = malloc(strlen(folder) + 32);
+        if (path == NULL) {
+            snprintf(err, err_size, "out of memory");
             return false;
-        memcpy(sm->mesh.vertices, tiny->vertices, tiny->vertex_count * sizeof *tiny->vertices);
-        memcpy(sm->mesh.faces, tiny->faces, tiny->face_count * sizeof *tiny->faces);
-        sm->mesh.vertex_count = tiny->vertex_count;
-        sm->mesh.face_count = tiny->face_count;
-        mesh_transform(&sm->mesh, sm->scale, sm->rotate, sm->translate);
+        }
+        sprintf(path, "%s/tiny-%zu.obj", folder, which);
+        free(sm->path);
+        sm->path = path;
     }
-    return true;
+    return scene_load_meshes(s, err, err_size);
 }
 
 /* ---- known defects ------------------------------------------------------------------------------
@@ -118,38 +162,21 @@ static bool place_tiny_meshes(struct scene *s) {
  * fuzzer looks past them for new ones, and their saved inputs are skipped by the tests with the
  * defect's name. When a defect is fixed, delete its entry: its saved inputs then run in the tests. */
 
-/* Coordinates beyond this are outside float range, or so close that a box's extent overflows it. */
-#define KNOWN_FLOAT_RANGE (FLT_MAX / 4)
-
-static bool beyond_float_range(vec3 p) {
-    return !(fabs(p.x) <= KNOWN_FLOAT_RANGE && fabs(p.y) <= KNOWN_FLOAT_RANGE && fabs(p.z) <= KNOWN_FLOAT_RANGE);
-}
-
-/* The BVH bins triangles in float and crashes (bin index out of bounds) and the kd-tree can hang when
- * a triangle lies outside float range (`mesh ... scale 1e308`, `translate 1e39 0 0`). */
-static bool has_triangles_beyond_float_range(const struct scene *s) {
-    for (size_t k = 0; k < s->triangle_count; k++)
-        if (beyond_float_range(s->triangles[k].a) || beyond_float_range(s->triangles[k].b) ||
-            beyond_float_range(s->triangles[k].c))
-            return true;
-    for (size_t k = 0; k < s->mesh_count; k++)
-        for (size_t v = 0; v < s->meshes[k].mesh.vertex_count; v++)
-            if (beyond_float_range(s->meshes[k].mesh.vertices[v]))
-                return true;
-    return false;
-}
-
+/* None at the moment. The first entry, "triangles outside float range crash the BVH build and hang
+ * the kd-tree", was deleted when scene_load_meshes began to refuse meshes placed out of range; its
+ * inputs in tests/data/fuzz/render/ now check that refusal. An entry reads
+ *     {"what goes wrong, in which files", predicate},
+ * with a predicate taking the loaded scene and saying whether it triggers the defect. */
 static const struct known_defect {
     const char *name;
     bool (*triggered)(const struct scene *s);
 } known_defects[] = {
-    {"triangles outside float range crash the BVH build and hang the kd-tree (bvh.c, kdtree.c)",
-     has_triangles_beyond_float_range},
+    {NULL, NULL}, /* the end of the list */
 };
 
 /* Returns the known defect s would trigger, or NULL. */
 static const struct known_defect *known_defect_of(const struct scene *s) {
-    for (size_t k = 0; k < sizeof known_defects / sizeof *known_defects; k++)
+    for (size_t k = 0; known_defects[k].name != NULL; k++)
         if (known_defects[k].triggered(s))
             return &known_defects[k];
     return NULL;
@@ -404,10 +431,23 @@ enum render_check_result render_check_scene(const char *name, const char *text, 
             broken(&c, "the scene is refused with a message that does not start with '%s:': %s", name, err);
             return RENDER_CHECK_FAILED;
         }
+        snprintf(why, why_size, "refused: %s", err);
         return RENDER_CHECK_PASSED;
     }
-    bool ok = place_tiny_meshes(&s) || broken(&c, "out of memory");
-    const struct known_defect *known = ok ? known_defect_of(&s) : NULL;
+    if (!load_tiny_meshes(&s, err, sizeof err)) {
+        /* Refused like a scene file: the message must name the scene and its line. */
+        size_t n = strlen(name);
+        bool named = strncmp(err, name, n) == 0 && err[n] == ':';
+        scene_free(&s);
+        if (!named) {
+            broken(&c, "the meshes are refused with a message that does not start with '%s:': %s", name, err);
+            return RENDER_CHECK_FAILED;
+        }
+        snprintf(why, why_size, "refused: %s", err);
+        return RENDER_CHECK_PASSED;
+    }
+    bool ok = true;
+    const struct known_defect *known = known_defect_of(&s);
     if (known != NULL) {
         snprintf(why, why_size, "known defect: %s", known->name);
         scene_free(&s);

@@ -6,8 +6,8 @@
  * with its file name ("file:line: what is wrong"); a renderer input must pass the renderer fuzzer's
  * whole check (fuzz/render_check.h): every structure agrees with brute force and every hit is finite.
  * An input that triggers a defect still being fixed is skipped with the defect's name (the list is in
- * fuzz/render_check.c); deleting the entry there makes it run. Each file is its own test, so a crash
- * names the file. */
+ * fuzz/render_check.c, empty at the moment); deleting the entry there makes it run. Each file is its
+ * own test, so a crash names the file. */
 #include <criterion/criterion.h>
 #include <criterion/parameterized.h>
 #include <glob.h>
@@ -120,13 +120,14 @@ ParameterizedTest(struct input *in, fuzz_regressions, chapter_scene_passes_the_r
     expect_render_check_passes(in->path);
 }
 
-/* The known-defect list recognises what it names, so the skipped inputs above are skipped for the
- * reason given and not by accident. */
-Test(fuzz_regressions, a_mesh_outside_float_range_is_a_known_defect) {
+/* A mesh placed out of the float range the structures hold (the renderer fuzzer's first finding, a
+ * crash in the BVH build) is refused with the scene's file and line, and one placed within it is drawn. */
+Test(fuzz_regressions, a_mesh_placed_out_of_float_range_is_refused_with_file_and_line) {
     char why[1024];
     const char *text = "camera eye 0 0 5  target 0 0 0  fov 40\nimage 4 3\nmesh a.ply translate 1e39 0 0\n";
-    cr_expect_eq(render_check_scene("float-range.scene", text, why, sizeof why), RENDER_CHECK_KNOWN_DEFECT, "%s", why);
-    cr_expect(strstr(why, "outside float range") != NULL, "%s", why);
-    const char *inside = "camera eye 0 0 5  target 0 0 0  fov 40\nimage 4 3\nmesh a.ply translate 1e30 0 0\n";
-    cr_expect_eq(render_check_scene("float-range.scene", inside, why, sizeof why), RENDER_CHECK_PASSED, "%s", why);
+    cr_expect_eq(render_check_scene("far.scene", text, why, sizeof why), RENDER_CHECK_PASSED, "%s", why);
+    cr_expect(strstr(why, "refused: far.scene:3: mesh ") != NULL && strstr(why, "out of range") != NULL, "%s", why);
+    const char *inside = "camera eye 0 0 5  target 0 0 0  fov 40\nimage 4 3\nmesh a.ply translate 1e3 0 0\n";
+    cr_expect_eq(render_check_scene("near.scene", inside, why, sizeof why), RENDER_CHECK_PASSED, "%s", why);
+    cr_expect_str_eq(why, "all checks hold");
 }
