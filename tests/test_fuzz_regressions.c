@@ -6,7 +6,7 @@
  * with its file name ("file:line: what is wrong"); a renderer input must pass the renderer fuzzer's
  * whole check (fuzz/render_check.h): every structure agrees with brute force and every hit is finite.
  * An input that triggers a defect still being fixed is skipped with the defect's name (the list is in
- * fuzz/render_check.c, empty at the moment); deleting the entry there makes it run. Each file is its
+ * fuzz/render_check.c); deleting the entry there makes it run. Each file is its
  * own test, so a crash names the file. */
 #include <criterion/criterion.h>
 #include <criterion/parameterized.h>
