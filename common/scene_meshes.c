@@ -9,7 +9,7 @@
  * to 3.4e38) only for s between about 1e-19 and 1e19; beyond that the areas overflow or vanish and the
  * builds fail (a mesh at 1e39 does not even fit a float box). A placed mesh must stay inside these
  * limits, a factor of ten within that range: */
-#define SCENE_MESH_MAX_COORD 1e18 /* no coordinate beyond this, so no side beyond 2e18 */
+#define SCENE_MESH_MAX_COORD TRIANGLE_MAX_COORD /* no coordinate beyond 1e18, so no side beyond 2e18 */
 #define SCENE_MESH_MIN_SIZE 1e-18 /* the mesh's largest side at least this */
 
 /* Checks that the placed mesh m lies within the limits above; otherwise writes

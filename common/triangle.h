@@ -145,15 +145,32 @@ extern const struct shape_behaviour triangle_behaviour;
 
 enum { TRIANGLE_A, TRIANGLE_B, TRIANGLE_C };
 
-/* Makes the triangle from its keys (struct shape_syntax's make). Any three corners will do: a
- * triangle of zero area is never hit. */
+/* The largest coordinate a triangle's corner may have, for `triangle` directives and placed meshes
+ * alike. The acceleration structures keep boxes in float and the SAH multiplies two sides of a box in
+ * float: a side up to 2e18 keeps that area (4e36) below float's largest, 3.4e38, where a corner at
+ * 1e39 would not even fit a float box. */
+#define TRIANGLE_MAX_COORD 1e18
+
+/* Returns true when every coordinate of p is within -TRIANGLE_MAX_COORD .. TRIANGLE_MAX_COORD (false
+ * for infinity and NaN too). */
+static inline bool triangle_corner_in_range(vec3 p) {
+    return fabs(p.x) <= TRIANGLE_MAX_COORD && fabs(p.y) <= TRIANGLE_MAX_COORD && fabs(p.z) <= TRIANGLE_MAX_COORD;
+}
+
+/* Makes the triangle from its keys (struct shape_syntax's make). Any three corners within range will
+ * do: a triangle of zero area is never hit. A corner out of range is refused, with why. */
 static inline bool triangle_make(const struct key_values *kv, void *item, char *why, size_t why_size) {
-    (void)why;
-    (void)why_size;
     struct triangle *t = item;
     t->a = key_vec3(kv, TRIANGLE_A);
     t->b = key_vec3(kv, TRIANGLE_B);
     t->c = key_vec3(kv, TRIANGLE_C);
+    const vec3 corner[3] = {t->a, t->b, t->c};
+    for (int k = 0; k < 3; k++)
+        if (!triangle_corner_in_range(corner[k])) {
+            snprintf(why, why_size, "corner %c is at (%g, %g, %g); coordinates must stay within -%g .. %g",
+                     "abc"[k], corner[k].x, corner[k].y, corner[k].z, TRIANGLE_MAX_COORD, TRIANGLE_MAX_COORD);
+            return false;
+        }
     return true;
 }
 

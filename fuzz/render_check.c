@@ -162,36 +162,17 @@ static bool load_tiny_meshes(struct scene *s, char *err, size_t err_size) {
  * fuzzer looks past them for new ones, and their saved inputs are skipped by the tests with the
  * defect's name. When a defect is fixed, delete its entry: its saved inputs then run in the tests. */
 
-/* The first entry, "meshes outside float range crash the BVH build and hang the kd-tree", was deleted
- * when scene_load_meshes began to refuse meshes placed out of range; its inputs in
- * tests/data/fuzz/render/ now check that refusal. An entry reads
+/* The first two entries, "meshes outside float range crash the BVH build and hang the kd-tree" and "a
+ * triangle directive outside float range crashes the BVH build", were deleted when scene_load_meshes
+ * began to refuse meshes placed out of range and the parser triangle directives with a corner out of
+ * range; their inputs in tests/data/fuzz/render/ now check those refusals. An entry reads
  *     {"what goes wrong, in which files", predicate},
  * with a predicate taking the loaded scene and saying whether it triggers the defect. */
-
-/* The limit scene_meshes.c holds placed meshes to (SCENE_MESH_MAX_COORD there). */
-#define KNOWN_TRIANGLE_MAX_COORD 1e18
-
-static bool beyond_mesh_limit(vec3 p) {
-    return !(fabs(p.x) <= KNOWN_TRIANGLE_MAX_COORD && fabs(p.y) <= KNOWN_TRIANGLE_MAX_COORD &&
-             fabs(p.z) <= KNOWN_TRIANGLE_MAX_COORD);
-}
-
-/* A `triangle` directive is not held to the meshes' range, and one at 1e39 crashes the BVH build. */
-static bool has_triangle_directive_out_of_range(const struct scene *s) {
-    for (size_t k = 0; k < s->triangle_count; k++)
-        if (beyond_mesh_limit(s->triangles[k].a) || beyond_mesh_limit(s->triangles[k].b) ||
-            beyond_mesh_limit(s->triangles[k].c))
-            return true;
-    return false;
-}
 
 static const struct known_defect {
     const char *name;
     bool (*triggered)(const struct scene *s);
 } known_defects[] = {
-    {"a triangle directive outside float range crashes the BVH build (bvh.c): scene.c refuses meshes placed "
-     "out of range but not triangle directives",
-     has_triangle_directive_out_of_range},
     {NULL, NULL}, /* the end of the list */
 };
 

@@ -131,3 +131,14 @@ Test(fuzz_regressions, a_mesh_placed_out_of_float_range_is_refused_with_file_and
     cr_expect_eq(render_check_scene("near.scene", inside, why, sizeof why), RENDER_CHECK_PASSED, "%s", why);
     cr_expect_str_eq(why, "all checks hold");
 }
+
+/* A `triangle` directive with a corner out of that range (the renderer fuzzer's second finding, the
+ * same crash through a directive instead of a mesh) is refused by the parser with file and line. */
+Test(fuzz_regressions, a_triangle_directive_out_of_float_range_is_refused_with_file_and_line) {
+    char why[1024];
+    const char *text = "camera eye 0 1 5  target 1 0 0  fov 92\nimage 4 3\ntriangle a -1 -4 2  b .6 4 -2  c 0 8 1e39\n";
+    cr_expect_eq(render_check_scene("far.scene", text, why, sizeof why), RENDER_CHECK_PASSED, "%s", why);
+    cr_expect(strstr(why, "refused: far.scene:3: ") != NULL &&
+              strstr(why, "corner c is at (0, 8, 1e+39); coordinates must stay within -1e+18 .. 1e+18") != NULL,
+              "%s", why);
+}
