@@ -11,6 +11,7 @@
 #include "image.h"
 #include "infile.h"
 #include "name_index.h"
+#include "text_escape.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -574,6 +575,9 @@ void scene_drop_unsupported(struct scene *s, unsigned supported, int chapter, FI
             drop_meshes(s);
         }
     }
-    if (what[0] != '\0' && note != NULL)
-        fprintf(note, "%s: chapter %d ignores %s (not introduced yet)\n", s->path, chapter, what);
+    if (what[0] != '\0' && note != NULL) {
+        char path[4 * 1024];
+        text_escape(s->path, path, sizeof path); /* the path comes from the command line */
+        fprintf(note, "%s: chapter %d ignores %s (not introduced yet)\n", path, chapter, what);
+    }
 }

@@ -227,6 +227,17 @@ Test(io, control_characters_in_a_message_are_escaped) {
     expect_chapter_run(2, "\"$(printf -- '-r\\033]0;x\\007')\"", 2, "unknown option '-r\\x1b]0;x\\x07'");
 }
 
+/* The note a chapter prints about shapes it does not draw quotes the scene's path, which comes from the
+ * command line: escaped too. */
+Test(io, the_note_about_ignored_shapes_escapes_the_scene_path) {
+    const char *scene = text_file("io-note\x1b[2J.scene", "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\n"
+                                                           "plane normal 0 1 0 distance -1\n");
+    char arguments[512], expected[512];
+    snprintf(arguments, sizeof arguments, "'%s' -o " TEST_OUT "/io-note.png", scene);
+    snprintf(expected, sizeof expected, TEST_OUT "/io-note\\x1b[2J.scene: chapter 2 ignores 1 plane (not introduced yet)");
+    expect_chapter_run(2, arguments, 0, expected);
+}
+
 Test(io, escaping_keeps_utf8_and_escapes_everything_else) {
     char out[128];
     text_escape("plain text, caf\xc3\xa9 \xc3\x97 \xe2\x82\xac \xf0\x9f\x90\x87", out, sizeof out);
