@@ -263,13 +263,18 @@ static inline double fbox_area(const struct fbox *b) {
 }
 
 /* The largest float <= x and the smallest float >= x: a float box built from these holds the double
- * box exactly. */
+ * box exactly. A NaN (from a corner at infinity) gives the infinity on the safe side, so that no NaN
+ * reaches a box: min4 and max4 would let it in or out depending on the order of the prims. */
 static float float_below(double x) {
+    if (isnan(x))
+        return -INFINITY; /* a corner beyond double's range: a box open on that side holds it */
     float f = (float)x;
     return (double)f > x ? nextafterf(f, -INFINITY) : f;
 }
 
 static float float_above(double x) {
+    if (isnan(x))
+        return INFINITY;
     float f = (float)x;
     return (double)f < x ? nextafterf(f, INFINITY) : f;
 }
@@ -349,12 +354,13 @@ struct bin {
 };
 
 /* The slots of a centroid on all three axes: the same expression in binning and partitioning, so both
- * agree. Slot = floor((centroid - origin) * scale), at most slots - 1. */
+ * agree. Slot = floor((centroid - origin) * scale), clamped to [0, slots - 1] before it is converted to
+ * an integer, so that a NaN or infinite centroid (a mesh beyond float's range) lands in slot 0 or the
+ * last slot instead of becoming INT_MIN and indexing outside the bins. */
 static inline int4 bins_of(float4 centroid, float4 origin, float4 scale, int slots) {
-    int4 k = __builtin_convertvector((centroid - origin) * scale, int4);
-    int4 last = {slots - 1, slots - 1, slots - 1, slots - 1};
-    int4 below = k < last;
-    return (k & below) | (last & ~below);
+    float4 last = {(float)(slots - 1), (float)(slots - 1), (float)(slots - 1), (float)(slots - 1)};
+    float4 x = max4((centroid - origin) * scale, (float4){0, 0, 0, 0}); /* a NaN gives 0 */
+    return __builtin_convertvector(min4(x, last), int4);
 }
 
 /* Looks for the cheapest SAH split of r. Returns false, leaving the prims alone, when a leaf is
@@ -696,7 +702,7 @@ static bool check_subtree(struct check *c, uint32_t child, uint32_t count, const
             for (int corner = 0; corner < 3; corner++) {
                 vec3 p = c->m->vertices[v[corner]];
                 for (int a = 0; a < 3; a++)
-                    if (!(vec3_axis(p, a) >= lo[a] && vec3_axis(p, a) <= hi[a]))
+                    if (vec3_axis(p, a) < lo[a] || vec3_axis(p, a) > hi[a]) /* a NaN corner is never hit */
                         return check_fail(c, "leaf box does not hold its triangle", k);
             }
         }
@@ -718,7 +724,7 @@ static bool check_subtree(struct check *c, uint32_t child, uint32_t count, const
         for (int a = 0; a < 3; a++) {
             child_lo[a] = n->bounds[a][0][k];
             child_hi[a] = n->bounds[a][1][k];
-            if (!(child_lo[a] >= lo[a] && child_hi[a] <= hi[a]))
+            if (child_lo[a] < lo[a] || child_hi[a] > hi[a]) /* NaN bounds (corners beyond range) hold anything */
                 return check_fail(c, "child box sticks out of its parent's", child);
         }
         if (!check_subtree(c, n->child[k], n->count[k], child_lo, child_hi, depth + 1))
@@ -727,7 +733,7 @@ static bool check_subtree(struct check *c, uint32_t child, uint32_t count, const
     return true;
 }
 
-bool fast_fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why, size_t why_size) {
+bool fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why, size_t why_size) {
     struct check c = {b, m, calloc(b->triangle_count + 1, 1), calloc(b->node_count + 1, 1), why, why_size};
     bool ok = c.seen_triangle != NULL && c.seen_node != NULL;
     if (!ok)
@@ -987,7 +993,12 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
                 for (int k = 0; k < BVH_WIDTH; k++)
                     hit |= (unsigned)child_hit(n, k, &s, box_min, box_max, &entry[k >> 1][k & 1]) << k;
             }
-            boxes += 2 + (n->child[2] != BVH_NO_CHILD) + (n->child[3] != BVH_NO_CHILD);
+            /* Unused slots have empty boxes, which every slab test misses, except a ray with a NaN or
+             * infinite origin or direction (0 * infinity and infinity - infinity are NaN, which the
+             * slab test ignores): masking them out keeps such a ray from following a slot to nowhere. */
+            unsigned used = 3u | (unsigned)(n->child[2] != BVH_NO_CHILD) << 2 | (unsigned)(n->child[3] != BVH_NO_CHILD) << 3;
+            hit &= used;
+            boxes += 2 + (used >> 2 & 1) + (used >> 3);
             if (hit != 0) {
                 /* The children hit, nearest first when the nearest hit is wanted (insertion sort of at
                  * most four); all but the first are put aside, farthest deepest. */
@@ -1074,12 +1085,9 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
 static const char *const rung_names[] = {NULL, "plain", "wide", "simd", "prefetch", "build"};
 
 int fast_bvh_rung_from_name(const char *name) {
-    for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++) {
-        char number[4];
-        snprintf(number, sizeof number, "%d", r);
-        if (strcmp(name, rung_names[r]) == 0 || strcmp(name, number) == 0)
+    for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++)
+        if (strcmp(name, rung_names[r]) == 0 || (name[0] == '0' + r && name[1] == '\0'))
             return r;
-    }
     return 0;
 }
 
