@@ -1,4 +1,4 @@
-/* bench_accel.c: times the acceleration structures of chapters 9 and 10 on real models.
+/* bench_accel.c: times the acceleration structures of chapters 9, 10 and 11 on real models.
  *
  *     bench_accel [--embree] [--repeats N] [--only NAME] MODEL.ply...
  *
@@ -12,7 +12,9 @@
  * runs just the structure called NAME (and BVH-SAH, the reference), e.g. for a profiler.
  *
  * Every structure must find exactly the brute-force answer, so each frame is also checked pixel by
- * pixel against the BVH-SAH frame: the nearest face, its t to the last bit, and the shadow. Embree works
+ * pixel against the BVH-SAH frame: the nearest face, its t to the last bit, and the shadow. The rows
+ * "rung N" are chapter 11's ladder (rung 1 is chapter 10's BVH-SAH); each gets its ratio to the rung
+ * below. Embree works
  * in float, so it is only expected to agree on nearly every pixel; its count of differing pixels is
  * printed for information. */
 #include <inttypes.h>
@@ -25,6 +27,7 @@
 #include <time.h>
 
 #include "bvh.h"
+#include "fast_bvh.h"
 #include "camera.h"
 #include "kdtree.h"
 #include "mesh.h"
@@ -59,6 +62,7 @@ struct accel {
     void (*destroy)(void *structure);
     bool (*closest)(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
     bool (*occluded)(const void *structure, const ray *r, double t_min, double t_max);
+    int below; /* the row of the rung below, for the ratio; -1 when not a rung */
 };
 
 /* The brute-force loop: every face, every ray. */
@@ -137,6 +141,31 @@ static bool bvh_closest_any(const void *s, const ray *r, double t_min, double t_
 static bool bvh_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
     return bvh_occluded(s, r, t_min, t_max);
 }
+#define FAST_ADAPTER(rung)                                                                                \
+    static void *fast_##rung##_build(const struct mesh *m, double *build_ms, double *sah_cost) {           \
+        double start = now_ms();                                                                          \
+        struct fast_bvh *b = fast_bvh_build(m, BVH_SPLIT_SAH, rung);                                      \
+        struct bvh_info info;                                                                             \
+        if (b != NULL) {                                                                                  \
+            fast_bvh_get_info(b, &info);                                                                  \
+            *build_ms = now_ms() - start;                                                                 \
+            *sah_cost = info.sah_cost;                                                                    \
+        }                                                                                                 \
+        return b;                                                                                         \
+    }
+
+FAST_ADAPTER(FAST_BVH_RUNG_WIDE)
+FAST_ADAPTER(FAST_BVH_RUNG_SIMD)
+FAST_ADAPTER(FAST_BVH_RUNG_PREFETCH)
+FAST_ADAPTER(FAST_BVH_RUNG_BUILD)
+
+static void fast_destroy(void *s) { fast_bvh_free(s); }
+static bool fast_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return fast_bvh_closest(s, r, t_min, t_max, t, face);
+}
+static bool fast_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
+    return fast_bvh_occluded(s, r, t_min, t_max);
+}
 static void kd_destroy(void *s) { kdtree_free(s); }
 static bool kd_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
     return kdtree_closest(s, r, t_min, t_max, t, face);
@@ -148,11 +177,15 @@ static bool kd_occluded_any(const void *s, const ray *r, double t_min, double t_
 /* In the order the table prints them; BVH-SAH (index ACCEL_REFERENCE) is traced first and is the
  * frame the others are checked against. */
 static const struct accel accels[] = {
-    {"naive", naive_build, naive_destroy, naive_closest, naive_occluded},
-    {"kd-seed", kd_seed_build, kd_destroy, kd_closest_any, kd_occluded_any},
-    {"kd-SAH", kd_sah_build, kd_destroy, kd_closest_any, kd_occluded_any},
-    {"BVH-median", bvh_median_build, bvh_destroy, bvh_closest_any, bvh_occluded_any},
-    {"BVH-SAH", bvh_sah_build, bvh_destroy, bvh_closest_any, bvh_occluded_any},
+    {"naive", naive_build, naive_destroy, naive_closest, naive_occluded, -1},
+    {"kd-seed", kd_seed_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
+    {"kd-SAH", kd_sah_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
+    {"BVH-median", bvh_median_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
+    {"BVH-SAH (rung 1 plain)", bvh_sah_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
+    {"rung 2 wide", fast_FAST_BVH_RUNG_WIDE_build, fast_destroy, fast_closest_any, fast_occluded_any, 4},
+    {"rung 3 simd", fast_FAST_BVH_RUNG_SIMD_build, fast_destroy, fast_closest_any, fast_occluded_any, 5},
+    {"rung 4 prefetch", fast_FAST_BVH_RUNG_PREFETCH_build, fast_destroy, fast_closest_any, fast_occluded_any, 6},
+    {"rung 5 build", fast_FAST_BVH_RUNG_BUILD_build, fast_destroy, fast_closest_any, fast_occluded_any, 7},
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
 #define ACCEL_NAIVE 0
@@ -239,6 +272,7 @@ static bool fit_camera(const struct mesh *m, struct camera *cam, vec3 *light) {
 
 struct row {
     bool done;
+    int below; /* as in struct accel */
     char label[48];
     double build_ms, frame_ms, sah_cost;
     double rays, triangle_tests, node_visits, primary_rays, primary_tests;
@@ -255,8 +289,9 @@ static void print_number(int w, double x, int decimals) {
 }
 
 static void print_table(const struct row *rows, size_t count, const struct row *embree) {
-    printf("  %-26s %9s %10s %8s %8s %9s %9s %8s %8s %8s  %s\n", "structure", "build ms", "frame ms", "Mrays/s",
-           "tri/ray", "nodes/ray", "tri/cam", "SAH cost", "frame/E", "build/E", "pixels as BVH-SAH's?");
+    printf("  %-26s %9s %10s %8s %8s %9s %9s %8s %8s %8s %8s %8s  %s\n", "structure", "build ms", "frame ms", "Mrays/s",
+           "tri/ray", "nodes/ray", "tri/cam", "SAH cost", "frame/E", "build/E", "frame/<", "build/<",
+           "pixels as BVH-SAH's?");
     bool with_embree = embree != NULL && embree->done;
     for (size_t k = 0; k <= count; k++) {
         const struct row *r = k < count ? &rows[k] : embree;
@@ -273,6 +308,9 @@ static void print_table(const struct row *rows, size_t count, const struct row *
         print_number(8, counted ? r->sah_cost : NAN, 1);
         print_number(8, with_embree ? r->frame_ms / embree->frame_ms : NAN, 2);
         print_number(8, with_embree && r->build_ms > 0 ? r->build_ms / embree->build_ms : NAN, 2);
+        const struct row *b = k < count && r->below >= 0 && rows[r->below].done ? &rows[r->below] : NULL;
+        print_number(8, b != NULL ? r->frame_ms / b->frame_ms : NAN, 2);
+        print_number(8, b != NULL ? r->build_ms / b->build_ms : NAN, 2);
         if (r->compared)
             printf("  %s", r->differ == 0 ? "all equal" : "NO");
         else if (r != embree)
@@ -283,7 +321,7 @@ static void print_table(const struct row *rows, size_t count, const struct row *
     }
     printf("  tri/ray, nodes/ray: triangle tests and node visits per ray (camera and shadow); tri/cam: triangle\n"
            "  tests per camera ray; SAH cost: the structure's own prediction, in triangle tests per ray;\n"
-           "  frame/E, build/E: time over Embree's; pixels: nearest face, its t to the last bit, and the shadow,\n"
+           "  frame/E, build/E: time over Embree's; frame/<, build/<: time over the rung below's; pixels: nearest face, its t to the last bit, and the shadow,\n"
            "  on every pixel (on the sampled rows for the brute-force loop)\n");
 }
 
@@ -341,6 +379,7 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
         int list_count = naive ? naive_rows : cam.height;
         int runs = naive ? 1 : repeats;
         snprintf(row->label, sizeof row->label, "%s", a->name);
+        row->below = a->below;
         if (naive && naive_rows < cam.height)
             snprintf(row->label, sizeof row->label, "%s (sampled, %d rows)", a->name, naive_rows);
         row->build_ms = INFINITY;
