@@ -4,7 +4,8 @@
  *
  * For each model: a camera fitted to its bounding sphere, 800x600 pixels, one camera ray per pixel,
  * one point light and, from every hit, one shadow ray towards it; one thread. Each structure is built
- * and the frame traced --repeats times (default 3), and the fastest of each is reported: build ms,
+ * and the frame traced --repeats times (default 3), in rounds that take every structure in turn, and
+ * the fastest of each is reported: build ms,
  * frame ms, million rays per second, and the counters per ray. The brute-force loop ("naive") would
  * take hours on big models, so it traces only a few evenly spaced rows and its time is scaled up to the
  * whole frame; its row says "(sampled)". With --embree (when built with Embree, see bench/bench.mk)
@@ -368,23 +369,33 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
     for (size_t k = 0, n = 1; k < ACCEL_COUNT; k++)
         if (k != ACCEL_REFERENCE)
             order[n++] = k;
-    for (size_t o = 0; o < ACCEL_COUNT; o++) {
-        size_t k = order[o];
-        const struct accel *a = &accels[k];
-        if (only != NULL && k != ACCEL_REFERENCE && strcmp(only, a->name) != 0)
-            continue;
-        struct row *row = &rows[k];
-        bool naive = k == ACCEL_NAIVE;
-        const int *list = naive ? sampled_rows : all_rows;
-        int list_count = naive ? naive_rows : cam.height;
-        int runs = naive ? 1 : repeats;
-        snprintf(row->label, sizeof row->label, "%s", a->name);
-        row->below = a->below;
-        if (naive && naive_rows < cam.height)
-            snprintf(row->label, sizeof row->label, "%s (sampled, %d rows)", a->name, naive_rows);
-        row->build_ms = INFINITY;
-        row->frame_ms = INFINITY;
-        for (int run = 0; run < runs; run++) {
+    struct row embree = {0};
+    embree.build_ms = INFINITY;
+    embree.frame_ms = INFINITY;
+    /* Round after round, every structure once per round (interleaved, so that a busy spell of a shared
+     * machine slows all of them alike rather than one of them throughout); the best of the rounds is
+     * kept. The reference goes first in each round, Embree last; the brute-force loop runs in the first round
+     * only. */
+    for (int run = 0; run < repeats; run++) {
+        for (size_t o = 0; o < ACCEL_COUNT; o++) {
+            size_t k = order[o];
+            const struct accel *a = &accels[k];
+            if (only != NULL && k != ACCEL_REFERENCE && strcmp(only, a->name) != 0)
+                continue;
+            struct row *row = &rows[k];
+            bool naive = k == ACCEL_NAIVE;
+            if (naive && run > 0)
+                continue;
+            const int *list = naive ? sampled_rows : all_rows;
+            int list_count = naive ? naive_rows : cam.height;
+            if (run == 0) {
+                snprintf(row->label, sizeof row->label, "%s", a->name);
+                if (naive && naive_rows < cam.height)
+                    snprintf(row->label, sizeof row->label, "%s (sampled, %d rows)", a->name, naive_rows);
+                row->below = a->below;
+                row->build_ms = INFINITY;
+                row->frame_ms = INFINITY;
+            }
             double build_ms = 0, sah_cost = 0;
             void *s = a->build(&m, &build_ms, &sah_cost);
             if (s == NULL) {
@@ -405,40 +416,42 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
                 row->node_visits = (double)f.counters.node_visits * scale;
                 row->primary_tests = (double)f.primary_tests * scale;
             }
+            if (k != ACCEL_REFERENCE) {
+                long differ = count_differences(reference, pixels, cam.width, list, list_count);
+                row->differ = differ > row->differ ? differ : row->differ;
+                row->compared = true;
+            }
+            row->done = true;
         }
-        if (k != ACCEL_REFERENCE) {
-            row->differ = count_differences(reference, pixels, cam.width, list, list_count);
-            row->compared = true;
+#ifdef WHITTED_EMBREE
+        if (with_embree) {
+            unsigned char *codes = malloc(pixel_count);
+            double build_ms, frame_ms;
+            if (codes == NULL ||
+                !embree_ref_frame(&m, &cam, light, 1, &build_ms, &frame_ms, codes, err, sizeof err)) {
+                fprintf(stderr, "bench_accel: %s: %s\n", path, codes == NULL ? "out of memory" : err);
+                return 1;
+            }
+            snprintf(embree.label, sizeof embree.label, "Embree 3 (float, 1 thread)");
+            embree.build_ms = build_ms < embree.build_ms ? build_ms : embree.build_ms;
+            embree.frame_ms = frame_ms < embree.frame_ms ? frame_ms : embree.frame_ms;
+            long differ = 0, hits = 0;
+            for (size_t p = 0; p < pixel_count; p++) {
+                int ours = reference[p].face == UINT32_MAX ? 0 : reference[p].shadowed ? 2 : 1;
+                differ += codes[p] != ours;
+                hits += codes[p] != 0;
+            }
+            embree.rays = (double)(pixel_count + hits);
+            embree.differ = differ;
+            embree.done = true;
+            free(codes);
         }
-        row->done = true;
-        fprintf(stderr, "  %s done\n", row->label);
+#else
+        (void)with_embree;
+#endif
+        fprintf(stderr, "  round %d of %d done\n", run + 1, repeats);
     }
 
-    struct row embree = {0};
-#ifdef WHITTED_EMBREE
-    if (with_embree) {
-        unsigned char *codes = malloc(pixel_count);
-        if (codes == NULL || !embree_ref_frame(&m, &cam, light, repeats, &embree.build_ms, &embree.frame_ms, codes,
-                                               err, sizeof err)) {
-            fprintf(stderr, "bench_accel: %s: %s\n", path, codes == NULL ? "out of memory" : err);
-            return 1;
-        }
-        snprintf(embree.label, sizeof embree.label, "Embree 3 (float, 1 thread)");
-        long differ = 0, hits = 0, shadowed = 0;
-        for (size_t p = 0; p < pixel_count; p++) {
-            int ours = reference[p].face == UINT32_MAX ? 0 : reference[p].shadowed ? 2 : 1;
-            differ += codes[p] != ours;
-            hits += codes[p] != 0;
-            shadowed += codes[p] == 2;
-        }
-        embree.rays = (double)(pixel_count + hits);
-        embree.differ = differ;
-        embree.done = true;
-        free(codes);
-    }
-#else
-    (void)with_embree;
-#endif
     print_table(rows, ACCEL_COUNT, with_embree ? &embree : NULL);
     if (embree.done)
         printf("  Embree's pixels are compared with BVH-SAH's hit/miss and shadow only: it works in float, so a\n"
