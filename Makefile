@@ -10,7 +10,7 @@
 #   make figures        redraw the walkthroughs' figures, docs/figures/*.svg, from tools/figures/
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
-#   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
+#   make bench          kd-tree, BVH and chapter 11's rungs against Embree; peak memory on a 4M-triangle teapot
 #   make check-N        grade chapter N's coursework tasks (make check: all), docs/coursework.md
 #   make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": some)
 #   make clean          remove build/ and out/
