@@ -346,10 +346,9 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
         return NULL;
     b->triangle_count = n;
     b->nodes = malloc((2 * n + 1) * sizeof *b->nodes);
-    b->triangles = malloc((n + 1) * sizeof *b->triangles);
     b->faces = malloc((n + 1) * sizeof *b->faces);
     struct bvh_prim *prims = malloc((n + 1) * sizeof *prims);
-    if (b->nodes == NULL || b->triangles == NULL || b->faces == NULL || prims == NULL) {
+    if (b->nodes == NULL || b->faces == NULL || prims == NULL) {
         free(prims);
         bvh_free(b);
         return NULL;
@@ -389,14 +388,20 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
         bd.root_area = box_area(&root);
         build_node(&bd, 0, (uint32_t)tree, 0);
     }
-    /* The triangles in leaf order, as the intersection test wants them; the slivers after them. */
+    /* The triangles in leaf order, as the intersection test wants them; the slivers after them.
+     * Allocated once the prims are freed, so that the two are never held at once. */
     for (size_t k = 0; k < tree; k++)
         b->faces[k] = prims[k].face;
+    free(prims);
+    b->triangles = malloc((n + 1) * sizeof *b->triangles);
+    if (b->triangles == NULL) {
+        bvh_free(b);
+        return NULL;
+    }
     for (size_t k = 0; k < n; k++) {
         const uint32_t *v = m->faces[b->faces[k]].v;
         b->triangles[k] = (struct bvh_triangle){m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]};
     }
-    free(prims);
     b->info = (struct bvh_info){b->node_count, bd.leaves, bd.max_depth, 0.0,
                                 bd.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
     b->info.build_ms = now_ms() - start;

@@ -588,9 +588,8 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
     struct fbox *prims = alloc_big((n ? n : 1) * sizeof *prims, huge);
     struct binary_node *binary = alloc_big(most_nodes * sizeof *binary, huge);
     b->nodes = alloc_big(most_nodes * sizeof *b->nodes, huge);
-    b->triangles = alloc_big((n ? n : 1) * sizeof *b->triangles, huge);
     b->faces = alloc_big((n ? n : 1) * sizeof *b->faces, huge);
-    if (b->nodes == NULL || b->triangles == NULL || b->faces == NULL || prims == NULL || binary == NULL) {
+    if (b->nodes == NULL || b->faces == NULL || prims == NULL || binary == NULL) {
         free(prims);
         free(binary);
         fast_bvh_free(b);
@@ -645,7 +644,13 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
     b->node_count = bd.node_count;
     assert((BVH_WIDTH - 1) * bd.max_depth < BVH_STACK_SIZE);
 
-    /* The triangles in leaf order, as the intersection test wants them. */
+    /* The triangles in leaf order, as the intersection test wants them; allocated only now that the
+     * build's boxes and binary tree are freed, so that the peak memory holds one or the other. */
+    b->triangles = alloc_big((n ? n : 1) * sizeof *b->triangles, huge);
+    if (b->triangles == NULL) {
+        fast_bvh_free(b);
+        return NULL;
+    }
     for (size_t k = 0; k < n; k++) {
         const uint32_t *v = m->faces[b->faces[k]].v;
         vec3 a = m->vertices[v[0]];
