@@ -916,13 +916,15 @@ static void check_mesh_kdtrees(const char *name, struct mesh *m, uint64_t seed) 
     mesh_free(m);
 }
 
+/* How a group of meshes is checked: build, compare with the brute-force loop, free the mesh. */
+typedef void (*mesh_check)(const char *name, struct mesh *m, uint64_t seed);
+
 /* A scene may place a mesh where its coordinates overflow float when the tree rounds its boxes
  * outward (scale 1e39), near the top of double (1e300, 1e308, where the intersection arithmetic itself
  * overflows), below float's normal range (1e-40), or far from the origin (translate 1e39, where
- * double collapses the soup's corners); a mesh may also be flat on an axis, or a single point. The
- * builds once looped forever on NaN event positions; now every rule finishes and agrees with the
- * brute-force loop. */
-Test(accel, kdtree_builds_and_matches_brute_force_on_meshes_outside_float_range, .timeout = 120) {
+ * double collapses the soup's corners); a mesh may also be flat on an axis, or a single point. Each
+ * such mesh goes to `check`; `salt` changes the soups' random seeds. */
+static void check_meshes_outside_float_range(mesh_check check, uint64_t salt) {
     static const struct {
         const char *name;
         double scale, shift_x;
@@ -932,41 +934,51 @@ Test(accel, kdtree_builds_and_matches_brute_force_on_meshes_outside_float_range,
         {"soup moved to x = 1e39", 1.0, 1e39}, {"soup from -1e38 to 1e39", 1.1e39, -1e38},
     };
     for (size_t k = 0; k < sizeof placed / sizeof placed[0]; k++) {
-        struct mesh m = make_soup(1601 + k, 300);
+        struct mesh m = make_soup(1601 + salt + k, 300);
         transform_mesh(&m, placed[k].scale, vec3_make(placed[k].shift_x, 0, 0));
-        check_mesh_kdtrees(placed[k].name, &m, 21 + k);
+        check(placed[k].name, &m, 21 + salt + k);
     }
-    struct mesh flat = make_soup(1701, 300); /* zero extent on z */
+    struct mesh flat = make_soup(1701 + salt, 300); /* zero extent on z */
     for (size_t k = 0; k < flat.vertex_count; k++)
         flat.vertices[k].z = 0.5;
-    check_mesh_kdtrees("soup flat in z = 0.5", &flat, 31);
+    check("soup flat in z = 0.5", &flat, 31 + salt);
     struct builder point = {0}; /* zero extent on every axis: flat boxes */
     for (int k = 0; k < 20; k++)
         add_triangle(&point, vec3_make(1e39, -2, 3), vec3_make(1e39, -2, 3), vec3_make(1e39, -2, 3));
-    check_mesh_kdtrees("point at x = 1e39", &point.m, 32);
+    check("point at x = 1e39", &point.m, 32 + salt);
     /* a well-placed soup with a few faces far out: the near faces must still be found */
-    struct mesh mixed = make_soup(1801, 300);
+    struct mesh mixed = make_soup(1801 + salt, 300);
     for (size_t k = 0; k < 12; k++)
         mixed.vertices[mixed.faces[k * 20].v[k % 3]].x = k % 2 ? 1e300 : -1e39;
-    check_mesh_kdtrees("soup with corners at 1e300 and -1e39", &mixed, 33);
+    check("soup with corners at 1e300 and -1e39", &mixed, 33 + salt);
 }
 
-/* Corners at infinity or NaN (a mesh scaled by 1e308 whose coordinates exceed 1.8 overflows double):
- * the builds finish, and the tree still answers exactly as the brute-force loop does. */
-Test(accel, kdtree_builds_and_matches_brute_force_with_corners_at_infinity_or_nan, .timeout = 120) {
+/* Corners at infinity or NaN (a mesh scaled by 1e308 whose coordinates exceed 1.8 overflows double),
+ * each such mesh given to `check`. */
+static void check_meshes_with_corners_at_infinity_or_nan(mesh_check check, uint64_t salt) {
     static const double bad[] = {INFINITY, -INFINITY, NAN};
     for (int k = 0; k < 3; k++) {
-        struct mesh m = make_soup(1901 + (uint64_t)k, 300);
+        struct mesh m = make_soup(1901 + salt + (uint64_t)k, 300);
         for (size_t f = 0; f < 10; f++)
             m.vertices[m.faces[f * 25].v[f % 3]].y = bad[k];
         char name[64];
         snprintf(name, sizeof name, "soup with corners at y = %g", bad[k]);
-        check_mesh_kdtrees(name, &m, 41 + (uint64_t)k);
+        check(name, &m, 41 + salt + (uint64_t)k);
     }
-    struct mesh all = make_soup(1999, 100); /* every corner overflowed */
+    struct mesh all = make_soup(1999 + salt, 100); /* every corner overflowed */
     transform_mesh(&all, 1e308, vec3_make(0, 0, 0));
     transform_mesh(&all, 1e308, vec3_make(0, 0, 0));
-    check_mesh_kdtrees("soup scaled by 1e616", &all, 44);
+    check("soup scaled by 1e616", &all, 44 + salt);
+}
+
+/* The kd-tree builds once looped forever on NaN event positions; now every rule finishes and agrees
+ * with the brute-force loop. */
+Test(accel, kdtree_builds_and_matches_brute_force_on_meshes_outside_float_range, .timeout = 120) {
+    check_meshes_outside_float_range(check_mesh_kdtrees, 0);
+}
+
+Test(accel, kdtree_builds_and_matches_brute_force_with_corners_at_infinity_or_nan, .timeout = 120) {
+    check_meshes_with_corners_at_infinity_or_nan(check_mesh_kdtrees, 0);
 }
 
 /* ---- BVHs on degenerate extents ------------------------------------------------------------------ */
@@ -974,43 +986,14 @@ Test(accel, kdtree_builds_and_matches_brute_force_with_corners_at_infinity_or_na
 /* The SAH builds of chapters 10 and 11 drop each centroid into a slot by (centroid - lowest) * scale.
  * A mesh beyond float's or double's range gives infinite or NaN centroids, and a NaN converted to an
  * integer slot was INT_MIN, an index far outside the slots (AddressSanitizer reports it). Every slot
- * index is now clamped at both ends first. On the placements of the kd-tree tests above, every BVH
- * builds a valid tree and answers exactly as the brute-force loop does. */
+ * index is now clamped at both ends first. On the same meshes as the kd-tree's, every BVH (and every
+ * rung) builds a valid tree and answers exactly as the brute-force loop does. */
 Test(accel, bvhs_build_and_match_brute_force_on_meshes_outside_float_range, .timeout = 120) {
-    static const struct {
-        const char *name;
-        double scale, shift_x;
-    } placed[] = {
-        {"soup scaled by 1e39", 1e39, 0.0},   {"soup scaled by 1e300", 1e300, 0.0},
-        {"soup scaled by 1e308", 1e308, 0.0}, {"soup scaled by 1e-40", 1e-40, 0.0},
-        {"soup moved to x = 1e39", 1.0, 1e39}, {"soup from -1e38 to 1e39", 1.1e39, -1e38},
-    };
-    for (size_t k = 0; k < sizeof placed / sizeof placed[0]; k++) {
-        struct mesh m = make_soup(2601 + k, 300);
-        transform_mesh(&m, placed[k].scale, vec3_make(placed[k].shift_x, 0, 0));
-        check_mesh(placed[k].name, &m, 51 + k);
-    }
-    struct mesh mixed = make_soup(2801, 300); /* a well-placed soup with a few faces far out */
-    for (size_t k = 0; k < 12; k++)
-        mixed.vertices[mixed.faces[k * 20].v[k % 3]].x = k % 2 ? 1e300 : -1e39;
-    check_mesh("soup with corners at 1e300 and -1e39", &mixed, 61);
+    check_meshes_outside_float_range(check_mesh, 1000);
 }
 
-/* Corners at infinity or NaN: the centroids of those faces are infinite or NaN. */
 Test(accel, bvhs_build_and_match_brute_force_with_corners_at_infinity_or_nan, .timeout = 120) {
-    static const double bad[] = {INFINITY, -INFINITY, NAN};
-    for (int k = 0; k < 3; k++) {
-        struct mesh m = make_soup(2901 + (uint64_t)k, 300);
-        for (size_t f = 0; f < 10; f++)
-            m.vertices[m.faces[f * 25].v[f % 3]].y = bad[k];
-        char name[64];
-        snprintf(name, sizeof name, "soup with corners at y = %g", bad[k]);
-        check_mesh(name, &m, 71 + (uint64_t)k);
-    }
-    struct mesh all = make_soup(2999, 100); /* every corner overflowed */
-    transform_mesh(&all, 1e308, vec3_make(0, 0, 0));
-    transform_mesh(&all, 1e308, vec3_make(0, 0, 0));
-    check_mesh("soup scaled by 1e616", &all, 74);
+    check_meshes_with_corners_at_infinity_or_nan(check_mesh, 1000);
 }
 
 /* Chapter 11's rungs: only 1 to 5, by number or name; anything else builds nothing. */
