@@ -1,6 +1,6 @@
 # Makefile: builds the chapters of the whitted ray tracer, renders their scenes, runs the tests.
 #
-#   make chapter-N      build chapter N (1..10) and render its scene to out/chapter-NN.png
+#   make chapter-N      build chapter N (1..11) and render its scene to out/chapter-NN.png
 #   make chapters       build and render every written chapter
 #   make test           unit tests, image regression, POV-Ray agreement (installs what is missing)
 #   make test-sanitize  the same suite built with AddressSanitizer and UndefinedBehaviorSanitizer
@@ -10,7 +10,7 @@
 #   make figures        redraw the walkthroughs' figures, docs/figures/*.svg, from tools/figures/
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
-#   make bench          kd-tree and BVH against brute force and Embree on the 350k-triangle teapot
+#   make bench          kd-tree, BVH and chapter 11's rungs against Embree; peak memory on a 4M-triangle teapot
 #   make check-N        grade chapter N's coursework tasks (make check: all), docs/coursework.md
 #   make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": some)
 #   make fuzz           the libFuzzer harnesses (scene, PLY, OBJ, renderer), FUZZ_SECONDS each
@@ -71,8 +71,9 @@ MODULES_07 := $(MODULES_06) shadow
 MODULES_08 := $(MODULES_07) interior whitted
 MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh accel_bvh
+MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh
+            09-kdtree 10-bvh 11-fast
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
@@ -83,7 +84,7 @@ include tools/models.mk
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
 .PHONY: all chapters test test-sanitize test-accel-long references compare gallery figures clean help models \
-        $(foreach n,1 2 3 4 5 6 7 8 9 10,chapter-$(n))
+        $(foreach n,1 2 3 4 5 6 7 8 9 10 11,chapter-$(n))
 .DEFAULT_GOAL := all
 .SECONDARY:
 .SECONDEXPANSION:
@@ -119,7 +120,7 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..10: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# chapter-N for N = 1..11: explicit rules (GNU make skips pattern rules for phony targets). Only the
 # models that the chapter's scene names are made first (mesh paths are relative to scenes/).
 define run_chapter_rule
 chapter-$(1): | out
@@ -129,7 +130,7 @@ chapter-$(1): | out
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11,$(eval $(call run_chapter_rule,$(n))))
 
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
 

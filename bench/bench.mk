@@ -1,10 +1,12 @@
-# bench/bench.mk: the acceleration benchmark of chapters 9 and 10. A GNU make fragment included from
+# bench/bench.mk: the acceleration benchmarks of chapters 9, 10 and 11. A GNU make fragment included from
 # the top-level Makefile, which defines CC, BUILD, CFLAGS, LDFLAGS, LDLIBS and the rule that makes
 # $(BUILD)/common/%.o from common/%.c.
 #
 #   make bench-accel   build $(BUILD)/bench_accel and run it on the big teapot and the bunny, with Intel
 #                      Embree 3 as the yardstick (installs Debian's libembree-dev if it is missing)
-#   make bench         every benchmark (for now bench-accel)
+#   make bench-memory  peak memory of chapters 10 and 11 (every rung) per triangle, on a teapot of about
+#                      4 million triangles made by tools/teapot.c into out/bench/
+#   make bench         every benchmark: bench-accel, then bench-memory
 #
 # bench/embree_ref.c is compiled in only when /usr/include/embree3/rtcore.h exists. So the bench-accel
 # recipe installs the package first and only then makes the program, in a second make that sees the
@@ -12,7 +14,7 @@
 # installing Embree later rebuilds what must change.
 
 BENCH_MODELS := scenes/models/teapot-346k.ply scenes/models/bunny.ply
-BENCH_MODULES := bvh kdtree kdtree_events kdtree_check triangle stats mesh mesh_ply mesh_obj camera
+BENCH_MODULES := bvh fast_bvh kdtree kdtree_events kdtree_check triangle stats mesh mesh_ply mesh_obj camera
 BENCH_EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
 BENCH_VARIANT := $(if $(BENCH_EMBREE),embree,plain)
 BENCH_SOURCES := bench/bench_accel.c $(if $(BENCH_EMBREE),bench/embree_ref.c)
@@ -20,9 +22,9 @@ BENCH_OBJECTS := $(patsubst bench/%.c,$(BUILD)/bench/$(BENCH_VARIANT)/%.o,$(BENC
 BENCH_CFLAGS := $(if $(BENCH_EMBREE),-DWHITTED_EMBREE)
 BENCH_LDLIBS := $(if $(BENCH_EMBREE),-lembree3)
 
-.PHONY: bench bench-accel
+.PHONY: bench bench-accel bench-memory
 
-bench: bench-accel
+bench: bench-accel bench-memory
 
 bench-accel: $(BENCH_MODELS)
 	tools/install-deps.sh bench
@@ -39,3 +41,32 @@ $(BUILD)/bench_accel: $(BENCH_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix 
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(BENCH_LDLIBS)
 
 -include $(wildcard $(BUILD)/bench/*/*.d)
+
+# ---- memory: peak RSS per triangle on a big teapot ----------------------------------------------
+BENCH_MEMORY_TRIANGLES := 4000000
+BENCH_MEMORY_DIR := out/bench
+BENCH_MEMORY_SCENE := $(BENCH_MEMORY_DIR)/teapot-4m.scene
+
+$(BUILD)/peak_rss: bench/peak_rss.c | $(BUILD)/bench/$(BENCH_VARIANT)
+	$(CC) $(CFLAGS) $< -o $@
+
+$(BENCH_MEMORY_DIR)/teapot-4m.ply: $(MODELS_TEAPOT)
+	@mkdir -p $(@D)
+	$(MODELS_TEAPOT) --triangles $(BENCH_MEMORY_TRIANGLES) $(@:.ply=.tmp.ply) && mv $(@:.ply=.tmp.ply) $@
+
+# A small picture (64 x 48) on one thread: the memory is the scene's, the structure's and the build's.
+$(BENCH_MEMORY_SCENE): $(BENCH_MEMORY_DIR)/teapot-4m.ply
+	printf '%s\n' 'camera eye 0 2.5 9  target 0 1 0  fov 36' 'image 64 48' 'light position -5 8 6  colour 1 1 1' \
+	    'material china colour 0.35 0.55 0.85 ambient 0.1 diffuse 0.7' 'mesh teapot-4m.ply material china' >$@
+
+bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE)
+	@triangles=$$(awk '/^element face/ { print $$3; exit }' $(BENCH_MEMORY_DIR)/teapot-4m.ply); \
+	echo "peak memory on $(BENCH_MEMORY_SCENE) ($$triangles triangles, 64x48, 1 thread):"; \
+	$(BUILD)/peak_rss $$triangles "chapter 10, BVH-SAH" $(BUILD)/chapter-10 $(BENCH_MEMORY_SCENE) --threads 1 --quiet \
+	    -o $(BENCH_MEMORY_DIR)/memory.png && \
+	for rung in 1 2 3 4 5; do \
+	    $(BUILD)/peak_rss $$triangles "chapter 11, rung $$rung" $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE) --threads 1 \
+	        --quiet --rung $$rung -o $(BENCH_MEMORY_DIR)/memory.png || exit 1; \
+	done; \
+	$(BUILD)/peak_rss $$triangles "chapter 11, --accel none (scene and gather)" $(BUILD)/chapter-11 \
+	    $(BENCH_MEMORY_SCENE) --threads 1 --quiet --accel none --width 1 --height 1 -o $(BENCH_MEMORY_DIR)/memory.png

@@ -1,10 +1,11 @@
-/* bench_accel.c: times the acceleration structures of chapters 9 and 10 on real models.
+/* bench_accel.c: times the acceleration structures of chapters 9, 10 and 11 on real models.
  *
  *     bench_accel [--embree] [--repeats N] [--only NAME] MODEL.ply...
  *
  * For each model: a camera fitted to its bounding sphere, 800x600 pixels, one camera ray per pixel,
  * one point light and, from every hit, one shadow ray towards it; one thread. Each structure is built
- * and the frame traced --repeats times (default 3), and the fastest of each is reported: build ms,
+ * and the frame traced --repeats times (default 3), in rounds that take every structure in turn, and
+ * the fastest of each is reported: build ms,
  * frame ms, million rays per second, and the counters per ray. The brute-force loop ("naive") would
  * take hours on big models, so it traces only a few evenly spaced rows and its time is scaled up to the
  * whole frame; its row says "(sampled)". With --embree (when built with Embree, see bench/bench.mk)
@@ -12,9 +13,17 @@
  * runs just the structure called NAME (and BVH-SAH, the reference), e.g. for a profiler.
  *
  * Every structure must find exactly the brute-force answer, so each frame is also checked pixel by
- * pixel against the BVH-SAH frame: the nearest face, its t to the last bit, and the shadow. Embree works
+ * pixel against the BVH-SAH frame: the nearest face, its t to the last bit, and the shadow. The rows
+ * "rung N" are chapter 11's ladder (rung 1 is chapter 10's BVH-SAH); each gets its ratio to the rung
+ * below. Embree works
  * in float, so it is only expected to agree on nearly every pixel; its count of differing pixels is
- * printed for information. */
+ * printed for information.
+ *
+ * The clock is the processor time of the process (CLOCK_PROCESS_CPUTIME_ID), not the wall clock: on a
+ * shared machine with more runnable work than cores, wall times of the same frame varied by a factor
+ * of two between runs, while processor time counts only the time the benchmark itself ran. It still
+ * varies with what shares the caches, so every row is the best of its rounds. All builds, ours and
+ * Embree's, are timed around the call that makes the structure, on that clock. */
 #include <inttypes.h>
 #include <math.h>
 #include <stdbool.h>
@@ -25,6 +34,7 @@
 #include <time.h>
 
 #include "bvh.h"
+#include "fast_bvh.h"
 #include "camera.h"
 #include "kdtree.h"
 #include "mesh.h"
@@ -45,9 +55,11 @@ bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light
                       double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
 #endif
 
+/* The processor time the whole process has used, in milliseconds, all its threads together (the
+ * benchmark's clock, see bench_accel.c's comment). */
 static double now_ms(void) {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
@@ -59,6 +71,7 @@ struct accel {
     void (*destroy)(void *structure);
     bool (*closest)(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
     bool (*occluded)(const void *structure, const ray *r, double t_min, double t_max);
+    int below; /* the row of the rung below, for the ratio; -1 when not a rung */
 };
 
 /* The brute-force loop: every face, every ray. */
@@ -103,11 +116,12 @@ static bool naive_occluded(const void *structure, const ray *r, double t_min, do
 
 #define BVH_ADAPTER(tag, rule)                                                                            \
     static void *tag##_build(const struct mesh *m, double *build_ms, double *sah_cost) {                  \
+        double start = now_ms();                                                                          \
         struct bvh *b = bvh_build(m, rule);                                                               \
         struct bvh_info info;                                                                             \
         if (b != NULL) {                                                                                  \
             bvh_get_info(b, &info);                                                                       \
-            *build_ms = info.build_ms;                                                                    \
+            *build_ms = now_ms() - start;                                                                 \
             *sah_cost = info.sah_cost;                                                                    \
         }                                                                                                 \
         return b;                                                                                         \
@@ -115,11 +129,12 @@ static bool naive_occluded(const void *structure, const ray *r, double t_min, do
 
 #define KD_ADAPTER(tag, rule)                                                                             \
     static void *tag##_build(const struct mesh *m, double *build_ms, double *sah_cost) {                  \
+        double start = now_ms();                                                                          \
         struct kdtree *k = kdtree_build(m, rule);                                                         \
         struct kdtree_info info;                                                                          \
         if (k != NULL) {                                                                                  \
             kdtree_get_info(k, &info);                                                                    \
-            *build_ms = info.build_ms;                                                                    \
+            *build_ms = now_ms() - start;                                                                 \
             *sah_cost = info.sah_cost;                                                                    \
         }                                                                                                 \
         return k;                                                                                         \
@@ -137,6 +152,31 @@ static bool bvh_closest_any(const void *s, const ray *r, double t_min, double t_
 static bool bvh_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
     return bvh_occluded(s, r, t_min, t_max);
 }
+#define FAST_ADAPTER(rung)                                                                                \
+    static void *fast_##rung##_build(const struct mesh *m, double *build_ms, double *sah_cost) {           \
+        double start = now_ms();                                                                          \
+        struct fast_bvh *b = fast_bvh_build(m, BVH_SPLIT_SAH, rung);                                      \
+        struct bvh_info info;                                                                             \
+        if (b != NULL) {                                                                                  \
+            fast_bvh_get_info(b, &info);                                                                  \
+            *build_ms = now_ms() - start;                                                                 \
+            *sah_cost = info.sah_cost;                                                                    \
+        }                                                                                                 \
+        return b;                                                                                         \
+    }
+
+FAST_ADAPTER(FAST_BVH_RUNG_WIDE)
+FAST_ADAPTER(FAST_BVH_RUNG_SIMD)
+FAST_ADAPTER(FAST_BVH_RUNG_PREFETCH)
+FAST_ADAPTER(FAST_BVH_RUNG_BUILD)
+
+static void fast_destroy(void *s) { fast_bvh_free(s); }
+static bool fast_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return fast_bvh_closest(s, r, t_min, t_max, t, face);
+}
+static bool fast_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
+    return fast_bvh_occluded(s, r, t_min, t_max);
+}
 static void kd_destroy(void *s) { kdtree_free(s); }
 static bool kd_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
     return kdtree_closest(s, r, t_min, t_max, t, face);
@@ -148,11 +188,15 @@ static bool kd_occluded_any(const void *s, const ray *r, double t_min, double t_
 /* In the order the table prints them; BVH-SAH (index ACCEL_REFERENCE) is traced first and is the
  * frame the others are checked against. */
 static const struct accel accels[] = {
-    {"naive", naive_build, naive_destroy, naive_closest, naive_occluded},
-    {"kd-seed", kd_seed_build, kd_destroy, kd_closest_any, kd_occluded_any},
-    {"kd-SAH", kd_sah_build, kd_destroy, kd_closest_any, kd_occluded_any},
-    {"BVH-median", bvh_median_build, bvh_destroy, bvh_closest_any, bvh_occluded_any},
-    {"BVH-SAH", bvh_sah_build, bvh_destroy, bvh_closest_any, bvh_occluded_any},
+    {"naive", naive_build, naive_destroy, naive_closest, naive_occluded, -1},
+    {"kd-seed", kd_seed_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
+    {"kd-SAH", kd_sah_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
+    {"BVH-median", bvh_median_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
+    {"BVH-SAH (rung 1 plain)", bvh_sah_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
+    {"rung 2 wide", fast_FAST_BVH_RUNG_WIDE_build, fast_destroy, fast_closest_any, fast_occluded_any, 4},
+    {"rung 3 simd", fast_FAST_BVH_RUNG_SIMD_build, fast_destroy, fast_closest_any, fast_occluded_any, 5},
+    {"rung 4 prefetch", fast_FAST_BVH_RUNG_PREFETCH_build, fast_destroy, fast_closest_any, fast_occluded_any, 6},
+    {"rung 5 build", fast_FAST_BVH_RUNG_BUILD_build, fast_destroy, fast_closest_any, fast_occluded_any, 7},
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
 #define ACCEL_NAIVE 0
@@ -239,6 +283,7 @@ static bool fit_camera(const struct mesh *m, struct camera *cam, vec3 *light) {
 
 struct row {
     bool done;
+    int below; /* as in struct accel */
     char label[48];
     double build_ms, frame_ms, sah_cost;
     double rays, triangle_tests, node_visits, primary_rays, primary_tests;
@@ -255,8 +300,9 @@ static void print_number(int w, double x, int decimals) {
 }
 
 static void print_table(const struct row *rows, size_t count, const struct row *embree) {
-    printf("  %-26s %9s %10s %8s %8s %9s %9s %8s %8s %8s  %s\n", "structure", "build ms", "frame ms", "Mrays/s",
-           "tri/ray", "nodes/ray", "tri/cam", "SAH cost", "frame/E", "build/E", "pixels as BVH-SAH's?");
+    printf("  %-26s %9s %10s %8s %8s %9s %9s %8s %8s %8s %8s %8s  %s\n", "structure", "build ms", "frame ms", "Mrays/s",
+           "tri/ray", "nodes/ray", "tri/cam", "SAH cost", "frame/E", "build/E", "frame/<", "build/<",
+           "pixels as BVH-SAH's?");
     bool with_embree = embree != NULL && embree->done;
     for (size_t k = 0; k <= count; k++) {
         const struct row *r = k < count ? &rows[k] : embree;
@@ -273,6 +319,9 @@ static void print_table(const struct row *rows, size_t count, const struct row *
         print_number(8, counted ? r->sah_cost : NAN, 1);
         print_number(8, with_embree ? r->frame_ms / embree->frame_ms : NAN, 2);
         print_number(8, with_embree && r->build_ms > 0 ? r->build_ms / embree->build_ms : NAN, 2);
+        const struct row *b = k < count && r->below >= 0 && rows[r->below].done ? &rows[r->below] : NULL;
+        print_number(8, b != NULL ? r->frame_ms / b->frame_ms : NAN, 2);
+        print_number(8, b != NULL ? r->build_ms / b->build_ms : NAN, 2);
         if (r->compared)
             printf("  %s", r->differ == 0 ? "all equal" : "NO");
         else if (r != embree)
@@ -283,7 +332,7 @@ static void print_table(const struct row *rows, size_t count, const struct row *
     }
     printf("  tri/ray, nodes/ray: triangle tests and node visits per ray (camera and shadow); tri/cam: triangle\n"
            "  tests per camera ray; SAH cost: the structure's own prediction, in triangle tests per ray;\n"
-           "  frame/E, build/E: time over Embree's; pixels: nearest face, its t to the last bit, and the shadow,\n"
+           "  frame/E, build/E: time over Embree's; frame/<, build/<: time over the rung below's; pixels: nearest face, its t to the last bit, and the shadow,\n"
            "  on every pixel (on the sampled rows for the brute-force loop)\n");
 }
 
@@ -321,7 +370,8 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
     for (int k = 0; k < naive_rows; k++)
         sampled_rows[k] = (int)((k + 0.5) * cam.height / naive_rows);
 
-    printf("%s: %zu triangles, %dx%d, 1 camera ray per pixel + 1 shadow ray per hit, 1 thread, best of %d\n",
+    printf("%s: %zu triangles, %dx%d, 1 camera ray per pixel + 1 shadow ray per hit, 1 thread, best of %d,\n"
+           "processor time\n",
            path, m.face_count, cam.width, cam.height, repeats);
     fflush(stdout);
 
@@ -330,22 +380,33 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
     for (size_t k = 0, n = 1; k < ACCEL_COUNT; k++)
         if (k != ACCEL_REFERENCE)
             order[n++] = k;
-    for (size_t o = 0; o < ACCEL_COUNT; o++) {
-        size_t k = order[o];
-        const struct accel *a = &accels[k];
-        if (only != NULL && k != ACCEL_REFERENCE && strcmp(only, a->name) != 0)
-            continue;
-        struct row *row = &rows[k];
-        bool naive = k == ACCEL_NAIVE;
-        const int *list = naive ? sampled_rows : all_rows;
-        int list_count = naive ? naive_rows : cam.height;
-        int runs = naive ? 1 : repeats;
-        snprintf(row->label, sizeof row->label, "%s", a->name);
-        if (naive && naive_rows < cam.height)
-            snprintf(row->label, sizeof row->label, "%s (sampled, %d rows)", a->name, naive_rows);
-        row->build_ms = INFINITY;
-        row->frame_ms = INFINITY;
-        for (int run = 0; run < runs; run++) {
+    struct row embree = {0};
+    embree.build_ms = INFINITY;
+    embree.frame_ms = INFINITY;
+    /* Round after round, every structure once per round (interleaved, so that a busy spell of a shared
+     * machine slows all of them alike rather than one of them throughout); the best of the rounds is
+     * kept. The reference goes first in each round, Embree last; the brute-force loop runs in the first round
+     * only. */
+    for (int run = 0; run < repeats; run++) {
+        for (size_t o = 0; o < ACCEL_COUNT; o++) {
+            size_t k = order[o];
+            const struct accel *a = &accels[k];
+            if (only != NULL && k != ACCEL_REFERENCE && strcmp(only, a->name) != 0)
+                continue;
+            struct row *row = &rows[k];
+            bool naive = k == ACCEL_NAIVE;
+            if (naive && run > 0)
+                continue;
+            const int *list = naive ? sampled_rows : all_rows;
+            int list_count = naive ? naive_rows : cam.height;
+            if (run == 0) {
+                snprintf(row->label, sizeof row->label, "%s", a->name);
+                if (naive && naive_rows < cam.height)
+                    snprintf(row->label, sizeof row->label, "%s (sampled, %d rows)", a->name, naive_rows);
+                row->below = a->below;
+                row->build_ms = INFINITY;
+                row->frame_ms = INFINITY;
+            }
             double build_ms = 0, sah_cost = 0;
             void *s = a->build(&m, &build_ms, &sah_cost);
             if (s == NULL) {
@@ -366,40 +427,42 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
                 row->node_visits = (double)f.counters.node_visits * scale;
                 row->primary_tests = (double)f.primary_tests * scale;
             }
+            if (k != ACCEL_REFERENCE) {
+                long differ = count_differences(reference, pixels, cam.width, list, list_count);
+                row->differ = differ > row->differ ? differ : row->differ;
+                row->compared = true;
+            }
+            row->done = true;
         }
-        if (k != ACCEL_REFERENCE) {
-            row->differ = count_differences(reference, pixels, cam.width, list, list_count);
-            row->compared = true;
+#ifdef WHITTED_EMBREE
+        if (with_embree) {
+            unsigned char *codes = malloc(pixel_count);
+            double build_ms, frame_ms;
+            if (codes == NULL ||
+                !embree_ref_frame(&m, &cam, light, 1, &build_ms, &frame_ms, codes, err, sizeof err)) {
+                fprintf(stderr, "bench_accel: %s: %s\n", path, codes == NULL ? "out of memory" : err);
+                return 1;
+            }
+            snprintf(embree.label, sizeof embree.label, "Embree 3 (float, 1 thread)");
+            embree.build_ms = build_ms < embree.build_ms ? build_ms : embree.build_ms;
+            embree.frame_ms = frame_ms < embree.frame_ms ? frame_ms : embree.frame_ms;
+            long differ = 0, hits = 0;
+            for (size_t p = 0; p < pixel_count; p++) {
+                int ours = reference[p].face == UINT32_MAX ? 0 : reference[p].shadowed ? 2 : 1;
+                differ += codes[p] != ours;
+                hits += codes[p] != 0;
+            }
+            embree.rays = (double)(pixel_count + hits);
+            embree.differ = differ;
+            embree.done = true;
+            free(codes);
         }
-        row->done = true;
-        fprintf(stderr, "  %s done\n", row->label);
+#else
+        (void)with_embree;
+#endif
+        fprintf(stderr, "  round %d of %d done\n", run + 1, repeats);
     }
 
-    struct row embree = {0};
-#ifdef WHITTED_EMBREE
-    if (with_embree) {
-        unsigned char *codes = malloc(pixel_count);
-        if (codes == NULL || !embree_ref_frame(&m, &cam, light, repeats, &embree.build_ms, &embree.frame_ms, codes,
-                                               err, sizeof err)) {
-            fprintf(stderr, "bench_accel: %s: %s\n", path, codes == NULL ? "out of memory" : err);
-            return 1;
-        }
-        snprintf(embree.label, sizeof embree.label, "Embree 3 (float, 1 thread)");
-        long differ = 0, hits = 0, shadowed = 0;
-        for (size_t p = 0; p < pixel_count; p++) {
-            int ours = reference[p].face == UINT32_MAX ? 0 : reference[p].shadowed ? 2 : 1;
-            differ += codes[p] != ours;
-            hits += codes[p] != 0;
-            shadowed += codes[p] == 2;
-        }
-        embree.rays = (double)(pixel_count + hits);
-        embree.differ = differ;
-        embree.done = true;
-        free(codes);
-    }
-#else
-    (void)with_embree;
-#endif
     print_table(rows, ACCEL_COUNT, with_embree ? &embree : NULL);
     if (embree.done)
         printf("  Embree's pixels are compared with BVH-SAH's hit/miss and shadow only: it works in float, so a\n"

@@ -1,19 +1,19 @@
-/* bvh.c: bounding volume hierarchy, median and binned-SAH builds, stack traversal (chapter 10).
+/* bvh.c: bounding volume hierarchy: median and binned-SAH builds, ordered traversal (chapter 10).
  *
- * The build sorts triangles into a binary tree of axis-aligned boxes. BVH_SPLIT_MEDIAN is the
+ * The build sorts the triangles into a binary tree of boxes. Each node has the box around its
+ * triangles; an interior node has two children, a leaf a run of triangles. BVH_SPLIT_MEDIAN is the
  * dissertation's rule (halve the triangles by centroid along the longest axis). BVH_SPLIT_SAH is the
  * binned surface area heuristic of Wald, "On fast construction of SAH-based bounding volume
  * hierarchies" (IEEE RT 2007): the centroids are dropped into BVH_BINS slots per axis, and of the
- * BVH_BINS - 1 planes between slots the one minimising
+ * planes between slots the one minimising
  *     BVH_COST_TRAVERSAL + BVH_COST_TRIANGLE * (area(L) * count(L) + area(R) * count(R)) / area(node)
  * is taken, unless a leaf (BVH_COST_TRIANGLE * count) is cheaper. The ratio of a child's area to its
  * parent's is the chance that a random ray through the parent also crosses the child (MacDonald and
  * Booth 1990), so the sum is the expected cost of a ray that reaches the node.
  *
- * Tuning constants (values below): BVH_BINS 16, BVH_BIN_SETS 4 from BVH_MANY_SETS_FROM 256 triangles,
- * BVH_MAX_LEAF_SIZE 8, BVH_MEDIAN_LEAF_SIZE 2, BVH_COST_TRAVERSAL 1.0, BVH_COST_TRIANGLE 1.0,
- * BVH_MAX_DEPTH 64, BVH_WIDTH 4, BVH_BOX_PAD 2^-20, BVH_SLIVER_SINE 1e-6. (The bench models' frame times moved by less than the noise for traversal costs
- * 0.5 to 2, leaf limits 4 and 8, and 16 or 32 bins: the tree is not what limits the speed.)
+ * The traversal keeps a stack of nodes still to visit, each with the distance at which the ray enters
+ * its box. At an interior node it tests both children's boxes and visits the nearer first; a node that
+ * starts beyond the best hit so far is skipped. A shadow ray stops at its first hit.
  *
  * Exact agreement with the brute-force loop. A query must return the very face and t that testing
  * every face with triangle_intersect would. Four things make sure of it:
@@ -21,9 +21,8 @@
  *    uses, on the very corners the mesh holds, so t is the same double to the last bit.
  *  - A box may only be skipped when no triangle inside can be reported hit. Moller-Trumbore rounds:
  *    it may call a ray that passes a hair outside a triangle a hit. So every triangle's box is grown by
- *    BVH_BOX_PAD times the mesh's size before it is rounded outward to float, far more than any such
- *    rounding error (about 1e-16 of the distance from the ray's origin) and far too little to cost
- *    anything measurable. The slab test itself runs in double on these float bounds.
+ *    BVH_BOX_PAD times the mesh's size, far more than any such rounding error (about 1e-16 of the
+ *    distance from the ray's origin) and far too little to cost anything measurable.
  *  - Needle-thin triangles (BVH_SLIVER_SINE), whose rounding errors no pad covers, are kept out of the
  *    tree and tested by every ray.
  *  - Ties: a box is skipped only when it starts strictly after the best hit so far, and a triangle at
@@ -32,48 +31,23 @@
  * plane at a grazing angle below about 1e-8 radians, has rounding errors the pad may not cover. Neither
  * occurs in tests/test_accel.c's hundreds of thousands of chosen rays nor, as far as we know, in a scene.
  *
- * Layout, chosen for speed. Both rules build a binary tree, which is then collapsed into a 4-wide one
- * (each node takes its widest interior child's children until it has BVH_WIDTH, as in Embree's BVH4):
- * half the depth, so half the chain of dependent "load a node, test it, choose" steps that bounds the
- * speed of one ray. A node stores the boxes of its four children side by side (128 bytes, two cache
- * lines), and a ray visiting it tests all four at once with 2-wide vector arithmetic, and sorts the
- * ones it hits by entry distance, without touching the children themselves. A child is another node or
- * a leaf: a run of triangles, stored in leaf order as (a, b - a, c - a) in doubles with their face
- * numbers beside them. Unused child slots have an empty box (low +infinity, high -infinity), which
- * every slab test misses. The root's box is kept in struct bvh. */
+ * Everything here is plain double-precision C, written to be read. Chapter 11 (fast_bvh.c) makes the
+ * same tree fast: four children per node, float boxes, vector instructions, prefetching. */
 #include "bvh.h"
 
-#include <assert.h>
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <time.h>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#elif defined(__SSE__)
-#include <xmmintrin.h>
-#endif
 
 #include "stats.h"
 #include "triangle.h"
 
 /* Centroid slots per axis for the SAH build. Wald (2007) found 16 within a few percent of testing
- * every plane; more bins build slower and help little. A node of fewer triangles gets one slot per
- * triangle: most nodes are small, and clearing and sweeping 16 mostly empty slots for each of them took
- * an eighth of the build time on the 350k-triangle teapot, for the same tree (same SAH cost). */
+ * every plane; more bins build slower and help little (exercise 1). */
 #define BVH_BINS 16
-
-/* Nodes of at least BVH_MANY_SETS_FROM triangles are binned into BVH_BIN_SETS sets of slots, prim i
- * into set i % BVH_BIN_SETS, and the sets are added up afterwards. Neighbouring prims usually fall into
- * the same slot, and with one set each update of a slot waits for the previous one to be stored; with
- * four, four updates are under way at once. It took a fifth off the build of the 350k-triangle teapot.
- * Small nodes use one set: there, clearing the extra slots costs more than it saves. */
-#define BVH_BIN_SETS 4
-#define BVH_MANY_SETS_FROM 256
 
 /* An SAH node with more triangles than this is always split, even when the heuristic would rather
  * not: a long leaf is costly for every ray that reaches it, which the heuristic's averages hide. */
@@ -84,21 +58,15 @@
 
 /* Relative costs of visiting a node (testing both children's boxes) and of one triangle test, as the
  * heuristic sees them. Measured on this code they are about equal (each is some twenty floating point
- * operations and a few branches); bench_accel prints the predicted cost next to the measured. */
+ * operations and a few branches); the program prints the predicted cost next to the measured. */
 #define BVH_COST_TRAVERSAL 1.0
 #define BVH_COST_TRIANGLE 1.0
 
 /* Below this depth the SAH chooses freely; deeper nodes are halved by count, so the depth stays
  * bounded (at most BVH_MAX_DEPTH + 31 levels for 2^31 triangles), and with it the traversal stack,
- * which holds at most BVH_WIDTH - 1 entries per level. */
+ * which holds at most one node per level plus one. */
 #define BVH_MAX_DEPTH 64
-#define BVH_STACK_SIZE ((BVH_WIDTH - 1) * (BVH_MAX_DEPTH + 32))
-
-/* Children per node after collapsing the binary tree (see the file comment). */
-#define BVH_WIDTH 4
-
-/* An unused child slot. */
-#define BVH_NO_CHILD UINT32_MAX
+#define BVH_STACK_SIZE (BVH_MAX_DEPTH + 33)
 
 /* Every triangle's box is grown by this fraction of the mesh's largest extent (see the file comment):
  * 2^-20, about 1e-6, is ten orders of magnitude above Moller-Trumbore's rounding for rays starting
@@ -114,16 +82,18 @@
  * (triangle_intersect rejects them), so those stay in the tree. Real meshes have few slivers or none. */
 #define BVH_SLIVER_SINE 1e-6
 
-/* Faces are numbered with uint32_t. */
+/* Faces are numbered with uint32_t, and a tree of n faces has up to 2n - 1 nodes. */
 #define BVH_MAX_FACES ((size_t)1 << 31)
 
-struct bvh_node {
-    float bounds[3][2][BVH_WIDTH]; /* [axis][0 = low, 1 = high][child]: the children's boxes, side by side */
-    uint32_t child[BVH_WIDTH];     /* a child node's index, a leaf's first triangle, or BVH_NO_CHILD */
-    uint32_t count[BVH_WIDTH];     /* 0 when the child is a node (or no child); else the leaf's triangles */
+struct bvh_box {
+    double lo[3], hi[3];
 };
 
-_Static_assert(sizeof(struct bvh_node) == 128, "a node should fill exactly two 64-byte cache lines");
+struct bvh_node {
+    struct bvh_box box;    /* holds every triangle below the node */
+    uint32_t left, right;  /* an interior node's children (indices into the nodes) */
+    uint32_t first, count; /* a leaf's triangles: count > 0 of them from triangles[first]; 0 for interior */
+};
 
 /* A triangle as the intersection test wants it: its three corners, copied from the mesh. */
 struct bvh_triangle {
@@ -131,175 +101,86 @@ struct bvh_triangle {
 };
 
 struct bvh {
-    struct bvh_node *nodes;          /* node_count entries, 64-byte aligned */
+    struct bvh_node *nodes;         /* node_count entries; the root is nodes[0] */
     size_t node_count;
-    float root_lo[3], root_hi[3];    /* the root's box */
-    uint32_t root_child, root_count; /* the root, as a child is referred to in a node */
-    struct bvh_triangle *triangles;  /* triangle_count entries: tree_count in leaf order, then the slivers */
-    uint32_t *faces;                 /* faces[k] = index into the mesh's faces of triangles[k] */
-    size_t triangle_count;
-    size_t tree_count;               /* triangles in the tree; the rest are slivers, tested by every ray */
+    struct bvh_triangle *triangles; /* triangle_count entries: tree_count in leaf order, then the slivers */
+    uint32_t *faces;                /* faces[k] = index into the mesh's faces of triangles[k] */
+    size_t triangle_count, tree_count;
     struct bvh_info info;
 };
 
-/* ==== vectors ================================================================================= */
+/* ==== boxes =================================================================================== */
 
-/* GCC's vector extension: a few numbers processed by one instruction (SSE on x86-64). The build works
- * on float4 boxes (lanes x, y, z and an unused 0); the traversal on double2 pairs of children. */
-typedef float float4 __attribute__((vector_size(16)));
-typedef int32_t int4 __attribute__((vector_size(16)));
-typedef double double2 __attribute__((vector_size(16)));
-typedef int64_t long2 __attribute__((vector_size(16)));
+static const struct bvh_box box_empty = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
 
-/* Lane by lane, a < b ? a : b and a > b ? a : b (a NaN in a gives b). SSE has each as one instruction;
- * elsewhere a compare and a select. */
-static inline float4 min4(float4 a, float4 b) {
-#if defined(__SSE__)
-    return _mm_min_ps(a, b);
-#else
-    int4 pick_a = a < b;
-    return (float4)(((int4)a & pick_a) | ((int4)b & ~pick_a));
-#endif
+/* Grows *b to hold c. A NaN bound of c (a corner beyond double's range) compares false and changes
+ * nothing. (Written as comparisons rather than fmin and fmax, which GCC calls as library functions:
+ * that made the whole build five times slower.) */
+static void box_grow(struct bvh_box *b, const struct bvh_box *c) {
+    for (int a = 0; a < 3; a++) {
+        b->lo[a] = c->lo[a] < b->lo[a] ? c->lo[a] : b->lo[a];
+        b->hi[a] = c->hi[a] > b->hi[a] ? c->hi[a] : b->hi[a];
+    }
 }
 
-static inline float4 max4(float4 a, float4 b) {
-#if defined(__SSE__)
-    return _mm_max_ps(a, b);
-#else
-    int4 pick_a = a > b;
-    return (float4)(((int4)a & pick_a) | ((int4)b & ~pick_a));
-#endif
-}
-
-/* ==== memory ================================================================================== */
-
-/* Arrays of 2 MB or more are aligned to 2 MB and the kernel is asked to back them with 2 MB pages
- * (Linux's madvise MADV_HUGEPAGE; elsewhere, or if refused, nothing changes): one page fault per 2 MB
- * instead of one per 4 KB. On the virtual machine this was measured on, first-touch page faults cost
- * 70 ms per 25 MB, most of the build time, and fewer TLB misses speed up the traversal too. The result
- * is 64-byte aligned in any case. NULL when memory runs out; release with free(). */
-#define BVH_HUGE_PAGE ((size_t)1 << 21)
-
-static void *alloc_big(size_t bytes) {
-    if (bytes < BVH_HUGE_PAGE)
-        return aligned_alloc(64, (bytes + 63) / 64 * 64 + 64);
-    size_t rounded = (bytes + BVH_HUGE_PAGE - 1) / BVH_HUGE_PAGE * BVH_HUGE_PAGE;
-    void *p = aligned_alloc(BVH_HUGE_PAGE, rounded);
-#if defined(MADV_HUGEPAGE)
-    if (p != NULL)
-        madvise(p, rounded, MADV_HUGEPAGE); /* only a hint: failure changes nothing */
-#endif
-    return p;
+/* Surface area; 0 for an empty box. */
+static double box_area(const struct bvh_box *b) {
+    double x = b->hi[0] - b->lo[0], y = b->hi[1] - b->lo[1], z = b->hi[2] - b->lo[2];
+    if (!(x >= 0.0 && y >= 0.0 && z >= 0.0))
+        return 0.0;
+    return 2.0 * (x * y + y * z + z * x);
 }
 
 /* ==== building ================================================================================ */
 
-/* A box in float, bounds rounded outward; lane 3 of both corners is 0. */
-struct fbox {
-    float4 lo, hi;
-};
-
-/* A run of prims (see struct builder), with the box of their boxes and the box of their centroids. */
-struct build_range {
-    uint32_t begin, end;
-    struct fbox box, centroids;
-};
-
-/* A node of the binary tree the splits make, before it is collapsed: children as in struct bvh_node. */
-struct binary_node {
-    struct fbox box[2];
-    uint32_t child[2], count[2];
+/* A triangle while building: its padded box, the centre of that box, and its face number. */
+struct bvh_prim {
+    struct bvh_box box;
+    double centroid[3];
+    uint32_t face;
 };
 
 struct builder {
-    struct fbox *prims;         /* one padded box per triangle; the splits reorder them into leaf order */
-    uint32_t *faces;            /* the face number of each prim, reordered along with them */
+    struct bvh_prim *prims; /* the splits reorder them into leaf order */
+    struct bvh *b;
     enum bvh_split split;
-    struct binary_node *binary; /* the binary tree */
-    size_t binary_count;
-    struct bvh_node *nodes;     /* the 4-wide tree */
-    size_t node_count;
     double root_area;
     size_t leaves, max_depth;
     double sah_cost;
 };
 
-static inline struct fbox fbox_empty(void) {
-    return (struct fbox){{INFINITY, INFINITY, INFINITY, 0.0f}, {-INFINITY, -INFINITY, -INFINITY, 0.0f}};
-}
-
-static inline void fbox_grow(struct fbox *b, float4 lo, float4 hi) {
-    b->lo = min4(b->lo, lo);
-    b->hi = max4(b->hi, hi);
-}
-
-/* Half the surface area of the box [lo, hi] (not empty), in float: what the SAH sweeps compare. */
-static inline float half_area(float4 lo, float4 hi) {
-    float4 e = hi - lo;                                      /* lane 3 is 0 - 0 = 0 */
-    float4 p = e * __builtin_shuffle(e, (int4){1, 2, 0, 3}); /* x*y, y*z, z*x, 0 */
-    return p[0] + p[1] + p[2];
-}
-
-/* Surface area; 0 for an empty box. In double, for the reported cost. */
-static inline double fbox_area(const struct fbox *b) {
-    double ex = (double)b->hi[0] - b->lo[0], ey = (double)b->hi[1] - b->lo[1], ez = (double)b->hi[2] - b->lo[2];
-    if (!(ex >= 0.0 && ey >= 0.0 && ez >= 0.0))
-        return 0.0;
-    return 2.0 * (ex * ey + ey * ez + ez * ex);
-}
-
-/* The largest float <= x and the smallest float >= x: a float box built from these holds the double
- * box exactly. */
-static float float_below(double x) {
-    float f = (float)x;
-    return (double)f > x ? nextafterf(f, -INFINITY) : f;
-}
-
-static float float_above(double x) {
-    float f = (float)x;
-    return (double)f < x ? nextafterf(f, INFINITY) : f;
-}
-
-/* Twice the centre of a prim's box: the point the splits sort by. */
-static inline float4 centroid_of(const struct fbox *p) { return p->lo + p->hi; }
-
-static inline void swap_prims(struct builder *bd, uint32_t i, uint32_t j) {
-    struct fbox box = bd->prims[i];
-    bd->prims[i] = bd->prims[j];
-    bd->prims[j] = box;
-    uint32_t face = bd->faces[i];
-    bd->faces[i] = bd->faces[j];
-    bd->faces[j] = face;
-}
-
-/* Fills r->box and r->centroids from its prims. */
-static void range_bounds(const struct builder *bd, struct build_range *r) {
-    r->box = fbox_empty();
-    r->centroids = fbox_empty();
-    for (uint32_t k = r->begin; k < r->end; k++) {
-        fbox_grow(&r->box, bd->prims[k].lo, bd->prims[k].hi);
-        float4 c = centroid_of(&bd->prims[k]);
-        fbox_grow(&r->centroids, c, c);
+/* The box around prims [begin, end), and the box around their centroids. */
+static void range_boxes(const struct bvh_prim *p, uint32_t begin, uint32_t end, struct bvh_box *box,
+                        struct bvh_box *centroids) {
+    *box = box_empty;
+    *centroids = box_empty;
+    for (uint32_t k = begin; k < end; k++) {
+        box_grow(box, &p[k].box);
+        struct bvh_box c = {{p[k].centroid[0], p[k].centroid[1], p[k].centroid[2]},
+                            {p[k].centroid[0], p[k].centroid[1], p[k].centroid[2]}};
+        box_grow(centroids, &c);
     }
 }
 
-/* Reorders prims [begin, end) so that prim nth has the centroid it would have if sorted along axis,
- * with no larger centroid before it and no smaller after (quickselect, Hoare's FIND, with a
+static void swap_prims(struct bvh_prim *p, uint32_t i, uint32_t j) {
+    struct bvh_prim t = p[i];
+    p[i] = p[j];
+    p[j] = t;
+}
+
+/* Reorders prims [begin, end) so that prim nth has the centroid it would have if they were sorted
+ * along axis, with none larger before it and none smaller after (quickselect, Hoare's FIND, with a
  * three-way partition so that many equal centroids cost nothing extra). */
-static void select_nth(struct builder *bd, uint32_t begin, uint32_t end, uint32_t nth, int axis) {
-    const struct fbox *p = bd->prims;
+static void select_nth(struct bvh_prim *p, uint32_t begin, uint32_t end, uint32_t nth, int axis) {
     while (end - begin > 1) {
-        float a = centroid_of(&p[begin])[axis];
-        float b = centroid_of(&p[begin + (end - begin) / 2])[axis];
-        float c = centroid_of(&p[end - 1])[axis];
-        float pivot = a < b ? (b < c ? b : (a < c ? c : a)) : (a < c ? a : (b < c ? c : b)); /* median */
+        double pivot = p[begin + (end - begin) / 2].centroid[axis];
         uint32_t less = begin, i = begin, greater = end; /* [begin,less) < pivot, [greater,end) > pivot */
         while (i < greater) {
-            float key = centroid_of(&p[i])[axis];
+            double key = p[i].centroid[axis];
             if (key < pivot)
-                swap_prims(bd, less++, i++);
+                swap_prims(p, less++, i++);
             else if (key > pivot)
-                swap_prims(bd, i, --greater);
+                swap_prims(p, i, --greater);
             else
                 i++;
         }
@@ -312,99 +193,76 @@ static void select_nth(struct builder *bd, uint32_t begin, uint32_t end, uint32_
     }
 }
 
-/* Halves r by count along the longest axis of its centroids' box (the dissertation's split; also the
- * fallback when the SAH finds no plane). */
-static void split_median(struct builder *bd, const struct build_range *r, struct build_range *left,
-                         struct build_range *right) {
-    float4 extent = r->centroids.hi - r->centroids.lo;
-    int axis = extent[1] > extent[0] ? 1 : 0;
-    axis = extent[2] > extent[axis] ? 2 : axis;
-    uint32_t mid = r->begin + (r->end - r->begin) / 2;
-    select_nth(bd, r->begin, r->end, mid, axis);
-    left->begin = r->begin;
-    left->end = mid;
-    right->begin = mid;
-    right->end = r->end;
-    range_bounds(bd, left);
-    range_bounds(bd, right);
+/* The dissertation's split: half the prims on each side, by centroid, along the longest axis of the
+ * centroids' box. Returns where the right half begins. */
+static uint32_t split_median(struct builder *bd, uint32_t begin, uint32_t end, const struct bvh_box *centroids) {
+    int axis = 0;
+    for (int a = 1; a < 3; a++)
+        if (centroids->hi[a] - centroids->lo[a] > centroids->hi[axis] - centroids->lo[axis])
+            axis = a;
+    uint32_t mid = begin + (end - begin) / 2;
+    select_nth(bd->prims, begin, end, mid, axis);
+    return mid;
 }
 
-struct bin {
-    struct fbox box;
-    uint32_t count;
-};
-
-/* The slots of a centroid on all three axes: the same expression in binning and partitioning, so both
- * agree. Slot = floor((centroid - origin) * scale), at most slots - 1. */
-static inline int4 bins_of(float4 centroid, float4 origin, float4 scale, int slots) {
-    int4 k = __builtin_convertvector((centroid - origin) * scale, int4);
-    int4 last = {slots - 1, slots - 1, slots - 1, slots - 1};
-    int4 below = k < last;
-    return (k & below) | (last & ~below);
+/* The slot of a centroid c on an axis whose centroids span [lo, lo + extent]: floor((c - lo) / extent
+ * * BVH_BINS), clamped to the slots at both ends, so that rounding at the top, and a NaN or infinite
+ * centroid (a mesh beyond double's range), still land in a slot (a NaN in slot 0). */
+static int bin_of(double c, double lo, double extent) {
+    double x = (c - lo) / extent * BVH_BINS;
+    if (!(x >= 0.0))
+        return 0;
+    if (x >= BVH_BINS - 1)
+        return BVH_BINS - 1;
+    return (int)x;
 }
 
-/* Looks for the cheapest SAH split of r. Returns false, leaving the prims alone, when a leaf is
- * cheaper or no plane separates the centroids; otherwise partitions r into *left and *right. */
-static bool split_sah(struct builder *bd, const struct build_range *r, struct build_range *left,
-                      struct build_range *right) {
-    struct bin bins[BVH_BIN_SETS][3][BVH_BINS]; /* [set][axis][slot]; the sets are summed into set 0 */
-    uint32_t n = r->end - r->begin;
-    int slots = n < BVH_BINS ? (int)n : BVH_BINS; /* slots used per axis */
-    int sets = n >= BVH_MANY_SETS_FROM ? BVH_BIN_SETS : 1;
-    float4 extent = r->centroids.hi - r->centroids.lo, scale = {0, 0, 0, 0};
-    for (int a = 0; a < 3; a++)
-        scale[a] = extent[a] > 0.0f ? (float)slots / extent[a] : 0.0f; /* 0: one slot takes all */
-    for (int set = 0; set < sets; set++)
-        for (int a = 0; a < 3; a++)
-            for (int k = 0; k < slots; k++)
-                bins[set][a][k] = (struct bin){fbox_empty(), 0};
-    for (uint32_t i = r->begin; i < r->end; i++) {
-        const struct fbox *p = &bd->prims[i];
-        int4 k = bins_of(centroid_of(p), r->centroids.lo, scale, slots);
-        struct bin (*set)[BVH_BINS] = bins[sets == 1 ? 0 : i % BVH_BIN_SETS]; /* a constant %: a mask */
-        for (int a = 0; a < 3; a++) {
-            struct bin *slot = &set[a][k[a]];
-            slot->count++;
-            fbox_grow(&slot->box, p->lo, p->hi);
-        }
-    }
-    for (int set = 1; set < sets; set++)
-        for (int a = 0; a < 3; a++)
-            for (int k = 0; k < slots; k++) {
-                bins[0][a][k].count += bins[set][a][k].count;
-                fbox_grow(&bins[0][a][k].box, bins[set][a][k].box.lo, bins[set][a][k].box.hi);
-            }
-
-    /* For each axis, sweep from the right to get the area and count right of every plane, then from the
-     * left to price each plane. Cost: the sum of area * count over both sides. */
-    float best_cost = INFINITY;
+/* Looks for the cheapest binned SAH split of prims [begin, end), whose box is *box. Returns false,
+ * leaving the prims alone, when a leaf is cheaper or no plane separates the centroids; otherwise
+ * partitions them and stores where the right side begins in *mid. */
+static bool split_sah(struct builder *bd, uint32_t begin, uint32_t end, const struct bvh_box *box,
+                      const struct bvh_box *centroids, uint32_t *mid) {
+    struct bvh_prim *p = bd->prims;
+    uint32_t n = end - begin;
+    double best_cost = INFINITY; /* area(L) * count(L) + area(R) * count(R) of the best plane */
     int best_axis = -1, best_plane = 0;
     for (int a = 0; a < 3; a++) {
-        if (scale[a] == 0.0f)
+        double lo = centroids->lo[a], extent = centroids->hi[a] - lo;
+        if (!(extent > 0.0))
             continue; /* all centroids in one plane: this axis cannot separate them */
-        /* right_cost[k]: half area times count of everything right of the plane between slots k - 1
-         * and k (infinite while nothing is: such a plane is never chosen). Empty slots change nothing,
-         * so they are skipped; small nodes leave most slots empty. */
-        float right_cost[BVH_BINS];
-        struct fbox acc = fbox_empty();
-        uint32_t count = 0;
-        float cost = INFINITY;
-        for (int k = slots - 1; k > 0; k--) {
-            if (bins[0][a][k].count > 0) {
-                fbox_grow(&acc, bins[0][a][k].box.lo, bins[0][a][k].box.hi);
-                count += bins[0][a][k].count;
-                cost = half_area(acc.lo, acc.hi) * (float)count;
-            }
-            right_cost[k] = cost;
+        struct {
+            struct bvh_box box;
+            uint32_t count;
+        } bins[BVH_BINS];
+        for (int k = 0; k < BVH_BINS; k++) {
+            bins[k].box = box_empty;
+            bins[k].count = 0;
         }
-        acc = fbox_empty();
+        for (uint32_t i = begin; i < end; i++) {
+            int k = bin_of(p[i].centroid[a], lo, extent);
+            box_grow(&bins[k].box, &p[i].box);
+            bins[k].count++;
+        }
+        /* Sweep from the right: the area and count of everything right of the plane before slot k. */
+        double right_area[BVH_BINS];
+        uint32_t right_count[BVH_BINS];
+        struct bvh_box side = box_empty;
+        uint32_t count = 0;
+        for (int k = BVH_BINS - 1; k > 0; k--) {
+            box_grow(&side, &bins[k].box);
+            count += bins[k].count;
+            right_area[k] = box_area(&side);
+            right_count[k] = count;
+        }
+        /* Sweep from the left, pricing each plane on the way. */
+        side = box_empty;
         count = 0;
-        for (int k = 1; k < slots; k++) {
-            if (bins[0][a][k - 1].count == 0)
-                continue; /* the same split as the plane before */
-            fbox_grow(&acc, bins[0][a][k - 1].box.lo, bins[0][a][k - 1].box.hi);
-            count += bins[0][a][k - 1].count;
-            cost = half_area(acc.lo, acc.hi) * (float)count + right_cost[k];
+        for (int k = 1; k < BVH_BINS; k++) {
+            box_grow(&side, &bins[k - 1].box);
+            count += bins[k - 1].count;
+            if (count == 0 || right_count[k] == 0)
+                continue; /* everything on one side: not a split */
+            double cost = box_area(&side) * count + right_area[k] * right_count[k];
             if (cost < best_cost) {
                 best_cost = cost;
                 best_axis = a;
@@ -414,134 +272,56 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
     }
     if (best_axis < 0)
         return false;
-
-    uint32_t count = r->end - r->begin;
-    double area = fbox_area(&r->box);
-    double split_cost = area > 0.0 ? BVH_COST_TRAVERSAL + BVH_COST_TRIANGLE * 2.0 * best_cost / area : INFINITY;
-    if (count <= BVH_MAX_LEAF_SIZE && BVH_COST_TRIANGLE * count <= split_cost)
+    double split_cost = BVH_COST_TRAVERSAL + BVH_COST_TRIANGLE * best_cost / box_area(box);
+    if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_TRIANGLE * n <= split_cost)
         return false;
-
-    /* Partition, gathering each side's centroid box on the way; the boxes are the unions of the slots'. */
-    *left = (struct build_range){r->begin, r->begin, fbox_empty(), fbox_empty()};
-    *right = (struct build_range){r->end, r->end, fbox_empty(), fbox_empty()};
-    uint32_t i = r->begin, j = r->end; /* [begin,i) go left, [j,end) go right */
+    uint32_t i = begin, j = end; /* [begin, i) go left, [j, end) go right */
+    double lo = centroids->lo[best_axis], extent = centroids->hi[best_axis] - lo;
     while (i < j) {
-        float4 c = centroid_of(&bd->prims[i]);
-        if (bins_of(c, r->centroids.lo, scale, slots)[best_axis] < best_plane) {
-            fbox_grow(&left->centroids, c, c);
+        if (bin_of(p[i].centroid[best_axis], lo, extent) < best_plane)
             i++;
-        } else {
-            fbox_grow(&right->centroids, c, c);
-            swap_prims(bd, i, --j);
-        }
+        else
+            swap_prims(p, i, --j);
     }
-    left->end = i;
-    right->begin = i;
-    for (int k = 0; k < slots; k++) {
-        struct build_range *side = k < best_plane ? left : right;
-        fbox_grow(&side->box, bins[0][best_axis][k].box.lo, bins[0][best_axis][k].box.hi);
-    }
+    *mid = i;
     return true;
 }
 
-/* Builds the subtree over r and stores how its parent refers to it in *child and *count (see struct
- * bvh_node): here a binary tree, collapsed later. */
-static void build_subtree(struct builder *bd, const struct build_range *r, size_t depth, uint32_t *child,
-                          uint32_t *count) {
-    uint32_t n = r->end - r->begin;
-    struct build_range left, right;
+/* Builds the subtree over prims [begin, end) at the given depth and returns its node's index. */
+static uint32_t build_node(struct builder *bd, uint32_t begin, uint32_t end, size_t depth) {
+    uint32_t index = (uint32_t)bd->b->node_count++;
+    struct bvh_node *node = &bd->b->nodes[index];
+    struct bvh_box centroids;
+    range_boxes(bd->prims, begin, end, &node->box, &centroids);
+    double area_ratio = bd->root_area > 0.0 ? box_area(&node->box) / bd->root_area : 1.0;
+    uint32_t n = end - begin, mid = begin;
     bool split = false;
     if (bd->split == BVH_SPLIT_MEDIAN) {
-        if (n > BVH_MEDIAN_LEAF_SIZE) {
-            split_median(bd, r, &left, &right);
-            split = true;
-        }
+        split = n > BVH_MEDIAN_LEAF_SIZE;
+        if (split)
+            mid = split_median(bd, begin, end, &centroids);
     } else if (n > 1) {
-        if (depth < BVH_MAX_DEPTH)
-            split = split_sah(bd, r, &left, &right);
-        /* Too deep for the heuristic, or every centroid at one point: still too many for a leaf, so
-         * halve by count. */
-        if (!split && n > BVH_MAX_LEAF_SIZE) {
-            split_median(bd, r, &left, &right);
+        split = depth < BVH_MAX_DEPTH && split_sah(bd, begin, end, &node->box, &centroids, &mid);
+        if (!split && n > BVH_MAX_LEAF_SIZE) { /* too deep for the SAH, or no plane separates: halve */
+            mid = split_median(bd, begin, end, &centroids);
             split = true;
         }
     }
     if (!split) {
-        *child = r->begin;
-        *count = n;
-        return;
+        node->first = begin;
+        node->count = n;
+        bd->leaves++;
+        bd->max_depth = depth > bd->max_depth ? depth : bd->max_depth;
+        bd->sah_cost += BVH_COST_TRIANGLE * n * area_ratio;
+        return index;
     }
-    uint32_t index = (uint32_t)bd->binary_count++;
-    struct binary_node *node = &bd->binary[index];
-    node->box[0] = left.box;
-    node->box[1] = right.box;
-    build_subtree(bd, &left, depth + 1, &node->child[0], &node->count[0]);
-    build_subtree(bd, &right, depth + 1, &node->child[1], &node->count[1]);
-    *child = index;
-    *count = 0;
-}
-
-/* A child slot while collapsing. */
-struct slot {
-    struct fbox box;
-    uint32_t child, count;
-};
-
-/* Makes a 4-wide node out of binary node `index` (whose box is *box) and its descendants, and returns
- * its index. The node starts with the binary node's two children and, while it has room, replaces the
- * interior child with the largest surface (the one most rays enter) by that child's two children.
- * Also counts the tree's shape and SAH cost. */
-static uint32_t collapse(struct builder *bd, uint32_t index, const struct fbox *box, size_t depth) {
-    const struct binary_node *top = &bd->binary[index];
-    struct slot slots[BVH_WIDTH];
-    int used = 2;
-    for (int k = 0; k < 2; k++)
-        slots[k] = (struct slot){top->box[k], top->child[k], top->count[k]};
-    while (used < BVH_WIDTH) {
-        int widest = -1;
-        double widest_area = -1.0;
-        for (int k = 0; k < used; k++)
-            if (slots[k].count == 0 && fbox_area(&slots[k].box) > widest_area) {
-                widest = k;
-                widest_area = fbox_area(&slots[k].box);
-            }
-        if (widest < 0)
-            break; /* every child is a leaf */
-        const struct binary_node *open = &bd->binary[slots[widest].child];
-        slots[widest] = (struct slot){open->box[0], open->child[0], open->count[0]};
-        slots[used++] = (struct slot){open->box[1], open->child[1], open->count[1]};
-    }
-
-    uint32_t out = (uint32_t)bd->node_count++;
-    bd->sah_cost += BVH_COST_TRAVERSAL * (bd->root_area > 0.0 ? fbox_area(box) / bd->root_area : 1.0);
-    for (int k = 0; k < BVH_WIDTH; k++) {
-        struct slot s = k < used ? slots[k] : (struct slot){fbox_empty(), BVH_NO_CHILD, 0};
-        struct bvh_node *node = &bd->nodes[out];
-        for (int a = 0; a < 3; a++) {
-            node->bounds[a][0][k] = s.box.lo[a];
-            node->bounds[a][1][k] = s.box.hi[a];
-        }
-        node->count[k] = s.count;
-        if (k >= used || s.count > 0) {
-            node->child[k] = s.child;
-            if (s.count > 0) {
-                bd->leaves++;
-                bd->sah_cost += BVH_COST_TRIANGLE * s.count *
-                                (bd->root_area > 0.0 ? fbox_area(&s.box) / bd->root_area : 1.0);
-                bd->max_depth = depth + 1 > bd->max_depth ? depth + 1 : bd->max_depth;
-            }
-        } else {
-            uint32_t below = collapse(bd, s.child, &s.box, depth + 1);
-            bd->nodes[out].child[k] = below;
-        }
-    }
-    return out;
-}
-
-static double now_ms(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+    bd->sah_cost += BVH_COST_TRAVERSAL * area_ratio;
+    node->count = 0;
+    uint32_t left = build_node(bd, begin, mid, depth + 1);
+    uint32_t right = build_node(bd, mid, end, depth + 1);
+    bd->b->nodes[index].left = left; /* `node` is still valid (the array never moves), but plainer so */
+    bd->b->nodes[index].right = right;
+    return index;
 }
 
 /* True for a face of m that BVH_SLIVER_SINE keeps out of the tree. */
@@ -552,89 +332,78 @@ static bool is_sliver(const struct mesh *m, size_t face) {
     return cross > 0.0 && cross < BVH_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
 }
 
+static double now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+}
+
 struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
     double start = now_ms();
     size_t n = m->face_count;
-    if (n > BVH_MAX_FACES)
-        return NULL;
-    struct bvh *b = calloc(1, sizeof *b);
+    struct bvh *b = n <= BVH_MAX_FACES ? calloc(1, sizeof *b) : NULL;
     if (b == NULL)
         return NULL;
     b->triangle_count = n;
-    /* A tree whose leaves hold at least one triangle each has at most n - 1 interior nodes. */
-    size_t most_nodes = n > 1 ? n - 1 : 1;
-    struct fbox *prims = alloc_big((n ? n : 1) * sizeof *prims);
-    struct binary_node *binary = alloc_big(most_nodes * sizeof *binary);
-    b->nodes = alloc_big(most_nodes * sizeof *b->nodes);
-    b->triangles = alloc_big((n ? n : 1) * sizeof *b->triangles);
-    b->faces = alloc_big((n ? n : 1) * sizeof *b->faces);
-    if (b->nodes == NULL || b->triangles == NULL || b->faces == NULL || prims == NULL || binary == NULL) {
+    b->nodes = malloc((2 * n + 1) * sizeof *b->nodes);
+    b->faces = malloc((n + 1) * sizeof *b->faces);
+    struct bvh_prim *prims = malloc((n + 1) * sizeof *prims);
+    if (b->nodes == NULL || b->faces == NULL || prims == NULL) {
         free(prims);
-        free(binary);
         bvh_free(b);
         return NULL;
     }
-
-    /* The pad: BVH_BOX_PAD times the largest extent of the vertices the faces use. */
-    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+    /* The pad: BVH_BOX_PAD times the largest extent of the mesh's corners. */
+    struct bvh_box all = box_empty;
     for (size_t f = 0; f < n; f++)
         for (int c = 0; c < 3; c++) {
-            lo = vec3_min(lo, m->vertices[m->faces[f].v[c]]);
-            hi = vec3_max(hi, m->vertices[m->faces[f].v[c]]);
+            vec3 p = m->vertices[m->faces[f].v[c]];
+            box_grow(&all, &(struct bvh_box){{p.x, p.y, p.z}, {p.x, p.y, p.z}});
         }
-    vec3 extent = vec3_sub(hi, lo);
-    double pad = n > 0 ? BVH_BOX_PAD * fmax(extent.x, fmax(extent.y, extent.z)) : 0.0;
-    /* Tree faces first (their prims), slivers at the end of faces[]. */
+    double pad = 0.0;
+    for (int a = 0; a < 3 && n > 0; a++)
+        pad = fmax(pad, BVH_BOX_PAD * (all.hi[a] - all.lo[a]));
+    /* One prim per face, slivers to the end of faces[]. */
     size_t tree = 0, slivers = 0;
     for (size_t f = 0; f < n; f++) {
         if (is_sliver(m, f)) {
             b->faces[n - ++slivers] = (uint32_t)f;
             continue;
         }
-        const uint32_t *v = m->faces[f].v;
-        vec3 a = m->vertices[v[0]], bb = m->vertices[v[1]], c = m->vertices[v[2]];
-        vec3 tlo = vec3_min(a, vec3_min(bb, c)), thi = vec3_max(a, vec3_max(bb, c));
-        prims[tree] = (struct fbox){{float_below(tlo.x - pad), float_below(tlo.y - pad), float_below(tlo.z - pad), 0.0f},
-                                    {float_above(thi.x + pad), float_above(thi.y + pad), float_above(thi.z + pad), 0.0f}};
-        b->faces[tree++] = (uint32_t)f;
+        struct bvh_prim *p = &prims[tree++];
+        p->box = box_empty;
+        for (int c = 0; c < 3; c++) {
+            vec3 v = m->vertices[m->faces[f].v[c]];
+            box_grow(&p->box, &(struct bvh_box){{v.x - pad, v.y - pad, v.z - pad}, {v.x + pad, v.y + pad, v.z + pad}});
+        }
+        for (int a = 0; a < 3; a++)
+            p->centroid[a] = 0.5 * (p->box.lo[a] + p->box.hi[a]);
+        p->face = (uint32_t)f;
     }
     b->tree_count = tree;
-
-    struct builder bd = {prims, b->faces, split, binary, 0, b->nodes, 0, 0.0, 0, 0, 0.0};
-    struct build_range root = {0, (uint32_t)tree, fbox_empty(), fbox_empty()};
-    range_bounds(&bd, &root);
-    if (tree == 0)
-        root.box = (struct fbox){{0, 0, 0, 0}, {0, 0, 0, 0}};
-    for (int axis = 0; axis < 3; axis++) {
-        b->root_lo[axis] = root.box.lo[axis];
-        b->root_hi[axis] = root.box.hi[axis];
+    struct builder bd = {prims, b, split, 0.0, 0, 0, 0.0};
+    if (tree > 0) {
+        struct bvh_box root, centroids;
+        range_boxes(prims, 0, (uint32_t)tree, &root, &centroids);
+        bd.root_area = box_area(&root);
+        build_node(&bd, 0, (uint32_t)tree, 0);
     }
-    bd.root_area = fbox_area(&root.box);
-    if (tree > 0)
-        build_subtree(&bd, &root, 0, &b->root_child, &b->root_count);
-    if (tree > 0 && b->root_count == 0) {
-        b->root_child = collapse(&bd, b->root_child, &root.box, 0);
-    } else if (tree > 0) {
-        bd.leaves = 1; /* the whole tree is one leaf */
-        bd.sah_cost = BVH_COST_TRIANGLE * tree;
-    }
-    free(binary);
+    /* The triangles in leaf order, as the intersection test wants them; the slivers after them.
+     * Allocated once the prims are freed, so that the two are never held at once. */
+    for (size_t k = 0; k < tree; k++)
+        b->faces[k] = prims[k].face;
     free(prims);
-    b->node_count = bd.node_count;
-    assert((BVH_WIDTH - 1) * bd.max_depth < BVH_STACK_SIZE);
-
-    /* The triangles in leaf order, as the intersection test wants them. */
+    b->triangles = malloc((n + 1) * sizeof *b->triangles);
+    if (b->triangles == NULL) {
+        bvh_free(b);
+        return NULL;
+    }
     for (size_t k = 0; k < n; k++) {
         const uint32_t *v = m->faces[b->faces[k]].v;
-        vec3 a = m->vertices[v[0]];
-        b->triangles[k] = (struct bvh_triangle){a, m->vertices[v[1]], m->vertices[v[2]]};
+        b->triangles[k] = (struct bvh_triangle){m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]};
     }
-
-    b->info.nodes = bd.node_count + bd.leaves;
-    b->info.leaves = bd.leaves;
-    b->info.max_depth = bd.max_depth;
-    b->info.sah_cost = bd.sah_cost + BVH_COST_TRIANGLE * slivers;
-    b->info.slivers = slivers;
+    b->info = (struct bvh_info){b->node_count, bd.leaves, bd.max_depth, 0.0,
+                                bd.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
     b->info.build_ms = now_ms() - start;
     return b;
 }
@@ -649,6 +418,148 @@ void bvh_free(struct bvh *b) {
 }
 
 void bvh_get_info(const struct bvh *b, struct bvh_info *info) { *info = b->info; }
+
+/* ==== traversal =============================================================================== */
+
+/* The slab test (chapter 5) of box against the ray with origin o and inverse direction inv (1 / D,
+ * infinite where D has a zero), within [t_near, t_far]. Returns whether the ray is inside the box for
+ * some t there, and where it enters in *entry. On each axis the ray enters through the low face when
+ * it moves towards larger values and through the high face otherwise. An origin exactly on a face
+ * plane with a zero direction component gives 0 * infinity = NaN, which compares false and so leaves
+ * the window alone: a ray running in a face's plane is inside. */
+static bool box_hit(const struct bvh_box *box, const double o[3], const double inv[3], double t_near,
+                    double t_far, double *entry) {
+    for (int a = 0; a < 3; a++) {
+        double t0 = ((inv[a] < 0.0 ? box->hi[a] : box->lo[a]) - o[a]) * inv[a];
+        double t1 = ((inv[a] < 0.0 ? box->lo[a] : box->hi[a]) - o[a]) * inv[a];
+        t_near = t0 > t_near ? t0 : t_near;
+        t_far = t1 < t_far ? t1 : t_far;
+    }
+    *entry = t_near;
+    return t_near <= t_far;
+}
+
+/* The three questions one traversal answers. */
+enum query {
+    QUERY_CLOSEST, /* nearest hit: near child first, boxes beyond the best hit skipped */
+    QUERY_ANY,     /* any hit: stop at the first */
+    QUERY_ALL,     /* every hit: visit everything the ray crosses */
+};
+
+struct query_state {
+    enum query kind;
+    double t;      /* QUERY_CLOSEST: best t so far (t_max until something is found) */
+    uint32_t face; /* QUERY_CLOSEST: its face */
+    bool found;
+    bool (*visit)(void *ctx, double t, uint32_t face); /* QUERY_ALL */
+    void *ctx;
+};
+
+/* Tests triangles [first, first + count) for the query, with triangle_crossing (triangle.h), the
+ * arithmetic of triangle_intersect, so t is bit-identical to the brute-force loop's. A nearer hit
+ * lowers *box_max, the far end of the window boxes are tested in. Returns false when the walk should
+ * stop (QUERY_ANY found a hit, or QUERY_ALL's visit said so). */
+static bool test_triangles(const struct bvh *b, const ray *r, uint32_t first, uint32_t count, double t_min,
+                           double t_max, struct query_state *q, double *box_max) {
+    for (uint32_t k = first; k < first + count; k++) {
+        const struct bvh_triangle *tri = &b->triangles[k];
+        double t, u, v;
+        stats_thread.triangle_tests++;
+        if (!triangle_crossing(tri->a, tri->b, tri->c, r, &t, &u, &v) || !(t > t_min && t < t_max))
+            continue;
+        uint32_t face = b->faces[k];
+        if (q->kind == QUERY_ANY) {
+            q->found = true;
+            return false;
+        }
+        if (q->kind == QUERY_ALL) {
+            q->found = true;
+            if (!q->visit(q->ctx, t, face))
+                return false;
+        } else if (!q->found || t < q->t || (t == q->t && face < q->face)) {
+            q->found = true;
+            q->t = t;
+            q->face = face;
+            *box_max = t; /* from now on only boxes starting at or before t matter */
+        }
+    }
+    return true;
+}
+
+/* A node still to visit, with the distance at which the ray enters its box. */
+struct stack_entry {
+    uint32_t node;
+    double entry;
+};
+
+/* Walks the tree for one query, after the slivers. Returns q->found. */
+static bool traverse(const struct bvh *b, const ray *r, double t_min, double t_max, struct query_state *q) {
+    q->found = false;
+    q->t = t_max;
+    /* The box tests' window: infinite ends replaced by the largest finite doubles, so that a ray
+     * parallel to a slab and outside it (entry and exit both +infinity) is a miss. */
+    double box_min = fmax(t_min, -DBL_MAX), box_max = fmin(t_max, DBL_MAX);
+    uint32_t slivers = (uint32_t)(b->triangle_count - b->tree_count);
+    if (!test_triangles(b, r, (uint32_t)b->tree_count, slivers, t_min, t_max, q, &box_max) || b->tree_count == 0)
+        return q->found;
+    double o[3] = {r->origin.x, r->origin.y, r->origin.z};
+    double inv[3] = {1.0 / r->direction.x, 1.0 / r->direction.y, 1.0 / r->direction.z};
+    struct stack_entry stack[BVH_STACK_SIZE];
+    int top = 0;
+    double entry;
+    stats_thread.box_tests++;
+    if (box_hit(&b->nodes[0].box, o, inv, box_min, box_max, &entry))
+        stack[top++] = (struct stack_entry){0, entry};
+    while (top > 0) {
+        struct stack_entry e = stack[--top];
+        if (e.entry > box_max)
+            continue; /* starts after the best hit: nothing in it can be nearer (or tie and win) */
+        const struct bvh_node *n = &b->nodes[e.node];
+        stats_thread.node_visits++;
+        if (n->count > 0) {
+            if (!test_triangles(b, r, n->first, n->count, t_min, t_max, q, &box_max))
+                break;
+            continue;
+        }
+        double enter_left, enter_right;
+        bool left = box_hit(&b->nodes[n->left].box, o, inv, box_min, box_max, &enter_left);
+        bool right = box_hit(&b->nodes[n->right].box, o, inv, box_min, box_max, &enter_right);
+        stats_thread.box_tests += 2;
+        struct stack_entry near = {n->left, enter_left}, far = {n->right, enter_right};
+        bool near_hit = left, far_hit = right;
+        if (q->kind == QUERY_CLOSEST && enter_right < enter_left) { /* the right child comes first */
+            near = (struct stack_entry){n->right, enter_right};
+            far = (struct stack_entry){n->left, enter_left};
+            near_hit = right;
+            far_hit = left;
+        }
+        if (far_hit) /* pushed first, so taken after the near one */
+            stack[top++] = far;
+        if (near_hit)
+            stack[top++] = near;
+    }
+    return q->found;
+}
+
+bool bvh_closest(const struct bvh *b, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    struct query_state q = {.kind = QUERY_CLOSEST};
+    if (!traverse(b, r, t_min, t_max, &q))
+        return false;
+    *t = q.t;
+    *face = q.face;
+    return true;
+}
+
+bool bvh_occluded(const struct bvh *b, const ray *r, double t_min, double t_max) {
+    struct query_state q = {.kind = QUERY_ANY};
+    return traverse(b, r, t_min, t_max, &q);
+}
+
+void bvh_for_each_hit(const struct bvh *b, const ray *r, double t_min, double t_max,
+                      bool (*visit)(void *ctx, double t, uint32_t face), void *ctx) {
+    struct query_state q = {.kind = QUERY_ALL, .visit = visit, .ctx = ctx};
+    traverse(b, r, t_min, t_max, &q);
+}
 
 /* ==== checking ================================================================================ */
 
@@ -665,48 +576,39 @@ static bool check_fail(struct check *c, const char *message, size_t where) {
     return false;
 }
 
-/* Checks the subtree referred to by (child, count) whose box is [lo, hi]. */
-static bool check_subtree(struct check *c, uint32_t child, uint32_t count, const float lo[3], const float hi[3],
-                          size_t depth) {
-    if (depth >= BVH_STACK_SIZE)
-        return check_fail(c, "deeper than the traversal stack", depth);
-    if (count > 0) {
-        if ((size_t)child + count > c->b->tree_count)
-            return check_fail(c, "leaf runs past the triangles", child);
-        for (uint32_t k = child; k < child + count; k++) {
-            if (c->seen_triangle[k]++)
-                return check_fail(c, "triangle in two leaves", k);
-            const uint32_t *v = c->m->faces[c->b->faces[k]].v;
-            for (int corner = 0; corner < 3; corner++) {
-                vec3 p = c->m->vertices[v[corner]];
-                for (int a = 0; a < 3; a++)
-                    if (!(vec3_axis(p, a) >= lo[a] && vec3_axis(p, a) <= hi[a]))
-                        return check_fail(c, "leaf box does not hold its triangle", k);
-            }
-        }
-        return true;
-    }
-    if (child >= c->b->node_count || c->seen_node[child]++)
-        return check_fail(c, "node index out of range or reached twice", child);
-    const struct bvh_node *n = &c->b->nodes[child];
-    if (n->child[0] == BVH_NO_CHILD || n->child[1] == BVH_NO_CHILD)
-        return check_fail(c, "node with fewer than two children", child);
-    for (int k = 0; k < BVH_WIDTH; k++) {
-        if (n->child[k] == BVH_NO_CHILD) {
-            for (int a = 0; a < 3; a++)
-                if (!(n->bounds[a][0][k] == INFINITY && n->bounds[a][1][k] == -INFINITY && n->count[k] == 0))
-                    return check_fail(c, "unused child slot without the empty box", child);
-            continue;
-        }
-        float child_lo[3], child_hi[3];
-        for (int a = 0; a < 3; a++) {
-            child_lo[a] = n->bounds[a][0][k];
-            child_hi[a] = n->bounds[a][1][k];
-            if (!(child_lo[a] >= lo[a] && child_hi[a] <= hi[a]))
-                return check_fail(c, "child box sticks out of its parent's", child);
-        }
-        if (!check_subtree(c, n->child[k], n->count[k], child_lo, child_hi, depth + 1))
+/* True when box b holds box c (a NaN bound, from a corner beyond double's range, holds anything). */
+static bool box_holds(const struct bvh_box *b, const struct bvh_box *c) {
+    for (int a = 0; a < 3; a++)
+        if (b->lo[a] > c->lo[a] || b->hi[a] < c->hi[a])
             return false;
+    return true;
+}
+
+/* Checks the subtree at node `index`, at the given depth. */
+static bool check_node(struct check *c, uint32_t index, size_t depth) {
+    if (depth + 1 >= BVH_STACK_SIZE)
+        return check_fail(c, "deeper than the traversal stack", depth);
+    if (index >= c->b->node_count || c->seen_node[index]++)
+        return check_fail(c, "node index out of range or reached twice", index);
+    const struct bvh_node *n = &c->b->nodes[index];
+    if (n->count == 0) {
+        if (n->left >= c->b->node_count || n->right >= c->b->node_count)
+            return check_fail(c, "child index out of range", index);
+        if (!box_holds(&n->box, &c->b->nodes[n->left].box) || !box_holds(&n->box, &c->b->nodes[n->right].box))
+            return check_fail(c, "child box sticks out of its parent's", index);
+        return check_node(c, n->left, depth + 1) && check_node(c, n->right, depth + 1);
+    }
+    if ((size_t)n->first + n->count > c->b->tree_count)
+        return check_fail(c, "leaf runs past the triangles", index);
+    for (uint32_t k = n->first; k < n->first + n->count; k++) {
+        if (c->seen_triangle[k]++)
+            return check_fail(c, "triangle in two leaves", k);
+        const uint32_t *v = c->m->faces[c->b->faces[k]].v;
+        for (int corner = 0; corner < 3; corner++) {
+            vec3 p = c->m->vertices[v[corner]];
+            if (!box_holds(&n->box, &(struct bvh_box){{p.x, p.y, p.z}, {p.x, p.y, p.z}}))
+                return check_fail(c, "leaf box does not hold its triangle", k);
+        }
     }
     return true;
 }
@@ -725,22 +627,20 @@ bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t w
             break;
         }
         const uint32_t *v = m->faces[f].v;
-        vec3 a = m->vertices[v[0]], b1 = m->vertices[v[1]], c2 = m->vertices[v[2]];
         const struct bvh_triangle *t = &b->triangles[k];
-        if (memcmp(&t->a, &a, sizeof a) != 0 || memcmp(&t->b, &b1, sizeof b1) != 0 ||
-            memcmp(&t->c, &c2, sizeof c2) != 0)
+        if (memcmp(&t->a, &m->vertices[v[0]], sizeof t->a) != 0 || memcmp(&t->b, &m->vertices[v[1]], sizeof t->b) != 0 ||
+            memcmp(&t->c, &m->vertices[v[2]], sizeof t->c) != 0)
             ok = check_fail(&c, "stored triangle differs from its face", k);
     }
     if (ok && b->tree_count > 0)
-        ok = check_subtree(&c, b->root_child, b->root_count, b->root_lo, b->root_hi, 0);
+        ok = check_node(&c, 0, 0);
     for (size_t k = 0; ok && k < b->tree_count; k++)
         if (!c.seen_triangle[k])
             ok = check_fail(&c, "triangle in no leaf", k);
     for (size_t k = 0; ok && k < b->triangle_count; k++)
         if (is_sliver(m, b->faces[k]) != (k >= b->tree_count))
             ok = check_fail(&c, "sliver in the tree, or other triangle among the slivers", k);
-    /* Every face once: triangles hold each face exactly once when no face number repeats. */
-    if (ok) {
+    if (ok) { /* every face once: no face number repeats */
         memset(c.seen_triangle, 0, b->triangle_count + 1);
         for (size_t k = 0; ok && k < b->triangle_count; k++)
             if (c.seen_triangle[b->faces[k]]++)
@@ -749,269 +649,4 @@ bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t w
     free(c.seen_triangle);
     free(c.seen_node);
     return ok;
-}
-
-/* ==== traversal =============================================================================== */
-
-/* Lane by lane, a > b ? a : b and a < b ? a : b. A NaN in a compares false and gives b: that is how
- * the slab test ignores 0 * infinity (see box_hit). SSE2 has these as single instructions. */
-static inline double2 max2(double2 a, double2 b) {
-#if defined(__SSE2__)
-    return _mm_max_pd(a, b);
-#else
-    long2 pick_a = a > b;
-    return (double2)(((long2)a & pick_a) | ((long2)b & ~pick_a));
-#endif
-}
-
-static inline double2 min2(double2 a, double2 b) {
-#if defined(__SSE2__)
-    return _mm_min_pd(a, b);
-#else
-    long2 pick_a = a < b;
-    return (double2)(((long2)a & pick_a) | ((long2)b & ~pick_a));
-#endif
-}
-
-/* What every box test of one ray shares: computed once per ray. */
-struct ray_setup {
-    double origin[3];
-    double inverse[3];  /* 1 / direction; a zero component gives an infinity of the zero's sign */
-    int near[3];        /* 0 when the ray enters a box through its low face on this axis, 1 for the high */
-    double2 origin2[3]; /* origin and inverse again, each component in both lanes */
-    double2 inverse2[3];
-};
-
-static inline struct ray_setup ray_setup_make(const ray *r) {
-    struct ray_setup s;
-    for (int a = 0; a < 3; a++) {
-        s.origin[a] = vec3_axis(r->origin, a);
-        s.inverse[a] = 1.0 / vec3_axis(r->direction, a);
-        s.near[a] = s.inverse[a] < 0.0;
-        s.origin2[a] = (double2){s.origin[a], s.origin[a]};
-        s.inverse2[a] = (double2){s.inverse[a], s.inverse[a]};
-    }
-    return s;
-}
-
-/* The slab test (aabb.c) on the root box, in double: true when the ray is inside it for some t in
- * [t_near, t_far]. An origin exactly on a face plane with a zero direction component gives
- * 0 * infinity = NaN, which compares false and so leaves the interval alone: a ray running in a face's
- * plane is inside. */
-static inline bool root_hit(const struct bvh *b, const struct ray_setup *s, double t_near, double t_far) {
-    for (int a = 0; a < 3; a++) {
-        double near_plane = s->near[a] ? b->root_hi[a] : b->root_lo[a];
-        double far_plane = s->near[a] ? b->root_lo[a] : b->root_hi[a];
-        double t0 = (near_plane - s->origin[a]) * s->inverse[a];
-        double t1 = (far_plane - s->origin[a]) * s->inverse[a];
-        t_near = t0 > t_near ? t0 : t_near;
-        t_far = t1 < t_far ? t1 : t_far;
-    }
-    return t_near <= t_far;
-}
-
-/* Bit k of the result is set when lane k of the comparison result m is true. */
-static inline unsigned lanes_true(long2 m) {
-#if defined(__SSE2__)
-    return (unsigned)_mm_movemask_pd((__m128d)m);
-#else
-    return (unsigned)(m[0] & 1) | (unsigned)(m[1] & 2);
-#endif
-}
-
-/* The two floats at p, widened to doubles: one load and one conversion on SSE2 (converting them one
- * by one, as GCC does with a plain initializer, cost 9 % of the frame time on the benchmark). */
-static inline double2 float_pair(const float *p) {
-#if defined(__SSE2__)
-    return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64((const __m128i *)p)));
-#else
-    return (double2){p[0], p[1]};
-#endif
-}
-
-/* The slab test on children 2h and 2h + 1 of n at once (lanes 0 and 1). Returns a 2-bit mask of the
- * children hit in [t_near, t_far] and their entry distances in *entry. */
-static inline unsigned child_pair_hit(const struct bvh_node *n, int h, const struct ray_setup *s, double t_near,
-                                      double t_far, double2 *entry) {
-    double2 enter = {t_near, t_near}, leave = {t_far, t_far};
-    for (int a = 0; a < 3; a++) {
-        const float *near_planes = &n->bounds[a][s->near[a]][2 * h];
-        const float *far_planes = &n->bounds[a][1 - s->near[a]][2 * h];
-        double2 t0 = (float_pair(near_planes) - s->origin2[a]) * s->inverse2[a];
-        double2 t1 = (float_pair(far_planes) - s->origin2[a]) * s->inverse2[a];
-        enter = max2(t0, enter);
-        leave = min2(t1, leave);
-    }
-    *entry = enter;
-    return lanes_true(enter <= leave);
-}
-
-/* Whether r's line crosses the triangle, and where: triangle_crossing (triangle.h), the arithmetic
- * triangle_intersect uses, so t is bit-identical to the brute-force loop's. Does not count. */
-static inline bool triangle_hit(const struct bvh_triangle *tri, const ray *r, double *t) {
-    double u, v;
-    return triangle_crossing(tri->a, tri->b, tri->c, r, t, &u, &v);
-}
-
-/* The three questions one traversal answers; the code is specialised for each at compile time. */
-enum query {
-    QUERY_CLOSEST, /* nearest hit: near child first, boxes beyond the best hit skipped */
-    QUERY_ANY,     /* any hit: stop at the first */
-    QUERY_ALL,     /* every hit: visit everything the ray crosses */
-};
-
-struct query_state {
-    double t;      /* QUERY_CLOSEST: best t so far (t_max until something is found) */
-    uint32_t face; /* QUERY_CLOSEST: its face */
-    bool found;
-    bool (*visit)(void *ctx, double t, uint32_t face); /* QUERY_ALL */
-    void *ctx;
-};
-
-/* Tests triangles [first, first + count) for query q, lowering *box_max as nearer hits turn up.
- * Returns false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
-static inline __attribute__((always_inline)) bool test_triangles(const struct bvh *b, const ray *r, uint32_t first,
-                                                                 uint32_t count, double t_min, double t_max,
-                                                                 enum query kind, struct query_state *q,
-                                                                 double *box_max, uint64_t *tests) {
-    for (uint32_t k = first; k < first + count; k++) {
-        double t;
-        (*tests)++;
-        if (!triangle_hit(&b->triangles[k], r, &t) || !(t > t_min && t < t_max))
-            continue;
-        uint32_t face = b->faces[k];
-        if (kind == QUERY_ANY) {
-            q->found = true;
-            return false;
-        }
-        if (kind == QUERY_ALL) {
-            q->found = true;
-            if (!q->visit(q->ctx, t, face))
-                return false;
-            continue;
-        }
-        if (!q->found || t < q->t || (t == q->t && face < q->face)) {
-            q->found = true;
-            q->t = t;
-            q->face = face;
-            *box_max = t; /* from now on only boxes starting at or before t matter */
-        }
-    }
-    return true;
-}
-
-/* Asks the memory system for a child the ray will visit later, so that it is in cache by then: a big
- * mesh's nodes and triangles do not fit in cache, and each visit otherwise waits for memory. */
-static inline void prefetch_child(const struct bvh *b, uint32_t child, uint32_t count) {
-    if (count == 0) {
-        __builtin_prefetch(&b->nodes[child]);
-        __builtin_prefetch((const char *)&b->nodes[child] + 64);
-    } else {
-        __builtin_prefetch(&b->triangles[child]);
-        __builtin_prefetch((const char *)&b->triangles[child] + 64);
-    }
-}
-
-/* A subtree put aside for later, with the distance at which the ray enters its box. */
-struct stack_entry {
-    uint32_t child, count;
-    double entry;
-};
-
-/* Walks the tree for one query, after the slivers. Counters are kept in locals and added to the
- * thread's once at the end (one thread-local update per ray instead of one per node). Returns
- * q->found. */
-static inline __attribute__((always_inline)) bool traverse(const struct bvh *b, const ray *r, double t_min,
-                                                           double t_max, enum query kind, struct query_state *q) {
-    q->found = false;
-    q->t = t_max;
-    /* The box tests' window: infinite ends replaced by the largest finite doubles, so that a ray
-     * parallel to a slab and outside it (entry and exit both +infinity) is a miss. */
-    double box_min = t_min > -DBL_MAX ? t_min : -DBL_MAX;
-    double box_max = t_max < DBL_MAX ? t_max : DBL_MAX;
-    uint64_t visits = 0, boxes = 0, tests = 0;
-    bool running = test_triangles(b, r, (uint32_t)b->tree_count, (uint32_t)(b->triangle_count - b->tree_count),
-                                  t_min, t_max, kind, q, &box_max, &tests);
-    struct ray_setup s = ray_setup_make(r);
-    struct stack_entry stack[BVH_STACK_SIZE];
-    int top = 0;
-    uint32_t child = b->root_child, count = b->root_count;
-    if (running && b->tree_count > 0) {
-        boxes++;
-        running = root_hit(b, &s, box_min, box_max);
-    } else {
-        running = false;
-    }
-    while (running) {
-        visits++;
-        if (count == 0) {
-            const struct bvh_node *n = &b->nodes[child];
-            double2 entry[2];
-            unsigned hit = child_pair_hit(n, 0, &s, box_min, box_max, &entry[0]) |
-                           child_pair_hit(n, 1, &s, box_min, box_max, &entry[1]) << 2;
-            boxes += 2 + (n->child[2] != BVH_NO_CHILD) + (n->child[3] != BVH_NO_CHILD);
-            if (hit != 0) {
-                /* The children hit, nearest first when the nearest hit is wanted (insertion sort of at
-                 * most four); all but the first are put aside, farthest deepest. */
-                int order[BVH_WIDTH], hits = 0;
-                for (int k = 0; k < BVH_WIDTH; k++) {
-                    if (!(hit >> k & 1))
-                        continue;
-                    int at = hits++;
-                    if (kind == QUERY_CLOSEST)
-                        for (; at > 0 && entry[k >> 1][k & 1] < entry[order[at - 1] >> 1][order[at - 1] & 1]; at--)
-                            order[at] = order[at - 1];
-                    order[at] = k;
-                }
-                for (int i = hits - 1; i > 0; i--) {
-                    int k = order[i];
-                    stack[top++] = (struct stack_entry){n->child[k], n->count[k], entry[k >> 1][k & 1]};
-                    prefetch_child(b, n->child[k], n->count[k]);
-                }
-                child = n->child[order[0]];
-                count = n->count[order[0]];
-                continue;
-            }
-        } else if (!test_triangles(b, r, child, count, t_min, t_max, kind, q, &box_max, &tests)) {
-            break;
-        }
-        /* Next: the most recently put aside subtree that can still hold something at or before box_max
-         * (at: a lower face at the same t would win the tie). */
-        running = false;
-        while (top > 0) {
-            const struct stack_entry *e = &stack[--top];
-            if (e->entry <= box_max) {
-                child = e->child;
-                count = e->count;
-                running = true;
-                break;
-            }
-        }
-    }
-    stats_thread.node_visits += visits;
-    stats_thread.box_tests += boxes;
-    stats_thread.triangle_tests += tests;
-    return q->found;
-}
-
-bool bvh_closest(const struct bvh *b, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
-    struct query_state q = {0};
-    if (!traverse(b, r, t_min, t_max, QUERY_CLOSEST, &q))
-        return false;
-    *t = q.t;
-    *face = q.face;
-    return true;
-}
-
-bool bvh_occluded(const struct bvh *b, const ray *r, double t_min, double t_max) {
-    struct query_state q = {0};
-    return traverse(b, r, t_min, t_max, QUERY_ANY, &q);
-}
-
-void bvh_for_each_hit(const struct bvh *b, const ray *r, double t_min, double t_max,
-                      bool (*visit)(void *ctx, double t, uint32_t face), void *ctx) {
-    struct query_state q = {0};
-    q.visit = visit;
-    q.ctx = ctx;
-    traverse(b, r, t_min, t_max, QUERY_ALL, &q);
 }

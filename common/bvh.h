@@ -1,4 +1,5 @@
-/* bvh.h: a bounding volume hierarchy over the triangles of one mesh (chapter 10).
+/* bvh.h: a bounding volume hierarchy over the triangles of one mesh (chapter 10): a binary tree of
+ * boxes, built by the median split or the binned SAH, walked front to back with a small stack.
  *
  * Two ways to build it: the dissertation's object-median split (the baseline) and a binned surface area
  * heuristic (SAH) split after Wald, "On fast construction of SAH-based bounding volume hierarchies"
@@ -31,9 +32,9 @@ struct bvh; /* opaque */
 
 /* What a built hierarchy looks like, for printing beside measured costs. */
 struct bvh_info {
-    size_t nodes;     /* interior nodes (4-wide, see bvh.c) + leaves */
+    size_t nodes;     /* interior nodes + leaves */
     size_t leaves;
-    size_t max_depth; /* edges from the root to the deepest leaf in the 4-wide tree (0 for a single leaf) */
+    size_t max_depth; /* edges from the root to the deepest leaf (0 for a single leaf) */
     double build_ms;  /* wall-clock time bvh_build took, in milliseconds */
     double sah_cost;  /* the tree's expected cost per ray by the surface area heuristic, in units of one
                          triangle test (see BVH_COST_TRAVERSAL and BVH_COST_TRIANGLE in bvh.c) */

@@ -1,11 +1,12 @@
 /* heatmap.h: a picture of how much work each pixel cost (chapter 1; it tells its story in chapters 5,
- * 9 and 10).
+ * 9, 10 and 11).
  *
  * The cost of a pixel is the number of node visits plus box and shape tests its rays made. It is
  * drawn on one fixed logarithmic scale, black (no work) through blue, red and yellow to white
  * (HEATMAP_MAX_COST tests or more), so heat-maps of different chapters and structures can be set side
- * by side. Mind what a unit is: a BVH node visit also counts a box test for each of its (up to four)
- * children, a kd-tree step counts none, so equal colours are equal counts, not equal times.
+ * by side. Mind what a unit is: a BVH node visit also counts a box test for each of its children (two
+ * in chapter 10, up to four in chapter 11), a kd-tree step counts none, so equal colours are equal
+ * counts, not equal times.
  *
  * Under the picture, the heat-map gets a colour bar (heatmap_draw_bar): the scale from 0 to
  * HEATMAP_MAX_COST with a tick and its number at each cost in heatmap_ticks, the numbers drawn with a

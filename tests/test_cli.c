@@ -41,6 +41,9 @@ Test(cli, two_scenes_are_a_usage_error) {
 Test(cli, a_wrong_accel_is_refused_with_the_choices) {
     expect_chapter_run(9, "--accel bvh", 2, "--accel needs one of: none kdtree; got 'bvh'");
     expect_chapter_run(10, "--split middle", 2, "--split needs 'sah' or 'seed' (the seed's rule), got 'middle'");
+    expect_chapter_run(10, "--rung 2", 2, "unknown option '--rung'");
+    expect_chapter_run(11, "--rung 6", 2, "--rung needs 1 to 5 or one of: plain wide simd prefetch build; got '6'");
+    expect_chapter_run(11, "--rung fast", 2, "--rung needs 1 to 5 or one of: plain wide simd prefetch build; got 'fast'");
 }
 
 Test(cli, a_missing_scene_file_is_bad_input) {
@@ -106,4 +109,8 @@ Test(cli, stats_adds_the_structure_and_the_predicted_cost) {
     expect_chapter_run(9, "--stats -o " TEST_OUT "/stats.png", 0, "predicted by the SAH:");
     expect_chapter_run(10, "--accel bvh --split seed --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
                "acceleration: BVH (median split) over 353546 triangles");
+    expect_chapter_run(11, "--rung simd --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
+               "acceleration: fast BVH, rung 3 simd (binned SAH) over 353546 triangles");
+    expect_chapter_run(11, "--rung 1 --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
+               "acceleration: BVH (binned SAH) over 353546 triangles");
 }

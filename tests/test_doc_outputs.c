@@ -3,7 +3,8 @@
  * A quoted output block is marked by the line `<!-- output of: COMMAND -->` just above its fence.
  * The test runs COMMAND from the repository root (./build/ stands for the build under test) and
  * requires every line of the block to be a line of what it printed, after blanking durations
- * ("in 0.293 s", "25.9 ms"), which vary from run to run where the counters do not. Lines "..." (a cut)
+ * ("in 0.293 s", "25.9 ms") and the padding before them, which vary from run to run where the counters
+ * do not. Lines "..." (a cut)
  * and lines starting with "$ " (the command, shown as typed) are not compared. */
 #include <criterion/criterion.h>
 #include <criterion/parameterized.h>
@@ -131,7 +132,7 @@ struct page {
 static struct page pages[] = {
     {"docs/01-camera.md"}, {"docs/02-sphere.md"}, {"docs/03-triangle.md"}, {"docs/04-plane.md"},
     {"docs/05-aabb.md"},   {"docs/06-phong.md"},  {"docs/07-shadows.md"},  {"docs/08-recursion.md"},
-    {"docs/09-kdtree.md"}, {"docs/10-bvh.md"},
+    {"docs/09-kdtree.md"}, {"docs/10-bvh.md"}, {"docs/11-fast.md"},
 };
 
 ParameterizedTestParameters(doc_outputs, quoted_output_is_what_the_program_prints) {
@@ -154,5 +155,10 @@ Test(doc_outputs, a_changed_counter_is_noticed) {
     cr_assert(printed(output, wanted), "the right counter did not match:\n%s", output);
     normalise(other_time, strlen(other_time), wanted, sizeof wanted);
     cr_assert(printed(output, wanted), "a different duration should not matter:\n%s", output);
+    /* nor a wider one, whose right-aligned column starts earlier (a build of over a second) */
+    char narrow[64], wide[64];
+    normalise("  build                    84.2 ms", strlen("  build                    84.2 ms"), narrow, sizeof narrow);
+    normalise("  build                  1084.2 ms", strlen("  build                  1084.2 ms"), wide, sizeof wide);
+    cr_assert_str_eq(narrow, wide);
     free(output);
 }

@@ -47,6 +47,7 @@ CHAPTER_IMAGE_TESTS(7, chapter_07_shadows)
 CHAPTER_IMAGE_TESTS(8, chapter_08_recursion)
 CHAPTER_IMAGE_TESTS(9, chapter_09_kdtree)
 CHAPTER_IMAGE_TESTS(10, chapter_10_bvh)
+CHAPTER_IMAGE_TESTS(11, chapter_11_fast)
 
 /* ---- acceleration changes the work, never the picture ------------------------------------------ */
 
@@ -71,11 +72,31 @@ Test(acceleration, every_structure_draws_the_brute_force_picture, .timeout = 300
     check_identical(8, scene, "", brute, "chapter-8");
 }
 
-Test(acceleration, chapters_9_and_10_draw_chapter_8s_picture) {
+/* Chapter 11 changes only the speed: its reference is chapter 10's picture, and every rung of its
+ * ladder, by either split rule, draws the brute-force picture. */
+Test(acceleration, every_rung_of_chapter_11_draws_the_brute_force_picture, .timeout = 300) {
+    struct image_difference same = compare_png("reference_images/chapter-11.png", "reference_images/chapter-10.png");
+    cr_assert_eq(same.max, 0, "chapter 11's reference differs from chapter 10's by up to %d levels", same.max);
+    const char *scene = chapter_scene(9);
+    const char *brute = TEST_OUT "/brute-force-09-for-11.png";
+    cr_assert_eq(render_chapter(11, scene, brute, "--accel none"), 0);
+    static const char *const rungs[] = {"1", "2", "3", "4", "5"};
+    for (int k = 0; k < 5; k++) {
+        char extra[64], tag[32];
+        snprintf(extra, sizeof extra, "--rung %s", rungs[k]);
+        snprintf(tag, sizeof tag, "rung-%s", rungs[k]);
+        check_identical(11, scene, extra, brute, tag);
+    }
+    check_identical(11, scene, "--rung build --split seed", brute, "rung-5-median");
+    check_identical(11, scene, "--rung plain --split seed", brute, "rung-1-median");
+}
+
+Test(acceleration, chapters_9_to_11_draw_chapter_8s_picture) {
     const char *expected = TEST_OUT "/chapter-08-for-accel.png";
     cr_assert_eq(render_chapter(8, chapter_scene(8), expected, ""), 0);
     check_identical(9, chapter_scene(8), "", expected, "ch9-on-8");
     check_identical(10, chapter_scene(8), "", expected, "ch10-on-8");
+    check_identical(11, chapter_scene(8), "", expected, "ch11-on-8");
 }
 
 Test(acceleration, the_picture_is_the_same_for_1_2_and_4_threads, .timeout = 300) {
@@ -83,6 +104,7 @@ Test(acceleration, the_picture_is_the_same_for_1_2_and_4_threads, .timeout = 300
     cr_assert_eq(render_chapter(10, chapter_scene(10), one, "--threads 1"), 0);
     check_identical(10, chapter_scene(10), "--threads 2", one, "threads-2");
     check_identical(10, chapter_scene(10), "--threads 4", one, "threads-4");
+    check_identical(11, chapter_scene(10), "--threads 2", one, "ch11-threads-2");
 }
 
 /* ---- the checks catch real changes ------------------------------------------------------------ */

@@ -1,0 +1,60 @@
+/* Chapter 11, going fast: chapter 10's hierarchy, the same tree and the same answers, laid out and
+ * walked for speed, one optimisation (a rung) at a time.
+ *
+ * The fast hierarchy is in common/fast_bvh.c and is plugged into the world by common/accel_fast_bvh.c.
+ * --rung N (1 to 5) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 5 (the
+ * default) everything. The picture is chapter 10's on every rung; only the time changes. */
+#include <stdio.h>
+#include <string.h>
+
+#include "accel_fast_bvh.h"
+#include "cli.h"
+#include "fast_bvh.h"
+#include "whitted.h"
+
+static struct accel_choice choice = {ACCEL_BVH, true};
+static int rung = FAST_BVH_RUNG_TOP;
+
+static int parse_option(const char *option, const char *value) {
+    if (strcmp(option, "--rung") == 0) {
+        rung = value != NULL ? fast_bvh_rung_from_name(value) : 0;
+        if (rung != 0)
+            return 2;
+        fprintf(stderr, "--rung needs 1 to 5 or one of: plain wide simd prefetch build; got '%s'\n",
+                value != NULL ? value : "");
+        return -1;
+    }
+    return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
+}
+
+/* accel_world_use_fast_bvh at the rung the command line asked for. */
+static bool use_fast_bvh(struct accel_world *w, int split, char *err, size_t err_size) {
+    return accel_world_use_fast_bvh(w, split, rung, err, err_size);
+}
+
+/* Builds the world with the chosen structure over every triangle of the scene. */
+static void *prepare(struct scene *s, char *err, size_t err_size) {
+    return accel_world_create(s, &choice, use_fast_bvh, err, err_size);
+}
+
+int main(int argc, char **argv) {
+    static const struct chapter chapter = {
+        .number = 11,
+        .title = "fast",
+        .default_scene = "scenes/11-fast.scene",
+        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .lighting = POV_WHITTED,
+        .load_meshes = scene_load_meshes,
+        .prepare = prepare,
+        .release = accel_world_destroy,
+        .trace = whitted_trace,
+        .parse_option = parse_option,
+        .options_help = "  --rung R         how much of the speed-up to use: 1 plain (chapter 10's BVH),\n"
+                        "                   2 wide, 3 simd, 4 prefetch, 5 build (the default); a number or a name\n"
+                        "  --accel KIND     none, kdtree or bvh (default bvh: the fast BVH at the chosen rung)\n"
+                        "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
+                        "                   kd-tree: the axis holding most objects)\n",
+        .report = accel_chapter_report,
+    };
+    return cli_run(&chapter, argc, argv);
+}

@@ -1,0 +1,52 @@
+/* accel_fast_bvh.c: routing the world's triangle queries through chapter 11's fast BVH at a chosen rung. */
+#include "accel_fast_bvh.h"
+
+#include <stdio.h>
+
+#include "fast_bvh.h"
+
+static bool fast_bvh_closest_any(const void *bvh, const ray *r, double t_min, double t_max, double *t,
+                                 uint32_t *face) {
+    return fast_bvh_closest(bvh, r, t_min, t_max, t, face);
+}
+
+static bool fast_bvh_occluded_any(const void *bvh, const ray *r, double t_min, double t_max) {
+    return fast_bvh_occluded(bvh, r, t_min, t_max);
+}
+
+static void fast_bvh_for_each_hit_any(const void *bvh, const ray *r, double t_min, double t_max,
+                                      world_hit_visitor visit, void *context) {
+    fast_bvh_for_each_hit(bvh, r, t_min, t_max, visit, context);
+}
+
+static void fast_bvh_free_any(void *bvh) { fast_bvh_free(bvh); }
+
+bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *err, size_t err_size) {
+    if (rung == FAST_BVH_RUNG_PLAIN) /* chapter 10's hierarchy, unchanged */
+        return accel_world_use_bvh(w, split, err, err_size);
+    double started = accel_now_ms();
+    struct fast_bvh *bvh = fast_bvh_build(&w->triangles, (enum bvh_split)split, (enum fast_bvh_rung)rung);
+    double build_ms = accel_now_ms() - started;
+    if (bvh == NULL) {
+        snprintf(err, err_size, "out of memory building the BVH");
+        return false;
+    }
+    struct bvh_info info;
+    fast_bvh_get_info(bvh, &info);
+    static const char *const names[2][FAST_BVH_RUNG_TOP + 1] = {
+        {"", "", "fast BVH, rung 2 wide (median split)", "fast BVH, rung 3 simd (median split)",
+         "fast BVH, rung 4 prefetch (median split)", "fast BVH, rung 5 build (median split)"},
+        {"", "", "fast BVH, rung 2 wide (binned SAH)", "fast BVH, rung 3 simd (binned SAH)",
+         "fast BVH, rung 4 prefetch (binned SAH)", "fast BVH, rung 5 build (binned SAH)"},
+    };
+    w->summary = (struct accel_summary){names[split == BVH_SPLIT_SAH][rung], build_ms, info.nodes, info.leaves,
+                                        info.max_depth, info.sah_cost};
+    w->structure = bvh;
+    w->free_structure = fast_bvh_free_any;
+    w->accel.structure = bvh;
+    w->accel.closest = fast_bvh_closest_any;
+    w->accel.occluded = fast_bvh_occluded_any;
+    w->accel.for_each_hit = fast_bvh_for_each_hit_any;
+    w->world.accel = &w->accel;
+    return true;
+}
