@@ -254,38 +254,41 @@ Test(io, escaping_keeps_utf8_and_escapes_everything_else) {
 
 /* ---- meshes placed out of range ---------------------------------------------------------------- */
 
-/* Renders a one-triangle mesh placed by `placement` and expects the message `what` for line 3. */
-static void expect_out_of_range(const char *placement, const char *what) {
-    text_file("io-range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+/* Renders a one-triangle mesh placed by `placement` and expects the message `what` for line 3. The
+ * files are named after `tag`: the tests run in parallel, so each writes its own. */
+static void expect_out_of_range(const char *tag, const char *placement, const char *what) {
+    char obj[64], scene_name[64];
+    snprintf(obj, sizeof obj, "io-range-%s.obj", tag);
+    snprintf(scene_name, sizeof scene_name, "io-range-%s.scene", tag);
+    text_file(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     char text[256], arguments[512], expected[512];
-    snprintf(text, sizeof text, "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\nmesh io-range.obj %s\n", placement);
-    const char *scene = text_file("io-range.scene", text);
+    snprintf(text, sizeof text, "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\nmesh %s %s\n", obj, placement);
+    const char *scene = text_file(scene_name, text);
     for (int n = 3; n <= 10; n += 7) {
-        snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", scene);
-        snprintf(expected, sizeof expected, "%s:3: mesh " TEST_OUT "/io-range.obj placed out of range: %s", scene,
-                 what);
+        snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never-%s.png", scene, tag);
+        snprintf(expected, sizeof expected, "%s:3: mesh " TEST_OUT "/%s placed out of range: %s", scene, obj, what);
         expect_chapter_run(n, arguments, 1, expected);
     }
 }
 
 Test(io, a_mesh_scaled_beyond_float_range_is_refused) {
-    expect_out_of_range("scale 1e308", "vertex 1 lands at (1e+308, 0, 0); coordinates must stay within "
-                                       "-1e+18 .. 1e+18");
-}
-
-Test(io, a_mesh_scaled_below_float_range_is_refused) {
-    expect_out_of_range("scale 1e-40", "it is 1e-40 across; it must be at least 1e-18 across");
-}
-
-Test(io, a_mesh_moved_beyond_float_range_is_refused) {
-    expect_out_of_range("translate 1e39 0 0", "vertex 0 lands at (1e+39, 0, 0); coordinates must stay within "
+    expect_out_of_range("big", "scale 1e308", "vertex 1 lands at (1e+308, 0, 0); coordinates must stay within "
                                               "-1e+18 .. 1e+18");
 }
 
+Test(io, a_mesh_scaled_below_float_range_is_refused) {
+    expect_out_of_range("small", "scale 1e-40", "it is 1e-40 across; it must be at least 1e-18 across");
+}
+
+Test(io, a_mesh_moved_beyond_float_range_is_refused) {
+    expect_out_of_range("far", "translate 1e39 0 0", "vertex 0 lands at (1e+39, 0, 0); coordinates must stay within "
+                                                     "-1e+18 .. 1e+18");
+}
+
 Test(io, a_mesh_at_the_edge_of_the_range_renders) {
-    text_file("io-range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    text_file("io-edge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const char *scene = text_file("io-edge.scene", "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 8\n"
-                                                   "mesh io-range.obj scale 1e-18\nmesh io-range.obj translate 1e18 0 0\n");
+                                                   "mesh io-edge.obj scale 1e-18\nmesh io-edge.obj translate 1e18 0 0\n");
     char arguments[512];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/io-edge.png --quiet", scene);
     expect_chapter_run(10, arguments, 0, "");
