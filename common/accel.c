@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "bvh.h" /* only for the names of the split rules */
+#include "text_escape.h"
 #include "kdtree.h"
 
 double accel_now_ms(void) {
@@ -139,7 +140,9 @@ int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *opt
         for (int k = 0; k < 3; k++)
             if (allowed & (1u << k))
                 fprintf(stderr, " %s", kinds[k]);
-        fprintf(stderr, "; got '%s'\n", value != NULL ? value : "");
+        char got[256];
+        text_escape(value != NULL ? value : "", got, sizeof got); /* the value comes from the command line */
+        fprintf(stderr, "; got '%s'\n", got);
         return -1;
     }
     if (strcmp(option, "--split") == 0) {
@@ -147,7 +150,9 @@ int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *opt
             c->sah = strcmp(value, "sah") == 0;
             return 2;
         }
-        fprintf(stderr, "--split needs 'sah' or 'seed' (the seed's rule), got '%s'\n", value != NULL ? value : "");
+        char got[256];
+        text_escape(value != NULL ? value : "", got, sizeof got);
+        fprintf(stderr, "--split needs 'sah' or 'seed' (the seed's rule), got '%s'\n", got);
         return -1;
     }
     return 0;

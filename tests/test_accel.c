@@ -29,6 +29,12 @@
 #include "stats.h"
 #include "triangle.h"
 
+/* Seconds each of the larger tests may take. make test-accel-long builds this file again with 0 (no
+ * limit), since a test's own timeout outranks the runner's --timeout 0. */
+#ifndef ACCEL_TEST_TIMEOUT
+#define ACCEL_TEST_TIMEOUT 120
+#endif
+
 /* Brute-force triangle tests per mesh (rays * faces): about 0.2 s each at -O2. */
 #define ACCEL_TEST_BUDGET 2.5e7
 #define ACCEL_TEST_MAX_RAYS 12000
@@ -708,7 +714,7 @@ static void check_model(const char *path) {
 
 /* ---- agreement with brute force --------------------------------------------------------------- */
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_1_to_10_triangles, .timeout = 120) {
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_1_to_10_triangles, .timeout = ACCEL_TEST_TIMEOUT) {
     check_soups(1, 4);
     check_soups(2, 4);
     check_soups(3, 4);
@@ -716,31 +722,31 @@ Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_1_to_10_triangles, .tim
     check_soups(10, 3);
 }
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_30_to_300_triangles, .timeout = 120) {
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_30_to_300_triangles, .timeout = ACCEL_TEST_TIMEOUT) {
     check_soups(30, 3);
     check_soups(100, 3);
     check_soups(300, 2);
 }
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_1000_triangles, .timeout = 120) { check_soups(1000, 2); }
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_1000_triangles, .timeout = ACCEL_TEST_TIMEOUT) { check_soups(1000, 2); }
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_3000_triangles, .timeout = 120) { check_soups(3000, 2); }
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_3000_triangles, .timeout = ACCEL_TEST_TIMEOUT) { check_soups(3000, 2); }
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_5000_triangles, .timeout = 120) { check_soups(5000, 2); }
+Test(accel, bvh_and_kdtree_match_brute_force_on_soups_of_5000_triangles, .timeout = ACCEL_TEST_TIMEOUT) { check_soups(5000, 2); }
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_a_sphere_from_inside_and_outside, .timeout = 120) {
+Test(accel, bvh_and_kdtree_match_brute_force_on_a_sphere_from_inside_and_outside, .timeout = ACCEL_TEST_TIMEOUT) {
     struct mesh m = make_sphere(24, 48, vec3_make(0.25, -0.5, 1.0), 1.5);
     check_mesh("sphere", &m, 11);
 }
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_stacked_axis_aligned_grids, .timeout = 120) {
+Test(accel, bvh_and_kdtree_match_brute_force_on_stacked_axis_aligned_grids, .timeout = ACCEL_TEST_TIMEOUT) {
     struct mesh m = make_grids(16);
     check_mesh("grids", &m, 12);
 }
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_bunny, .timeout = 120) { check_model("scenes/models/bunny.ply"); }
+Test(accel, bvh_and_kdtree_match_brute_force_on_bunny, .timeout = ACCEL_TEST_TIMEOUT) { check_model("scenes/models/bunny.ply"); }
 
-Test(accel, bvh_and_kdtree_match_brute_force_on_teapot_5k, .timeout = 120) {
+Test(accel, bvh_and_kdtree_match_brute_force_on_teapot_5k, .timeout = ACCEL_TEST_TIMEOUT) {
     check_model("scenes/models/teapot-5k.ply");
 }
 
@@ -868,7 +874,7 @@ static void expect_plain_sah_tree_is_the_sweeps(const char *name, const struct m
     kdtree_free(plain);
 }
 
-Test(accel, kdtree_sah_built_plainly_is_the_tree_the_event_sweep_builds, .timeout = 120) {
+Test(accel, kdtree_sah_built_plainly_is_the_tree_the_event_sweep_builds, .timeout = ACCEL_TEST_TIMEOUT) {
     for (size_t faces = 1; faces <= 1000; faces *= 10)
         for (int s = 0; s < 3; s++) {
             char name[64];
@@ -976,11 +982,11 @@ static void check_meshes_with_corners_at_infinity_or_nan(mesh_check check, uint6
 
 /* The kd-tree builds once looped forever on NaN event positions; now every rule finishes and agrees
  * with the brute-force loop. */
-Test(accel, kdtree_builds_and_matches_brute_force_on_meshes_outside_float_range, .timeout = 120) {
+Test(accel, kdtree_builds_and_matches_brute_force_on_meshes_outside_float_range, .timeout = ACCEL_TEST_TIMEOUT) {
     check_meshes_outside_float_range(check_mesh_kdtrees, 0, true);
 }
 
-Test(accel, kdtree_builds_and_matches_brute_force_with_corners_at_infinity_or_nan, .timeout = 120) {
+Test(accel, kdtree_builds_and_matches_brute_force_with_corners_at_infinity_or_nan, .timeout = ACCEL_TEST_TIMEOUT) {
     check_meshes_with_corners_at_infinity_or_nan(check_mesh_kdtrees, 0);
 }
 
@@ -994,11 +1000,11 @@ Test(accel, kdtree_builds_and_matches_brute_force_with_corners_at_infinity_or_na
  * 1 moved to x = 1e39, where a ray starts some 1e39 mesh sizes away and the triangle test's rounding
  * (about 1e23 there) exceeds any pad relative to the mesh's size (bvh.c says so). Scenes refuse such a
  * placement (scene_meshes.c), so the tracer never meets it. */
-Test(accel, bvhs_build_and_match_brute_force_on_meshes_outside_float_range, .timeout = 120) {
+Test(accel, bvhs_build_and_match_brute_force_on_meshes_outside_float_range, .timeout = ACCEL_TEST_TIMEOUT) {
     check_meshes_outside_float_range(check_mesh, 1000, false);
 }
 
-Test(accel, bvhs_build_and_match_brute_force_with_corners_at_infinity_or_nan, .timeout = 120) {
+Test(accel, bvhs_build_and_match_brute_force_with_corners_at_infinity_or_nan, .timeout = ACCEL_TEST_TIMEOUT) {
     check_meshes_with_corners_at_infinity_or_nan(check_mesh, 1000);
 }
 

@@ -225,6 +225,8 @@ Test(io, control_characters_in_a_message_are_escaped) {
     snprintf(expected, sizeof expected, "%s:3: unknown directive 'sph\\x1b[2Jere'\n", scene);
     cr_assert_str_eq(output, expected);
     expect_chapter_run(2, "\"$(printf -- '-r\\033]0;x\\007')\"", 2, "unknown option '-r\\x1b]0;x\\x07'");
+    expect_chapter_run(10, "--accel \"$(printf -- 'b\\033vh')\"", 2, "got 'b\\x1bvh'");
+    expect_chapter_run(10, "--split \"$(printf -- 's\\033ah')\"", 2, "got 's\\x1bah'");
 }
 
 /* The note a chapter prints about shapes it does not draw quotes the scene's path, which comes from the
