@@ -17,8 +17,9 @@
  *
  * Exact agreement with the brute-force loop. A query must return the very face and t that testing
  * every face with triangle_intersect would. Four things make sure of it:
- *  - Triangles are tested with triangle_crossing (triangle.h), the very arithmetic triangle_intersect
- *    uses, on the very corners the mesh holds, so t is the same double to the last bit.
+ *  - Triangles are tested with triangle_crossing_prepared (triangle.h), the very arithmetic
+ *    triangle_intersect uses (the ray made ready once per query), on the very corners the mesh holds,
+ *    so t is the same double to the last bit.
  *  - A box may only be skipped when no triangle inside can be reported hit. Moller-Trumbore rounds:
  *    it may call a ray that passes a hair outside a triangle a hit. So every triangle's box is grown by
  *    BVH_BOX_PAD times the mesh's size, far more than any such rounding error (about 1e-16 of the
@@ -455,17 +456,18 @@ struct query_state {
     void *ctx;
 };
 
-/* Tests triangles [first, first + count) for the query, with triangle_crossing (triangle.h), the
- * arithmetic of triangle_intersect, so t is bit-identical to the brute-force loop's. A nearer hit
- * lowers *box_max, the far end of the window boxes are tested in. Returns false when the walk should
- * stop (QUERY_ANY found a hit, or QUERY_ALL's visit said so). */
-static bool test_triangles(const struct bvh *b, const ray *r, uint32_t first, uint32_t count, double t_min,
-                           double t_max, struct query_state *q, double *box_max) {
+/* Tests triangles [first, first + count) for the query against the ray r made ready by
+ * triangle_ray_make, with triangle_crossing_prepared (triangle.h), the arithmetic of
+ * triangle_intersect, so t is bit-identical to the brute-force loop's. A nearer hit lowers *box_max,
+ * the far end of the window boxes are tested in. Returns false when the walk should stop (QUERY_ANY
+ * found a hit, or QUERY_ALL's visit said so). */
+static bool test_triangles(const struct bvh *b, const struct triangle_ray *r, uint32_t first, uint32_t count,
+                           double t_min, double t_max, struct query_state *q, double *box_max) {
     for (uint32_t k = first; k < first + count; k++) {
         const struct bvh_triangle *tri = &b->triangles[k];
         double t, u, v;
         stats_thread.triangle_tests++;
-        if (!triangle_crossing(tri->a, tri->b, tri->c, r, &t, &u, &v) || !(t > t_min && t < t_max))
+        if (!triangle_crossing_prepared(tri->a, tri->b, tri->c, r, &t, &u, &v) || !(t > t_min && t < t_max))
             continue;
         uint32_t face = b->faces[k];
         if (q->kind == QUERY_ANY) {
@@ -499,8 +501,9 @@ static bool traverse(const struct bvh *b, const ray *r, double t_min, double t_m
     /* The box tests' window: infinite ends replaced by the largest finite doubles, so that a ray
      * parallel to a slab and outside it (entry and exit both +infinity) is a miss. */
     double box_min = fmax(t_min, -DBL_MAX), box_max = fmin(t_max, DBL_MAX);
+    struct triangle_ray ready = triangle_ray_make(r); /* the triangle test's per-ray work, done once per query */
     uint32_t slivers = (uint32_t)(b->triangle_count - b->tree_count);
-    if (!test_triangles(b, r, (uint32_t)b->tree_count, slivers, t_min, t_max, q, &box_max) || b->tree_count == 0)
+    if (!test_triangles(b, &ready, (uint32_t)b->tree_count, slivers, t_min, t_max, q, &box_max) || b->tree_count == 0)
         return q->found;
     double o[3] = {r->origin.x, r->origin.y, r->origin.z};
     double inv[3] = {1.0 / r->direction.x, 1.0 / r->direction.y, 1.0 / r->direction.z};
@@ -517,7 +520,7 @@ static bool traverse(const struct bvh *b, const ray *r, double t_min, double t_m
         const struct bvh_node *n = &b->nodes[e.node];
         stats_thread.node_visits++;
         if (n->count > 0) {
-            if (!test_triangles(b, r, n->first, n->count, t_min, t_max, q, &box_max))
+            if (!test_triangles(b, &ready, n->first, n->count, t_min, t_max, q, &box_max))
                 break;
             continue;
         }

@@ -29,8 +29,9 @@
  *
  * Exact agreement with the brute-force loop. A query must return the very face and t that testing
  * every face with triangle_intersect would. Four things make sure of it:
- *  - Triangles are tested with triangle_crossing (triangle.h), the very arithmetic triangle_intersect
- *    uses, on the very corners the mesh holds, so t is the same double to the last bit.
+ *  - Triangles are tested with triangle_crossing_prepared (triangle.h), the very arithmetic
+ *    triangle_intersect uses (the ray made ready once per query, in struct ray_setup), on the very
+ *    corners the mesh holds, so t is the same double to the last bit.
  *  - A box may only be skipped when no triangle inside can be reported hit. Moller-Trumbore rounds:
  *    it may call a ray that passes a hair outside a triangle a hit. So every triangle's box is grown by
  *    BVH_BOX_PAD times the mesh's size before it is rounded outward to float, far more than any such
@@ -807,6 +808,7 @@ struct ray_setup {
     int near[3];        /* 0 when the ray enters a box through its low face on this axis, 1 for the high */
     double2 origin2[3]; /* origin and inverse again, each component in both lanes */
     double2 inverse2[3];
+    struct triangle_ray triangle; /* the watertight triangle test's per-ray work (triangle.h) */
 };
 
 static inline struct ray_setup ray_setup_make(const ray *r) {
@@ -818,6 +820,7 @@ static inline struct ray_setup ray_setup_make(const ray *r) {
         s.origin2[a] = (double2){s.origin[a], s.origin[a]};
         s.inverse2[a] = (double2){s.inverse[a], s.inverse[a]};
     }
+    s.triangle = triangle_ray_make(r);
     return s;
 }
 
@@ -888,11 +891,12 @@ static inline unsigned child_pair_hit(const struct fast_bvh_node *n, int h, cons
     return lanes_true(enter <= leave);
 }
 
-/* Whether r's line crosses the triangle, and where: triangle_crossing (triangle.h), the arithmetic
- * triangle_intersect uses, so t is bit-identical to the brute-force loop's. Does not count. */
-static inline bool triangle_hit(const struct fast_bvh_triangle *tri, const ray *r, double *t) {
+/* Whether the line of ray r (made ready by triangle_ray_make) crosses the triangle, and where:
+ * triangle_crossing_prepared (triangle.h), the arithmetic triangle_intersect uses, so t is
+ * bit-identical to the brute-force loop's. Does not count. */
+static inline bool triangle_hit(const struct fast_bvh_triangle *tri, const struct triangle_ray *r, double *t) {
     double u, v;
-    return triangle_crossing(tri->a, tri->b, tri->c, r, t, &u, &v);
+    return triangle_crossing_prepared(tri->a, tri->b, tri->c, r, t, &u, &v);
 }
 
 /* The three questions one traversal answers; the code is specialised for each at compile time. */
@@ -912,7 +916,7 @@ struct query_state {
 
 /* Tests triangles [first, first + count) for query q, lowering *box_max as nearer hits turn up.
  * Returns false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
-static inline __attribute__((always_inline)) bool test_triangles(const struct fast_bvh *b, const ray *r, uint32_t first,
+static inline __attribute__((always_inline)) bool test_triangles(const struct fast_bvh *b, const struct triangle_ray *r, uint32_t first,
                                                                  uint32_t count, double t_min, double t_max,
                                                                  enum query kind, struct query_state *q,
                                                                  double *box_max, uint64_t *tests) {
@@ -973,9 +977,10 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
     double box_min = t_min > -DBL_MAX ? t_min : -DBL_MAX;
     double box_max = t_max < DBL_MAX ? t_max : DBL_MAX;
     uint64_t visits = 0, boxes = 0, tests = 0;
-    bool running = test_triangles(b, r, (uint32_t)b->tree_count, (uint32_t)(b->triangle_count - b->tree_count),
-                                  t_min, t_max, kind, q, &box_max, &tests);
-    struct ray_setup s = ray_setup_make(r);
+    struct ray_setup s = ray_setup_make(r); /* once per query: the box tests' and the triangle test's setup */
+    bool running = test_triangles(b, &s.triangle, (uint32_t)b->tree_count,
+                                  (uint32_t)(b->triangle_count - b->tree_count), t_min, t_max, kind, q, &box_max,
+                                  &tests);
     struct stack_entry stack[BVH_STACK_SIZE];
     int top = 0;
     uint32_t child = b->root_child, count = b->root_count;
@@ -1027,7 +1032,7 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
                 count = n->count[order[0]];
                 continue;
             }
-        } else if (!test_triangles(b, r, child, count, t_min, t_max, kind, q, &box_max, &tests)) {
+        } else if (!test_triangles(b, &s.triangle, child, count, t_min, t_max, kind, q, &box_max, &tests)) {
             break;
         }
         /* Next: the most recently put aside subtree that can still hold something at or before box_max
