@@ -325,22 +325,21 @@ static uint32_t build_node(struct builder *bd, uint32_t begin, uint32_t end, siz
     return index;
 }
 
-/* True for a face of m that BVH_SLIVER_SINE keeps out of the tree. */
-static bool is_sliver(const struct mesh *m, size_t face) {
+bool bvh_is_sliver(const struct mesh *m, size_t face) {
     const uint32_t *v = m->faces[face].v;
     vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
     double cross = vec3_length(vec3_cross(e1, e2));
     return cross > 0.0 && cross < BVH_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
 }
 
-static double now_ms(void) {
+double bvh_now_ms(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
-    double start = now_ms();
+    double start = bvh_now_ms();
     size_t n = m->face_count;
     struct bvh *b = n <= BVH_MAX_FACES ? calloc(1, sizeof *b) : NULL;
     if (b == NULL)
@@ -367,7 +366,7 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
     /* One prim per face, slivers to the end of faces[]. */
     size_t tree = 0, slivers = 0;
     for (size_t f = 0; f < n; f++) {
-        if (is_sliver(m, f)) {
+        if (bvh_is_sliver(m, f)) {
             b->faces[n - ++slivers] = (uint32_t)f;
             continue;
         }
@@ -405,7 +404,7 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
     }
     b->info = (struct bvh_info){b->node_count, bd.leaves, bd.max_depth, 0.0,
                                 bd.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
-    b->info.build_ms = now_ms() - start;
+    b->info.build_ms = bvh_now_ms() - start;
     return b;
 }
 
@@ -637,19 +636,30 @@ bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t w
     }
     if (ok && b->tree_count > 0)
         ok = check_node(&c, 0, 0);
-    for (size_t k = 0; ok && k < b->tree_count; k++)
-        if (!c.seen_triangle[k])
-            ok = check_fail(&c, "triangle in no leaf", k);
-    for (size_t k = 0; ok && k < b->triangle_count; k++)
-        if (is_sliver(m, b->faces[k]) != (k >= b->tree_count))
-            ok = check_fail(&c, "sliver in the tree, or other triangle among the slivers", k);
-    if (ok) { /* every face once: no face number repeats */
-        memset(c.seen_triangle, 0, b->triangle_count + 1);
-        for (size_t k = 0; ok && k < b->triangle_count; k++)
-            if (c.seen_triangle[b->faces[k]]++)
-                ok = check_fail(&c, "face stored twice", b->faces[k]);
-    }
+    if (ok)
+        ok = bvh_check_faces(m, b->faces, b->triangle_count, b->tree_count, c.seen_triangle, why, why_size);
     free(c.seen_triangle);
     free(c.seen_node);
     return ok;
+}
+
+bool bvh_check_faces(const struct mesh *m, const uint32_t *faces, size_t triangle_count, size_t tree_count,
+                     unsigned char *seen, char *why, size_t why_size) {
+    const char *what = NULL;
+    size_t where = 0;
+    for (size_t k = 0; what == NULL && k < tree_count; k++)
+        if (!seen[k])
+            what = "triangle in no leaf", where = k;
+    for (size_t k = 0; what == NULL && k < triangle_count; k++)
+        if (bvh_is_sliver(m, faces[k]) != (k >= tree_count))
+            what = "sliver in the tree, or other triangle among the slivers", where = k;
+    if (what == NULL) { /* every face once: no face number repeats */
+        memset(seen, 0, triangle_count + 1);
+        for (size_t k = 0; what == NULL && k < triangle_count; k++)
+            if (seen[faces[k]]++)
+                what = "face stored twice", where = faces[k];
+    }
+    if (what != NULL)
+        snprintf(why, why_size, "%s (at %zu)", what, where);
+    return what == NULL;
 }

@@ -74,4 +74,23 @@ void bvh_get_info(const struct bvh *b, struct bvh_info *info);
  * why (why_size bytes). For tests: it walks the whole tree. */
 bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t why_size);
 
+/* ---- shared with chapter 11's BVH (fast_bvh.c), which keeps the same rules ------------------- */
+
+/* Returns true for face `face` of m when its edges are so nearly parallel (BVH_SLIVER_SINE, bvh.c)
+ * that no box can be trusted to hold its hits: such a face stays out of the tree and every ray tests
+ * it. Zero-area faces are not slivers (they are never hit). */
+bool bvh_is_sliver(const struct mesh *m, size_t face);
+
+/* Returns the monotonic clock's reading in milliseconds, for timing builds. */
+double bvh_now_ms(void);
+
+/* The checks of bvh_is_valid and fast_bvh_is_valid that follow their walk of the tree: each of the
+ * first tree_count stored triangles was reached (seen[k] nonzero), the slivers and only they are
+ * stored after them, and no face number repeats in faces[0..triangle_count). The caller has checked
+ * that every face number is below m's face count, which equals triangle_count. seen has
+ * triangle_count + 1 bytes and is overwritten. Returns true when all hold; otherwise false with the
+ * first broken one, as "what (at index)", in why (why_size bytes). */
+bool bvh_check_faces(const struct mesh *m, const uint32_t *faces, size_t triangle_count, size_t tree_count,
+                     unsigned char *seen, char *why, size_t why_size);
+
 #endif

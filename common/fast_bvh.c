@@ -63,7 +63,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
-#include <time.h>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -118,14 +117,7 @@
  * within a thousand mesh sizes, and invisible in the statistics. */
 #define BVH_BOX_PAD (1.0 / 1048576.0)
 
-/* A triangle whose edges b - a and c - a are this close to parallel (the sine of the angle between
- * them is below it, yet not zero) is kept out of the tree and tested by every ray. For such a sliver
- * Moller-Trumbore divides by a determinant that is mostly rounding noise, and can report a "hit" far
- * outside the triangle (measured: 2.6e-4 away, for a triangle whose middle corner is the midpoint of
- * its long edge): no box can be trusted to hold it. Above 1e-6 the error stays below 1e-9 of the ray's
- * distance, well inside BVH_BOX_PAD. Edges with an exactly zero cross product are never hit at all
- * (triangle_intersect rejects them), so those stay in the tree. Real meshes have few slivers or none. */
-#define BVH_SLIVER_SINE 1e-6
+/* Needle-thin triangles are chapter 10's: bvh_is_sliver (bvh.h) decides, by bvh.c's BVH_SLIVER_SINE. */
 
 /* Faces are numbered with uint32_t. */
 #define BVH_MAX_FACES ((size_t)1 << 31)
@@ -559,22 +551,8 @@ static uint32_t collapse(struct builder *bd, uint32_t index, const struct fbox *
     return out;
 }
 
-static double now_ms(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
-
-/* True for a face of m that BVH_SLIVER_SINE keeps out of the tree. */
-static bool is_sliver(const struct mesh *m, size_t face) {
-    const uint32_t *v = m->faces[face].v;
-    vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
-    double cross = vec3_length(vec3_cross(e1, e2));
-    return cross > 0.0 && cross < BVH_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
-}
-
 struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum fast_bvh_rung rung) {
-    double start = now_ms();
+    double start = bvh_now_ms();
     size_t n = m->face_count;
     if (n > BVH_MAX_FACES || rung < FAST_BVH_RUNG_FIRST || rung > FAST_BVH_RUNG_TOP)
         return NULL;
@@ -609,7 +587,7 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
     /* Tree faces first (their prims), slivers at the end of faces[]. */
     size_t tree = 0, slivers = 0;
     for (size_t f = 0; f < n; f++) {
-        if (is_sliver(m, f)) {
+        if (bvh_is_sliver(m, f)) {
             b->faces[n - ++slivers] = (uint32_t)f;
             continue;
         }
@@ -663,7 +641,7 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
     b->info.max_depth = bd.max_depth;
     b->info.sah_cost = bd.sah_cost + BVH_COST_TRIANGLE * slivers;
     b->info.slivers = slivers;
-    b->info.build_ms = now_ms() - start;
+    b->info.build_ms = bvh_now_ms() - start;
     return b;
 }
 
@@ -761,19 +739,8 @@ bool fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why
     }
     if (ok && b->tree_count > 0)
         ok = check_subtree(&c, b->root_child, b->root_count, b->root_lo, b->root_hi, 0);
-    for (size_t k = 0; ok && k < b->tree_count; k++)
-        if (!c.seen_triangle[k])
-            ok = check_fail(&c, "triangle in no leaf", k);
-    for (size_t k = 0; ok && k < b->triangle_count; k++)
-        if (is_sliver(m, b->faces[k]) != (k >= b->tree_count))
-            ok = check_fail(&c, "sliver in the tree, or other triangle among the slivers", k);
-    /* Every face once: triangles hold each face exactly once when no face number repeats. */
-    if (ok) {
-        memset(c.seen_triangle, 0, b->triangle_count + 1);
-        for (size_t k = 0; ok && k < b->triangle_count; k++)
-            if (c.seen_triangle[b->faces[k]]++)
-                ok = check_fail(&c, "face stored twice", b->faces[k]);
-    }
+    if (ok)
+        ok = bvh_check_faces(m, b->faces, b->triangle_count, b->tree_count, c.seen_triangle, why, why_size);
     free(c.seen_triangle);
     free(c.seen_node);
     return ok;
