@@ -48,6 +48,7 @@
 
 #include "stats.h"
 
+/* TASK 3.1: Moller-Trumbore ray-triangle intersection */
 bool triangle_crossing_mt(vec3 a, vec3 b, vec3 c, const ray *r, double *t, double *u, double *v) {
     vec3 edge1 = vec3_sub(b, a), edge2 = vec3_sub(c, a);
     vec3 p = vec3_cross(r->direction, edge2);
