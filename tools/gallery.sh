@@ -3,13 +3,17 @@
 # mistake a student could plausibly make, a line or a few), with a header saying what it is:
 #
 #   Title, Chapter (where the mistake is made), Program (the chapter program that shows it best),
-#   Scene and Args (what to render), Symptom, Cause, Look (the function to look in)
+#   Scene and Args (what to render), Symptom, Cause, Look (the function to look in), Check (the tasks
+#   of the student's grader, build/check, whose checks report the fault, e.g. "2.1 2.P")
 #
 #   tools/gallery.sh BUILD             build every fault, render it beside the right picture, write
 #                                      docs/gallery/NAME-*.png and docs/gallery.md
-#   tools/gallery.sh BUILD --prove N   build fault N and exit 0 when the picture check catches it (its
-#                                      picture fails the reference-image rule against the right one),
-#                                      1 when it does not, 2 when the fault cannot be built
+#   tools/gallery.sh BUILD --prove N   build fault N, with its chapter program and the grader, and exit
+#                                      0 when every task its Check line names fails with the fault
+#                                      (`check --task ID`, the grader make check-N runs), 1 when one
+#                                      passes, 2 when the fault cannot be built. It also says whether the
+#                                      gallery's own picture fails the reference-image rule against the
+#                                      right one (a fault may draw the right picture with more work).
 #
 # Faults are applied to a copy of the sources in out/gallery/work, never to the repository itself.
 # The reference code stays free of switches: the patch is the fault.
@@ -33,18 +37,20 @@ field() { sed -n "s/^$2: //p" "$1" | head -n 1; }
 work=out/gallery/work-$$
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$work"
-cp -r Makefile common chapters tools bench fuzz "$work"/
+cp -r Makefile common chapters tools bench fuzz reference_images "$work"/
+mkdir -p "$work/tests" "$work/out" && cp -r tests/checks "$work/tests/"
 mkdir -p "$work/scenes" && cp scenes/*.scene "$work/scenes/" && cp -r scenes/models "$work/scenes/"
 # The copy builds the way $build was built (build/san: with the sanitizers).
 san=0
 case $build in */san) san=1 ;; esac
 if [ -d "$build/common" ]; then
     mkdir -p "$work/$build"
-    cp -rp "$build"/common "$build"/chapters "$work/$build/" 2>/dev/null
+    cp -rp "$build"/common "$build"/chapters "$build"/checks "$build"/tools "$work/$build/" 2>/dev/null
     cp -p "$build"/chapter-* "$work/$build/" 2>/dev/null
 fi
 
-# Builds chapter program NN with the fault's patch applied; prints the program's path.
+# Builds chapter program NN and the grader (build/check) with the fault's patch applied; prints the
+# program's path (the grader is beside it).
 build_fault() { # build_fault PATCH NN
     local patch=$1 nn=$2 file
     for file in $(sed -n 's|^+++ b/||p' "$patch"); do
@@ -53,7 +59,7 @@ build_fault() { # build_fault PATCH NN
     # The copy lies inside this repository's tree: GIT_CEILING_DIRECTORIES keeps git apply from
     # finding the repository and applies the patch to the copy as plain files.
     (cd "$work" && GIT_CEILING_DIRECTORIES=$(dirname "$PWD") git apply -p1 "$OLDPWD/$patch") || return 1
-    env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS make --no-print-directory -C "$work" SAN=$san "$build/chapter-$nn" \
+    env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS make --no-print-directory -C "$work" SAN=$san "$build/chapter-$nn" "$build/check" \
         >"$work/build.log" 2>&1 || return 1
     for file in $(sed -n 's|^+++ b/||p' "$patch"); do
         cp "$file" "$work/$file" # leave the copy pristine for the next fault
@@ -74,12 +80,33 @@ render() { # render PROGRAM PATCH PNG
 passes_regression() { # passes_regression A B
     local result
     result=$("$build/compare" "$1" "$2")
-    echo "$result" | awk '{ within1 = $6; sub("%", "", within1); exit !(within1 >= 99.95 && $4 <= 0.01) }'
+    # $6 + 0: the number before the "%"; a string, as sub() would leave it, compares as text
+    # ("100.000" < "99.95"), which made identical pictures count as different.
+    echo "$result" | awk '{ within1 = $6 + 0; exit !(within1 >= 99.95 && $4 + 0 <= 0.01) }'
+}
+
+# Runs the grader built with the fault on each task of the fault's Check line (in the copy, where the
+# chapter programs are the fault's) and prints what each says; returns 1 when one of them does not
+# fail its own checks (it passes, or reports only "needs task X first").
+graded() { # graded PATCH
+    local id status=0 out
+    for id in $(field "$1" Check); do
+        out=$(cd "$work" && WHITTED_BUILD=$build "./$build/check" --task "$id" 2>&1)
+        if echo "$out" | grep -q "FAIL  $id:"; then
+            echo "  make check-${id%%.*}: $id reports it: $(echo "$out" | grep -m 1 -A 1 "FAIL  $id:" | tail -n 1 | sed 's/^ *//')"
+        else
+            echo "  make check-${id%%.*}: $id does not fail with the fault:"
+            echo "$out" | sed 's/^/    /'
+            status=1
+        fi
+    done
+    return $status
 }
 
 prove() { # prove NAME
     local patch=tools/gallery/$1.patch program nn wrong right
     [ -f "$patch" ] || { echo "no fault called $1" >&2; return 2; }
+    [ -n "$(field "$patch" Check)" ] || { echo "$1: the patch names no Check task" >&2; return 2; }
     nn=$(printf '%02d' "$(field "$patch" Program)")
     program=$(build_fault "$patch" "$nn") || { echo "$1: the patch does not apply or build (see $work/build.log)" >&2; return 2; }
     wrong=$work/wrong.png
@@ -87,10 +114,15 @@ prove() { # prove NAME
     render "$program" "$patch" "$wrong" || { echo "$1: the wrong program failed to render" >&2; return 2; }
     render "$build/chapter-$nn" "$patch" "$right" || { echo "$1: the right program failed to render" >&2; return 2; }
     if passes_regression "$right" "$wrong"; then
-        echo "$1: NOT caught: the picture check sees no difference ($("$build/compare" "$right" "$wrong"))"
+        echo "$1: the gallery's picture is within the reference-image rule ($("$build/compare" "$right" "$wrong"))"
+    else
+        echo "$1: the gallery's picture fails the reference-image rule ($("$build/compare" "$right" "$wrong"))"
+    fi
+    if ! graded "$patch"; then
+        echo "$1: NOT caught by every task its Check line names"
         return 1
     fi
-    echo "$1: caught by the picture check ($("$build/compare" "$right" "$wrong"))"
+    echo "$1: caught by the grader"
     return 0
 }
 
@@ -98,6 +130,11 @@ if [ "$mode" = prove ]; then
     prove "$only"
     exit
 fi
+
+# "make check-2: 2.1, 2.P": the grader's tasks that report the fault, by chapter.
+caught_by() { # caught_by PATCH
+    field "$1" Check | tr ' ' '\n' | awk -F. 'NF { if ($1 != last) printf "%s`make check-%s`: %s", (n++ ? "; " : ""), $1, $0; else printf ", %s", $0; last = $1 } END { print "" }'
+}
 
 # Render mode: every fault, its pictures, and the page.
 mkdir -p docs/gallery
@@ -113,14 +150,15 @@ page=docs/gallery.md
     echo "The pictures are rendered by \`make gallery\` from the patches in"
     echo "[\`tools/gallery/\`](../tools/gallery/): apply one to a copy of the code to see the fault for yourself"
     echo "(\`git apply tools/gallery/NAME.patch\`, and \`git checkout common\` to undo). \`make test\` proves that"
-    echo "the checks catch every one (\`tests/test_gallery.c\`): the wrong picture fails the reference-image"
-    echo "rule against the right one."
+    echo "the student's grader catches every one (\`tests/test_gallery.c\`): built with the fault, each task named"
+    echo "under \"Caught by\" fails its checks (\`make check-N\`, see [the coursework kit](coursework.md)), where"
+    echo "N.P is the chapter's picture against its reference."
     echo
-    echo "| fault | chapter | symptom |"
-    echo "|---|---|---|"
+    echo "| fault | chapter | symptom | caught by |"
+    echo "|---|---|---|---|"
     for patch in tools/gallery/*.patch; do
         name=$(basename "$patch" .patch)
-        echo "| [$(field "$patch" Title)](#$name) | $(field "$patch" Chapter) | $(field "$patch" Symptom) |"
+        echo "| [$(field "$patch" Title)](#$name) | $(field "$patch" Chapter) | $(field "$patch" Symptom) | $(caught_by "$patch") |"
     done
 } >"$page.new"
 status=0
@@ -151,7 +189,7 @@ for patch in tools/gallery/*.patch; do
         echo "* **Cause:** $(field "$patch" Cause)"
         echo "* **Look in:** \`$(field "$patch" Look | sed 's/ in /` in `/')\`."
         echo "* **Shown with:** chapter $((10#$nn))'s program on \`$(field "$patch" Scene)\`${args:+ with \`$args\`}, at 320 × 240."
-        echo "* **Caught by:** the picture check: $2 levels at most, mean $4, $6 of pixels within 1 level (the rule needs 99.95 % and 0.01)."
+        echo "* **Caught by:** $(caught_by "$patch"). The gallery's pictures differ by $2 levels at most, mean $4, $6 of pixels within 1 level (the picture rule needs 99.95 % and 0.01)."
         echo "* **The change:** [\`tools/gallery/$name.patch\`](../tools/gallery/$name.patch)"
         echo
         echo '```diff'
