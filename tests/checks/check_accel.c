@@ -7,6 +7,8 @@
 #include "bvh.h"
 #include "check.h"
 #include "kdtree.h"
+#include "stats.h"
+#include "triangle.h"
 
 /* Hits are compared to their exact values within this: far above rounding, far below a mistake. */
 #define ACCEL_TOLERANCE 1e-9
@@ -161,6 +163,94 @@ static bool layered_rays(const char *what, const void *tree, closest_fn closest,
     return true;
 }
 
+/* layers() with four walls across x (planes x = 0.5, 1.5, 2.5, 3.5, each two triangles) and one long
+ * slanted triangle, in the plane x + z = 2.5, that crosses them all: a tree must list it in many cells,
+ * and a ray can hit it in the first cell it enters at a point beyond that cell, with a nearer wall in
+ * the next. */
+static struct mesh crossed_layers(void) {
+    struct mesh m = layers();
+    struct mesh big = new_mesh(96 + 9);
+    for (size_t k = 0; k < m.vertex_count; k++)
+        big.vertices[k] = m.vertices[k];
+    for (size_t k = 0; k < m.face_count; k++)
+        big.faces[k] = m.faces[k];
+    big.vertex_count = m.vertex_count;
+    big.face_count = m.face_count;
+    mesh_free(&m);
+    for (int w = 0; w < 4; w++) {
+        size_t v = big.vertex_count;
+        double x = w + 0.5;
+        big.vertices[v] = vec3_make(x, 0, -3);
+        big.vertices[v + 1] = vec3_make(x, 4, -3);
+        big.vertices[v + 2] = vec3_make(x, 4, 1);
+        big.vertices[v + 3] = vec3_make(x, 0, 1);
+        big.faces[big.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
+        big.faces[big.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 2, (uint32_t)v + 3}};
+        big.vertex_count += 4;
+    }
+    size_t v = big.vertex_count;
+    big.vertices[v] = vec3_make(4.5, -1, -2);
+    big.vertices[v + 1] = vec3_make(4.5, 6, -2);
+    big.vertices[v + 2] = vec3_make(-1, 2.5, 3.5);
+    big.faces[big.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
+    big.vertex_count += 3;
+    return big;
+}
+
+/* The nearest hit of r among all of m's faces, tested one by one (the brute-force loop): the answer a
+ * tree must give. */
+static bool every_face_closest(const struct mesh *m, const ray *r, double *t) {
+    struct hit h = hit_nothing(INFINITY);
+    bool hit = triangle_mesh_closest(m, 0, r, 1e-9, &h);
+    *t = h.t;
+    return hit;
+}
+
+/* Rays over crossed_layers(): down -z, along +x and along -x on grids of 12 x 12 starting points, a
+ * little tilted so that none runs along an edge. Each nearest hit must be the brute-force loop's. */
+static bool crossing_rays(const char *what, const void *tree, closest_fn closest, char *why, size_t why_size) {
+    struct mesh m = crossed_layers();
+    const struct { vec3 origin, step_i, step_j, direction; const char *say; } families[] = {
+        {{-0.41, -0.43, 5}, {0.43, 0, 0}, {0, 0.43, 0}, {0.013, 0.011, -1}, "down -z"},
+        {{-2, -0.37, -2.93}, {0, 0.41, 0}, {0, 0, 0.37}, {1, 0.012, 0.009}, "along +x"},
+        {{7, -0.37, -2.93}, {0, 0.41, 0}, {0, 0, 0.37}, {-1, 0.012, 0.009}, "along -x"},
+    };
+    bool ok = true;
+    for (size_t f = 0; f < sizeof families / sizeof families[0] && ok; f++)
+        for (int i = 0; i < 12 && ok; i++)
+            for (int j = 0; j < 12 && ok; j++) {
+                vec3 o = vec3_add(families[f].origin,
+                                  vec3_add(vec3_scale(families[f].step_i, i), vec3_scale(families[f].step_j, j)));
+                ray r = {o, vec3_normalize(families[f].direction)};
+                double expected = NAN, t = NAN;
+                uint32_t face = 0;
+                bool want = every_face_closest(&m, &r, &expected);
+                bool hit = closest(tree, &r, 1e-9, INFINITY, &t, &face);
+                if (hit == want && (!hit || fabs(t - expected) < ACCEL_TOLERANCE))
+                    continue;
+                snprintf(why, why_size, "%s, three layers of triangles crossed by four walls and one long slanted "
+                         "triangle, a ray from (%.2f, %.2f, %.2f) %s: testing every triangle gives %s%.4f; yours "
+                         "gave %s%.4f%s", what, o.x, o.y, o.z, families[f].say, want ? "a hit at t = " : "a miss",
+                         want ? expected : 0.0, hit ? "a hit at t = " : "no hit", hit ? t : 0.0,
+                         hit && want && t > expected ? ": a farther hit. The first hit found need not be the nearest (a "
+                         "triangle or box can reach past the next); stop only when nothing nearer can be left" : "");
+                ok = false;
+            }
+    mesh_free(&m);
+    return ok;
+}
+
+CHECK(check_kd_crossing) {
+    struct mesh m = crossed_layers();
+    struct kdtree *k = kdtree_build(&m, KD_SPLIT_SAH);
+    bool ok = k != NULL && crossing_rays("kdtree_closest", k, kd_closest, why, why_size);
+    if (k == NULL)
+        snprintf(why, why_size, "kdtree_build returned NULL");
+    kdtree_free(k);
+    mesh_free(&m);
+    return ok;
+}
+
 CHECK(check_kd_traversal) {
     struct mesh m = layers();
     struct kdtree *k = kdtree_build(&m, KD_SPLIT_SAH);
@@ -228,4 +318,58 @@ CHECK(check_bvh_traversal) {
     bvh_free(b);
     mesh_free(&m);
     return ok;
+}
+
+CHECK(check_bvh_crossing) {
+    struct mesh m = crossed_layers();
+    struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
+    bool ok = b != NULL && crossing_rays("bvh_closest", b, bvh_closest_fn, why, why_size);
+    if (b == NULL)
+        snprintf(why, why_size, "bvh_build returned NULL");
+    bvh_free(b);
+    mesh_free(&m);
+    return ok;
+}
+
+/* Triangle tests per ray that a near-child-first walk stays within on a stack of ROW_TRIANGLES
+ * triangles seen end on: it meets the top one in its first leaf (at most a few triangles), and every
+ * other box then starts beyond that hit. A walk that takes children in any other order tests most of
+ * the stack (tens of triangles). 8 leaves room for leaves of a few triangles and an extra leaf. */
+#define NEAR_FIRST_MAX_TESTS 8.0
+
+CHECK(check_bvh_near_first) {
+    struct mesh m = row(2); /* the triangles stacked at z = 0, 1, ..., 63 over the same square */
+    struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
+    mesh_free(&m);
+    if (b == NULL) {
+        snprintf(why, why_size, "bvh_build returned NULL");
+        return false;
+    }
+    /* Down from above and up from below, at a few points inside the triangles (x, y > -0.25, x + y < 0). */
+    const double at[][2] = {{-0.1, -0.1}, {0.05, -0.2}, {-0.2, 0.1}, {-0.15, -0.05}};
+    int rays = 0;
+    uint64_t before = stats_thread.triangle_tests;
+    bool right = true;
+    for (int k = 0; k < 4; k++)
+        for (int up = 0; up < 2; up++) {
+            ray r = {{at[k][0], at[k][1], up ? -100.0 : 100.0}, {0, 0, up ? 1.0 : -1.0}};
+            double t = NAN;
+            uint32_t face = 0;
+            right = right && bvh_closest(b, &r, 1e-9, INFINITY, &t, &face) && fabs(t - (up ? 100.0 : 37.0)) < ACCEL_TOLERANCE;
+            rays++;
+        }
+    double per_ray = (double)(stats_thread.triangle_tests - before) / rays;
+    bvh_free(b);
+    if (right && per_ray <= NEAR_FIRST_MAX_TESTS)
+        return true;
+    if (!right)
+        snprintf(why, why_size, "bvh_closest on %d triangles stacked at z = 0 .. %d, rays straight down from z = 100 "
+                 "and up from z = -100: the nearest hits are at t = 37 and t = 100", ROW_TRIANGLES, ROW_TRIANGLES - 1);
+    else
+        snprintf(why, why_size, "bvh_closest on %d triangles stacked at z = 0 .. %d, rays straight down from z = 100 "
+                 "and up from z = -100: the right hits, but %.1f triangle tests per ray, where visiting the nearer "
+                 "child first needs at most %.0f (the first leaf holds the nearest hit, and every other box starts "
+                 "beyond it). Are the children taken far one first?", ROW_TRIANGLES, ROW_TRIANGLES - 1, per_ray,
+                 NEAR_FIRST_MAX_TESTS);
+    return false;
 }

@@ -82,9 +82,12 @@ CHECK(check_seed_row_z);
 CHECK(check_sah_plain);
 CHECK(check_kd_traversal);
 CHECK(check_kd_occluded);
+CHECK(check_kd_crossing);
 CHECK(check_bvh_median);
 CHECK(check_bvh_sah);
 CHECK(check_bvh_traversal);
+CHECK(check_bvh_crossing);
+CHECK(check_bvh_near_first);
 CHECK(check_picture_1);
 CHECK(check_picture_2);
 CHECK(check_picture_3);
@@ -135,10 +138,13 @@ const struct check check_list[] = {
     {"9.2", "two clusters: the gap is cut", check_sah_plain},
     {"9.3", "nearest hits in three layers", check_kd_traversal},
     {"9.3", "shadow queries", check_kd_occluded},
+    {"9.3", "triangles in many cells: the nearest hit", check_kd_crossing},
     {"9.P", "the picture matches the reference", check_picture_9},
     {"10.1", "a row: leaves of at most two", check_bvh_median},
     {"10.2", "two clusters", check_bvh_sah},
     {"10.3", "nearest hits in three layers", check_bvh_traversal},
+    {"10.3", "overlapping boxes: the nearest hit", check_bvh_crossing},
+    {"10.3", "the nearer child first: few triangle tests", check_bvh_near_first},
     {"10.P", "the picture matches the reference", check_picture_10},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
