@@ -18,6 +18,7 @@
 #define WHITTED_GREY_GREEN 0.589
 #define WHITTED_GREY_BLUE 0.114
 
+/* TASK 8.1: Snell's refraction and total internal reflection */
 bool whitted_refract(vec3 direction, vec3 normal, double eta, vec3 *out) {
     double c = -vec3_dot(direction, normal);
     double k = 1.0 - eta * eta * (1.0 - c * c);
@@ -60,6 +61,7 @@ static double largest(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
 /* The colour seen along r, a ray of the given level and weight inside the objects of `inside`.
  * A crossing into the same index of refraction goes straight on at the same level (POV-Ray's rule):
  * the loop follows it, adding what each surface contributes times the light let through so far. */
+/* TASK 8.2: the recursion: reflected and refracted rays, bounded depth */
 static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level, double weight) {
     const struct scene *s = t->w->scene; /* level <= max_depth: spawn checked it (max_depth >= 1) */
     vec3 sum = vec3_make(0, 0, 0), through = vec3_make(1, 1, 1);

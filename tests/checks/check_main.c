@@ -15,8 +15,8 @@
 
 #include "check.h"
 
-/* Which tasks exist: what the student writes, where, and what it needs. The functions of 8.x and 10.x
- * are graded already; their markers in the source come with the modules' current rewrites. */
+/* Which tasks exist: what the student writes, where, and what it needs. The functions of 10.x are
+ * graded already; their markers in the source come with the module's current rewrite. */
 const struct task check_tasks[] = {
     {"1.1", "the primary ray through a pixel centre", "camera_ray in common/camera.c", ""},
     {"1.P", "chapter 1's picture", "chapters/01-camera", "1.1"},
@@ -36,7 +36,7 @@ const struct task check_tasks[] = {
     {"7.1", "the shadow ray: is the light blocked?", "shadow_opaque in common/shadow.c", "2.1"},
     {"7.P", "chapter 7's picture", "chapters/07-shadows", "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1"},
     {"8.1", "Snell's refraction and total internal reflection", "whitted_refract in common/whitted.c", ""},
-    {"8.2", "the recursion: reflected and refracted rays, bounded depth", "the tracer in common/whitted.c",
+    {"8.2", "the recursion: reflected and refracted rays, bounded depth", "trace in common/whitted.c",
      "4.1 6.1 6.2"},
     {"8.P", "chapter 8's picture", "chapters/08-recursion", "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2"},
     {"9.1", "the dissertation's split rule", "seed_plane in common/kdtree.c", ""},
