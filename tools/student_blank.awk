@@ -62,6 +62,7 @@ END {
     # Static helpers nothing calls any more: keep them, marked unused.
     all = ""
     for (k = 1; k <= out; k++) all = all text[k] "\n"
+    gsub(/\/\*([^*]|\*+[^*\/])*\*+\//, " ", all) # comments do not count as uses ("may still spawn")
     for (k = 1; k <= out; k++) {
         if (!match(text[k], /^static [^(=;]*[ *][A-Za-z_][A-Za-z0-9_]*\(/) || text[k] ~ /[ \t]inline[ \t]/) continue
         name = substr(text[k], 1, RLENGTH - 1); sub(/^.*[ *]/, "", name)
