@@ -196,6 +196,7 @@ static void select_nth(struct bvh_prim *p, uint32_t begin, uint32_t end, uint32_
 
 /* The dissertation's split: half the prims on each side, by centroid, along the longest axis of the
  * centroids' box. Returns where the right half begins. */
+/* TASK 10.1: BVH build: the median split */
 static uint32_t split_median(struct builder *bd, uint32_t begin, uint32_t end, const struct bvh_box *centroids) {
     int axis = 0;
     for (int a = 1; a < 3; a++)
@@ -221,6 +222,7 @@ static int bin_of(double c, double lo, double extent) {
 /* Looks for the cheapest binned SAH split of prims [begin, end), whose box is *box. Returns false,
  * leaving the prims alone, when a leaf is cheaper or no plane separates the centroids; otherwise
  * partitions them and stores where the right side begins in *mid. */
+/* TASK 10.2: BVH build: the binned SAH */
 static bool split_sah(struct builder *bd, uint32_t begin, uint32_t end, const struct bvh_box *box,
                       const struct bvh_box *centroids, uint32_t *mid) {
     struct bvh_prim *p = bd->prims;
@@ -308,6 +310,8 @@ static uint32_t build_node(struct builder *bd, uint32_t begin, uint32_t end, siz
             split = true;
         }
     }
+    if (split && (mid <= begin || mid >= end))
+        split = false; /* a side left empty is no split; never from these rules, but a leaf keeps a wrong one safe */
     if (!split) {
         node->first = begin;
         node->count = n;
@@ -494,6 +498,7 @@ struct stack_entry {
 };
 
 /* Walks the tree for one query, after the slivers. Returns q->found. */
+/* TASK 10.3: ordered BVH traversal */
 static bool traverse(const struct bvh *b, const ray *r, double t_min, double t_max, struct query_state *q) {
     q->found = false;
     q->t = t_max;

@@ -309,6 +309,39 @@ CHECK(check_bvh_sah) {
                     BVH_SPLIT_SAH, 2, why, why_size);
 }
 
+/* The SAH's predicted cost per ray (in triangle tests) of a good tree over unequal_clusters(): cutting
+ * the 100-unit gap first, the binned SAH reaches 1.27; halving by count, as the median rule does, puts
+ * 24 triangles of the big cluster in one box with the small cluster and costs 3.24, and leaves of 8
+ * cost more still. 2 lies well between. */
+#define SAH_UNEQUAL_MAX_COST 2.0
+
+/* 56 triangles in a 8 x 7 patch at x = 0 and 8 in a 4 x 2 patch at x = 100. */
+static struct mesh unequal_clusters(void) {
+    struct mesh m = new_mesh(ROW_TRIANGLES);
+    for (int k = 0; k < ROW_TRIANGLES; k++)
+        add_triangle(&m, k < 56 ? vec3_make((k % 8) * 0.3, (k / 8) * 0.3, 0)
+                                : vec3_make(100 + (k % 4) * 0.3, (k / 4 % 2) * 0.3, 0));
+    return m;
+}
+
+CHECK(check_bvh_sah_unequal) {
+    struct mesh m = unequal_clusters();
+    struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
+    mesh_free(&m);
+    struct bvh_info info = {0};
+    if (b != NULL)
+        bvh_get_info(b, &info);
+    bvh_free(b);
+    if (b != NULL && info.sah_cost <= SAH_UNEQUAL_MAX_COST)
+        return true;
+    snprintf(why, why_size, "bvh_build(BVH_SPLIT_SAH) on 56 triangles at x = 0 and 8 at x = 100: a tree that cuts the "
+             "gap first costs about 1.3 triangle tests per ray by the SAH (bvh_info.sah_cost), at most %.1f; yours "
+             "costs %.2f%s", SAH_UNEQUAL_MAX_COST, info.sah_cost,
+             b == NULL ? " (bvh_build returned NULL)" : ": is every plane priced, area(L) n(L) + area(R) n(R), and the "
+             "cheapest taken? (halving by count costs 3.2)");
+    return false;
+}
+
 CHECK(check_bvh_traversal) {
     struct mesh m = layers();
     struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);

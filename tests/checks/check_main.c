@@ -15,8 +15,7 @@
 
 #include "check.h"
 
-/* Which tasks exist: what the student writes, where, and what it needs. The functions of 10.x are
- * graded already; their markers in the source come with the module's current rewrite. */
+/* Which tasks exist: what the student writes, where, and what it needs. */
 const struct task check_tasks[] = {
     {"1.1", "the primary ray through a pixel centre", "camera_ray in common/camera.c", ""},
     {"1.P", "chapter 1's picture", "chapters/01-camera", "1.1"},
@@ -44,9 +43,9 @@ const struct task check_tasks[] = {
     {"9.3", "front-to-back traversal", "traverse in common/kdtree.c", ""},
     {"9.P", "chapter 9's picture", "chapters/09-kdtree",
      "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3"},
-    {"10.1", "BVH build: the median split", "the median split in common/bvh.c", ""},
-    {"10.2", "BVH build: the binned SAH", "the SAH split in common/bvh.c", ""},
-    {"10.3", "ordered BVH traversal", "the traversal in common/bvh.c", "10.2"},
+    {"10.1", "BVH build: the median split", "split_median in common/bvh.c", ""},
+    {"10.2", "BVH build: the binned SAH", "split_sah in common/bvh.c", ""},
+    {"10.3", "ordered BVH traversal", "traverse in common/bvh.c", "10.2"},
     {"10.P", "chapter 10's picture", "chapters/10-bvh",
      "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3"},
 };
@@ -85,6 +84,7 @@ CHECK(check_kd_occluded);
 CHECK(check_kd_crossing);
 CHECK(check_bvh_median);
 CHECK(check_bvh_sah);
+CHECK(check_bvh_sah_unequal);
 CHECK(check_bvh_traversal);
 CHECK(check_bvh_crossing);
 CHECK(check_bvh_near_first);
@@ -142,6 +142,7 @@ const struct check check_list[] = {
     {"9.P", "the picture matches the reference", check_picture_9},
     {"10.1", "a row: leaves of at most two", check_bvh_median},
     {"10.2", "two clusters", check_bvh_sah},
+    {"10.2", "unequal clusters: the gap first", check_bvh_sah_unequal},
     {"10.3", "nearest hits in three layers", check_bvh_traversal},
     {"10.3", "overlapping boxes: the nearest hit", check_bvh_crossing},
     {"10.3", "the nearer child first: few triangle tests", check_bvh_near_first},
