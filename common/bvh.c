@@ -20,7 +20,7 @@
  *  - Triangles are tested with triangle_crossing_prepared (triangle.h), the very arithmetic
  *    triangle_intersect uses (the ray made ready once per query), on the very corners the mesh holds,
  *    so t is the same double to the last bit.
- *  - A box may only be skipped when no triangle inside can be reported hit. Moller-Trumbore rounds:
+ *  - A box may only be skipped when no triangle inside can be reported hit. The triangle test rounds:
  *    it may call a ray that passes a hair outside a triangle a hit. So every triangle's box is grown by
  *    BVH_BOX_PAD times the mesh's size, far more than any such rounding error (about 1e-16 of the
  *    distance from the ray's origin) and far too little to cost anything measurable.
@@ -70,13 +70,13 @@
 #define BVH_STACK_SIZE (BVH_MAX_DEPTH + 33)
 
 /* Every triangle's box is grown by this fraction of the mesh's largest extent (see the file comment):
- * 2^-20, about 1e-6, is ten orders of magnitude above Moller-Trumbore's rounding for rays starting
+ * 2^-20, about 1e-6, is ten orders of magnitude above the triangle test's rounding for rays starting
  * within a thousand mesh sizes, and invisible in the statistics. */
 #define BVH_BOX_PAD (1.0 / 1048576.0)
 
 /* A triangle whose edges b - a and c - a are this close to parallel (the sine of the angle between
  * them is below it, yet not zero) is kept out of the tree and tested by every ray. For such a sliver
- * Moller-Trumbore divides by a determinant that is mostly rounding noise, and can report a "hit" far
+ * a triangle test divides by a value that is mostly rounding noise, and can report a "hit" far
  * outside the triangle (measured: 2.6e-4 away, for a triangle whose middle corner is the midpoint of
  * its long edge): no box can be trusted to hold it. Above 1e-6 the error stays below 1e-9 of the ray's
  * distance, well inside BVH_BOX_PAD. Edges with an exactly zero cross product are never hit at all

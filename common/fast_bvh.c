@@ -32,7 +32,7 @@
  *  - Triangles are tested with triangle_crossing_prepared (triangle.h), the very arithmetic
  *    triangle_intersect uses (the ray made ready once per query, in struct ray_setup), on the very
  *    corners the mesh holds, so t is the same double to the last bit.
- *  - A box may only be skipped when no triangle inside can be reported hit. Moller-Trumbore rounds:
+ *  - A box may only be skipped when no triangle inside can be reported hit. The triangle test rounds:
  *    it may call a ray that passes a hair outside a triangle a hit. So every triangle's box is grown by
  *    BVH_BOX_PAD times the mesh's size before it is rounded outward to float, far more than any such
  *    rounding error (about 1e-16 of the distance from the ray's origin) and far too little to cost
@@ -113,7 +113,7 @@
 #define BVH_NO_CHILD UINT32_MAX
 
 /* Every triangle's box is grown by this fraction of the mesh's largest extent (see the file comment):
- * 2^-20, about 1e-6, is ten orders of magnitude above Moller-Trumbore's rounding for rays starting
+ * 2^-20, about 1e-6, is ten orders of magnitude above the triangle test's rounding for rays starting
  * within a thousand mesh sizes, and invisible in the statistics. */
 #define BVH_BOX_PAD (1.0 / 1048576.0)
 
