@@ -10,6 +10,8 @@
 #   make figures        redraw the walkthroughs' figures, docs/figures/*.svg, from tools/figures/
 #   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
 #                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
+#   make results        the seed's experiments redone: CSVs, plots and tables of docs/results.md
+#                       (QUICK=1: a small version in about a minute, into out/results-quick/)
 #   make bench          kd-tree, BVH and chapter 11's rungs against Embree; peak memory on a 4M-triangle teapot
 #   make check-N        grade chapter N's coursework tasks (make check: all), docs/coursework.md
 #   make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": some)
@@ -23,7 +25,7 @@
 # Each goal asks only for what it needs (tools/install-deps.sh lists the packages): building and
 # rendering a chapter needs gcc and stb; the tests add Criterion and POV-Ray; make compare adds POV-Ray.
 DEPS_NEEDS := build $(if $(filter test test-sanitize test-accel-long %run-tests,$(MAKECMDGOALS)),test) \
-              $(if $(filter compare,$(MAKECMDGOALS)),compare)
+              $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter results,$(MAKECMDGOALS)),results)
 ifeq ($(filter clean help,$(MAKECMDGOALS)),)
 DEPS_READY := $(shell tools/install-deps.sh $(DEPS_NEEDS) >&2 && echo yes)
 ifneq ($(DEPS_READY),yes)
@@ -139,6 +141,7 @@ include bench/bench.mk
 
 # ---- fuzzing (fuzz/fuzz.mk): make fuzz, make fuzz-smoke -----------------------------------------
 include fuzz/fuzz.mk
+include tools/results/results.mk
 
 # ---- tests -------------------------------------------------------------------------------------
 TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c)
@@ -227,7 +230,7 @@ clean:
 	rm -rf build out
 
 help:
-	@sed -n '2,16p' Makefile | sed 's/^# \{0,1\}//'
+	@sed -n '2,18p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---- the coursework kit (docs/coursework.md) -----------------------------------------------------
 #   make student DIR=path [TASKS="2.1 5.1"]  a student copy with the marked tasks' bodies blanked

@@ -73,7 +73,8 @@ Test(docs, every_c_listing_in_the_walkthroughs_is_the_current_code) {
 }
 
 /* Everything a reader of the repository can open: the docs, the code, the scenes and the tools. */
-static const char *const readable_patterns[] = {"README.md", "docs/*.md", "scenes/*.scene", "scenes/models/README.md",
+static const char *const readable_patterns[] = {"README.md", "docs/*.md", "scenes/*.scene", "scenes/results/*.scene",
+                                                "scenes/models/README.md",
                                                 "common/*.[ch]", "chapters/*/main.c", "tools/*.*", "tools/*/*",
                                                 "bench/*", "fuzz/*.*", "tests/*.[ch]", "tests/*/*.[ch]", "Makefile", ".ci/run"};
 

@@ -2,11 +2,13 @@
 # install-deps.sh: makes sure the Debian packages a make target needs are there, installing only what
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
-#   tools/install-deps.sh [NEED...]     NEED: build (the default), test, compare, bench, fuzz
+#   tools/install-deps.sh [NEED...]     NEED: build (the default), test, compare, results, bench, fuzz
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
-#   test     build + Criterion (libcriterion-dev) and POV-Ray: make test
+#   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test, whose
+#            tests run make results' quick mode and check its committed plots
 #   compare  build + POV-Ray: make compare
+#   results  build + POV-Ray and gnuplot: make results (which adds bench for its Embree table)
 #   bench    build + Intel Embree 3 (libembree-dev): make bench
 #   fuzz     clang with its libFuzzer and sanitizer runtimes (clang; on systems where the runtimes are
 #            a package of their own, libclang-rt-N-dev for clang N): make fuzz
@@ -41,7 +43,7 @@ want() { # want PACKAGE: add it to the list once
 }
 for need in "${needs[@]}"; do
     case $need in
-    build | test | compare | bench)
+    build | test | compare | results | bench)
         have_command gcc || want gcc
         have_command pkg-config || want pkg-config
         have_stb || want libstb-dev
@@ -49,6 +51,11 @@ for need in "${needs[@]}"; do
     test)
         have_pkgconfig criterion || want libcriterion-dev
         have_command povray || want povray
+        have_command gnuplot || want gnuplot-nox
+        ;;
+    results)
+        have_command povray || want povray
+        have_command gnuplot || want gnuplot-nox
         ;;
     compare) have_command povray || want povray ;;
     bench) [ -e /usr/include/embree3/rtcore.h ] || want libembree-dev ;;
@@ -61,7 +68,7 @@ for need in "${needs[@]}"; do
         ;;
     build) ;;
     *)
-        echo "install-deps.sh: unknown need '$need' (build, test, compare, bench or fuzz)" >&2
+        echo "install-deps.sh: unknown need '$need' (build, test, compare, results, bench or fuzz)" >&2
         exit 2
         ;;
     esac

@@ -1,0 +1,238 @@
+# tables.awk: turns the CSV files of make results into the Markdown tables of docs/results.md.
+#
+#   awk -F, -v table=NAME -f tools/results/tables.awk FILE.csv
+#
+# NAME is one of: seed (reads scene1.csv bunny.csv teapot-5k.csv large.csv together), machine, scene1, sweep (bunny.csv or teapot-5k.csv), large, scaling-build,
+# scaling-frame, scaling-memory, threads, accel-MODEL (accel.csv; MODEL as in its model column).
+# Prints the table alone; tools/results/publish.sh puts it between the page's markers. Rows measured
+# on a coarser grid and scaled up (scale > 1) are marked with an asterisk.
+
+# 1234567.8 -> "1,234,568" (a whole number with thousands separators).
+function thousands(x,    s, out) {
+    s = sprintf("%.0f", x)
+    out = ""
+    while (length(s) > 3) {
+        out = "," substr(s, length(s) - 2) out
+        s = substr(s, 1, length(s) - 3)
+    }
+    return s out
+}
+
+# A time in seconds with three significant digits (at least one decimal for values >= 100).
+function seconds(x) {
+    if (x == "") return "–"
+    if (x >= 100) return thousands(x)
+    if (x >= 10) return sprintf("%.1f", x)
+    if (x >= 1) return sprintf("%.2f", x)
+    if (x >= 0.1) return sprintf("%.3f", x)
+    return sprintf("%.4f", x)
+}
+
+function ratio(a, b) { return (b > 0) ? sprintf("%.1f ×", a / b) : "–" }
+
+# The label of a structure's machine name.
+function structure_name(s) {
+    if (s == "none") return "brute force"
+    if (s == "kd-seed") return "kd-tree, seed's rule"
+    if (s == "kd-sah") return "kd-tree, SAH"
+    if (s == "bvh-median") return "BVH, median split (seed's rule)"
+    if (s == "bvh-sah") return "BVH, SAH"
+    if (s == "fast") return "chapter 11's BVH (rung 5)"
+    if (s == "povray") return "POV-Ray 3.7"
+    return s
+}
+
+# Fields by header name: col["cpu_best_s"] is the field number.
+FNR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+
+function f(name) { return $(col[name]) }
+
+# ---- the seed's numbers beside ours: scene1.csv bunny.csv teapot-5k.csv large.csv -------------------
+table == "seed" {
+    s = f("structure"); name = f("scene"); depth = f("depth")
+    if (name == "scene1" && s == "none") { if (f("width") > big_w) big_w = f("width"); s1[f("width"), depth] = f("cpu_best_s") }
+    if ((name == "bunny" || name == "teapot-5k") && (s == "none" || s == "bvh-sah")) sw[name, depth, s] = f("cpu_best_s")
+    if (name == "teapot-346k") { lt[s] = f("cpu_best_s"); ltests[s] = f("triangle_tests"); lpixels = f("width") * f("height") }
+    next
+}
+
+# ---- machine.csv ---------------------------------------------------------------------------------------
+table == "machine" { kv_key[++kv_n] = $1; kv_value[kv_n] = $2; next }
+
+# ---- scene1.csv: brute force by depth, four configurations; the structures at 800x400, one light --------
+table == "scene1" {
+    key = f("width") "x" f("height") " " f("lights")
+    depth = f("depth")
+    depths[depth] = 1
+    t[key, depth, f("structure")] = f("cpu_best_s")
+    if (f("structure") == "povray") agree[key, depth] = f("povray_max_diff")
+    if (!(key in seen)) { seen[key] = 1; order[++n_keys] = key; w[key] = f("width"); h[key] = f("height") }
+    next
+}
+
+# ---- bunny.csv, teapot-5k.csv -------------------------------------------------------------------------
+table == "sweep" {
+    depth = f("depth")
+    depths[depth] = 1
+    s = f("structure")
+    t[depth, s] = f("cpu_best_s")
+    tests[depth, s] = f("triangle_tests")
+    if (s == "none") { rays[depth] = f("rays"); scaled[depth] = (f("scale") > 1) }
+    if (s == "povray") agree[depth] = f("povray_max_diff") " / " f("povray_pixels_over_2")
+    size = f("width") " × " f("height")
+    next
+}
+
+# ---- large.csv ----------------------------------------------------------------------------------------
+table == "large" {
+    s = f("structure")
+    order[++n_rows] = s
+    best[s] = f("cpu_best_s"); median[s] = f("cpu_median_s"); build[s] = f("build_ms")
+    tests[s] = f("triangle_tests"); peak[s] = f("peak_rss_mb"); scale[s] = f("scale")
+    pixels = f("width") * f("height")
+    mw[s] = f("measured_width"); mh[s] = f("measured_height")
+    large_agree = f("povray_max_diff") " / " f("povray_pixels_over_2")
+    next
+}
+
+# ---- scaling.csv ---------------------------------------------------------------------------------------
+table ~ /^scaling-/ {
+    n = f("triangles"); s = f("structure")
+    if (!(n in seen_n)) { seen_n[n] = 1; sizes[++n_sizes] = n }
+    if (!(s in seen_s)) { seen_s[s] = 1; structs[++n_structs] = s }
+    v[n, s] = (table == "scaling-build") ? f("build_ms") : (table == "scaling-frame") ? f("render_s") : f("peak_rss_mb")
+    scaled[n, s] = (f("scale") > 1)
+    next
+}
+
+# ---- threads.csv ---------------------------------------------------------------------------------------
+table == "threads" {
+    p = f("program"); n = f("threads")
+    rows[++n_rows] = p SUBSEP n
+    rb[p, n] = f("render_best_s"); rm[p, n] = f("render_median_s"); wb[p, n] = f("wall_best_s"); wm[p, n] = f("wall_median_s")
+    runs = f("runs"); cores = f("cores_online"); size = f("width") " × " f("height")
+    next
+}
+
+# ---- accel.csv ----------------------------------------------------------------------------------------
+table ~ /^accel-/ {
+    if ("accel-" f("model") != table) next
+    line = "| " f("structure") (f("sampled_rows") != "" ? " (sampled, " f("sampled_rows") " rows)" : "")
+    line = line " | " (f("build_ms") == "" ? "–" : sprintf("%.1f", f("build_ms"))) " | " sprintf("%.1f", f("frame_ms"))
+    line = line " | " sprintf("%.2f", f("mrays_per_s")) " | " sprintf("%.2f", f("tri_per_ray"))
+    line = line " | " (f("nodes_per_ray") == "" ? "–" : sprintf("%.2f", f("nodes_per_ray")))
+    line = line " | " (f("tri_per_camera_ray") == "" ? "–" : sprintf("%.2f", f("tri_per_camera_ray")))
+    line = line " | " (f("sah_cost") == "" ? "–" : sprintf("%.1f", f("sah_cost")))
+    line = line " | " (f("frame_over_embree") == "" ? "–" : sprintf("%.2f", f("frame_over_embree")))
+    line = line " | " (f("build_over_embree") == "" ? "–" : sprintf("%.2f", f("build_over_embree")))
+    line = line " | " (f("pixels_differing") == "" ? "–" : f("pixels_differing")) " |"
+    accel_lines[++n_accel] = line
+    next
+}
+
+END {
+    if (table == "seed") {
+        saving = 0; n_saving = 0
+        for (m = 1; m <= 2; m++) {
+            name = (m == 1) ? "bunny" : "teapot-5k"
+            for (d = 1; d <= 5; d++) if (sw[name, d, "none"] > 0) { saving += 1 - sw[name, d, "bvh-sah"] / sw[name, d, "none"]; n_saving++ }
+        }
+        print "| | the seed (Java, its machine, 2020) | ours (C, this machine, one thread) |"
+        print "|---|---:|---:|"
+        print "| scene 1 without acceleration, depth 5 against depth 1 | +60 % | " sprintf("%+.0f %%", 100 * (s1[big_w, 5] / s1[big_w, 1] - 1)) " |"
+        print "| time the BVH saves, average over the bunny and teapot runs | 90 % | " sprintf("%.1f %%", 100 * saving / n_saving) " |"
+        print "| large model, no structure | 6,930 s | " seconds(lt["none"]) " s* |"
+        print "| large model, BVH (median split, the seed's rule) | 62 s | " seconds(lt["bvh-median"]) " s |"
+        print "| large model, BVH (SAH) | – | " seconds(lt["bvh-sah"]) " s |"
+        print "| speed-up of the BVH on the large model | 112 × | " ratio(lt["none"], lt["bvh-median"]) " (median split); " ratio(lt["none"], lt["bvh-sah"]) " (SAH) |"
+        print "| triangle tests with the BVH, large model | 99,250,516 | " thousands(ltests["bvh-median"]) " (median split); " thousands(ltests["bvh-sah"]) " (SAH) |"
+        print "| triangle tests per pixel with the BVH | 206.8 | " sprintf("%.2f", ltests["bvh-median"] / lpixels) " (median split); " sprintf("%.2f", ltests["bvh-sah"] / lpixels) " (SAH) |"
+        print "| POV-Ray 3.7 ÷ chapter 11, large model, whole process | – | " ratio(lt["povray"], lt["fast"]) " |"
+    } else if (table == "machine") {
+        print "| | |"
+        print "|---|---|"
+        for (i = 1; i <= kv_n; i++) print "| " kv_key[i] " | " kv_value[i] " |"
+    } else if (table == "scene1") {
+        line = "| depth |"
+        sep = "|---:|"
+        for (k = 1; k <= n_keys; k++) {
+            split(order[k], parts, " ")
+            line = line " " w[order[k]] " × " h[order[k]] ", " parts[2] (parts[2] == 1 ? " light" : " lights") " |"
+            sep = sep "---:|"
+        }
+        big = order[n_keys - 1]  # the largest size, one light
+        line = line " same, BVH-SAH | same, POV-Ray | POV-Ray's largest difference |"
+        sep = sep "---:|---:|---:|"
+        print "Brute force (processor time, seconds) unless the column says otherwise:"
+        print ""
+        print line
+        print sep
+        for (d = 1; d in depths; d++) {
+            line = "| " d " |"
+            for (k = 1; k <= n_keys; k++) line = line " " seconds(t[order[k], d, "none"]) " |"
+            line = line " " seconds(t[big, d, "bvh-sah"]) " | " seconds(t[big, d, "povray"]) " | " agree[big, d] " |"
+            print line
+        }
+        line = "| depth 5 ÷ depth 1 |"
+        for (k = 1; k <= n_keys; k++) line = line " " ratio(t[order[k], 5, "none"], t[order[k], 1, "none"]) " |"
+        print line " " ratio(t[big, 5, "bvh-sah"], t[big, 1, "bvh-sah"]) " | " ratio(t[big, 5, "povray"], t[big, 1, "povray"]) " | |"
+    } else if (table == "sweep") {
+        print "| depth | rays | brute force | kd-tree (SAH) | BVH, median | BVH, SAH | POV-Ray | brute ÷ BVH-SAH | tests, brute force | tests, kd-tree | tests, BVH median | tests, BVH-SAH | POV-Ray's largest difference / pixels over 2 |"
+        print "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        for (d = 1; d in depths; d++) {
+            mark = scaled[d] ? "*" : ""
+            print "| " d " | " thousands(rays[d]) " | " seconds(t[d, "none"]) mark " | " seconds(t[d, "kd-sah"]) " | " \
+                seconds(t[d, "bvh-median"]) " | " seconds(t[d, "bvh-sah"]) " | " seconds(t[d, "povray"]) " | " \
+                ratio(t[d, "none"], t[d, "bvh-sah"]) " | " thousands(tests[d, "none"]) mark " | " thousands(tests[d, "kd-sah"]) " | " \
+                thousands(tests[d, "bvh-median"]) " | " thousands(tests[d, "bvh-sah"]) " | " agree[d] " |"
+        }
+    } else if (table == "large") {
+        print "| structure | processor time, best | median | build | triangle tests | per pixel | peak memory | brute force ÷ this |"
+        print "|---|---:|---:|---:|---:|---:|---:|---:|"
+        for (i = 1; i <= n_rows; i++) {
+            s = order[i]
+            name = structure_name(s)
+            if (scale[s] > 1) name = name " (sampled " mw[s] " × " mh[s] ", scaled up)*"
+            print "| " name " | " seconds(best[s]) " s | " seconds(median[s]) " s | " \
+                (build[s] == "" ? "–" : sprintf("%.0f ms", build[s])) " | " (tests[s] == "" ? "–" : thousands(tests[s])) " | " \
+                (tests[s] == "" ? "–" : tests[s] / pixels >= 1000 ? thousands(tests[s] / pixels) : sprintf("%.2f", tests[s] / pixels)) " | " sprintf("%.0f MB", peak[s]) " | " \
+                (s == "none" ? "1 ×" : ratio(best["none"], best[s])) " |"
+        }
+        print "| the seed: no structure (Java, its machine) | 6,930 s | | | | | | 1 × |"
+        print "| the seed: its BVH, median split | 62 s | | | 99,250,516 | 206.8 | | 112 × |"
+    } else if (table ~ /^scaling-/) {
+        line = "| triangles |"
+        sep = "|---:|"
+        for (j = 1; j <= n_structs; j++) {
+            if (table == "scaling-build" && structs[j] == "none") continue
+            line = line " " structure_name(structs[j]) " |"
+            sep = sep "---:|"
+        }
+        print line
+        print sep
+        for (i = 1; i <= n_sizes; i++) {
+            line = "| " thousands(sizes[i]) " |"
+            for (j = 1; j <= n_structs; j++) {
+                s = structs[j]
+                if (table == "scaling-build" && s == "none") continue
+                x = v[sizes[i], s]
+                cell = (table == "scaling-build") ? sprintf("%.1f", x) : (table == "scaling-frame") ? seconds(x) : sprintf("%.1f", x)
+                line = line " " cell (scaled[sizes[i], s] ? "*" : "") " |"
+            }
+            print line
+        }
+    } else if (table == "threads") {
+        print "| program | threads | render, best | render, median | speed-up (best) | whole process (wall), best | median |"
+        print "|---|---:|---:|---:|---:|---:|---:|"
+        for (i = 1; i <= n_rows; i++) {
+            split(rows[i], pn, SUBSEP)
+            p = pn[1]; n = pn[2]
+            print "| " p " | " n " | " seconds(rb[p, n]) " s | " seconds(rm[p, n]) " s | " ratio(rb[p, 1], rb[p, n]) " | " \
+                seconds(wb[p, n]) " s | " seconds(wm[p, n]) " s |"
+        }
+    } else if (table ~ /^accel-/) {
+        print "| structure | build ms | frame ms | Mrays/s | tri/ray | nodes/ray | tri/cam | SAH cost | frame/E | build/E | pixels unlike BVH-SAH's |"
+        print "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        for (i = 1; i <= n_accel; i++) print accel_lines[i]
+    }
+}
