@@ -183,7 +183,8 @@ $(BUILD)/mutants/mt/%.o: common/%.c | $(BUILD)/mutants
 $(BUILD)/mutant-moller-trumbore: $(BUILD)/chapters/10-bvh.o $(addprefix $(BUILD)/mutants/mt/,$(addsuffix .o,$(MODULES_10)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-test: all $(BUILD)/run-tests $(MUTANTS)
+# $(BUILD)/bench_accel: tests/test_bench_csv.c runs the benchmark on the bunny (without Embree).
+test: all $(BUILD)/run-tests $(MUTANTS) $(BUILD)/bench_accel
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
 
 compare: all $(BUILD)/compare

@@ -8,6 +8,9 @@
 #                      4 million triangles made by tools/teapot.c into out/bench/
 #   make bench         every benchmark: bench-accel, then bench-memory
 #
+# $(BUILD)/bench_accel --csv FILE also writes its tables' rows as CSV (see bench_accel.c), and --size WxH
+# traces a smaller frame; make test builds it too, for tests/test_bench_csv.c.
+#
 # bench/embree_ref.c is compiled in only when /usr/include/embree3/rtcore.h exists. So the bench-accel
 # recipe installs the package first and only then makes the program, in a second make that sees the
 # header. The objects of the two builds (with and without Embree) live in different directories, so

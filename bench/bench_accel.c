@@ -1,8 +1,8 @@
 /* bench_accel.c: times the acceleration structures of chapters 9, 10 and 11 on real models.
  *
- *     bench_accel [--embree] [--repeats N] [--only NAME] MODEL.ply...
+ *     bench_accel [--embree] [--repeats N] [--only NAME] [--size WxH] [--csv FILE] MODEL.ply...
  *
- * For each model: a camera fitted to its bounding sphere, 800x600 pixels, one camera ray per pixel,
+ * For each model: a camera fitted to its bounding sphere, 800x600 pixels (--size WxH), one camera ray per pixel,
  * one point light and, from every hit, one shadow ray towards it; one thread. Each structure is built
  * and the frame traced --repeats times (default 3), in rounds that take every structure in turn, and
  * the fastest of each is reported: build ms,
@@ -11,6 +11,12 @@
  * whole frame; its row says "(sampled)". With --embree (when built with Embree, see bench/bench.mk)
  * Intel Embree 3 traces the same rays as the yardstick and every row gets its ratio to it. --only NAME
  * runs just the structure called NAME (and BVH-SAH, the reference), e.g. for a profiler.
+ *
+ * --csv FILE also writes the tables' rows to FILE as CSV, for scripts: a header line (CSV_HEADER below),
+ * then one line per model and structure, the numbers exact (every printed value can be recomputed from
+ * them), an empty field where the table prints "-". It is written to FILE.tmp and renamed when every
+ * model is done, so a run that fails or is interrupted leaves no half file; if FILE cannot be written
+ * the program says `bench_accel: FILE: why` and exits with status 3.
  *
  * Every structure must find exactly the brute-force answer, so each frame is also checked pixel by
  * pixel against the BVH-SAH frame: the nearest face, its t to the last bit, and the shadow. The rows
@@ -24,6 +30,7 @@
  * of two between runs, while processor time counts only the time the benchmark itself ran. It still
  * varies with what shares the caches, so every row is the best of its rounds. All builds, ours and
  * Embree's, are timed around the call that makes the structure, on that clock. */
+#include <errno.h>
 #include <inttypes.h>
 #include <math.h>
 #include <stdbool.h>
@@ -41,8 +48,12 @@
 #include "stats.h"
 #include "triangle.h"
 
+/* The default frame; --size WxH sets another (the tests use a small one to stay fast). */
 #define BENCH_WIDTH 800
 #define BENCH_HEIGHT 600
+/* The largest side --size accepts: far beyond any useful frame, and small enough that
+ * width * height pixels of bookkeeping always fit in memory sizes and in an int. */
+#define BENCH_MAX_SIDE 16384
 #define BENCH_VFOV_DEGREES 40.0
 /* The brute-force rows are chosen to cost about this many triangle tests in all (~4 s at about
  * 8 ns a test), and never fewer than BENCH_NAIVE_MIN_ROWS rows. */
@@ -66,7 +77,8 @@ static double now_ms(void) {
 /* ---- the structures behind one interface -------------------------------------------------------- */
 
 struct accel {
-    const char *name;
+    const char *name;     /* as the table and --only say it */
+    const char *csv_name; /* the stable machine name in the CSV's "structure" column */
     void *(*build)(const struct mesh *m, double *build_ms, double *sah_cost); /* NULL on out of memory */
     void (*destroy)(void *structure);
     bool (*closest)(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
@@ -188,15 +200,16 @@ static bool kd_occluded_any(const void *s, const ray *r, double t_min, double t_
 /* In the order the table prints them; BVH-SAH (index ACCEL_REFERENCE) is traced first and is the
  * frame the others are checked against. */
 static const struct accel accels[] = {
-    {"naive", naive_build, naive_destroy, naive_closest, naive_occluded, -1},
-    {"kd-seed", kd_seed_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
-    {"kd-SAH", kd_sah_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
-    {"BVH-median", bvh_median_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
-    {"BVH-SAH (rung 1 plain)", bvh_sah_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
-    {"rung 2 wide", fast_FAST_BVH_RUNG_WIDE_build, fast_destroy, fast_closest_any, fast_occluded_any, 4},
-    {"rung 3 simd", fast_FAST_BVH_RUNG_SIMD_build, fast_destroy, fast_closest_any, fast_occluded_any, 5},
-    {"rung 4 prefetch", fast_FAST_BVH_RUNG_PREFETCH_build, fast_destroy, fast_closest_any, fast_occluded_any, 6},
-    {"rung 5 build", fast_FAST_BVH_RUNG_BUILD_build, fast_destroy, fast_closest_any, fast_occluded_any, 7},
+    {"naive", "naive", naive_build, naive_destroy, naive_closest, naive_occluded, -1},
+    {"kd-seed", "kd-seed", kd_seed_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
+    {"kd-SAH", "kd-sah", kd_sah_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
+    {"BVH-median", "bvh-median", bvh_median_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
+    {"BVH-SAH (rung 1 plain)", "bvh-sah", bvh_sah_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
+    {"rung 2 wide", "rung-2", fast_FAST_BVH_RUNG_WIDE_build, fast_destroy, fast_closest_any, fast_occluded_any, 4},
+    {"rung 3 simd", "rung-3", fast_FAST_BVH_RUNG_SIMD_build, fast_destroy, fast_closest_any, fast_occluded_any, 5},
+    {"rung 4 prefetch", "rung-4", fast_FAST_BVH_RUNG_PREFETCH_build, fast_destroy, fast_closest_any,
+     fast_occluded_any, 6},
+    {"rung 5 build", "rung-5", fast_FAST_BVH_RUNG_BUILD_build, fast_destroy, fast_closest_any, fast_occluded_any, 7},
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
 #define ACCEL_NAIVE 0
@@ -263,7 +276,7 @@ static long count_differences(const struct pixel *a, const struct pixel *b, int 
 
 /* A camera that sees the whole bounding sphere of m from the front, a little above and to the right
  * (the models are y-up), and a light above and behind the camera's right shoulder. */
-static bool fit_camera(const struct mesh *m, struct camera *cam, vec3 *light) {
+static bool fit_camera(const struct mesh *m, int width, int height, struct camera *cam, vec3 *light) {
     vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t k = 0; k < m->vertex_count; k++) {
         lo = vec3_min(lo, m->vertices[k]);
@@ -275,8 +288,7 @@ static bool fit_camera(const struct mesh *m, struct camera *cam, vec3 *light) {
     vec3 eye = vec3_add_scaled(centre, vec3_normalize(vec3_make(0.45, 0.35, 1.0)), distance);
     *light = vec3_add_scaled(centre, vec3_make(2.0, 4.0, 3.0), radius);
     char err[128];
-    return camera_init(cam, eye, centre, vec3_make(0, 1, 0), BENCH_VFOV_DEGREES, BENCH_WIDTH, BENCH_HEIGHT, err,
-                       sizeof err);
+    return camera_init(cam, eye, centre, vec3_make(0, 1, 0), BENCH_VFOV_DEGREES, width, height, err, sizeof err);
 }
 
 /* ---- the table --------------------------------------------------------------------------------- */
@@ -285,11 +297,65 @@ struct row {
     bool done;
     int below; /* as in struct accel */
     char label[48];
+    const char *csv_name; /* as in struct accel; "embree" for Embree's row */
+    int sampled_rows;     /* rows the brute-force loop traced; 0 for every other row */
     double build_ms, frame_ms, sah_cost;
     double rays, triangle_tests, node_visits, primary_rays, primary_tests;
     long differ;
     bool compared;
 };
+
+/* The numeric columns of a row, in the order the table prints them (and the CSV writes them). */
+enum column {
+    COLUMN_BUILD_MS,
+    COLUMN_FRAME_MS,
+    COLUMN_MRAYS_PER_S,
+    COLUMN_TRI_PER_RAY,
+    COLUMN_NODES_PER_RAY,
+    COLUMN_TRI_PER_CAMERA_RAY,
+    COLUMN_SAH_COST,
+    COLUMN_FRAME_OVER_EMBREE,
+    COLUMN_BUILD_OVER_EMBREE,
+    COLUMN_FRAME_OVER_BELOW,
+    COLUMN_BUILD_OVER_BELOW,
+    COLUMN_COUNT
+};
+
+/* Fills values[COLUMN_COUNT] for row r (one of rows[], or embree): NAN where the column does not apply
+ * (the table's "-", the CSV's empty field). below is the row of the rung below r, or NULL; embree is
+ * Embree's row, or NULL when Embree did not run. */
+static void row_values(const struct row *r, const struct row *below, const struct row *embree,
+                       double values[COLUMN_COUNT]) {
+    bool counted = r->primary_rays > 0; /* ours count their tests; Embree does not tell */
+    values[COLUMN_BUILD_MS] = r->build_ms > 0 ? r->build_ms : NAN;
+    values[COLUMN_FRAME_MS] = r->frame_ms;
+    values[COLUMN_MRAYS_PER_S] = r->rays / (r->frame_ms * 1e3);
+    values[COLUMN_TRI_PER_RAY] = counted ? r->triangle_tests / r->rays : NAN;
+    values[COLUMN_NODES_PER_RAY] = counted ? r->node_visits / r->rays : NAN;
+    values[COLUMN_TRI_PER_CAMERA_RAY] = counted ? r->primary_tests / r->primary_rays : NAN;
+    values[COLUMN_SAH_COST] = counted ? r->sah_cost : NAN;
+    values[COLUMN_FRAME_OVER_EMBREE] = embree != NULL ? r->frame_ms / embree->frame_ms : NAN;
+    values[COLUMN_BUILD_OVER_EMBREE] = embree != NULL && r->build_ms > 0 ? r->build_ms / embree->build_ms : NAN;
+    values[COLUMN_FRAME_OVER_BELOW] = below != NULL ? r->frame_ms / below->frame_ms : NAN;
+    values[COLUMN_BUILD_OVER_BELOW] = below != NULL ? r->build_ms / below->build_ms : NAN;
+}
+
+/* The row of the rung below rows[k], or NULL when rows[k] is not a rung or that rung did not run. */
+static const struct row *row_below(const struct row *rows, size_t k) {
+    return rows[k].below >= 0 && rows[rows[k].below].done ? &rows[rows[k].below] : NULL;
+}
+
+/* Row k of the table, rows[k] for k < count and embree (may be NULL) for k == count, with its values
+ * (row_values) in values; NULL when that row did not run. */
+static const struct row *table_row(const struct row *rows, size_t count, const struct row *embree, size_t k,
+                                   double values[COLUMN_COUNT]) {
+    const struct row *r = k < count ? &rows[k] : embree;
+    if (r == NULL || !r->done)
+        return NULL;
+    bool with_embree = embree != NULL && embree->done;
+    row_values(r, k < count ? row_below(rows, k) : NULL, with_embree ? embree : NULL, values);
+    return r;
+}
 
 /* Prints x in a column of width w, or "-" when it does not apply (NAN). */
 static void print_number(int w, double x, int decimals) {
@@ -300,28 +366,19 @@ static void print_number(int w, double x, int decimals) {
 }
 
 static void print_table(const struct row *rows, size_t count, const struct row *embree) {
+    static const int widths[COLUMN_COUNT] = {9, 10, 8, 8, 9, 9, 8, 8, 8, 8, 8};
+    static const int decimals[COLUMN_COUNT] = {1, 1, 2, 2, 2, 2, 1, 2, 2, 2, 2};
     printf("  %-26s %9s %10s %8s %8s %9s %9s %8s %8s %8s %8s %8s  %s\n", "structure", "build ms", "frame ms", "Mrays/s",
            "tri/ray", "nodes/ray", "tri/cam", "SAH cost", "frame/E", "build/E", "frame/<", "build/<",
            "pixels as BVH-SAH's?");
-    bool with_embree = embree != NULL && embree->done;
     for (size_t k = 0; k <= count; k++) {
-        const struct row *r = k < count ? &rows[k] : embree;
-        if (r == NULL || !r->done)
+        double values[COLUMN_COUNT];
+        const struct row *r = table_row(rows, count, embree, k, values);
+        if (r == NULL)
             continue;
-        bool counted = r->primary_rays > 0; /* ours count their tests; Embree does not tell */
         printf("  %-26s", r->label);
-        print_number(9, r->build_ms > 0 ? r->build_ms : NAN, 1);
-        print_number(10, r->frame_ms, 1);
-        print_number(8, r->rays / (r->frame_ms * 1e3), 2);
-        print_number(8, counted ? r->triangle_tests / r->rays : NAN, 2);
-        print_number(9, counted ? r->node_visits / r->rays : NAN, 2);
-        print_number(9, counted ? r->primary_tests / r->primary_rays : NAN, 2);
-        print_number(8, counted ? r->sah_cost : NAN, 1);
-        print_number(8, with_embree ? r->frame_ms / embree->frame_ms : NAN, 2);
-        print_number(8, with_embree && r->build_ms > 0 ? r->build_ms / embree->build_ms : NAN, 2);
-        const struct row *b = k < count && r->below >= 0 && rows[r->below].done ? &rows[r->below] : NULL;
-        print_number(8, b != NULL ? r->frame_ms / b->frame_ms : NAN, 2);
-        print_number(8, b != NULL ? r->build_ms / b->build_ms : NAN, 2);
+        for (int c = 0; c < COLUMN_COUNT; c++)
+            print_number(widths[c], values[c], decimals[c]);
         if (r->compared)
             printf("  %s", r->differ == 0 ? "all equal" : "NO");
         else if (r != embree)
@@ -336,7 +393,83 @@ static void print_table(const struct row *rows, size_t count, const struct row *
            "  on every pixel (on the sampled rows for the brute-force loop)\n");
 }
 
-static int bench_model(const char *path, bool with_embree, int repeats, const char *only) {
+/* ---- the CSV ----------------------------------------------------------------------------------- */
+
+/* The CSV's first line; the numeric columns from build_ms to build_over_below are enum column's. */
+#define CSV_HEADER                                                                                        \
+    "model,triangles,structure,build_ms,frame_ms,mrays_per_s,tri_per_ray,nodes_per_ray,tri_per_camera_ray," \
+    "sah_cost,frame_over_embree,build_over_embree,frame_over_below,build_over_below,sampled_rows,"        \
+    "pixels_differing"
+/* A double printed with this many digits after the point or fewer reads back as the same double, unless
+ * it is below about 1e-23; such a value (none occurs here) falls back to %.17g, which always does. */
+#define CSV_MAX_DECIMALS 40
+
+/* Writes ",x" to csv: nothing after the comma when x is NAN; otherwise x in plain decimal notation with
+ * the fewest digits after the point that read back as exactly x, so that a script formatting the
+ * field as the table does prints what the table printed. */
+static void csv_number(FILE *csv, double x) {
+    fputc(',', csv);
+    if (isnan(x))
+        return;
+    char text[400]; /* room for DBL_MAX (309 digits) with CSV_MAX_DECIMALS decimals */
+    for (int d = 0; d <= CSV_MAX_DECIMALS; d++) {
+        snprintf(text, sizeof text, "%.*f", d, x);
+        if (strtod(text, NULL) == x || isinf(x)) {
+            fputs(text, csv);
+            return;
+        }
+    }
+    fprintf(csv, "%.17g", x);
+}
+
+/* Writes one CSV line per row that ran (rows[0..count), then Embree's when it ran) for the model
+ * `model` of `triangles` faces. Write errors are left for the caller to find with ferror. */
+static void csv_write_rows(FILE *csv, const char *model, size_t triangles, const struct row *rows, size_t count,
+                           const struct row *embree) {
+    for (size_t k = 0; k <= count; k++) {
+        double values[COLUMN_COUNT];
+        const struct row *r = table_row(rows, count, embree, k, values);
+        if (r == NULL)
+            continue;
+        fprintf(csv, "%s,%zu,%s", model, triangles, r->csv_name);
+        for (int c = 0; c < COLUMN_COUNT; c++)
+            csv_number(csv, values[c]);
+        fputc(',', csv);
+        if (r->sampled_rows > 0)
+            fprintf(csv, "%d", r->sampled_rows);
+        fputc(',', csv);
+        if (r->compared || r == embree) /* the reference has no count: it is what the others are compared to */
+            fprintf(csv, "%ld", r->differ);
+        fputc('\n', csv);
+    }
+}
+
+/* The model's name for the CSV: path's base name without its extension ("scenes/models/bunny.ply" ->
+ * "bunny"), into name (size bytes). */
+static void model_name(const char *path, char *name, size_t size) {
+    const char *base = strrchr(path, '/');
+    base = base != NULL ? base + 1 : path;
+    const char *dot = strrchr(base, '.');
+    int length = dot != NULL && dot != base ? (int)(dot - base) : (int)strlen(base);
+    snprintf(name, size, "%.*s", length, base);
+}
+
+/* What the command line asked for. */
+struct options {
+    bool with_embree;
+    int repeats;
+    const char *only;  /* NULL: every structure */
+    int width, height; /* the frame, in pixels */
+    FILE *csv;         /* NULL without --csv */
+};
+
+/* Benchmarks the model at path as the comment at the top says: prints its table and, with --csv, writes
+ * its rows. Returns 0, or 1 after a message on standard error when the model cannot be loaded or
+ * memory runs out. */
+static int bench_model(const char *path, const struct options *options) {
+    bool with_embree = options->with_embree;
+    int repeats = options->repeats;
+    const char *only = options->only;
     struct mesh m;
     char err[512];
     if (!mesh_load(path, &m, err, sizeof err)) {
@@ -345,7 +478,7 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
     }
     struct camera cam;
     vec3 light;
-    if (!fit_camera(&m, &cam, &light)) {
+    if (!fit_camera(&m, options->width, options->height, &cam, &light)) {
         fprintf(stderr, "bench_accel: %s: cannot fit a camera (no vertices?)\n", path);
         mesh_free(&m);
         return 1;
@@ -354,7 +487,8 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
     struct pixel *reference = malloc(pixel_count * sizeof *reference);
     struct pixel *pixels = malloc(pixel_count * sizeof *pixels);
     int *all_rows = malloc((size_t)cam.height * sizeof *all_rows);
-    if (reference == NULL || pixels == NULL || all_rows == NULL) {
+    int *sampled_rows = malloc((size_t)cam.height * sizeof *sampled_rows);
+    if (reference == NULL || pixels == NULL || all_rows == NULL || sampled_rows == NULL) {
         fprintf(stderr, "bench_accel: out of memory\n");
         return 1;
     }
@@ -366,7 +500,6 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
     int naive_rows = (int)(BENCH_NAIVE_BUDGET_TESTS / (naive_tests_per_row > 1 ? naive_tests_per_row : 1));
     naive_rows = naive_rows < BENCH_NAIVE_MIN_ROWS ? BENCH_NAIVE_MIN_ROWS : naive_rows;
     naive_rows = naive_rows > cam.height ? cam.height : naive_rows;
-    int sampled_rows[BENCH_HEIGHT];
     for (int k = 0; k < naive_rows; k++)
         sampled_rows[k] = (int)((k + 0.5) * cam.height / naive_rows);
 
@@ -401,6 +534,8 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
             int list_count = naive ? naive_rows : cam.height;
             if (run == 0) {
                 snprintf(row->label, sizeof row->label, "%s", a->name);
+                row->csv_name = a->csv_name;
+                row->sampled_rows = naive ? naive_rows : 0;
                 if (naive && naive_rows < cam.height)
                     snprintf(row->label, sizeof row->label, "%s (sampled, %d rows)", a->name, naive_rows);
                 row->below = a->below;
@@ -444,6 +579,7 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
                 return 1;
             }
             snprintf(embree.label, sizeof embree.label, "Embree 3 (float, 1 thread)");
+            embree.csv_name = "embree";
             embree.build_ms = build_ms < embree.build_ms ? build_ms : embree.build_ms;
             embree.frame_ms = frame_ms < embree.frame_ms ? frame_ms : embree.frame_ms;
             long differ = 0, hits = 0;
@@ -469,40 +605,103 @@ static int bench_model(const char *path, bool with_embree, int repeats, const ch
                "  few grazing rays may go the other way\n");
     printf("\n");
     fflush(stdout);
+    if (options->csv != NULL) {
+        char name[256];
+        model_name(path, name, sizeof name);
+        csv_write_rows(options->csv, name, m.face_count, rows, ACCEL_COUNT, with_embree ? &embree : NULL);
+    }
     free(reference);
     free(pixels);
     free(all_rows);
+    free(sampled_rows);
     mesh_free(&m);
     return 0;
 }
 
+/* Reads "WxH" (each side 1 to BENCH_MAX_SIDE) into *width and *height; false when text is not that. */
+static bool parse_size(const char *text, int *width, int *height) {
+    char rest;
+    return sscanf(text, "%dx%d%c", width, height, &rest) == 2 && *width >= 1 && *width <= BENCH_MAX_SIDE &&
+           *height >= 1 && *height <= BENCH_MAX_SIDE;
+}
+
+/* Says `bench_accel: FILE: why` (why: strerror(error)) and returns 3, the exit status of a CSV that
+ * cannot be written. */
+static int csv_error(const char *path, int error) {
+    fprintf(stderr, "bench_accel: %s: %s\n", path, strerror(error));
+    return 3;
+}
+
 int main(int argc, char **argv) {
-    bool with_embree = false;
-    int repeats = 3;
-    const char *only = NULL;
+    struct options options = {false, 3, NULL, BENCH_WIDTH, BENCH_HEIGHT, NULL};
+    const char *csv_path = NULL;
     int first = 1;
     for (; first < argc && argv[first][0] == '-'; first++) {
         if (strcmp(argv[first], "--embree") == 0)
-            with_embree = true;
+            options.with_embree = true;
         else if (strcmp(argv[first], "--repeats") == 0 && first + 1 < argc && atoi(argv[first + 1]) > 0)
-            repeats = atoi(argv[++first]);
+            options.repeats = atoi(argv[++first]);
         else if (strcmp(argv[first], "--only") == 0 && first + 1 < argc)
-            only = argv[++first];
-        else
+            options.only = argv[++first];
+        else if (strcmp(argv[first], "--csv") == 0 && first + 1 < argc)
+            csv_path = argv[++first];
+        else if (strcmp(argv[first], "--size") == 0 && first + 1 < argc) {
+            if (!parse_size(argv[++first], &options.width, &options.height)) {
+                fprintf(stderr, "bench_accel: --size '%s': expected WIDTHxHEIGHT, each from 1 to %d, e.g. 800x600\n",
+                        argv[first], BENCH_MAX_SIDE);
+                return 2;
+            }
+        } else
             break;
     }
     if (first >= argc || argv[first][0] == '-') {
-        fprintf(stderr, "usage: bench_accel [--embree] [--repeats N] [--only NAME] MODEL.ply...\n");
+        fprintf(stderr, "usage: bench_accel [--embree] [--repeats N] [--only NAME] [--size WxH] [--csv FILE] "
+                        "MODEL.ply...\n");
         return 2;
     }
 #ifndef WHITTED_EMBREE
-    if (with_embree) {
+    if (options.with_embree) {
         fprintf(stderr, "bench_accel: built without Embree (install libembree-dev and rebuild: make bench)\n");
         return 2;
     }
 #endif
+    /* The CSV goes to FILE.tmp, opened before the first model so that a path that cannot be written
+     * fails at once rather than after the whole run, and renamed to FILE at the end. */
+    char *csv_tmp = NULL;
+    if (csv_path != NULL) {
+        size_t size = strlen(csv_path) + sizeof ".tmp";
+        csv_tmp = malloc(size);
+        if (csv_tmp == NULL) {
+            fprintf(stderr, "bench_accel: out of memory\n");
+            return 1;
+        }
+        snprintf(csv_tmp, size, "%s.tmp", csv_path);
+        options.csv = fopen(csv_tmp, "w");
+        if (options.csv == NULL) {
+            int error = errno;
+            free(csv_tmp);
+            return csv_error(csv_path, error);
+        }
+        fprintf(options.csv, "%s\n", CSV_HEADER);
+    }
     int status = 0;
     for (int k = first; k < argc; k++)
-        status |= bench_model(argv[k], with_embree, repeats, only);
+        status |= bench_model(argv[k], &options);
+    if (options.csv != NULL) {
+        int error = 0; /* errno of the first step that failed */
+        if (fflush(options.csv) != 0 || ferror(options.csv))
+            error = errno != 0 ? errno : EIO;
+        if (fclose(options.csv) != 0 && error == 0)
+            error = errno;
+        if (error == 0 && status == 0 && rename(csv_tmp, csv_path) != 0)
+            error = errno;
+        if (error != 0 || status != 0)
+            remove(csv_tmp);
+        free(csv_tmp);
+        if (error != 0)
+            return csv_error(csv_path, error);
+        if (status != 0)
+            fprintf(stderr, "bench_accel: %s: not written, since a model failed\n", csv_path);
+    }
     return status;
 }
