@@ -39,12 +39,14 @@ set title "The seed's first scene: time relative to depth 1"
 set ylabel "time ÷ time at depth 1"
 unset logscale y
 set yrange [0.9:*]
-set label 1 "the seed: +60 %" at 4.9,1.6 right offset -1,0 tc rgb "black"
+set label 1 "the seed: +60 %" at 4.9,1.6 right offset -0.5,2.2 tc rgb "black"
 set key outside right top vertical box
 plot series."/s1-big-1-none-growth" using 1:2 title "brute force, ".big.", one light" with linespoints lw 2 pt 7 ps 0.8 lc rgb c_none, \
      series."/s1-big-2-none-growth" using 1:2 title "brute force, ".big.", two lights" with linespoints lw 2 pt 5 ps 0.8 lc rgb c_none dt 2, \
      series."/s1-small-1-none-growth" using 1:2 title "brute force, ".small.", one light" with linespoints lw 2 pt 7 ps 0.8 lc rgb "#e59866", \
      series."/s1-small-2-none-growth" using 1:2 title "brute force, ".small.", two lights" with linespoints lw 2 pt 5 ps 0.8 lc rgb "#e59866" dt 2, \
+     series."/s1-big-1-bvh-sah-growth" using 1:2 title "BVH (SAH), ".big.", one light" with linespoints ls 4, \
+     series."/s1-big-1-povray-growth" using 1:2 title "POV-Ray 3.7, ".big.", one light" with linespoints lw 2 pt 4 ps 0.8 lc rgb c_pov dt 2, \
      "-" using 1:2 title "the seed (its text)" with points pt 9 ps 1.6 lc rgb "black"
 5 1.6
 e

@@ -69,7 +69,7 @@ pick() {
 read -r small_w small_h big_w big_h < <(awk -F, 'NR > 1 { k = $2 " " $3; if (!(k in seen)) { seen[k] = 1; printf "%s ", k } } END { print "" }' "$data/scene1.csv")
 for lights in 1 2; do
     name=$([ $lights = 1 ] && echo scene1 || echo scene1-two-lights)
-    for s in none bvh-sah; do
+    for s in none bvh-sah povray; do
         pick "$data/scene1.csv" scene=$name width=$small_w structure=$s -- depth cpu_best_s >"$series/s1-small-$lights-$s"
         pick "$data/scene1.csv" scene=$name width=$big_w structure=$s -- depth cpu_best_s >"$series/s1-big-$lights-$s"
     done
@@ -82,7 +82,9 @@ for model in bunny teapot-5k; do
 done
 for lights in 1 2; do # time divided by the time at depth 1
     for size in small big; do
-        awk 'NR == 1 { first = $2 } { print $1, $2 / first }' "$series/s1-$size-$lights-none" >"$series/s1-$size-$lights-none-growth"
+        for s in none bvh-sah povray; do
+            awk 'NR == 1 { first = $2 } { print $1, $2 / first }' "$series/s1-$size-$lights-$s" >"$series/s1-$size-$lights-$s-growth"
+        done
     done
 done
 # The large model's bars: label, time, scaled up (1) or measured (0), colour (0xRRGGBB, in decimal);

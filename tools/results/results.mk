@@ -1,7 +1,7 @@
 # tools/results/results.mk: make results, the seed's experiments redone (docs/results.md). A GNU make
 # fragment included from the top-level Makefile, which defines CC, BUILD, CFLAGS and the chapters' rules.
 #
-#   make results          run every experiment (about 15 minutes on one core), write the CSVs to
+#   make results          run every experiment (five to ten minutes on one core), write the CSVs to
 #                         out/results/, copy them to docs/results/, and redraw docs/results/*.svg and
 #                         the tables of docs/results.md from them (installs gnuplot-nox, POV-Ray and
 #                         Embree when missing)
@@ -22,7 +22,7 @@ $(BUILD)/measure: tools/results/measure.c
 .PHONY: results
 ifeq ($(QUICK),1)
 results: all $(BUILD)/measure $(MODELS_TEAPOT)
-	BUILD=$(BUILD) tools/results/run.sh --quick $(RESULTS_QUICK_DIR)
+	BUILD=$(BUILD) TEAPOT=$(MODELS_TEAPOT) tools/results/run.sh --quick $(RESULTS_QUICK_DIR)
 	cp docs/results.md $(RESULTS_QUICK_DIR)/results.md
 	tools/results/publish.sh $(RESULTS_QUICK_DIR) $(RESULTS_QUICK_DIR)/figures $(RESULTS_QUICK_DIR)/results.md
 	@echo "quick results: $(RESULTS_QUICK_DIR)/ (CSV files, figures/, results.md)"
@@ -30,7 +30,7 @@ else
 results: all $(BUILD)/measure $(MODELS_TEAPOT)
 	tools/install-deps.sh bench
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_accel
-	BUILD=$(BUILD) tools/results/run.sh out/results
+	BUILD=$(BUILD) TEAPOT=$(MODELS_TEAPOT) tools/results/run.sh out/results
 	mkdir -p docs/results
 	cp out/results/*.csv out/results/*.png docs/results/
 	tools/results/publish.sh docs/results docs/results docs/results.md

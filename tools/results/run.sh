@@ -24,7 +24,8 @@
 # and scale > 1). --quick runs the same experiments on small pictures and models, once each, in about
 # a minute, so the pipeline can be tested (make test does).
 #
-# Environment: BUILD (default build) holds the chapters, measure, teapot and bench_accel.
+# Environment: BUILD (default build) holds the chapters, compare, measure and bench_accel; TEAPOT
+# (default build/teapot) is the teapot generator, tools/teapot.c.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -39,6 +40,7 @@ if [ $# -ne 1 ]; then
 fi
 out=$1
 build=${BUILD:-build}
+teapot=${TEAPOT:-build/teapot}
 mkdir -p "$out"
 work=$out/work
 rm -rf "$work"
@@ -245,7 +247,7 @@ mkdir -p "$models"
 for size in $SCALING_SIZES; do
     ply=$models/teapot-$size.ply
     if [ ! -s "$ply" ]; then # made once, kept in out/models/ (written under a temporary name first)
-        "$build/teapot" --triangles "$size" "$ply.tmp.ply" >/dev/null
+        "$teapot" --triangles "$size" "$ply.tmp.ply" >/dev/null
         mv "$ply.tmp.ply" "$ply"
     fi
     triangles=$(awk '/^element face/ { print $3; exit }' "$ply")

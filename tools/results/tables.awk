@@ -28,7 +28,14 @@ function seconds(x) {
     return sprintf("%.4f", x)
 }
 
-function ratio(a, b) { return (b > 0) ? sprintf("%.1f ×", a / b) : "–" }
+function ratio(a, b) { return (b <= 0) ? "–" : (a / b >= 100) ? thousands(a / b) " ×" : sprintf("%.1f ×", a / b) }
+
+# A number with `decimals` decimals, or a whole number with thousands separators from 10,000 on; "–"
+# for an empty field.
+function number(x, decimals) {
+    if (x == "") return "–"
+    return (x >= 10000) ? thousands(x) : sprintf("%." decimals "f", x)
+}
 
 # The label of a structure's machine name.
 function structure_name(s) {
@@ -118,14 +125,10 @@ table == "threads" {
 table ~ /^accel-/ {
     if ("accel-" f("model") != table) next
     line = "| " f("structure") (f("sampled_rows") != "" ? " (sampled, " f("sampled_rows") " rows)" : "")
-    line = line " | " (f("build_ms") == "" ? "–" : sprintf("%.1f", f("build_ms"))) " | " sprintf("%.1f", f("frame_ms"))
-    line = line " | " sprintf("%.2f", f("mrays_per_s")) " | " sprintf("%.2f", f("tri_per_ray"))
-    line = line " | " (f("nodes_per_ray") == "" ? "–" : sprintf("%.2f", f("nodes_per_ray")))
-    line = line " | " (f("tri_per_camera_ray") == "" ? "–" : sprintf("%.2f", f("tri_per_camera_ray")))
-    line = line " | " (f("sah_cost") == "" ? "–" : sprintf("%.1f", f("sah_cost")))
-    line = line " | " (f("frame_over_embree") == "" ? "–" : sprintf("%.2f", f("frame_over_embree")))
-    line = line " | " (f("build_over_embree") == "" ? "–" : sprintf("%.2f", f("build_over_embree")))
-    line = line " | " (f("pixels_differing") == "" ? "–" : f("pixels_differing")) " |"
+    line = line " | " number(f("build_ms"), 1) " | " number(f("frame_ms"), 1) " | " number(f("mrays_per_s"), 2)
+    line = line " | " number(f("tri_per_ray"), 2) " | " number(f("nodes_per_ray"), 2) " | " number(f("tri_per_camera_ray"), 2)
+    line = line " | " number(f("sah_cost"), 1) " | " number(f("frame_over_embree"), 2) " | " number(f("build_over_embree"), 2)
+    line = line " | " number(f("pixels_differing"), 0) " |"
     accel_lines[++n_accel] = line
     next
 }
@@ -161,7 +164,9 @@ END {
             sep = sep "---:|"
         }
         big = order[n_keys - 1]  # the largest size, one light
-        line = line " same, BVH-SAH | same, POV-Ray | POV-Ray's largest difference |"
+        split(big, parts, " ")
+        sub(/x/, " × ", parts[1])
+        line = line " " parts[1] ", 1 light, BVH-SAH | " parts[1] ", 1 light, POV-Ray | POV-Ray's largest difference |"
         sep = sep "---:|---:|---:|"
         print "Brute force (processor time, seconds) unless the column says otherwise:"
         print ""
