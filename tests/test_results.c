@@ -81,7 +81,7 @@ Test(results, the_quick_mode_runs_every_experiment_and_draws_every_plot_and_tabl
     char command[COMMAND_MAX];
     snprintf(command, sizeof command,
              "BUILD=%s TEAPOT=build/teapot tools/results/run.sh --quick " QUICK_DIR " && cp docs/results.md " QUICK_DIR "/results.md && "
-             "tools/results/publish.sh " QUICK_DIR " " QUICK_DIR "/figures " QUICK_DIR "/results.md",
+             "tools/results/publish.sh " QUICK_DIR " " QUICK_DIR " " QUICK_DIR "/results.md",
              build);
     cr_assert_eq(run_logged(command, "out/test/results-quick.log"), 0, "see out/test/results-quick.log");
 
@@ -126,11 +126,21 @@ Test(results, the_quick_mode_runs_every_experiment_and_draws_every_plot_and_tabl
     /* The scaling rows: the kd-tree and the BVHs report a build time. */
     cr_assert_not_null(strstr(scaling, "\n16256,bvh-sah,1,"));
 
+    const char *const pictures[] = {"scene1-depth-1", "scene1-depth-5", "scene1-two-lights", "bunny", "teapot-5k", "large"};
+    for (size_t k = 0; k < sizeof pictures / sizeof pictures[0]; k++) {
+        char path[256];
+        snprintf(path, sizeof path, QUICK_DIR "/%s.png", pictures[k]);
+        size_t size = 0;
+        char *png = read_file(path, &size);
+        cr_assert_not_null(png, "%s was not rendered", path);
+        cr_assert(size > 8 && memcmp(png, "\x89PNG", 4) == 0, "%s is not a PNG file", path);
+        free(png);
+    }
     const char *const plots[] = {"scene1-depth", "scene1-growth", "bunny-time", "bunny-tests", "teapot-5k-time",
                                  "teapot-5k-tests", "large", "scaling-build", "scaling-frame", "scaling-memory"};
     for (size_t k = 0; k < sizeof plots / sizeof plots[0]; k++) {
         char path[256];
-        snprintf(path, sizeof path, QUICK_DIR "/figures/%s.svg", plots[k]);
+        snprintf(path, sizeof path, QUICK_DIR "/%s.svg", plots[k]);
         char *svg = read_text_file(path);
         cr_assert_not_null(svg, "%s was not drawn", path);
         cr_assert_not_null(strstr(svg, "</svg>"), "%s is not a whole SVG file", path);

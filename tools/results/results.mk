@@ -6,8 +6,8 @@
 #                         the tables of docs/results.md from them (installs gnuplot-nox, POV-Ray and
 #                         Embree when missing)
 #   make results QUICK=1  the same experiments on small pictures and models, about a minute: the
-#                         CSVs, plots and a copy of the page with its tables go to out/results-quick/,
-#                         and docs/ is left alone (make test runs this)
+#                         CSVs, plots, pictures and a copy of the page with its tables go to
+#                         out/results-quick/, and docs/ is left alone (the tests run this)
 #
 # tools/results/run.sh runs the experiments, tools/results/publish.sh draws and writes the tables
 # (tools/results/plots.gp, tools/results/tables.awk); publish.sh --check is what the tests use to
@@ -23,9 +23,9 @@ $(BUILD)/measure: tools/results/measure.c
 ifeq ($(QUICK),1)
 results: all $(BUILD)/measure $(MODELS_TEAPOT)
 	BUILD=$(BUILD) TEAPOT=$(MODELS_TEAPOT) tools/results/run.sh --quick $(RESULTS_QUICK_DIR)
-	cp docs/results.md $(RESULTS_QUICK_DIR)/results.md
-	tools/results/publish.sh $(RESULTS_QUICK_DIR) $(RESULTS_QUICK_DIR)/figures $(RESULTS_QUICK_DIR)/results.md
-	@echo "quick results: $(RESULTS_QUICK_DIR)/ (CSV files, figures/, results.md)"
+	sed 's#](results/#](#g' docs/results.md >$(RESULTS_QUICK_DIR)/results.md
+	tools/results/publish.sh $(RESULTS_QUICK_DIR) $(RESULTS_QUICK_DIR) $(RESULTS_QUICK_DIR)/results.md
+	@echo "quick results: $(RESULTS_QUICK_DIR)/results.md, with its CSV files, plots and pictures beside it"
 else
 results: all $(BUILD)/measure $(MODELS_TEAPOT)
 	tools/install-deps.sh bench
