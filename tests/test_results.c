@@ -137,7 +137,7 @@ Test(results, the_quick_mode_runs_every_experiment_and_draws_every_plot_and_tabl
         free(png);
     }
     const char *const plots[] = {"scene1-depth", "scene1-growth", "bunny-time", "bunny-tests", "teapot-5k-time",
-                                 "teapot-5k-tests", "large", "scaling-build", "scaling-frame", "scaling-memory"};
+                                 "teapot-5k-tests", "large", "large-tests", "scaling-build", "scaling-frame", "scaling-memory"};
     for (size_t k = 0; k < sizeof plots / sizeof plots[0]; k++) {
         char path[256];
         snprintf(path, sizeof path, QUICK_DIR "/%s.svg", plots[k]);

@@ -75,7 +75,7 @@ do for [model in "bunny teapot-5k"] {
          series."/".model."-tests-bvh-sah" using 1:2 title "BVH, SAH" with linespoints ls 4
 }
 
-# ---- the large model: processor time per structure, and the seed's two times -------------------------
+# ---- the large model: processor time and triangle tests per structure, and the seed's figures -------------------------
 set output figures."/large.svg"
 set title "The 349,872-triangle teapot at 800×600, depth 1: the whole process"
 set xlabel ""
@@ -91,6 +91,15 @@ set grid noxtics
 plot series."/large" using 0:2:(0.7):4:xtic(1) with boxes fc rgb variable, \
      series."/large" using 0:2:(sprintf("%s s%s", $2 >= 1000 ? gprintf("%.0f", $2) : gprintf("%.3g", $2), $3 == 1 ? "*" : "")) \
          with labels offset 0,0.8 font ",11"
+set output figures."/large-tests.svg"
+set title "The 349,872-triangle teapot at 800×600, depth 1: triangle tests"
+set ylabel "triangle tests per frame, log scale"
+set yrange [1e5:1e12]
+set format y "10^{%T}"
+plot series."/large-tests" using 0:2:(0.7):4:xtic(1) with boxes fc rgb variable, \
+     series."/large-tests" using 0:2:(sprintf("%s%s", gprintf("%.2t×10^{%T}", $2), $3 == 1 ? "*" : "")) \
+         with labels offset 0,0.8 font ",11"
+set format y "%g"
 set xtics norotate font ",13"
 set grid xtics
 unset xrange
