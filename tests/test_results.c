@@ -3,6 +3,7 @@
  * mode runs every experiment end to end on small inputs: CSVs with the right columns and rows, counts
  * that say what the structures are for, plots and a page with every table filled in. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,6 +75,28 @@ Test(results, a_changed_number_in_a_csv_makes_its_plot_and_table_stale, .timeout
     cr_assert_not_null(strstr(output, "out/test/results-stale/bunny-time.svg is stale"), "%s", output);
     cr_assert_not_null(strstr(output, "out/test/results-stale/results.md: a table is stale"), "%s", output);
     cr_assert_null(strstr(output, "scene1-depth.svg is stale"), "an unchanged plot was called stale:\n%s", output);
+}
+
+/* The brute force's triangle tests on the bunny scene at depth 1, at width x height. */
+static double brute_force_tests(int width, int height) {
+    const char *build = getenv("WHITTED_BUILD") != NULL ? getenv("WHITTED_BUILD") : "build";
+    char command[COMMAND_MAX], output[OUTPUT_MAX];
+    snprintf(command, sizeof command,
+             "%s/chapter-10 scenes/results/seed-bunny.scene --threads 1 --accel none --set max_depth=1 --width %d "
+             "--height %d -o out/test/results-sampling.png",
+             build, width, height);
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s failed:\n%s", command, output);
+    const char *line = strstr(output, "\n  triangle tests ");
+    cr_assert_not_null(line, "no triangle tests in:\n%s", output);
+    return atof(line + strlen("\n  triangle tests "));
+}
+
+Test(results, a_coarser_grid_scaled_up_estimates_the_whole_frame, .timeout = 120) {
+    /* What make results does where the brute force would take too long: the same picture on a grid
+     * five times coarser each way, its counts multiplied by 25, against the whole frame. */
+    double whole = brute_force_tests(200, 150), sampled = 25 * brute_force_tests(40, 30);
+    cr_assert_gt(whole, 1e7, "the brute force did not run: %g triangle tests", whole);
+    cr_assert_lt(fabs(sampled - whole), 0.03 * whole, "sampled %g against %g measured", sampled, whole);
 }
 
 Test(results, the_quick_mode_runs_every_experiment_and_draws_every_plot_and_table, .timeout = 900) {
