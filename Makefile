@@ -235,7 +235,7 @@ help:
 
 # ---- the coursework kit (docs/coursework.md) -----------------------------------------------------
 #   make student DIR=path [TASKS="2.1 5.1"]  a student copy with the marked tasks' bodies blanked
-#   make check-N (N = 1..10), make check       grade chapter N (or all): each task, then a scoreboard
+#   make check-N (N = 1..11), make check       grade chapter N (or all): each task, then a scoreboard
 CHECK_OBJECTS := $(patsubst tests/checks/%.c,$(BUILD)/checks/%.o,$(wildcard tests/checks/*.c))
 
 $(BUILD)/checks/%.o: tests/checks/%.c
@@ -251,7 +251,7 @@ check-$(1): $(BUILD)/check | out
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11,$(eval $(call check_rule,$(n))))
 
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out
 	WHITTED_BUILD=$(BUILD) ./$(BUILD)/check all
@@ -260,5 +260,5 @@ student:
 	@test -n "$(DIR)" || { echo 'make student DIR=path [TASKS="2.1 5.1"]: say where the copy goes' >&2; exit 2; }
 	tools/student.sh "$(DIR)" "$(TASKS)"
 
-.PHONY: check student $(foreach n,1 2 3 4 5 6 7 8 9 10,check-$(n))
+.PHONY: check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11,check-$(n))
 test: $(BUILD)/check

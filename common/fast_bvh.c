@@ -842,7 +842,9 @@ static inline bool child_hit(const struct fast_bvh_node *n, int k, const struct 
 }
 
 /* The slab test on children 2h and 2h + 1 of n at once (lanes 0 and 1). Returns a 2-bit mask of the
- * children hit in [t_near, t_far] and their entry distances in *entry. */
+ * children hit in [t_near, t_far] (bit 0 for child 2h, bit 1 for child 2h + 1) and their entry
+ * distances in *entry (lane 0, lane 1). */
+/* TASK 11.1: two children's slab tests at once */
 static inline unsigned child_pair_hit(const struct fast_bvh_node *n, int h, const struct ray_setup *s, double t_near,
                                       double t_far, double2 *entry) {
     double2 enter = {t_near, t_near}, leave = {t_far, t_far};

@@ -1,11 +1,14 @@
-/* check_accel.c: the coursework checks of chapters 9 and 10: the kd-tree's split rules and traversal,
- * the BVH's builds and traversal, on small meshes whose right answers are known (the coursework kit). */
+/* check_accel.c: the coursework checks of chapters 9 to 11: the kd-tree's split rules and traversal,
+ * the BVH's builds and traversal, the fast BVH's two-lane box test, on small meshes whose right answers
+ * are known (the coursework kit). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "bvh.h"
 #include "check.h"
+#include "fast_bvh.h"
 #include "kdtree.h"
 #include "stats.h"
 #include "triangle.h"
@@ -126,6 +129,14 @@ CHECK(check_sah_plain) {
 
 /* ---- 9.3 and 10.3: traversal -------------------------------------------------------------------- */
 
+/* "a hit at t = 5.00" (t with `digits` decimals) or `none` ("a miss", "no hit"), for a check's message. */
+static const char *hit_text(bool hit, double t, int digits, const char *none, char buffer[static 64]) {
+    if (!hit)
+        return none;
+    snprintf(buffer, 64, "a hit at t = %.*f", digits, t);
+    return buffer;
+}
+
 typedef bool (*closest_fn)(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
 
 static bool kd_closest(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
@@ -133,6 +144,9 @@ static bool kd_closest(const void *tree, const ray *r, double t_min, double t_ma
 }
 static bool bvh_closest_fn(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
     return bvh_closest(tree, r, t_min, t_max, t, face);
+}
+static bool fast_closest_fn(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    return fast_bvh_closest(tree, r, t_min, t_max, t, face);
 }
 
 /* Rays into the three layers: down from above (nearest z = 0, t = 5), up from below (nearest z = -2,
@@ -153,9 +167,10 @@ static bool layered_rays(const char *what, const void *tree, closest_fn closest,
         bool hit = closest(tree, &cases[k].r, 1e-9, INFINITY, &t, &face);
         if (isnan(expected) ? !hit : hit && fabs(t - expected) < ACCEL_TOLERANCE)
             continue;
-        snprintf(why, why_size, "%s, three layers of triangles at z = 0, -1, -2 over [0, 4]^2, a ray %s: expected %s%.2f; "
-                 "got %s%.2f%s", what, cases[k].say, isnan(expected) ? "a miss" : "a hit at t = ",
-                 isnan(expected) ? 0.0 : expected, hit ? "a hit at t = " : "no hit", hit ? t : 0.0,
+        char said[64], got[64];
+        snprintf(why, why_size, "%s, three layers of triangles at z = 0, -1, -2 over [0, 4]^2, a ray %s: expected %s; "
+                 "got %s%s", what, cases[k].say, hit_text(!isnan(expected), expected, 2, "a miss", said),
+                 hit_text(hit, t, 2, "no hit", got),
                  hit && !isnan(expected) && t > expected ? ": a farther layer; visit the near child first and stop "
                                                            "only when nothing nearer can be left" : "");
         return false;
@@ -228,10 +243,11 @@ static bool crossing_rays(const char *what, const void *tree, closest_fn closest
                 bool hit = closest(tree, &r, 1e-9, INFINITY, &t, &face);
                 if (hit == want && (!hit || fabs(t - expected) < ACCEL_TOLERANCE))
                     continue;
+                char said[64], got[64];
                 snprintf(why, why_size, "%s, three layers of triangles crossed by four walls and one long slanted "
-                         "triangle, a ray from (%.2f, %.2f, %.2f) %s: testing every triangle gives %s%.4f; yours "
-                         "gave %s%.4f%s", what, o.x, o.y, o.z, families[f].say, want ? "a hit at t = " : "a miss",
-                         want ? expected : 0.0, hit ? "a hit at t = " : "no hit", hit ? t : 0.0,
+                         "triangle, a ray from (%.2f, %.2f, %.2f) %s: testing every triangle gives %s; yours "
+                         "gave %s%s", what, o.x, o.y, o.z, families[f].say, hit_text(want, expected, 4, "a miss", said),
+                         hit_text(hit, t, 4, "no hit", got),
                          hit && want && t > expected ? ": a farther hit. The first hit found need not be the nearest (a "
                          "triangle or box can reach past the next); stop only when nothing nearer can be left" : "");
                 ok = false;
@@ -406,3 +422,35 @@ CHECK(check_bvh_near_first) {
                  NEAR_FIRST_MAX_TESTS);
     return false;
 }
+
+/* ---- 11.1 the fast BVH's two-lane box test ------------------------------------------------------ */
+
+/* What a failing 11.1 check adds to its message: how child_pair_hit is meant to work. */
+#define PAIR_HINT " child_pair_hit(n, h, ...) tests children 2h and 2h + 1 of node n (lanes 0 and 1 of a double2): " \
+                  "on each axis the near plane is bounds[a][s->near[a]] (the high bound when the ray runs towards " \
+                  "minus), the entry is the largest near t and the exit the smallest far t, and bit k of the mask is " \
+                  "set when lane k's entry is at or before its exit"
+
+/* Builds the fast BVH over mesh() at rung `rung` (rung 3 and up test children with child_pair_hit) and
+ * runs `rays` on it; on a failure, adds PAIR_HINT to the message. */
+static bool fast_case(struct mesh (*mesh)(void), enum fast_bvh_rung rung,
+                      bool (*rays)(const char *, const void *, closest_fn, char *, size_t), char *why, size_t why_size) {
+    struct mesh m = mesh();
+    struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, rung);
+    char what[64];
+    snprintf(what, sizeof what, "fast_bvh_closest at rung %d (%s)", (int)rung, fast_bvh_rung_name((int)rung));
+    bool ok = b != NULL && rays(what, b, fast_closest_fn, why, why_size);
+    if (b == NULL)
+        snprintf(why, why_size, "fast_bvh_build returned NULL");
+    else if (!ok) {
+        size_t used = strlen(why);
+        snprintf(why + used, why_size - used, ".%s", PAIR_HINT);
+    }
+    fast_bvh_free(b);
+    mesh_free(&m);
+    return ok;
+}
+
+CHECK(check_fast_layers) { return fast_case(layers, FAST_BVH_RUNG_SIMD, layered_rays, why, why_size); }
+
+CHECK(check_fast_crossing) { return fast_case(crossed_layers, FAST_BVH_RUNG_TOP, crossing_rays, why, why_size); }

@@ -48,6 +48,9 @@ const struct task check_tasks[] = {
     {"10.3", "ordered BVH traversal", "traverse in common/bvh.c", "10.2"},
     {"10.P", "chapter 10's picture", "chapters/10-bvh",
      "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3"},
+    {"11.1", "two children's slab tests at once", "child_pair_hit in common/fast_bvh.c", ""},
+    {"11.P", "chapter 11's picture", "chapters/11-fast",
+     "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3 11.1"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -88,6 +91,8 @@ CHECK(check_bvh_sah_unequal);
 CHECK(check_bvh_traversal);
 CHECK(check_bvh_crossing);
 CHECK(check_bvh_near_first);
+CHECK(check_fast_layers);
+CHECK(check_fast_crossing);
 CHECK(check_picture_1);
 CHECK(check_picture_2);
 CHECK(check_picture_3);
@@ -98,6 +103,7 @@ CHECK(check_picture_7);
 CHECK(check_picture_8);
 CHECK(check_picture_9);
 CHECK(check_picture_10);
+CHECK(check_picture_11);
 
 const struct check check_list[] = {
     {"1.1", "the top-left pixel's ray", check_camera_top_left},
@@ -147,6 +153,9 @@ const struct check check_list[] = {
     {"10.3", "overlapping boxes: the nearest hit", check_bvh_crossing},
     {"10.3", "the nearer child first: few triangle tests", check_bvh_near_first},
     {"10.P", "the picture matches the reference", check_picture_10},
+    {"11.1", "nearest hits in three layers, rays up and down", check_fast_layers},
+    {"11.1", "overlapping boxes: the nearest hit, rays along x and z", check_fast_crossing},
+    {"11.P", "the picture matches the reference", check_picture_11},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
 
@@ -233,10 +242,10 @@ int main(int argc, char **argv) {
         only = argv[2];
     else if (argc == 2 && strcmp(argv[1], "all") == 0)
         chapter = -1;
-    else if (argc == 2 && atoi(argv[1]) >= 1 && atoi(argv[1]) <= 10)
+    else if (argc == 2 && atoi(argv[1]) >= 1 && atoi(argv[1]) <= 11)
         chapter = atoi(argv[1]);
     else {
-        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K   (N = 1..10; make check-N runs it)\n", argv[0]);
+        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K   (N = 1..11; make check-N runs it)\n", argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);
