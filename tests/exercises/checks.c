@@ -538,3 +538,132 @@ bool check_split_cost(split_cost_fn f, char *why, size_t why_size) {
     }
     return true;
 }
+
+/* ---- 11.4 collapsing a binary BVH into a 4-wide one ------------------------------------------------ */
+
+#define COLLAPSE_ROOM 32 /* 4-wide nodes the check makes room for: the trees below need at most 7 */
+
+/* A box spanning x in [x0, x1], y and z in [0, 1]: its area grows with its length. */
+static struct aabb x_span(double x0, double x1) { return (struct aabb){{x0, 0, 0}, {x1, 1, 1}}; }
+
+/* Walks the 4-wide tree out[0 .. nodes) from node `at`: every used slot before the unused ones, at least
+ * two used, each node and leaf met once (leaf_seen and node_seen count them). Returns the depth below
+ * `at`, or -1 with the reason in why. */
+static int walk_wide(const struct bvh4_node *out, int nodes, int at, int leaves, int *leaf_seen, int *node_seen,
+                     const char *tree, char *why, size_t why_size) {
+    node_seen[at]++;
+    int used = 0, depth = 0;
+    for (int k = 0; k < 4; k++) {
+        int c = out[at].child[k];
+        if (c == BVH4_NONE)
+            continue;
+        if (used++ < k)
+            return fail(why, why_size, "%s: 4-wide node %d has a used slot %d after an unused one (BVH4_NONE); put the "
+                        "used slots first", tree, at, k), -1;
+        if (c < 0) {
+            if (BVH_LEAF(c) >= leaves || leaf_seen[BVH_LEAF(c)]++)
+                return fail(why, why_size, "%s: 4-wide node %d refers to leaf %d %s", tree, at, BVH_LEAF(c),
+                            BVH_LEAF(c) >= leaves ? "which does not exist" : "a second time"), -1;
+            continue;
+        }
+        if (c >= nodes || c == 0 || node_seen[c])
+            return fail(why, why_size, "%s: 4-wide node %d refers to node %d, %s", tree, at, c,
+                        c >= nodes ? "beyond the nodes you say you made" : "which is already in the tree"), -1;
+        int below = walk_wide(out, nodes, c, leaves, leaf_seen, node_seen, tree, why, why_size);
+        if (below < 0)
+            return -1;
+        depth = below + 1 > depth ? below + 1 : depth;
+    }
+    if (used < 2)
+        return fail(why, why_size, "%s: 4-wide node %d has %d used slot%s; every node has at least its binary node's "
+                    "two children", tree, at, used, used == 1 ? "" : "s"), -1;
+    return depth;
+}
+
+/* Collapses `tree` with f and checks the shape: `nodes` 4-wide nodes, every one of `leaves` leaves once,
+ * `depth` levels of nodes below the root. */
+static bool collapse_case(collapse_fn f, const struct bvh2_node *tree, int leaves, int nodes, int depth,
+                          const char *what, struct bvh4_node *out, char *why, size_t why_size) {
+    for (int k = 0; k < COLLAPSE_ROOM; k++)
+        out[k] = (struct bvh4_node){{BVH4_NONE, BVH4_NONE, BVH4_NONE, BVH4_NONE}};
+    int made = f(tree, 0, out, COLLAPSE_ROOM);
+    if (made != nodes)
+        return fail(why, why_size, "%s: expected %d 4-wide nodes, your bvh4_collapse returned %d", what, nodes, made);
+    int leaf_seen[64] = {0}, node_seen[COLLAPSE_ROOM] = {0};
+    int got_depth = walk_wide(out, made, 0, leaves, leaf_seen, node_seen, what, why, why_size);
+    if (got_depth < 0)
+        return false;
+    for (int l = 0; l < leaves; l++)
+        if (leaf_seen[l] != 1)
+            return fail(why, why_size, "%s: leaf %d is not in your 4-wide tree", what, l);
+    for (int k = 0; k < made; k++)
+        if (node_seen[k] != 1)
+            return fail(why, why_size, "%s: 4-wide node %d is not reached from the root out[0]", what, k);
+    if (got_depth != depth)
+        return fail(why, why_size, "%s: expected %d level%s of nodes below the root, yours has %d", what, depth,
+                    depth == 1 ? "" : "s", got_depth);
+    return true;
+}
+
+bool check_collapse(collapse_fn f, char *why, size_t why_size) {
+    struct bvh4_node out[COLLAPSE_ROOM];
+    /* A complete binary tree of 15 nodes over 16 leaves (node i has children 2i + 1 and 2i + 2, the
+     * leaves numbered from 15), leaf l spanning x in [l, l + 1]. Opening the widest child each time gives
+     * a root with four nodes of four leaves each. */
+    struct bvh2_node complete[15];
+    for (int i = 0; i < 15; i++)
+        for (int k = 0; k < 2; k++) {
+            int c = 2 * i + 1 + k, first = c, last = c;
+            while (first < 15) /* the leaves under c: the leftmost and the rightmost descendant */
+                first = 2 * first + 1, last = 2 * last + 2;
+            complete[i].child[k] = c < 15 ? c : BVH_LEAF(c - 15);
+            complete[i].box[k] = x_span(first - 15, last - 15 + 1);
+        }
+    if (!collapse_case(f, complete, 16, 5, 1, "a complete binary tree of 15 nodes over 16 leaves (4-wide: a root "
+                       "over four nodes of four leaves)", out, why, why_size))
+        return false;
+    /* Writing only the first `max` nodes, but counting them all. */
+    for (int k = 0; k < COLLAPSE_ROOM; k++)
+        out[k] = (struct bvh4_node){{7, 7, 7, 7}};
+    int made = f(complete, 0, out, 2);
+    for (int k = 2; k < COLLAPSE_ROOM; k++)
+        if (out[k].child[0] != 7)
+            return fail(why, why_size, "the complete tree of 15 nodes with max = 2: your bvh4_collapse wrote out[%d]; "
+                        "write only the first max nodes (and still return how many there are)", k);
+    if (made != 5)
+        return fail(why, why_size, "the complete tree of 15 nodes with max = 2: expected 5 (the nodes it needs), got %d",
+                    made);
+    /* A chain: node i holds leaf i and node i + 1, the last node two leaves. Each 4-wide node swallows three
+     * binary nodes: 9 binary nodes make 3. */
+    struct bvh2_node chain[9];
+    for (int i = 0; i < 9; i++)
+        chain[i] = (struct bvh2_node){{x_span(i, i + 1), x_span(i + 1, 10)}, {BVH_LEAF(i), i < 8 ? i + 1 : BVH_LEAF(9)}};
+    if (!collapse_case(f, chain, 10, 3, 2, "a chain of 9 binary nodes, each with a leaf and the next node", out, why,
+                       why_size))
+        return false;
+    /* The widest child is opened, not the first: the root's children are A (x in [0, 10]) and B ([20, 25]);
+     * A's are the nodes A0 ([0, 3], area 14) and A1 ([6, 10], area 18), B's two leaves. After A, B (area
+     * 22) is the widest, so the root holds A0, A1 and B's two leaves. */
+    struct bvh2_node widest[5] = {
+        {{x_span(0, 10), x_span(20, 25)}, {1, 2}},                  /* the root: A and B */
+        {{x_span(0, 3), x_span(6, 10)}, {3, 4}},                    /* A: A0 and A1 */
+        {{x_span(20, 22), x_span(23, 25)}, {BVH_LEAF(4), BVH_LEAF(5)}}, /* B */
+        {{x_span(0, 1), x_span(2, 3)}, {BVH_LEAF(0), BVH_LEAF(1)}},   /* A0 */
+        {{x_span(6, 7), x_span(9, 10)}, {BVH_LEAF(2), BVH_LEAF(3)}},  /* A1 */
+    };
+    const char *what = "a root over A (x in [0, 10]) and B ([20, 25]), A over the nodes A0 ([0, 3], area 14) and A1 "
+                       "([6, 10], area 18), B over leaves 4 and 5";
+    if (!collapse_case(f, widest, 6, 3, 1, what, out, why, why_size))
+        return false;
+    bool four = false, five = false;
+    for (int k = 0; k < 4; k++) {
+        four = four || out[0].child[k] == BVH_LEAF(4);
+        five = five || out[0].child[k] == BVH_LEAF(5);
+    }
+    if (!four || !five)
+        return fail(why, why_size, "%s: after opening A, the widest interior child is B (area 22), so the root's four "
+                    "slots should be A0, A1 and leaves 4 and 5; yours holds %s. Open the child with the largest surface "
+                    "area (most rays enter it), not the first one", what, four || five ? "only one of the two leaves" :
+                    "neither leaf");
+    return true;
+}

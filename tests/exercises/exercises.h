@@ -11,6 +11,7 @@
 #ifndef WHITTED_EXERCISES_H
 #define WHITTED_EXERCISES_H
 
+#include <limits.h>
 #include <stdbool.h>
 #include <stddef.h>
 
@@ -83,5 +84,25 @@ bool check_grid_walk(grid_walk_fn f, char *why, size_t why_size);
 WEAK double bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
 typedef double (*split_cost_fn)(const struct aabb *, int, int, double);
 bool check_split_cost(split_cost_fn f, char *why, size_t why_size);
+
+/* Exercise 11.4 (common/fast_bvh.c): a binary BVH collapsed into a 4-wide one, as rung 2 does. A child
+ * is written as an int: k >= 0 for node k of the same tree, -1 - L for leaf L (BVH_LEAF(L)). */
+#define BVH_LEAF(l) (-1 - (l))
+#define BVH4_NONE INT_MIN /* an unused slot of a 4-wide node */
+struct bvh2_node {
+    struct aabb box[2]; /* the two children's boxes */
+    int child[2];
+};
+struct bvh4_node {
+    int child[4]; /* the used slots first, then BVH4_NONE */
+};
+/* Writes the 4-wide tree made from binary node `root` of `tree` into out, its root in out[0], and
+ * returns how many 4-wide nodes it has (writing only the first `max`). Each 4-wide node starts with its
+ * binary node's two children and, while it has fewer than four, replaces the interior (not leaf) child
+ * with the largest surface area by that child's two children; every interior child left becomes a
+ * 4-wide node of its own in the same way. */
+WEAK int bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
+typedef int (*collapse_fn)(const struct bvh2_node *, int, struct bvh4_node *, int);
+bool check_collapse(collapse_fn f, char *why, size_t why_size);
 
 #endif

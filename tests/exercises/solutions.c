@@ -346,3 +346,46 @@ double solution_bvh_split_cost(const struct aabb *boxes, int n, int axis, double
 double wrong_bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane) {
     return split_cost(boxes, n, axis, plane, 0.0); /* forgets the cost of the step itself */
 }
+
+/* ---- 11.4 ---- */
+/* Makes the 4-wide node of binary node `index` and, below it, those of its interior children; returns
+ * its index in out. `widest`: open the interior child with the largest area (right), or the first one
+ * found (wrong). */
+static int collapse_node(const struct bvh2_node *tree, int index, struct bvh4_node *out, int max, int *count,
+                         bool widest) {
+    int slot[4] = {tree[index].child[0], tree[index].child[1]};
+    struct aabb box[4] = {tree[index].box[0], tree[index].box[1]};
+    int used = 2;
+    while (used < 4) {
+        int open = -1;
+        for (int k = 0; k < used; k++)
+            if (slot[k] >= 0 && (open < 0 || (widest && aabb_surface_area(box[k]) > aabb_surface_area(box[open]))))
+                open = k;
+        if (open < 0)
+            break; /* only leaves left */
+        const struct bvh2_node *opened = &tree[slot[open]];
+        slot[open] = opened->child[0];
+        box[open] = opened->box[0];
+        slot[used] = opened->child[1];
+        box[used++] = opened->box[1];
+    }
+    int me = (*count)++;
+    struct bvh4_node node;
+    for (int k = 0; k < 4; k++)
+        node.child[k] = k >= used ? BVH4_NONE : slot[k] < 0 ? slot[k] : collapse_node(tree, slot[k], out, max, count, widest);
+    if (me < max)
+        out[me] = node;
+    return me;
+}
+
+int solution_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max) {
+    int count = 0;
+    collapse_node(tree, root, out, max, &count, true);
+    return count;
+}
+
+int wrong_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max) {
+    int count = 0;
+    collapse_node(tree, root, out, max, &count, false); /* opens the first interior child, not the widest */
+    return count;
+}

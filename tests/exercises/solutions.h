@@ -23,5 +23,7 @@ int solution_grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3],
 int wrong_grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max);
 double solution_bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
 double wrong_bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
+int solution_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
+int wrong_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
 
 #endif

@@ -21,3 +21,4 @@ PROOF(area_fraction, check_area_fraction, solution_shadow_area_fraction, wrong_s
 PROOF(schlick, check_schlick, solution_whitted_schlick, wrong_whitted_schlick)
 PROOF(grid_walk, check_grid_walk, solution_grid_walk, wrong_grid_walk)
 PROOF(split_cost, check_split_cost, solution_bvh_split_cost, wrong_bvh_split_cost)
+PROOF(collapse, check_collapse, solution_bvh4_collapse, wrong_bvh4_collapse)
