@@ -50,9 +50,9 @@
  * half the depth, so half the chain of dependent "load a node, test it, choose" steps that bounds the
  * speed of one ray. A node stores the boxes of its four children side by side (128 bytes, two cache
  * lines), and a ray visiting it tests all four at once with 2-wide vector arithmetic, and sorts the
- * ones it hits by entry distance, without touching the children themselves. A child is another node or
- * a leaf: a run of triangles, stored in leaf order as (a, b - a, c - a) in doubles with their face
- * numbers beside them. Unused child slots have an empty box (low +infinity, high -infinity), which
+ * ones it hits by entry distance (nearest_first), without touching the children themselves. A child is
+ * another node or a leaf: a run of triangles, stored in leaf order as (a, b - a, c - a) in doubles with
+ * their face numbers beside them. Unused child slots have an empty box (low +infinity, high -infinity), which
  * every slab test misses. The root's box is kept in struct fast_bvh. */
 #include "fast_bvh.h"
 
@@ -927,6 +927,25 @@ static inline void prefetch_child(const struct fast_bvh *b, uint32_t child, uint
     }
 }
 
+/* The children of a node that the ray hits, in the order the nearest-hit walk takes them: the slot
+ * numbers k whose bit is set in `hit` (bit k for child k, as child_hit and child_pair_hit set them),
+ * written into `order` nearest entry first, the entry of child k being entry[k >> 1][k & 1] (lane k & 1
+ * of pair k >> 1); children entered at the same distance keep their slot order. Returns how many were
+ * written (0 to BVH_WIDTH). An insertion sort: at most four children, so nothing cleverer pays. */
+/* TASK 11.2: the children hit, nearest first */
+static inline int nearest_first(unsigned hit, const double2 entry[2], int order[BVH_WIDTH]) {
+    int hits = 0;
+    for (int k = 0; k < BVH_WIDTH; k++) {
+        if (!(hit >> k & 1))
+            continue;
+        int at = hits++;
+        for (; at > 0 && entry[k >> 1][k & 1] < entry[order[at - 1] >> 1][order[at - 1] & 1]; at--)
+            order[at] = order[at - 1];
+        order[at] = k;
+    }
+    return hits;
+}
+
 /* A subtree put aside for later, with the distance at which the ray enters its box. */
 struct stack_entry {
     uint32_t child, count;
@@ -978,19 +997,17 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
             unsigned used = 3u | (unsigned)(n->child[2] != BVH_NO_CHILD) << 2 | (unsigned)(n->child[3] != BVH_NO_CHILD) << 3;
             hit &= used;
             boxes += 2 + (used >> 2 & 1) + (used >> 3);
-            if (hit != 0) {
-                /* The children hit, nearest first when the nearest hit is wanted (insertion sort of at
-                 * most four); all but the first are put aside, farthest deepest. */
-                int order[BVH_WIDTH], hits = 0;
-                for (int k = 0; k < BVH_WIDTH; k++) {
-                    if (!(hit >> k & 1))
-                        continue;
-                    int at = hits++;
-                    if (kind == QUERY_CLOSEST)
-                        for (; at > 0 && entry[k >> 1][k & 1] < entry[order[at - 1] >> 1][order[at - 1] & 1]; at--)
-                            order[at] = order[at - 1];
-                    order[at] = k;
-                }
+            /* The children hit, nearest first when the nearest hit is wanted, else in slot order; all
+             * but the first are put aside, farthest deepest. */
+            int order[BVH_WIDTH], hits = 0;
+            if (hit != 0 && kind == QUERY_CLOSEST) {
+                hits = nearest_first(hit, entry, order);
+            } else if (hit != 0) {
+                for (int k = 0; k < BVH_WIDTH; k++)
+                    if (hit >> k & 1)
+                        order[hits++] = k;
+            }
+            if (hits > 0) {
                 for (int i = hits - 1; i > 0; i--) {
                     int k = order[i];
                     stack[top++] = (struct stack_entry){n->child[k], n->count[k], entry[k >> 1][k & 1]};

@@ -1,6 +1,6 @@
 /* check_accel.c: the coursework checks of chapters 9 to 11: the kd-tree's split rules and traversal,
- * the BVH's builds and traversal, the fast BVH's two-lane box test, on small meshes whose right answers
- * are known (the coursework kit). */
+ * the BVH's builds and traversal, the fast BVH's two-lane box test and its order of children, on small
+ * meshes whose right answers are known (the coursework kit). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -147,6 +147,32 @@ static bool bvh_closest_fn(const void *tree, const ray *r, double t_min, double 
 }
 static bool fast_closest_fn(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
     return fast_bvh_closest(tree, r, t_min, t_max, t, face);
+}
+
+/* The nearest of the hits fast_bvh_for_each_hit lists (lowest face on a tie): the walk that visits every
+ * box the ray enters, in slot order, so it tests the box test (11.1) without the nearest-first order
+ * (11.2). */
+struct nearest_listed {
+    bool found;
+    double t;
+    uint32_t face;
+};
+
+static bool keep_nearest(void *context, double t, uint32_t face) {
+    struct nearest_listed *n = context;
+    if (!n->found || t < n->t || (t == n->t && face < n->face))
+        *n = (struct nearest_listed){true, t, face};
+    return true;
+}
+
+static bool fast_every_hit_fn(const void *tree, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    struct nearest_listed n = {false, 0.0, 0};
+    fast_bvh_for_each_hit(tree, r, t_min, t_max, keep_nearest, &n);
+    if (n.found) {
+        *t = n.t;
+        *face = n.face;
+    }
+    return n.found;
 }
 
 /* Rays into the three layers: down from above (nearest z = 0, t = 5), up from below (nearest z = -2,
@@ -386,15 +412,10 @@ CHECK(check_bvh_crossing) {
  * the stack (tens of triangles). 8 leaves room for leaves of a few triangles and an extra leaf. */
 #define NEAR_FIRST_MAX_TESTS 8.0
 
-CHECK(check_bvh_near_first) {
-    struct mesh m = row(2); /* the triangles stacked at z = 0, 1, ..., 63 over the same square */
-    struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
-    mesh_free(&m);
-    if (b == NULL) {
-        snprintf(why, why_size, "bvh_build returned NULL");
-        return false;
-    }
-    /* Down from above and up from below, at a few points inside the triangles (x, y > -0.25, x + y < 0). */
+/* Rays straight down from z = 100 and up from z = -100 through the stack of row(2), at a few points
+ * inside the triangles (x, y > -0.25, x + y < 0): whether each finds its nearest hit (t = 37 down, 100
+ * up), and the triangle tests per ray in *per_ray. */
+static bool stack_rays(const void *tree, closest_fn closest, double *per_ray) {
     const double at[][2] = {{-0.1, -0.1}, {0.05, -0.2}, {-0.2, 0.1}, {-0.15, -0.05}};
     int rays = 0;
     uint64_t before = stats_thread.triangle_tests;
@@ -404,10 +425,23 @@ CHECK(check_bvh_near_first) {
             ray r = {{at[k][0], at[k][1], up ? -100.0 : 100.0}, {0, 0, up ? 1.0 : -1.0}};
             double t = NAN;
             uint32_t face = 0;
-            right = right && bvh_closest(b, &r, 1e-9, INFINITY, &t, &face) && fabs(t - (up ? 100.0 : 37.0)) < ACCEL_TOLERANCE;
+            right = right && closest(tree, &r, 1e-9, INFINITY, &t, &face) && fabs(t - (up ? 100.0 : 37.0)) < ACCEL_TOLERANCE;
             rays++;
         }
-    double per_ray = (double)(stats_thread.triangle_tests - before) / rays;
+    *per_ray = (double)(stats_thread.triangle_tests - before) / rays;
+    return right;
+}
+
+CHECK(check_bvh_near_first) {
+    struct mesh m = row(2); /* the triangles stacked at z = 0, 1, ..., 63 over the same square */
+    struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
+    mesh_free(&m);
+    if (b == NULL) {
+        snprintf(why, why_size, "bvh_build returned NULL");
+        return false;
+    }
+    double per_ray;
+    bool right = stack_rays(b, bvh_closest_fn, &per_ray);
     bvh_free(b);
     if (right && per_ray <= NEAR_FIRST_MAX_TESTS)
         return true;
@@ -432,14 +466,16 @@ CHECK(check_bvh_near_first) {
                   "set when lane k's entry is at or before its exit"
 
 /* Builds the fast BVH over mesh() at rung `rung` (rung 3 and up test children with child_pair_hit) and
- * runs `rays` on it; on a failure, adds PAIR_HINT to the message. */
+ * runs `rays` on it, each ray's nearest hit taken from all the hits the walk lists; on a failure, adds
+ * PAIR_HINT to the message. */
 static bool fast_case(struct mesh (*mesh)(void), enum fast_bvh_rung rung,
                       bool (*rays)(const char *, const void *, closest_fn, char *, size_t), char *why, size_t why_size) {
     struct mesh m = mesh();
     struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, rung);
-    char what[64];
-    snprintf(what, sizeof what, "fast_bvh_closest at rung %d (%s)", (int)rung, fast_bvh_rung_name((int)rung));
-    bool ok = b != NULL && rays(what, b, fast_closest_fn, why, why_size);
+    char what[128];
+    snprintf(what, sizeof what, "the nearest of the hits fast_bvh_for_each_hit lists at rung %d (%s)", (int)rung,
+             fast_bvh_rung_name((int)rung));
+    bool ok = b != NULL && rays(what, b, fast_every_hit_fn, why, why_size);
     if (b == NULL)
         snprintf(why, why_size, "fast_bvh_build returned NULL");
     else if (!ok) {
@@ -454,3 +490,32 @@ static bool fast_case(struct mesh (*mesh)(void), enum fast_bvh_rung rung,
 CHECK(check_fast_layers) { return fast_case(layers, FAST_BVH_RUNG_SIMD, layered_rays, why, why_size); }
 
 CHECK(check_fast_crossing) { return fast_case(crossed_layers, FAST_BVH_RUNG_TOP, crossing_rays, why, why_size); }
+
+/* ---- 11.2 the children hit, nearest first ------------------------------------------------------- */
+
+CHECK(check_fast_near_first) {
+    struct mesh m = row(2); /* the triangles stacked at z = 0, 1, ..., 63 over the same square */
+    /* Rung 2 tests one child at a time (child_hit, not a task), so this check needs only nearest_first. */
+    struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_WIDE);
+    mesh_free(&m);
+    if (b == NULL) {
+        snprintf(why, why_size, "fast_bvh_build returned NULL");
+        return false;
+    }
+    double per_ray;
+    bool right = stack_rays(b, fast_closest_fn, &per_ray);
+    fast_bvh_free(b);
+    if (right && per_ray <= NEAR_FIRST_MAX_TESTS)
+        return true;
+    if (!right)
+        snprintf(why, why_size, "fast_bvh_closest at rung 2 on %d triangles stacked at z = 0 .. %d, rays straight down "
+                 "from z = 100 and up from z = -100: the nearest hits are at t = 37 and t = 100, and yours are not. Does "
+                 "nearest_first write the slot k of every child whose bit k is set in hit, and return how many?",
+                 ROW_TRIANGLES, ROW_TRIANGLES - 1);
+    else
+        snprintf(why, why_size, "fast_bvh_closest at rung 2 on %d triangles stacked at z = 0 .. %d, rays straight down "
+                 "from z = 100 and up from z = -100: the right hits, but %.1f triangle tests per ray, where taking the "
+                 "children nearest first needs at most %.0f. Does nearest_first order the children by entry[k >> 1][k & 1], "
+                 "the smallest first?", ROW_TRIANGLES, ROW_TRIANGLES - 1, per_ray, NEAR_FIRST_MAX_TESTS);
+    return false;
+}

@@ -49,8 +49,9 @@ const struct task check_tasks[] = {
     {"10.P", "chapter 10's picture", "chapters/10-bvh",
      "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3"},
     {"11.1", "two children's slab tests at once", "child_pair_hit in common/fast_bvh.c", ""},
+    {"11.2", "the children hit, nearest first", "nearest_first in common/fast_bvh.c", ""},
     {"11.P", "chapter 11's picture", "chapters/11-fast",
-     "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3 11.1"},
+     "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3 11.1 11.2"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -93,6 +94,7 @@ CHECK(check_bvh_crossing);
 CHECK(check_bvh_near_first);
 CHECK(check_fast_layers);
 CHECK(check_fast_crossing);
+CHECK(check_fast_near_first);
 CHECK(check_picture_1);
 CHECK(check_picture_2);
 CHECK(check_picture_3);
@@ -155,6 +157,7 @@ const struct check check_list[] = {
     {"10.P", "the picture matches the reference", check_picture_10},
     {"11.1", "nearest hits in three layers, rays up and down", check_fast_layers},
     {"11.1", "overlapping boxes: the nearest hit, rays along x and z", check_fast_crossing},
+    {"11.2", "the nearer children first: few triangle tests", check_fast_near_first},
     {"11.P", "the picture matches the reference", check_picture_11},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
