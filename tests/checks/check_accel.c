@@ -432,6 +432,27 @@ static bool stack_rays(const void *tree, closest_fn closest, double *per_ray) {
     return right;
 }
 
+/* Runs stack_rays on `tree`, a hierarchy over row(2) that `what` names ("bvh_closest"), and fails with
+ * `wrong_hits` when a hit is wrong or with `slow` when the rays need more than NEAR_FIRST_MAX_TESTS
+ * triangle tests each. */
+static bool near_first_case(const char *what, const void *tree, closest_fn closest, const char *wrong_hits,
+                            const char *slow, char *why, size_t why_size) {
+    double per_ray;
+    bool right = stack_rays(tree, closest, &per_ray);
+    if (right && per_ray <= NEAR_FIRST_MAX_TESTS)
+        return true;
+    if (!right)
+        snprintf(why, why_size, "%s on %d triangles stacked at z = 0 .. %d, rays straight down from z = 100 and up from "
+                 "z = -100: the nearest hits are at t = 37 and t = 100%s", what, ROW_TRIANGLES, ROW_TRIANGLES - 1,
+                 wrong_hits);
+    else
+        snprintf(why, why_size, "%s on %d triangles stacked at z = 0 .. %d, rays straight down from z = 100 and up from "
+                 "z = -100: the right hits, but %.1f triangle tests per ray, where visiting the nearer child first needs "
+                 "at most %.0f (the first leaf holds the nearest hit, and every other box starts beyond it). %s", what,
+                 ROW_TRIANGLES, ROW_TRIANGLES - 1, per_ray, NEAR_FIRST_MAX_TESTS, slow);
+    return false;
+}
+
 CHECK(check_bvh_near_first) {
     struct mesh m = row(2); /* the triangles stacked at z = 0, 1, ..., 63 over the same square */
     struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
@@ -440,21 +461,10 @@ CHECK(check_bvh_near_first) {
         snprintf(why, why_size, "bvh_build returned NULL");
         return false;
     }
-    double per_ray;
-    bool right = stack_rays(b, bvh_closest_fn, &per_ray);
+    bool ok = near_first_case("bvh_closest", b, bvh_closest_fn, "", "Are the children taken far one first?", why,
+                              why_size);
     bvh_free(b);
-    if (right && per_ray <= NEAR_FIRST_MAX_TESTS)
-        return true;
-    if (!right)
-        snprintf(why, why_size, "bvh_closest on %d triangles stacked at z = 0 .. %d, rays straight down from z = 100 "
-                 "and up from z = -100: the nearest hits are at t = 37 and t = 100", ROW_TRIANGLES, ROW_TRIANGLES - 1);
-    else
-        snprintf(why, why_size, "bvh_closest on %d triangles stacked at z = 0 .. %d, rays straight down from z = 100 "
-                 "and up from z = -100: the right hits, but %.1f triangle tests per ray, where visiting the nearer "
-                 "child first needs at most %.0f (the first leaf holds the nearest hit, and every other box starts "
-                 "beyond it). Are the children taken far one first?", ROW_TRIANGLES, ROW_TRIANGLES - 1, per_ray,
-                 NEAR_FIRST_MAX_TESTS);
-    return false;
+    return ok;
 }
 
 /* ---- 11.1 the fast BVH's two-lane box test ------------------------------------------------------ */
@@ -502,20 +512,10 @@ CHECK(check_fast_near_first) {
         snprintf(why, why_size, "fast_bvh_build returned NULL");
         return false;
     }
-    double per_ray;
-    bool right = stack_rays(b, fast_closest_fn, &per_ray);
+    bool ok = near_first_case("fast_bvh_closest at rung 2", b, fast_closest_fn, ", and yours are not. Does "
+                              "nearest_first write the slot k of every child whose bit k is set in hit, and return how "
+                              "many?", "Does nearest_first order the children by entry[k >> 1][k & 1], the smallest "
+                              "first?", why, why_size);
     fast_bvh_free(b);
-    if (right && per_ray <= NEAR_FIRST_MAX_TESTS)
-        return true;
-    if (!right)
-        snprintf(why, why_size, "fast_bvh_closest at rung 2 on %d triangles stacked at z = 0 .. %d, rays straight down "
-                 "from z = 100 and up from z = -100: the nearest hits are at t = 37 and t = 100, and yours are not. Does "
-                 "nearest_first write the slot k of every child whose bit k is set in hit, and return how many?",
-                 ROW_TRIANGLES, ROW_TRIANGLES - 1);
-    else
-        snprintf(why, why_size, "fast_bvh_closest at rung 2 on %d triangles stacked at z = 0 .. %d, rays straight down "
-                 "from z = 100 and up from z = -100: the right hits, but %.1f triangle tests per ray, where taking the "
-                 "children nearest first needs at most %.0f. Does nearest_first order the children by entry[k >> 1][k & 1], "
-                 "the smallest first?", ROW_TRIANGLES, ROW_TRIANGLES - 1, per_ray, NEAR_FIRST_MAX_TESTS);
-    return false;
+    return ok;
 }
