@@ -97,58 +97,53 @@ best_and_median() {
                                        printf "%s %s\n", v[1], m }'
 }
 
-# run_chapter STRUCTURE SCENE W H DEPTH RUNS [EXTRA...]: runs the chapter RUNS times; sets
-# CPU_BEST CPU_MEDIAN BUILD_MS RENDER_S RAYS TESTS PEAK_MB (counters and build time of the best run).
-run_chapter() {
-    local structure=$1 scene=$2 w=$3 h=$4 depth=$5 runs=$6
-    shift 6
-    local cpus=() r best=
+# repeat RUNS COMMAND...: runs COMMAND up to RUNS times under measure (a run of more than LONG_RUN_S
+# seconds is not repeated: its noise is small beside it); sets CPU_BEST CPU_MEDIAN PEAK_MB RUNS_DONE,
+# and keeps the best run's standard output in $work/report. Stops the script when a run fails.
+repeat() {
+    local runs=$1
+    shift
+    local cpus=() r cpu peak best=
     for ((r = 0; r < runs; r++)); do
-        # A run of more than LONG_RUN_S is timed once: its noise is small beside it.
         [ $r -gt 0 ] && awk -v a="$best" -v b="$LONG_RUN_S" 'BEGIN { exit !(a > b) }' && break
-        # shellcheck disable=SC2046
-        "$build/measure" "$work/cost" $(program_for "$structure") "$scene" --threads 1 --stats \
-            --set max_depth="$depth" --width "$w" --height "$h" -o "$work/$structure.png" "$@" >"$work/report" || {
-            echo "run.sh: $structure on $scene failed (see above)" >&2
+        "$build/measure" "$work/cost" "$@" >"$work/output" 2>"$work/errors" || {
+            cat "$work/errors" >&2
+            echo "run.sh: failed: $*" >&2
             exit 1
         }
         read -r cpu _ peak <"$work/cost"
         cpus+=("$cpu")
         if [ -z "$best" ] || awk -v a="$cpu" -v b="$best" 'BEGIN { exit !(a < b) }'; then
             best=$cpu
-            BUILD_MS=$(build_ms_of "$work/report")
-            RENDER_S=$(render_s_of "$work/report")
+            mv "$work/output" "$work/report"
             PEAK_MB=$(awk -v k="$peak" 'BEGIN { printf "%.1f", k / 1024 }')
         fi
     done
     read -r CPU_BEST CPU_MEDIAN < <(printf '%s\n' "${cpus[@]}" | best_and_median)
     RUNS_DONE=${#cpus[@]}
+}
+
+# run_chapter STRUCTURE SCENE W H DEPTH RUNS [EXTRA...]: the chapter, RUNS times (see repeat); sets
+# also BUILD_MS RENDER_S RAYS TESTS, from the best run's report.
+run_chapter() {
+    local structure=$1 scene=$2 w=$3 h=$4 depth=$5 runs=$6
+    shift 6
+    # shellcheck disable=SC2046
+    repeat "$runs" $(program_for "$structure") "$scene" --threads 1 --stats --set max_depth="$depth" \
+        --width "$w" --height "$h" -o "$work/$structure.png" "$@"
+    BUILD_MS=$(build_ms_of "$work/report")
+    RENDER_S=$(render_s_of "$work/report")
     RAYS=$(counter "rays (all)" "$work/report")
     TESTS=$(counter "triangle tests" "$work/report")
 }
 
 # run_povray SCENE W H DEPTH RUNS: POV-Ray 3.7 on the scene's twin, on one thread, with the command
-# line the twin names; sets CPU_BEST CPU_MEDIAN PEAK_MB, and MAX_DIFF OVER_2 against bvh-sah.png.
+# line the twin names (see repeat); sets also MAX_DIFF OVER_2, its picture against bvh-sah.png.
 run_povray() {
     local scene=$1 w=$2 h=$3 depth=$4 runs=$5
     "$build/chapter-10" "$scene" --quiet --set max_depth="$depth" --width "$w" --height "$h" --pov "$work/twin.pov"
-    local cpus=() r peak best=
-    for ((r = 0; r < runs; r++)); do
-        "$build/measure" "$work/cost" povray +I"$work/twin.pov" +O"$work/povray.png" +W"$w" +H"$h" -D -P -V -A +FN8 -UA \
-            File_Gamma=1.0 Dither=off +Q9 -GA +GF +WT1 >/dev/null 2>"$work/povray.log" || {
-            cat "$work/povray.log" >&2
-            echo "run.sh: POV-Ray on the twin of $scene failed" >&2
-            exit 1
-        }
-        read -r cpu _ peak <"$work/cost"
-        cpus+=("$cpu")
-        if [ -z "$best" ] || awk -v a="$cpu" -v b="$best" 'BEGIN { exit !(a < b) }'; then
-            best=$cpu
-            PEAK_MB=$(awk -v k="$peak" 'BEGIN { printf "%.1f", k / 1024 }')
-        fi
-    done
-    read -r CPU_BEST CPU_MEDIAN < <(printf '%s\n' "${cpus[@]}" | best_and_median)
-    RUNS_DONE=${#cpus[@]}
+    repeat "$runs" povray +I"$work/twin.pov" +O"$work/povray.png" +W"$w" +H"$h" -D -P -V -A +FN8 -UA \
+        File_Gamma=1.0 Dither=off +Q9 -GA +GF +WT1
     local agreement
     agreement=$("$build/compare" "$work/bvh-sah.png" "$work/povray.png")
     MAX_DIFF=$(awk '{ print $2 }' <<<"$agreement")
