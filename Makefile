@@ -63,7 +63,7 @@ LDLIBS := $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := stats camera image outfile infile text_escape name_index sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane

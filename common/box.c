@@ -7,7 +7,7 @@
 /* TASK 5.2: the box as a shape: entry or exit */
 bool box_intersect(const struct box *b, const ray *r, double t_min, double t_max, double *t) {
     stats_thread.box_tests++;
-    struct aabb bounds = aabb_of_box(b);
+    struct aabb bounds = {b->min, b->max};
     double t_enter = -INFINITY, t_leave = INFINITY;
     if (!aabb_clip(&bounds, r->origin, aabb_inverse_direction(r->direction), &t_enter, &t_leave))
         return false;
@@ -29,7 +29,7 @@ bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_m
             nearest = &boxes[k];
     if (nearest == NULL)
         return false;
-    struct aabb bounds = aabb_of_box(nearest);
+    struct aabb bounds = {nearest->min, nearest->max};
     h->normal = aabb_normal(&bounds, ray_at(*r, h->t));
     h->material = nearest->material;
     h->object = (int)(nearest - boxes); /* world_closest turns it into the object's number */
@@ -65,4 +65,17 @@ static bool box_bounds(const void *item, vec3 *min, vec3 *max) {
     return true;
 }
 
-const struct shape_behaviour box_behaviour = {closest_boxes, box_crossings, box_bounds};
+/* Inside or on the surface. */
+static bool box_contains(const void *item, vec3 point) {
+    const struct box *b = item;
+    return point.x >= b->min.x && point.x <= b->max.x && point.y >= b->min.y && point.y <= b->max.y &&
+           point.z >= b->min.z && point.z <= b->max.z;
+}
+
+const struct shape_kind box_kind = {
+    .syntax = &box_syntax,
+    .closest = closest_boxes,
+    .crossings = box_crossings,
+    .bounds = box_bounds,
+    .contains = box_contains,
+};

@@ -58,4 +58,16 @@ static bool plane_bounds(const void *item, vec3 *min, vec3 *max) {
     return false;
 }
 
-const struct shape_behaviour plane_behaviour = {closest_planes, plane_crossings, plane_bounds};
+/* The side the normal points away from: n . P < d. */
+static bool plane_contains(const void *item, vec3 point) {
+    const struct plane *p = item;
+    return vec3_dot(point, p->normal) < p->distance;
+}
+
+const struct shape_kind plane_kind = {
+    .syntax = &plane_syntax,
+    .closest = closest_planes,
+    .crossings = plane_crossings,
+    .bounds = plane_bounds,
+    .contains = plane_contains,
+};

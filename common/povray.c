@@ -11,7 +11,6 @@
 #include "povray.h"
 
 #include <stdio.h>
-#include <string.h>
 
 #include "outfile.h"
 
@@ -112,17 +111,14 @@ static void write_appearance(FILE *out, const struct scene *s, int material, enu
     fprintf(out, " }\n");
 }
 
-/* Every shape, kind by kind in the order of shape_kinds.h, then the meshes. */
+/* Every shape, kind by kind in the scene's order (scene.h), then the meshes. */
 static void write_shapes(FILE *out, const struct scene *s, enum pov_lighting lighting) {
-    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
-        const struct shape_kind *k = &shape_kinds[kind];
-        const char *items = s->shapes[kind].items;
-        for (size_t n = 0; n < s->shapes[kind].count; n++) {
-            const char *item = items + n * k->size;
-            int material;
-            memcpy(&material, item + k->material_offset, sizeof material);
-            k->syntax->write_pov(out, item);
-            write_appearance(out, s, material, lighting);
+    for (size_t k = 0; k < s->kind_count; k++) {
+        const struct shape_list *list = &s->shapes[k];
+        for (size_t n = 0; n < list->count; n++) {
+            const void *item = shape_item(list->syntax, list->items, n);
+            list->syntax->write_pov(out, item);
+            write_appearance(out, s, shape_material(list->syntax, item), lighting);
         }
     }
     for (size_t k = 0; k < s->mesh_count; k++) {

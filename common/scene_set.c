@@ -232,8 +232,8 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
     return true;
 }
 
-bool scene_load_changed(const char *path, const char *const *specs, int count, struct scene *s, bool *bad_spec,
-                        char *err, size_t err_size) {
+bool scene_load_changed(const char *path, const char *const *specs, int count, const struct shape_kind *const *kinds,
+                        struct scene *s, bool *bad_spec, char *err, size_t err_size) {
     memset(s, 0, sizeof *s);
     *bad_spec = false;
     char *text = scene_read_text(path, err, err_size);
@@ -245,7 +245,7 @@ bool scene_load_changed(const char *path, const char *const *specs, int count, s
             *bad_spec = true;
             return false;
         }
-    bool ok = scene_parse(path, text, s, err, err_size);
+    bool ok = scene_parse(path, text, kinds, s, err, err_size);
     free(text);
     size_t used = strlen(err);
     if (!ok && count > 0 && used + 1 < err_size) /* the line in the file may not show the bad value */

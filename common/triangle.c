@@ -162,4 +162,10 @@ static bool triangle_bounds(const void *item, vec3 *min, vec3 *max) {
     return true;
 }
 
-const struct shape_behaviour triangle_behaviour = {closest_triangles, triangle_crossings, triangle_bounds};
+/* A single triangle has no inside (contains is NULL): only a closed mesh has one. */
+const struct shape_kind triangle_kind = {
+    .syntax = &triangle_syntax,
+    .closest = closest_triangles,
+    .crossings = triangle_crossings,
+    .bounds = triangle_bounds,
+};

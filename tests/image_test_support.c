@@ -81,7 +81,7 @@ bool render_povray(int n, const char *scene, const char *png) {
         return false;
     struct scene s;
     char err[512];
-    if (!scene_load(scene, &s, err, sizeof err))
+    if (!scene_load(scene, NULL, &s, err, sizeof err))
         return false;
     /* One thread: the oracle measured identical pixels for any thread count, and the test suite
      * already runs several tests at once. */
@@ -158,7 +158,7 @@ const char *shifted_camera_line(const char *path, double pixels) {
     static _Thread_local char line[512];
     struct scene s;
     char err[512];
-    cr_assert(scene_load(path, &s, err, sizeof err), "%s", err);
+    cr_assert(scene_load(path, NULL, &s, err, sizeof err), "%s", err);
     vec3 view = vec3_sub(s.target, s.eye);
     vec3 right = vec3_normalize(vec3_cross(view, s.up));
     double pixel_width = 2.0 * vec3_length(view) * tan(s.fov * M_PI / 360.0) / s.height;

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "aabb.h"
+#include "box.h"
 #include "camera.h"
 #include "headlight.h"
 #include "image.h"
@@ -809,26 +810,33 @@ Test(headlight, back_side_is_lit_like_the_front) {
     cr_assert_gt(back.x, 0.0);
 }
 
-/* ---- bounding boxes of shapes ------------------------------------------------------------------ */
+/* ---- bounding boxes of shapes (each kind's bounds, shape.h) ------------------------------------ */
 
-static void assert_box(struct aabb got, vec3 lo, vec3 hi) {
-    cr_assert(got.min.x == lo.x && got.min.y == lo.y && got.min.z == lo.z, "min (%g, %g, %g)", got.min.x,
-              got.min.y, got.min.z);
-    cr_assert(got.max.x == hi.x && got.max.y == hi.y && got.max.z == hi.z, "max (%g, %g, %g)", got.max.x,
-              got.max.y, got.max.z);
+/* Checks that kind's bounds gives exactly [lo, hi] for `item`. */
+static void assert_bounds(const struct shape_kind *kind, const void *item, vec3 lo, vec3 hi) {
+    vec3 min, max;
+    cr_assert(kind->bounds(item, &min, &max), "%s: no bounds", kind->syntax->keyword);
+    cr_assert(min.x == lo.x && min.y == lo.y && min.z == lo.z, "min (%g, %g, %g)", min.x, min.y, min.z);
+    cr_assert(max.x == hi.x && max.y == hi.y && max.z == hi.z, "max (%g, %g, %g)", max.x, max.y, max.z);
 }
 
 Test(aabb, a_sphere_is_bounded_by_centre_plus_minus_radius) {
     struct sphere s = {vec3_make(1, -2, 3), 0.5, 0};
-    assert_box(aabb_of_sphere(&s), vec3_make(0.5, -2.5, 2.5), vec3_make(1.5, -1.5, 3.5));
+    assert_bounds(&sphere_kind, &s, vec3_make(0.5, -2.5, 2.5), vec3_make(1.5, -1.5, 3.5));
 }
 
 Test(aabb, a_triangle_is_bounded_by_its_corners) {
-    assert_box(aabb_of_triangle(vec3_make(0, 5, -1), vec3_make(2, -1, 0), vec3_make(-3, 0, 4)), vec3_make(-3, -1, -1),
-               vec3_make(2, 5, 4));
+    struct triangle t = {vec3_make(0, 5, -1), vec3_make(2, -1, 0), vec3_make(-3, 0, 4), 0};
+    assert_bounds(&triangle_kind, &t, vec3_make(-3, -1, -1), vec3_make(2, 5, 4));
 }
 
 Test(aabb, a_box_is_its_own_bounding_box) {
     struct box b = {vec3_make(-1, 0, 2), vec3_make(1, 3, 4), 0};
-    assert_box(aabb_of_box(&b), b.min, b.max);
+    assert_bounds(&box_kind, &b, b.min, b.max);
+}
+
+Test(aabb, a_plane_has_no_bounding_box) {
+    struct plane p = {vec3_make(0, 1, 0), 2.0, 0};
+    vec3 min, max;
+    cr_assert_not(plane_kind.bounds(&p, &min, &max));
 }

@@ -17,6 +17,8 @@
 #include "scene.h"
 #include "shadow.h"
 #include "stats.h"
+#include "test_support.h"
+#include "triangle.h"
 #include "whitted.h"
 #include "world.h"
 
@@ -82,7 +84,8 @@ __attribute__((format(printf, 2, 0))) static void build_from(struct fixture *f, 
     int body = vsnprintf(text + head, sizeof text - (size_t)head, lines, args);
     cr_assert_lt((size_t)(head + body), sizeof text, "scene text too long");
     char err[512] = "";
-    cr_assert(scene_parse("memory.scene", text, &f->scene, err, sizeof err), "refused: %s\n%s", err, text);
+    cr_assert(scene_parse("memory.scene", text, test_every_kind, &f->scene, err, sizeof err), "refused: %s\n%s", err,
+              text);
     for (size_t k = 0; k < f->scene.mesh_count; k++)
         give_octahedron(&f->scene.meshes[k]);
     cr_assert(world_init(&f->world, &f->scene, err, sizeof err), "%s", err);
@@ -337,7 +340,7 @@ Test(world, a_mesh_whose_bounding_box_is_missed_adds_its_faces_to_the_culled_cou
 static void load_chapter_5_scene(struct scene *s, struct world *w, struct camera *cam) {
     static const char path[] = "scenes/05-aabb.scene";
     char err[512] = "";
-    cr_assert(scene_load(path, s, err, sizeof err), "%s (run the tests from the repository root)", err);
+    cr_assert(scene_load(path, test_every_kind, s, err, sizeof err), "%s (run the tests from the repository root)", err);
     for (size_t k = 0; k < s->mesh_count; k++) {
         FILE *mesh_file = fopen(s->meshes[k].path, "rb");
         if (mesh_file == NULL) {
@@ -357,6 +360,7 @@ Test(world, on_the_chapter_5_scene_triangle_tests_plus_culled_equal_chapter_4s_b
     struct world w;
     struct camera cam;
     load_chapter_5_scene(&s, &w, &cam);
+    const struct shape_list *triangles = scene_shapes(&s, &triangle_syntax);
     uint64_t rays = 0, tested = 0, culled = 0, brute_force = 0;
     for (int j = CHAPTER_5_PIXEL_STEP / 2; j < cam.height; j += CHAPTER_5_PIXEL_STEP) {
         for (int i = CHAPTER_5_PIXEL_STEP / 2; i < cam.width; i += CHAPTER_5_PIXEL_STEP) {
@@ -369,7 +373,7 @@ Test(world, on_the_chapter_5_scene_triangle_tests_plus_culled_equal_chapter_4s_b
             /* Chapter 4's trace_with_planes: every triangle, then every face of every mesh. */
             before = stats_thread;
             struct hit every = hit_nothing(INFINITY);
-            triangle_closest(s.triangles, s.triangle_count, &r, RAY_T_MIN, &every);
+            triangle_closest(triangles->items, triangles->count, &r, RAY_T_MIN, &every);
             for (size_t k = 0; k < s.mesh_count; k++)
                 triangle_mesh_closest(&s.meshes[k].mesh, s.meshes[k].material, &r, RAY_T_MIN, &every);
             uint64_t all = stats_thread.triangle_tests - before.triangle_tests;
@@ -384,7 +388,7 @@ Test(world, on_the_chapter_5_scene_triangle_tests_plus_culled_equal_chapter_4s_b
     }
     /* Not vacuous: both kinds of ray occur, and brute force tested every face (the bunny's 3,674 and
      * the teapot's 5,112) for each of the 40 x 30 rays. */
-    uint64_t faces = s.triangle_count;
+    uint64_t faces = triangles->count;
     for (size_t k = 0; k < s.mesh_count; k++)
         faces += s.meshes[k].mesh.face_count;
     cr_assert_gt(tested, 0);

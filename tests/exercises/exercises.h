@@ -4,7 +4,7 @@
  * Each function is declared weak: until a student writes it (in the module the exercise names), its
  * address is NULL and its test in test_exercises.c is skipped with a note saying where to start. Once
  * it exists, the test runs the check below on it. Exercise 2.4 is a whole kind of shape: its test is
- * skipped until the kind is registered (shape_kinds.h). Each check returns true, or false with a message in
+ * skipped until its table, disc_kind, exists. Each check returns true, or false with a message in
  * the student's terms: the input, what was expected, what came back. tests/exercises/solutions.c holds
  * one correct answer to each, linked only into build/run-exercise-solutions, which make test runs to
  * prove that every check passes a right answer and fails a wrong one. */
@@ -22,12 +22,14 @@
 
 #define WEAK __attribute__((weak))
 
-/* Exercise 2.4 (common/disc.h, common/disc.c and one line in common/shape_kinds.h): the disc, a new kind
- * of shape, read from the scene line `disc centre X Y Z normal X Y Z radius R [material NAME]`. Instead
- * of a weak function, its test looks for the kind "disc" in shape_kinds[] and grades what it finds:
- * its syntax (a zero normal or a radius <= 0 is refused, the normal is made unit length), its POV-Ray
- * form `disc { <centre>, <normal>, radius`, and its behaviour: the nearest hit among several discs (t,
- * the disc's unit normal, the material; the rim counts), the crossings and the bounding box. */
+/* Exercise 2.4 (common/disc.h and common/disc.c, and &disc_kind in the list of kinds of each chapter that
+ * draws discs): the disc, a new kind of shape, read from the scene line `disc centre X Y Z normal X Y Z
+ * radius R [material NAME]`. Its test grades the kind's tables: its syntax (keyword "disc"; a zero
+ * normal or a radius <= 0 is refused, the normal is made unit length), its POV-Ray form `disc {
+ * <centre>, <normal>, radius`, and its ray queries: the nearest hit among several discs (t, the disc's
+ * unit normal, the material, its index in the array; the rim counts), the crossings and the bounding
+ * box. */
+WEAK extern const struct shape_kind disc_kind;
 bool check_disc(const struct shape_kind *kind, char *why, size_t why_size);
 
 /* Exercise 3.4 (common/mesh_normals.c): a unit normal for every vertex of m, the average of the normals

@@ -25,7 +25,7 @@ struct model_disc {
 
 enum { MODEL_DISC_CENTRE, MODEL_DISC_NORMAL, MODEL_DISC_RADIUS };
 
-/* In disc.h: the syntax, `disc centre X Y Z normal X Y Z radius R`. */
+/* The scene-file line, `disc centre X Y Z normal X Y Z radius R`. */
 static bool model_disc_make(const struct key_values *kv, void *item, char *why, size_t why_size) {
     struct model_disc *d = item;
     d->centre = key_vec3(kv, MODEL_DISC_CENTRE);
@@ -54,10 +54,20 @@ static void model_disc_write_pov(FILE *out, const void *item) {
 
 static const struct key_spec model_disc_keys[] = {{"centre", 3}, {"normal", 3}, {"radius", 1}};
 static const int model_disc_required[] = {MODEL_DISC_CENTRE, MODEL_DISC_NORMAL, MODEL_DISC_RADIUS, -1};
-static const struct shape_syntax model_disc_syntax = {model_disc_keys, 3, model_disc_required, model_disc_make,
-                                                      model_disc_write_pov};
 
-/* In disc.c: the intersection, t as for a plane, n . (C - O) / (n . D), kept when within the radius. */
+static const struct shape_syntax model_disc_syntax = {
+    .keyword = "disc",
+    .plural = "discs",
+    .size = sizeof(struct model_disc),
+    .material_offset = offsetof(struct model_disc, material),
+    .keys = model_disc_keys,
+    .key_count = 3,
+    .required = model_disc_required,
+    .make = model_disc_make,
+    .write_pov = model_disc_write_pov,
+};
+
+/* The intersection: t as for a plane, n . (C - O) / (n . D), kept when within the radius. */
 static bool disc(const struct model_disc *d, const ray *r, double t_min, double t_max, double *t,
                  bool within_radius) {
     double facing = vec3_dot(d->normal, r->direction);
@@ -83,6 +93,7 @@ static bool disc_closest(const void *items, size_t count, const ray *r, double t
         return false;
     h->normal = nearest->normal;
     h->material = nearest->material;
+    h->object = (int)(nearest - discs);
     return true;
 }
 
@@ -116,18 +127,19 @@ static bool model_disc_bounds(const void *item, vec3 *min, vec3 *max) {
     return true;
 }
 
-static const struct shape_behaviour model_disc_behaviour = {model_disc_closest, model_disc_crossings,
-                                                            model_disc_bounds};
-static const struct shape_behaviour wrong_disc_behaviour = {wrong_disc_closest, model_disc_crossings,
-                                                            model_disc_bounds};
-
-/* What SHAPE_KIND(disc, discs, DISCS, 2) makes of the model answer in scene.c's table. */
-const struct shape_kind solution_disc_kind = {"disc", "discs", 2, 0, sizeof(struct model_disc),
-                                              offsetof(struct model_disc, material), &model_disc_syntax,
-                                              &model_disc_behaviour};
-const struct shape_kind wrong_disc_kind = {"disc", "discs", 2, 0, sizeof(struct model_disc),
-                                           offsetof(struct model_disc, material), &model_disc_syntax,
-                                           &wrong_disc_behaviour};
+/* A disc has no inside (contains is NULL), like a single triangle. */
+const struct shape_kind solution_disc_kind = {
+    .syntax = &model_disc_syntax,
+    .closest = model_disc_closest,
+    .crossings = model_disc_crossings,
+    .bounds = model_disc_bounds,
+};
+const struct shape_kind wrong_disc_kind = {
+    .syntax = &model_disc_syntax,
+    .closest = wrong_disc_closest,
+    .crossings = model_disc_crossings,
+    .bounds = model_disc_bounds,
+};
 
 /* ---- 3.4 ---- */
 static void vertex_normals(const struct mesh *m, vec3 *normals, bool by_area) {
