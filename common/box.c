@@ -2,6 +2,7 @@
 #include "box.h"
 
 #include "aabb.h"
+#include "hit.h"
 #include "stats.h"
 
 /* TASK 5.2: the box as a shape: entry or exit */

@@ -1,15 +1,15 @@
-/* box.h: the axis-aligned box as a renderable shape (chapter 5).
+/* box.h: the axis-aligned box as a renderable shape (chapter 1 reads its scene line, box_syntax.c;
+ * chapter 5 intersects it, box.c: shape.h explains the two halves).
  *
- * Like every shape, its scene-file line is read from chapter 1 on (box_syntax.c), so that the scene
- * format reads the same in every chapter; the intersection code (box.c) arrives with chapter 5 and
- * reuses the slab test of aabb.c. */
+ * Like every shape, its scene-file line is read from chapter 1 on, so that the scene format reads the
+ * same in every chapter; the intersection code (box.c) arrives with chapter 5 and reuses the slab
+ * test of aabb.c. */
 #ifndef WHITTED_BOX_H
 #define WHITTED_BOX_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "hit.h"
 #include "ray.h"
 #include "shape.h"
 

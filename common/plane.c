@@ -5,6 +5,7 @@
  * exactly edge-on covers no area of the picture). */
 #include "plane.h"
 
+#include "hit.h"
 #include "stats.h"
 
 bool plane_closest(const struct plane *planes, size_t count, const ray *r, double t_min, struct hit *h) {

@@ -1,12 +1,11 @@
-/* plane.h: the infinite plane n . P = d and its ray intersection (chapter 4; its scene line,
- * plane_syntax.c, is read from chapter 1 on: shape.h explains the two halves of a shape's module). */
+/* plane.h: the infinite plane n . P = d and its ray intersection (chapter 1 reads its scene line,
+ * plane_syntax.c; chapter 4 intersects it, plane.c: shape.h explains the two halves). */
 #ifndef WHITTED_PLANE_H
 #define WHITTED_PLANE_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "hit.h"
 #include "ray.h"
 #include "shape.h"
 

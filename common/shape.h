@@ -26,8 +26,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "hit.h"
 #include "ray.h"
+
+struct hit; /* hit.h (chapter 2): what the nearest-hit search of a kind fills in */
 
 /* ---- the scene-file line (chapter 1) ----------------------------------------------------------- */
 

@@ -5,6 +5,7 @@
  * "half b" form saves the factors of 2 and 4 of the textbook formula. */
 #include "sphere.h"
 
+#include "hit.h"
 #include "stats.h"
 
 /* TASK 2.1: ray-sphere intersection, the nearest root */

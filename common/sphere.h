@@ -1,12 +1,11 @@
-/* sphere.h: the sphere and its ray intersection, the first shape of all (chapter 2; its scene line,
- * sphere_syntax.c, is read from chapter 1 on: shape.h explains the two halves of a shape's module). */
+/* sphere.h: the sphere, the first shape of all (chapter 1 reads its scene line, sphere_syntax.c;
+ * chapter 2 intersects it, sphere.c: shape.h explains the two halves of a shape's module). */
 #ifndef WHITTED_SPHERE_H
 #define WHITTED_SPHERE_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "hit.h"
 #include "ray.h"
 #include "shape.h"
 

@@ -46,6 +46,8 @@
  * tests here reject only det == 0 (ray exactly parallel, or zero area). */
 #include "triangle.h"
 
+#include "hit.h"
+#include "mesh.h"
 #include "stats.h"
 
 /* TASK 3.1: Moller-Trumbore ray-triangle intersection */

@@ -1,5 +1,5 @@
-/* triangle.h: the triangle and the watertight ray-triangle test (chapter 3; its scene line,
- * triangle_syntax.c, is read from chapter 1 on: shape.h explains the two halves of a shape's module). */
+/* triangle.h: the triangle and the watertight ray-triangle test (chapter 1 reads its scene line,
+ * triangle_syntax.c; chapter 3 intersects it, triangle.c: shape.h explains the two halves). */
 #ifndef WHITTED_TRIANGLE_H
 #define WHITTED_TRIANGLE_H
 
@@ -7,8 +7,6 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "hit.h"
-#include "mesh.h"
 #include "ray.h"
 #include "shape.h"
 
@@ -128,6 +126,8 @@ bool triangle_intersect_prepared(vec3 a, vec3 b, vec3 c, const struct triangle_r
  * Returns true when *h was replaced. */
 bool triangle_closest(const struct triangle *triangles, size_t count, const ray *r, double t_min,
                       struct hit *h);
+
+struct mesh; /* mesh.h (chapter 3) */
 
 /* Tests r against every face of mesh m, one by one (the brute-force loop that chapters 9 and 10
  * accelerate), for hits with t_min < t < h->t; keeps the nearest in *h with the given material.

@@ -22,6 +22,7 @@
 
 #include "camera.h"
 #include "closed_mesh.h"
+#include "hit.h"
 #include "image.h"
 #include "image_test_support.h"
 #include "kdtree.h"
