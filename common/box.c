@@ -23,6 +23,31 @@ bool box_intersect(const struct box *b, const ray *r, double t_min, double t_max
     return false;
 }
 
+/* The distance along r to the face of b whose outward normal is n, as POV-Ray's box computes it:
+ * (face - origin) / direction along the face's axis, one division. The slab test found the same face
+ * by multiplying by 1 / direction, which can land one unit in the last place away. A face that lies in
+ * a plane must give exactly the plane's t (plane.c divides too), so that the rule for a tie decides
+ * which one a ray meets (plane_closest), not rounding: a glass box standing on the floor would
+ * otherwise show the floor through its bottom at some pixels and the void below at others. `t` is
+ * the slab test's answer, kept for a ray that runs in the face's plane. */
+static double face_distance(const struct box *b, const ray *r, vec3 n, double t) {
+    double face, origin, direction;
+    if (n.x != 0.0) {
+        face = n.x > 0.0 ? b->max.x : b->min.x;
+        origin = r->origin.x;
+        direction = r->direction.x;
+    } else if (n.y != 0.0) {
+        face = n.y > 0.0 ? b->max.y : b->min.y;
+        origin = r->origin.y;
+        direction = r->direction.y;
+    } else {
+        face = n.z > 0.0 ? b->max.z : b->min.z;
+        origin = r->origin.z;
+        direction = r->direction.z;
+    }
+    return direction != 0.0 ? (face - origin) / direction : t;
+}
+
 bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_min, struct hit *h) {
     const struct box *nearest = NULL;
     for (size_t k = 0; k < count; k++)
@@ -32,6 +57,7 @@ bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_m
         return false;
     struct aabb bounds = {nearest->min, nearest->max};
     h->normal = aabb_normal(&bounds, ray_at(*r, h->t));
+    h->t = face_distance(nearest, r, h->normal, h->t);
     h->material = nearest->material;
     h->object = (int)(nearest - boxes); /* world_closest turns it into the object's number */
     return true;

@@ -5,13 +5,19 @@
  * exactly edge-on covers no area of the picture). */
 #include "plane.h"
 
+#include <math.h>
+
 #include "hit.h"
 #include "stats.h"
 
+/* A tie goes to the plane: when a plane is exactly as far as the hit found before it (a box's face or
+ * a triangle lying in the plane), the plane replaces it. This is POV-Ray's rule: it tests the infinite
+ * shapes before the bounded ones, and a later shape replaces the hit only when strictly nearer. Among
+ * planes, the first in the scene keeps a tie, as in POV-Ray. */
 bool plane_closest(const struct plane *planes, size_t count, const ray *r, double t_min, struct hit *h) {
     const struct plane *nearest = NULL;
     for (size_t k = 0; k < count; k++)
-        if (plane_intersect(&planes[k], r, t_min, h->t, &h->t))
+        if (plane_intersect(&planes[k], r, t_min, nearest == NULL ? nextafter(h->t, INFINITY) : h->t, &h->t))
             nearest = &planes[k];
     if (nearest == NULL)
         return false;

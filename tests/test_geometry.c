@@ -543,6 +543,21 @@ Test(plane, closest_keeps_the_nearest_and_counts_tests) {
     cr_assert_eq(stats_thread.plane_tests, 2);
 }
 
+Test(plane, closest_takes_a_tie_from_an_earlier_shape_and_the_first_plane_keeps_it) {
+    /* POV-Ray tests planes before bounded shapes and replaces a hit only by a strictly nearer one: a
+     * plane exactly as far as the hit found before it wins, a plane one ulp farther does not, and of
+     * two planes at the same t the first keeps it. Down from the origin, y = -2 is at t = 2 exactly. */
+    struct plane planes[2] = {{{0, 1, 0}, -2, 1}, {{0, -1, 0}, 2, 2}}; /* y = -2 twice */
+    ray r = make_ray(vec3_make(0, 0, 0), vec3_make(0, -1, 0));
+    struct hit h = {2.0, {0, 0, 1}, 9, 5}; /* a box's face, say, found at the same t */
+    cr_assert(plane_closest(planes, 2, &r, RAY_T_MIN, &h));
+    cr_assert_eq(h.t, 2.0);
+    cr_assert_eq(h.material, 1, "the first plane keeps the tie");
+    struct hit nearer = {nextafter(2.0, 0.0), {0, 0, 1}, 9, 5};
+    cr_assert(!plane_closest(planes, 2, &r, RAY_T_MIN, &nearer));
+    cr_assert_eq(nearer.material, 9, "a hit one ulp nearer stays");
+}
+
 /* ---- aabb -------------------------------------------------------------------------------------- */
 
 static const struct aabb unit_box = {{0, 0, 0}, {1, 1, 1}};

@@ -260,9 +260,10 @@ for size in $SCALING_SIZES; do
             runs=1
         fi
         run_chapter "$s" "$scene" "$mw" "$mh" 1 "$runs"
-        read -r render rays tests < <(awk -v s="$scale" -v c="$RENDER_S" -v d="$RAYS" -v e="$TESTS" \
-            'BEGIN { printf "%.4f %.0f %.0f\n", c * s, d * s, e * s }')
-        echo "$triangles,$s,$RUNS_DONE,$BUILD_MS,$render,$CPU_BEST,$PEAK_MB,$rays,$tests,$mw,$mh,$scale" >>"$csv"
+        # A sampled run's time and counters scaled up as in sweep_row (large.csv): all but the memory.
+        read -r render cpu rays tests < <(awk -v s="$scale" -v c="$RENDER_S" -v b="$CPU_BEST" -v d="$RAYS" -v e="$TESTS" \
+            'BEGIN { printf "%.4f %.4f %.0f %.0f\n", c * s, b * s, d * s, e * s }')
+        echo "$triangles,$s,$RUNS_DONE,$BUILD_MS,$render,$cpu,$PEAK_MB,$rays,$tests,$mw,$mh,$scale" >>"$csv"
         printf '  %9d triangles  %-10s build %8s ms  frame %9.3f s  %8s MB\n' "$triangles" "$s" "${BUILD_MS:--}" \
             "$render" "$PEAK_MB" >&2
     done
