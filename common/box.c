@@ -48,6 +48,14 @@ static double face_distance(const struct box *b, const ray *r, vec3 n, double t)
     return direction != 0.0 ? (face - origin) / direction : t;
 }
 
+/* The distance along r to the face of b that the slab test met at `t`, by face_distance; its outward
+ * normal in *normal. */
+static double box_face_hit(const struct box *b, const ray *r, double t, vec3 *normal) {
+    struct aabb bounds = {b->min, b->max};
+    *normal = aabb_normal(&bounds, ray_at(*r, t));
+    return face_distance(b, r, *normal, t);
+}
+
 bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_min, struct hit *h) {
     const struct box *nearest = NULL;
     for (size_t k = 0; k < count; k++)
@@ -55,9 +63,7 @@ bool box_closest(const struct box *boxes, size_t count, const ray *r, double t_m
             nearest = &boxes[k];
     if (nearest == NULL)
         return false;
-    struct aabb bounds = {nearest->min, nearest->max};
-    h->normal = aabb_normal(&bounds, ray_at(*r, h->t));
-    h->t = face_distance(nearest, r, h->normal, h->t);
+    h->t = box_face_hit(nearest, r, h->t, &h->normal);
     h->material = nearest->material;
     h->object = (int)(nearest - boxes); /* world_closest turns it into the object's number */
     return true;
@@ -69,7 +75,8 @@ static bool closest_boxes(const void *items, size_t count, const ray *r, double 
     return box_closest(items, count, r, t_min, h);
 }
 
-/* Both crossings of each box: where r enters and, searching on from there, where it leaves. */
+/* Both crossings of each box: where r enters and, searching on from there, where it leaves; each at
+ * the distance box_closest gives (box_face_hit). */
 static bool box_crossings(const void *items, size_t count, const ray *r, double t_min, double t_max,
                           shape_crossing_visitor visit, void *context) {
     const struct box *boxes = items;
@@ -77,9 +84,11 @@ static bool box_crossings(const void *items, size_t count, const ray *r, double 
         double t_near, t_far;
         if (!box_intersect(&boxes[k], r, t_min, t_max, &t_near))
             continue;
-        if (!visit(context, t_near, boxes[k].material))
+        vec3 normal;
+        if (!visit(context, box_face_hit(&boxes[k], r, t_near, &normal), boxes[k].material))
             return false;
-        if (box_intersect(&boxes[k], r, t_near, t_max, &t_far) && !visit(context, t_far, boxes[k].material))
+        if (box_intersect(&boxes[k], r, t_near, t_max, &t_far) &&
+            !visit(context, box_face_hit(&boxes[k], r, t_far, &normal), boxes[k].material))
             return false;
     }
     return true;
