@@ -364,7 +364,8 @@ Test(world, a_mesh_whose_bounding_box_is_missed_adds_its_faces_to_the_culled_cou
 static void load_chapter_5_scene(struct scene *s, struct world *w, struct camera *cam) {
     static const char path[] = "scenes/05-aabb.scene";
     char err[512] = "";
-    cr_assert(scene_load(path, test_every_kind, s, err, sizeof err), "%s (run the tests from the repository root)", err);
+    cr_assert(scene_load(path, test_every_kind, s, err, sizeof err), "%s (run the tests from the repository root)",
+              err);
     for (size_t k = 0; k < s->mesh_count; k++) {
         FILE *mesh_file = fopen(s->meshes[k].path, "rb");
         if (mesh_file == NULL) {

@@ -169,7 +169,8 @@ Test(shapes, a_closed_shape_contains_the_points_a_ray_leaves_it_from) {
             const void *one = shape_item(shapes->syntax, shapes->items, item);
             for (int n = 0; n < 500; n++) {
                 vec3 point = vec3_make(next_number(&state), next_number(&state), next_number(&state));
-                vec3 direction = vec3_normalize(vec3_make(next_number(&state), next_number(&state), next_number(&state)));
+                vec3 direction =
+                    vec3_normalize(vec3_make(next_number(&state), next_number(&state), next_number(&state)));
                 ray r = {point, direction};
                 struct crossings all = {&r, {0, 0, 0}, {0, 0, 0}, false, 0, INFINITY, false};
                 kind->crossings(one, 1, &r, 0.0, INFINITY, record, &all);
@@ -242,4 +243,44 @@ Test(shapes, the_world_refuses_shapes_of_a_kind_the_program_does_not_draw) {
     cr_assert_not(world_init(&w, &s, err, sizeof err));
     cr_assert_str_eq(err, NAME ": 2 spheres of no kind (give the scene reader the kinds the program draws)");
     scene_free(&s);
+}
+
+/* A kind the scene format does not know is read when the program lists it, after the format's kinds;
+ * one list per kind, up to SCENE_KIND_MAX in all. */
+Test(shapes, a_kind_the_program_lists_is_read_up_to_the_most_kinds_a_scene_holds) {
+    enum { EXTRA = SCENE_KIND_MAX - 4 + 1 }; /* one more than fits beside the format's four kinds */
+    static struct shape_syntax syntaxes[EXTRA];
+    static struct shape_kind kinds[EXTRA];
+    static char keywords[EXTRA][16];
+    const struct shape_kind *list[EXTRA + 1];
+    for (int k = 0; k < EXTRA; k++) {
+        snprintf(keywords[k], sizeof keywords[k], "ball%d", k);
+        syntaxes[k] = sphere_syntax; /* a sphere's line and queries under another keyword */
+        syntaxes[k].keyword = keywords[k];
+        kinds[k] = sphere_kind;
+        kinds[k].syntax = &syntaxes[k];
+        list[k] = &kinds[k];
+    }
+    char text[256], err[256];
+    snprintf(text, sizeof text, "camera eye 0 0 5 target 0 0 0 fov 60\nimage 4 3\nball%d centre 1 2 3 radius 0.5\n",
+             EXTRA - 2);
+    list[EXTRA] = NULL;
+    struct scene s;
+    char expected[128];
+    cr_assert_not(scene_parse(NAME, text, list, &s, err, sizeof err));
+    snprintf(expected, sizeof expected, NAME ": more than %d kinds of shape", SCENE_KIND_MAX);
+    cr_assert_str_eq(err, expected);
+    list[EXTRA - 1] = NULL; /* now exactly SCENE_KIND_MAX */
+    cr_assert(scene_parse(NAME, text, list, &s, err, sizeof err), "%s", err);
+    cr_assert_eq(s.kind_count, SCENE_KIND_MAX);
+    const struct shape_list *balls = scene_shapes(&s, &syntaxes[EXTRA - 2]);
+    cr_assert_not_null(balls);
+    cr_assert_eq(balls->kind, &kinds[EXTRA - 2]);
+    cr_assert_eq(balls->count, 1);
+    cr_assert_eq(((const struct sphere *)balls->items)->radius, 0.5);
+    scene_free(&s);
+    /* Without the kind in the list, its line is no directive at all. */
+    cr_assert_not(scene_parse(NAME, text, test_every_kind, &s, err, sizeof err));
+    snprintf(expected, sizeof expected, NAME ":3: unknown directive 'ball%d'", EXTRA - 2);
+    cr_assert_str_eq(err, expected);
 }
