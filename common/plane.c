@@ -5,8 +5,6 @@
  * exactly edge-on covers no area of the picture). */
 #include "plane.h"
 
-#include <math.h>
-
 #include "hit.h"
 #include "stats.h"
 
@@ -16,9 +14,13 @@
  * planes, the first in the scene keeps a tie, as in POV-Ray. */
 bool plane_closest(const struct plane *planes, size_t count, const ray *r, double t_min, struct hit *h) {
     const struct plane *nearest = NULL;
-    for (size_t k = 0; k < count; k++)
-        if (plane_intersect(&planes[k], r, t_min, nearest == NULL ? nextafter(h->t, INFINITY) : h->t, &h->t))
+    for (size_t k = 0; k < count; k++) {
+        double t;
+        if (plane_intersect(&planes[k], r, t_min, INFINITY, &t) && (t < h->t || (t == h->t && nearest == NULL))) {
+            h->t = t;
             nearest = &planes[k];
+        }
+    }
     if (nearest == NULL)
         return false;
     h->normal = nearest->normal;
