@@ -108,7 +108,7 @@ $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 $(BUILD)/tools/%.o: tools/%.c | $(BUILD)/tools
 	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
 
-$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools $(BUILD)/mutants out:
+$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools out:
 	mkdir -p $@
 
 -include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
@@ -164,24 +164,33 @@ $(BUILD)/layering-%: $$(BUILD)/chapters/$$(call layering_chapter,$$*).o \
         $$(addprefix $$(BUILD)/common/,$$(addsuffix .o,$$(call layering_modules,$$*)))
 	tools/link-chapter.sh $(BUILD) $(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-# Deliberately wrong tracers, for the tests that prove the POV-Ray agreement check catches real
-# mistakes: chapter 6 with its highlight multiplied by the pigment colour (see common/phong.c).
-MUTANTS := $(BUILD)/mutant-highlight-times-pigment $(BUILD)/mutant-moller-trumbore
-$(BUILD)/mutants/phong-highlight-times-pigment.o: common/phong.c | $(BUILD)/mutants
-	$(CC) $(CFLAGS) -DWHITTED_MUTANT_HIGHLIGHT_TIMES_PIGMENT -MMD -MP -c $< -o $@
+# ---- mutants: deliberately wrong tracers for the tests ---------------------------------------------
+# tests/mutants/NAME.patch is a classic mistake as a patch, whose "Program: N" line names a chapter.
+# $(BUILD)/mutant-NAME is that chapter built from a patched copy of common/ and chapters/ in
+# $(BUILD)/mutants/NAME/ (tests/support/patched-copy.sh), by a second make that sees the copy as it
+# is now; the sources themselves never carry the mistake. The tests prove that their checks catch each
+# one (tests/test_images.c, tests/test_watertight.c).
+MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
+mutant_chapter = $(call chapter_dir,$(shell printf '%02d' $$(sed -n 's/^Program: //p' tests/mutants/$(1).patch)))
 
-$(BUILD)/mutant-highlight-times-pigment: $(BUILD)/chapters/06-phong.o $(BUILD)/mutants/phong-highlight-times-pigment.o \
-        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(filter-out phong,$(MODULES_06))))
+$(BUILD)/mutant-%: tests/mutants/%.patch tests/support/patched-copy.sh $(wildcard common/*.[ch] chapters/*/main.c)
+	tests/support/patched-copy.sh $< $(BUILD)/mutants/$* common chapters
+	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) MUTANT=$* $(BUILD)/mutants/$*/program
+	cp $(BUILD)/mutants/$*/program $@
+
+# In the second make (MUTANT=NAME): the copy's objects, with the copy's headers first.
+ifneq ($(MUTANT),)
+MUTANT_DIR := $(BUILD)/mutants/$(MUTANT)
+MUTANT_CHAPTER := $(call mutant_chapter,$(MUTANT))
+$(MUTANT_DIR)/%.o: $(MUTANT_DIR)/%.c
+	$(CC) -I$(MUTANT_DIR)/common $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(MUTANT_DIR)/program: $(MUTANT_DIR)/chapters/$(MUTANT_CHAPTER)/main.o \
+        $(addprefix $(MUTANT_DIR)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(MUTANT_CHAPTER)))))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-# Chapter 10 with Moller-Trumbore in place of the watertight triangle test (common/triangle.h), in the
-# brute-force loop, the kd-tree and the BVH alike: the tests show it letting rays through closed meshes.
-$(BUILD)/mutants/mt/%.o: common/%.c | $(BUILD)/mutants
-	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -DWHITTED_MUTANT_MOLLER_TRUMBORE -MMD -MP -c $< -o $@
-
-$(BUILD)/mutant-moller-trumbore: $(BUILD)/chapters/10-bvh.o $(addprefix $(BUILD)/mutants/mt/,$(addsuffix .o,$(MODULES_10)))
-	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+-include $(wildcard $(MUTANT_DIR)/common/*.d $(MUTANT_DIR)/chapters/*/*.d)
+endif
 
 # $(BUILD)/bench_accel: tests/test_bench_csv.c runs the benchmark on the bunny (without Embree).
 test: all $(BUILD)/run-tests $(MUTANTS) $(BUILD)/bench_accel

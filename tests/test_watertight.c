@@ -11,7 +11,7 @@
  * Three levels: chapter 3's brute-force loop on rays aimed exactly at diagonal edges; whole 1024 x 1024
  * pictures traced with the kd-tree in this process, camera rays and shadow rays; and the programs of
  * chapters 9 and 10 rendering the scene with a red background, beside chapter 10 built with
- * Moller-Trumbore (the Makefile's mutant-moller-trumbore), which must show red pixels, so the check is
+ * Moller-Trumbore (tests/mutants/moller-trumbore.patch), which must show red pixels, so the check is
  * seen to catch a leak, and beside POV-Ray, which shows none either. */
 #include <criterion/criterion.h>
 #include <math.h>
