@@ -103,10 +103,10 @@ $(BUILD)/chapters/%.o: chapters/%/main.c | $(BUILD)/chapters
 
 $(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS) -Itests/support -MMD -MP -c $< -o $@
 
 $(BUILD)/tools/%.o: tools/%.c | $(BUILD)/tools
-	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS) -Itests/support -MMD -MP -c $< -o $@
 
 $(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools out:
 	mkdir -p $@
@@ -144,15 +144,15 @@ include fuzz/fuzz.mk
 include tools/results/results.mk
 
 # ---- tests -------------------------------------------------------------------------------------
-TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c)
+TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c tests/support/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
-TOOL_OBJECTS := $(BUILD)/tools/image_compare.o
-TEST_TOOL_OBJECTS := $(TOOL_OBJECTS) $(BUILD)/tools/closed_mesh.o
+# The picture comparison: the tests', the grader's and build/compare's.
+IMAGE_COMPARE_OBJECT := $(BUILD)/tests/support/image_compare.o
 
-$(BUILD)/run-tests: $(TEST_OBJECTS) $(TEST_TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
 
-$(BUILD)/compare: $(BUILD)/tools/compare.o $(TOOL_OBJECTS) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+$(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # Chapter NN's program linked with the modules of chapter MM instead of its own:
@@ -206,10 +206,10 @@ test-sanitize:
 # Its own program: tests/test_accel.c built with ACCEL_TEST_TIMEOUT=0, since a test's own .timeout
 # outranks --timeout 0 and 20 times the rays take longer than the 120 s make test allows.
 $(BUILD)/tests/test_accel_long.o: tests/test_accel.c | $(BUILD)/tests
-	$(CC) $(CFLAGS) -Itools -DACCEL_TEST_TIMEOUT=0 -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS) -Itests/support -DACCEL_TEST_TIMEOUT=0 -MMD -MP -c $< -o $@
 
-$(BUILD)/run-accel-long: $(BUILD)/tests/test_accel_long.o $(BUILD)/tests/test_support.o $(BUILD)/tests/image_test_support.o \
-        $(TEST_TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/run-accel-long: $(BUILD)/tests/test_accel_long.o $(filter $(BUILD)/tests/support/%,$(TEST_OBJECTS)) \
+        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
 
 test-accel-long: $(BUILD)/run-accel-long
@@ -249,9 +249,9 @@ CHECK_OBJECTS := $(patsubst tests/checks/%.c,$(BUILD)/checks/%.o,$(wildcard test
 
 $(BUILD)/checks/%.o: tests/checks/%.c
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS) -Itests/support -MMD -MP -c $< -o $@
 
-$(BUILD)/check: $(CHECK_OBJECTS) $(TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 define check_rule

@@ -44,7 +44,7 @@ Test(deps, without_root_and_without_stb_make_chapter_1_fetches_stb_and_renders, 
     snprintf(log, sizeof log, "%s.log", dir);
     remove(log);
     snprintf(command, sizeof command,
-             "cp -r Makefile common chapters tools scenes bench fuzz %s/ && rm -rf %s/scenes/models/teapot-* && "
+             "cp -r --parents Makefile common chapters tools tests/support scenes bench fuzz %s/ && rm -rf %s/scenes/models/teapot-* && "
              "chown -R nobody:nogroup %s",
              dir, dir, dir);
     cr_assert_eq(run_logged(command, log), 0, "could not make the copy (see %s)", log);

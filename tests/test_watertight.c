@@ -1,7 +1,7 @@
 /* test_watertight.c: no ray slips between the triangles of a closed mesh (chapter 3's watertight
  * triangle test), while Moller-Trumbore, on the very same rays, lets some through.
  *
- * The meshes (tools/closed_mesh.c) share their vertices: a cube whose faces are 64 x 64 grids of
+ * The meshes (tests/support/closed_mesh.c) share their vertices: a cube whose faces are 64 x 64 grids of
  * squares split along a diagonal (49,152 triangles), and an icosphere subdivided five times (20,480).
  * The views look from inside, so every ray must hit the mesh: the cube from its centre straight at a
  * face (a sixteenth of the pixels aim exactly at the face's diagonal edges) and straight at one of its
