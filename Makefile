@@ -81,8 +81,8 @@ ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,
 chapter_number = $(firstword $(subst -, ,$(1)))
 chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 
-# ---- models: the bunny is committed, the teapots are generated (tools/models.mk) -----------------
-include tools/models.mk
+# ---- models: the bunny is committed, the teapots are generated (tools/models/models.mk) ----------
+include tools/models/models.mk
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
 .PHONY: all chapters test test-sanitize test-accel-long references compare gallery figures clean help models \

@@ -5,7 +5,7 @@
 #   make bench-accel   build $(BUILD)/bench_accel and run it on the big teapot and the bunny, with Intel
 #                      Embree 3 as the yardstick (installs Debian's libembree-dev if it is missing)
 #   make bench-memory  peak memory of chapters 10 and 11 (every rung) per triangle, on a teapot of about
-#                      4 million triangles made by tools/teapot.c into out/bench/
+#                      4 million triangles made by tools/models/teapot.c into out/bench/
 #   make bench         every benchmark: bench-accel, then bench-memory
 #
 # $(BUILD)/bench_accel --csv FILE also writes its tables' rows as CSV (see bench_accel.c), and --size WxH

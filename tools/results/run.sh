@@ -25,7 +25,7 @@
 # a minute, so the pipeline can be tested (make test does).
 #
 # Environment: BUILD (default build) holds the chapters, compare, measure and bench_accel; TEAPOT
-# (default build/teapot) is the teapot generator, tools/teapot.c.
+# (default build/teapot) is the teapot generator, tools/models/teapot.c.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 

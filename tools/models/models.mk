@@ -1,7 +1,7 @@
-# tools/models.mk: the generated models in scenes/models/. A GNU make fragment, included from the
-# top-level Makefile (it also works alone: make -f tools/models.mk models). Paths are relative to the
-# top of the tree. Nothing here needs the network: scenes/models/bunny.ply is committed, and is
-# remade only by hand with tools/fetch-bunny.sh.
+# tools/models/models.mk: the generated models in scenes/models/. A GNU make fragment, included from
+# the top-level Makefile (it also works alone: make -f tools/models/models.mk models). Paths are
+# relative to the top of the tree. Nothing here needs the network: scenes/models/bunny.ply is
+# committed, and is remade only by hand with tools/models/fetch-bunny.sh.
 #
 #   make models          the small and the large teapot (and checks that bunny.ply is there)
 #   make clean-models    removes the generated teapots
@@ -19,7 +19,7 @@ MODELS_GENERATED := $(MODELS_DIR)/teapot-5k.ply $(MODELS_DIR)/teapot-346k.ply
 
 models: $(MODELS_GENERATED) $(MODELS_DIR)/bunny.ply
 
-$(MODELS_TEAPOT): tools/teapot.c
+$(MODELS_TEAPOT): tools/models/teapot.c
 	@mkdir -p $(@D)
 	$(CC) $(MODELS_TEAPOT_CFLAGS) $< -o $@ -lm
 
@@ -35,7 +35,7 @@ $(MODELS_DIR)/teapot-346k.ply: $(MODELS_TEAPOT)
 
 # Committed; this rule only runs when it is missing, and says how to remake it (needs npm).
 $(MODELS_DIR)/bunny.ply:
-	@echo "$@ is missing: it is committed; remake it with tools/fetch-bunny.sh (needs npm)" >&2
+	@echo "$@ is missing: it is committed; remake it with tools/models/fetch-bunny.sh (needs npm)" >&2
 	@false
 
 clean-models:
