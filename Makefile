@@ -22,12 +22,12 @@
 # below), so a chapter that reaches for a later idea fails to link.
 
 # ---- dependencies: Debian packages, installed when missing --------------------------------------
-# Each goal asks only for what it needs (tools/install-deps.sh lists the packages): building and
+# Each goal asks only for what it needs (tools/build/install-deps.sh lists the packages): building and
 # rendering a chapter needs gcc and stb; the tests add Criterion and POV-Ray; make compare adds POV-Ray.
 DEPS_NEEDS := build $(if $(filter test test-sanitize test-accel-long %run-tests,$(MAKECMDGOALS)),test) \
               $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter results,$(MAKECMDGOALS)),results)
 ifeq ($(filter clean help,$(MAKECMDGOALS)),)
-DEPS_READY := $(shell tools/install-deps.sh $(DEPS_NEEDS) >&2 && echo yes)
+DEPS_READY := $(shell tools/build/install-deps.sh $(DEPS_NEEDS) >&2 && echo yes)
 ifneq ($(DEPS_READY),yes)
 $(error missing packages: see the message above)
 endif
@@ -117,7 +117,7 @@ $(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools out:
 define chapter_rules
 $(BUILD)/chapter-$(call chapter_number,$(1)): $(BUILD)/chapters/$(1).o \
         $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
-	tools/link-chapter.sh $(BUILD) $$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
+	tools/build/link-chapter.sh $(BUILD) $$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
@@ -162,7 +162,7 @@ layering_chapter = $(call chapter_dir,$(word 1,$(subst -with-, ,$(1))))
 layering_modules = $(MODULES_$(word 2,$(subst -with-, ,$(1))))
 $(BUILD)/layering-%: $$(BUILD)/chapters/$$(call layering_chapter,$$*).o \
         $$(addprefix $$(BUILD)/common/,$$(addsuffix .o,$$(call layering_modules,$$*)))
-	tools/link-chapter.sh $(BUILD) $(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+	tools/build/link-chapter.sh $(BUILD) $(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # ---- mutants: deliberately wrong tracers for the tests ---------------------------------------------
 # tests/mutants/NAME.patch is a classic mistake as a patch, whose "Program: N" line names a chapter.

@@ -30,7 +30,7 @@ BENCH_LDLIBS := $(if $(BENCH_EMBREE),-lembree3)
 bench: bench-accel bench-memory
 
 bench-accel: $(BENCH_MODELS)
-	tools/install-deps.sh bench
+	tools/build/install-deps.sh bench
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_accel
 	$(BUILD)/bench_accel $$([ -e /usr/include/embree3/rtcore.h ] && echo --embree) $(BENCH_MODELS)
 

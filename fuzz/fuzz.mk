@@ -9,7 +9,7 @@
 # The harnesses and the common/ modules they test are compiled by clang with libFuzzer, AddressSanitizer
 # and UndefinedBehaviorSanitizer, into build/libfuzzer/ (whatever BUILD is: the objects are clang's, not
 # gcc's). fuzz/run.sh runs them; docs/fuzzing.md explains the whole. clang comes from Debian's `clang`
-# package, installed by tools/install-deps.sh fuzz (make test does not need it).
+# package, installed by tools/build/install-deps.sh fuzz (make test does not need it).
 
 FUZZ_SECONDS ?= 120
 FUZZ_BUILD := build/libfuzzer
@@ -43,7 +43,7 @@ fuzz-smoke: fuzz-build
 
 # clang is installed first, in its own step, so that a machine without it still runs make test.
 fuzz-build:
-	tools/install-deps.sh fuzz
+	tools/build/install-deps.sh fuzz
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(addprefix $(FUZZ_BUILD)/fuzz_,$(FUZZ_HARNESSES))
 
 # clang lacks GCC's __builtin_shuffle(v, (int4){i, j, k, l}), which the 4-wide BVH uses; a file that

@@ -28,7 +28,7 @@ results: all $(BUILD)/measure $(MODELS_TEAPOT)
 	@echo "quick results: $(RESULTS_QUICK_DIR)/results.md, with its CSV files, plots and pictures beside it"
 else
 results: all $(BUILD)/measure $(MODELS_TEAPOT)
-	tools/install-deps.sh bench
+	tools/build/install-deps.sh bench
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_accel
 	BUILD=$(BUILD) TEAPOT=$(MODELS_TEAPOT) tools/results/run.sh out/results
 	mkdir -p docs/results

@@ -2,7 +2,7 @@
 # install-deps.sh: makes sure the Debian packages a make target needs are there, installing only what
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
-#   tools/install-deps.sh [NEED...]     NEED: build (the default), test, compare, results, bench, fuzz
+#   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, results, bench, fuzz
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
 #   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test, whose
@@ -19,7 +19,7 @@
 # against it (a compiler must already be there). Anything else it cannot install it names, with the
 # command for someone who has root, and fails. WHITTED_DEPS=local forces the .deps/ route for stb.
 set -u
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 needs=("$@")
 [ ${#needs[@]} -eq 0 ] && needs=(build)
