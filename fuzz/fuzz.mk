@@ -35,14 +35,18 @@ FUZZ_EXTRA_render := render_check
 
 .PHONY: fuzz fuzz-build fuzz-smoke
 
+## make fuzz           the libFuzzer harnesses (scene, PLY, OBJ, renderer), FUZZ_SECONDS each (default
+##                     120); installs clang first (docs/fuzzing.md)
 fuzz: fuzz-build
 	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
+## make fuzz-smoke     the same harnesses for a fixed number of runs with a fixed seed (CI)
 fuzz-smoke: fuzz-build
 	fuzz/run.sh --smoke $(FUZZ_BUILD)
 
 # clang is installed first, in its own step, so that a machine without it still runs make test.
-fuzz-build:
+## make fuzz-build     build the harnesses into build/libfuzzer/ without running them
+fuzz-build: | deps
 	tools/build/install-deps.sh fuzz
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(addprefix $(FUZZ_BUILD)/fuzz_,$(FUZZ_HARNESSES))
 
@@ -78,7 +82,7 @@ $(addprefix $(FUZZ_BUILD)/fuzz_,$(FUZZ_HARNESSES)):
 # The renderer's check also runs in the tests, on the saved inputs (tests/test_fuzz_regressions.c),
 # compiled there by gcc like every test.
 $(BUILD)/run-tests: $(BUILD)/fuzz/render_check.o
-$(BUILD)/fuzz/render_check.o: fuzz/render_check.c | $(BUILD)/common
+$(BUILD)/fuzz/render_check.o: fuzz/render_check.c | $(BUILD)/common deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
 -include $(wildcard $(BUILD)/fuzz/*.d)

@@ -149,7 +149,7 @@ page=docs/gallery.md
     echo
     echo "The pictures are rendered by \`make gallery\` from the patches in"
     echo "[\`tools/gallery/\`](../tools/gallery/): apply one to a copy of the code to see the fault for yourself"
-    echo "(\`git apply tools/gallery/NAME.patch\`, and \`git checkout common\` to undo). \`make test\` proves that"
+    echo "(\`git apply tools/gallery/NAME.patch\`, and \`git checkout common\` to undo). \`make test-long\` proves that"
     echo "the student's grader catches every one (\`tests/test_gallery.c\`): built with the fault, each task named"
     echo "under \"Caught by\" fails its checks (\`make check-N\`, see [the coursework kit](coursework.md)), where"
     echo "N.P is the chapter's picture against its reference."

@@ -5,8 +5,8 @@
 #   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, results, bench, fuzz
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
-#   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test, whose
-#            tests run make results' quick mode and check its committed plots
+#   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test and
+#            make test-long, whose tests check make results' committed plots and run its quick mode
 #   compare  build + POV-Ray: make compare
 #   results  build + POV-Ray and gnuplot: make results (which adds bench for its Embree table)
 #   bench    build + Intel Embree 3 (libembree-dev): make bench

@@ -17,6 +17,7 @@ MODELS_GENERATED := $(MODELS_DIR)/teapot-5k.ply $(MODELS_DIR)/teapot-346k.ply
 
 .PHONY: models clean-models
 
+## make models         the small and the large teapot in scenes/models/ (make clean-models removes them)
 models: $(MODELS_GENERATED) $(MODELS_DIR)/bunny.ply
 
 $(MODELS_TEAPOT): tools/models/teapot.c
@@ -38,5 +39,6 @@ $(MODELS_DIR)/bunny.ply:
 	@echo "$@ is missing: it is committed; remake it with tools/models/fetch-bunny.sh (needs npm)" >&2
 	@false
 
+## make clean-models   remove the generated teapots
 clean-models:
 	rm -f $(MODELS_GENERATED) $(MODELS_GENERATED:.ply=.tmp.ply)
