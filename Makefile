@@ -127,6 +127,8 @@ include tools/models/models.mk
 include bench/bench.mk
 include fuzz/fuzz.mk
 include tools/results/results.mk
+# The teapot generator is compiled too, so after the packages step (models.mk also works without this
+# Makefile, so it cannot name `deps` itself).
 $(MODELS_TEAPOT): | deps
 
 # ---- tests -------------------------------------------------------------------------------------
@@ -135,7 +137,10 @@ TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
 # The picture comparison: the tests', the grader's and build/compare's.
 IMAGE_COMPARE_OBJECT := $(BUILD)/tests/support/image_compare.o
 
-$(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+# The tests and what they link: the modules, tests/support/, and the fuzzers' renderer check
+# (fuzz/fuzz.mk), which tests/test_fuzz_regressions.c runs on the saved inputs.
+$(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES))) \
+        $(BUILD)/fuzz/render_check.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
 
 $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
