@@ -414,7 +414,7 @@ static int write_ply(const char *path, const struct mesh *m, int n) {
 
 /* ---- command line ----------------------------------------------------------------------------- */
 
-static void usage(void) {
+static _Noreturn void usage(void) {
     fprintf(stderr,
             "usage: teapot N OUTPUT.ply               N subdivisions per patch side (1..%d)\n"
             "       teapot --triangles T OUTPUT.ply   the smallest N giving at least T triangles\n",
