@@ -60,10 +60,6 @@ static inline double triangle_edge_function(double px, double py, double qx, dou
  * zero: parallel to its plane, or a triangle without area) never crosses. Counts nothing. */
 static inline bool triangle_crossing_prepared(vec3 a, vec3 b, vec3 c, const struct triangle_ray *s, double *t,
                                               double *u, double *v) {
-#ifdef WHITTED_MUTANT_MOLLER_TRUMBORE
-    /* The tests' deliberately leaky tracer (Makefile: mutant-moller-trumbore) uses Moller-Trumbore. */
-    return triangle_crossing_mt(a, b, c, &s->ray, t, u, v);
-#endif
     /* The corners relative to the origin, in the ray's axes, sheared so that the ray runs along z: the
      * question is now whether the point (0, 0) lies in the 2D triangle (ax, ay), (bx, by), (cx, cy).
      * Each corner is transformed on its own, so a corner that two triangles share lands on the same

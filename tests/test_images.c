@@ -179,8 +179,8 @@ Test(povray_agreement, catches_one_extra_trace_level) {
 
 Test(povray_agreement, catches_a_highlight_multiplied_by_the_pigment) {
     /* Chapter 6 built with the oracle's first negative control: the highlight multiplied by the pigment
-     * colour (common/phong.c, WHITTED_MUTANT_HIGHLIGHT_TIMES_PIGMENT). The agreement rule must reject
-     * it against the twin of the same scene. */
+     * colour (tests/mutants/highlight-times-pigment.patch, applied to a copy of the sources). The
+     * agreement rule must reject it against the twin of the same scene. */
     const char *scene = chapter_scene(6);
     cr_assert_eq(render_with(mutant_program("highlight-times-pigment"), scene, TEST_OUT "/tinted-ours.png", ""), 0);
     cr_assert(render_povray(6, scene, TEST_OUT "/tinted-povray.png"));

@@ -22,10 +22,10 @@
 # long (brute force on big models) render a coarser grid of the same picture, and their time and
 # counters are scaled up by the ratio of pixels; their rows say so (measured_width, measured_height
 # and scale > 1). --quick runs the same experiments on small pictures and models, once each, in about
-# a minute, so the pipeline can be tested (make test does).
+# a minute, so the pipeline can be tested (make test-long does).
 #
 # Environment: BUILD (default build) holds the chapters, compare, measure and bench_accel; TEAPOT
-# (default build/teapot) is the teapot generator, tools/teapot.c.
+# (default build/teapot) is the teapot generator, tools/models/teapot.c.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 

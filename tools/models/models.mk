@@ -1,7 +1,7 @@
-# tools/models.mk: the generated models in scenes/models/. A GNU make fragment, included from the
-# top-level Makefile (it also works alone: make -f tools/models.mk models). Paths are relative to the
-# top of the tree. Nothing here needs the network: scenes/models/bunny.ply is committed, and is
-# remade only by hand with tools/fetch-bunny.sh.
+# tools/models/models.mk: the generated models in scenes/models/. A GNU make fragment, included from
+# the top-level Makefile (it also works alone: make -f tools/models/models.mk models). Paths are
+# relative to the top of the tree. Nothing here needs the network: scenes/models/bunny.ply is
+# committed, and is remade only by hand with tools/models/fetch-bunny.sh.
 #
 #   make models          the small and the large teapot (and checks that bunny.ply is there)
 #   make clean-models    removes the generated teapots
@@ -17,9 +17,10 @@ MODELS_GENERATED := $(MODELS_DIR)/teapot-5k.ply $(MODELS_DIR)/teapot-346k.ply
 
 .PHONY: models clean-models
 
+## make models         the small and the large teapot in scenes/models/ (make clean-models removes them)
 models: $(MODELS_GENERATED) $(MODELS_DIR)/bunny.ply
 
-$(MODELS_TEAPOT): tools/teapot.c
+$(MODELS_TEAPOT): tools/models/teapot.c
 	@mkdir -p $(@D)
 	$(CC) $(MODELS_TEAPOT_CFLAGS) $< -o $@ -lm
 
@@ -35,8 +36,9 @@ $(MODELS_DIR)/teapot-346k.ply: $(MODELS_TEAPOT)
 
 # Committed; this rule only runs when it is missing, and says how to remake it (needs npm).
 $(MODELS_DIR)/bunny.ply:
-	@echo "$@ is missing: it is committed; remake it with tools/fetch-bunny.sh (needs npm)" >&2
+	@echo "$@ is missing: it is committed; remake it with tools/models/fetch-bunny.sh (needs npm)" >&2
 	@false
 
+## make clean-models   remove the generated teapots
 clean-models:
 	rm -f $(MODELS_GENERATED) $(MODELS_GENERATED:.ply=.tmp.ply)

@@ -35,8 +35,8 @@ void expect_chapter_run(int n, const char *arguments, int status, const char *ex
 /* Runs the chapter program `program` (a path) as render_chapter does. */
 int render_with(const char *program, const char *scene, const char *png, const char *extra);
 
-/* Returns the path of the deliberately wrong program `name` that the Makefile builds for the tests,
- * e.g. "build/mutant-highlight-times-pigment". */
+/* Returns the path of the deliberately wrong program `name` that the Makefile builds for the tests
+ * from tests/mutants/NAME.patch, e.g. "build/mutant-highlight-times-pigment". */
 const char *mutant_program(const char *name);
 
 /* Writes chapter n's POV-Ray twin of `scene` and renders it with POV-Ray to `png` at the scene's size.
