@@ -1,6 +1,6 @@
 # Makefile: builds the chapters of the whitted ray tracer, renders their scenes, runs the tests.
 #
-#   make chapter-N      build chapter N (1..11) and render its scene to out/chapter-NN.png
+#   make chapter-N      build chapter N (1..12) and render its scene to out/chapter-NN.png
 #   make chapters       build and render every written chapter
 #   make test           unit tests, image regression, POV-Ray agreement (installs what is missing)
 #   make test-sanitize  the same suite built with AddressSanitizer and UndefinedBehaviorSanitizer
@@ -63,7 +63,7 @@ LDLIBS := $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := stats camera image outfile infile text_escape name_index antialias scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -74,8 +74,9 @@ MODULES_08 := $(MODULES_07) interior whitted
 MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh accel_bvh
 MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
+MODULES_12 := $(MODULES_11) sample_hash supersample
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast
+            09-kdtree 10-bvh 11-fast 12-antialias
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
@@ -86,7 +87,7 @@ include tools/models.mk
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
 .PHONY: all chapters test test-sanitize test-accel-long references compare gallery figures clean help models \
-        $(foreach n,1 2 3 4 5 6 7 8 9 10 11,chapter-$(n))
+        $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,chapter-$(n))
 .DEFAULT_GOAL := all
 .SECONDARY:
 .SECONDEXPANSION:
@@ -122,7 +123,7 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..11: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# chapter-N for N = 1..12: explicit rules (GNU make skips pattern rules for phony targets). Only the
 # models that the chapter's scene names are made first (mesh paths are relative to scenes/).
 define run_chapter_rule
 chapter-$(1): | out
@@ -132,7 +133,7 @@ chapter-$(1): | out
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call run_chapter_rule,$(n))))
 
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
 
@@ -146,7 +147,7 @@ include tools/results/results.mk
 # ---- tests -------------------------------------------------------------------------------------
 TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
-TOOL_OBJECTS := $(BUILD)/tools/image_compare.o
+TOOL_OBJECTS := $(BUILD)/tools/image_compare.o $(BUILD)/tools/box_filter.o
 TEST_TOOL_OBJECTS := $(TOOL_OBJECTS) $(BUILD)/tools/closed_mesh.o
 
 $(BUILD)/run-tests: $(TEST_OBJECTS) $(TEST_TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
@@ -235,7 +236,7 @@ help:
 
 # ---- the coursework kit (docs/coursework.md) -----------------------------------------------------
 #   make student DIR=path [TASKS="2.1 5.1"]  a student copy with the marked tasks' bodies blanked
-#   make check-N (N = 1..11), make check       grade chapter N (or all): each task, then a scoreboard
+#   make check-N (N = 1..12), make check       grade chapter N (or all): each task, then a scoreboard
 CHECK_OBJECTS := $(patsubst tests/checks/%.c,$(BUILD)/checks/%.o,$(wildcard tests/checks/*.c))
 
 $(BUILD)/checks/%.o: tests/checks/%.c
@@ -251,7 +252,7 @@ check-$(1): $(BUILD)/check | out
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call check_rule,$(n))))
 
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out
 	WHITTED_BUILD=$(BUILD) ./$(BUILD)/check all
@@ -260,5 +261,5 @@ student:
 	@test -n "$(DIR)" || { echo 'make student DIR=path [TASKS="2.1 5.1"]: say where the copy goes' >&2; exit 2; }
 	tools/student.sh "$(DIR)" "$(TASKS)"
 
-.PHONY: check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11,check-$(n))
+.PHONY: check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,check-$(n))
 test: $(BUILD)/check

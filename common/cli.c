@@ -221,13 +221,14 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
     struct stats total = {0};
     struct render_job job = {.camera = &cam, .trace = ch->trace, .world = world, .threads = o->threads,
                              .progress = !o->quiet && isatty(STDERR_FILENO),
-                             .heatmap = o->heatmap != NULL ? &heatmap : NULL};
+                             .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = ch->sampler,
+                             .antialias = &s->antialias};
     double started = seconds_now();
     render_image(&job, &img, &total);
     double elapsed = seconds_now() - started;
     bool written = image_write_png(&img, o->output, err, sizeof err);
     if (written && o->heatmap != NULL) {
-        heatmap_draw_bar(&heatmap, s->height);
+        heatmap_draw_bar_on(&heatmap, s->height, ch->sampler != NULL ? ch->sampler->heatmap : &heatmap_cost_scale);
         written = image_write_png(&heatmap, o->heatmap, err, sizeof err);
     }
     image_free(&img);

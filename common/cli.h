@@ -11,7 +11,8 @@
  *
  * `--heatmap FILE` works in every chapter: it writes how much work each pixel's camera ray cost
  * (node visits, box and shape tests, including those of its shadow and secondary rays) as a picture,
- * on one fixed colour scale so that pictures of different chapters can be set side by side. */
+ * on one fixed colour scale so that pictures of different chapters can be set side by side. In
+ * chapter 12 it shows how many camera rays each pixel took instead, on a scale of its own. */
 #ifndef WHITTED_CLI_H
 #define WHITTED_CLI_H
 
@@ -38,6 +39,9 @@ struct chapter {
     void *(*prepare)(struct scene *s, char *err, size_t err_size);
     void (*release)(void *world);   /* frees what prepare returned; optional */
     render_trace_fn trace;          /* the colour seen along a primary ray */
+    /* Optional (chapter 12): how the pixels are sampled with several rays each, as the scene's
+     * antialias line says; NULL: one ray through each pixel centre. */
+    const struct render_sampler *sampler;
     /* Optional: the chapter's own options. Called with an option the common parser does not know and
      * the word after it (NULL at the end); returns the number of words used (1 or 2), 0 when the
      * option is unknown, or -1 after printing why its value is wrong. */
