@@ -156,6 +156,10 @@ $(BUILD)/run-tests: $(TEST_OBJECTS) $(TEST_TOOL_OBJECTS) $(addprefix $(BUILD)/co
 $(BUILD)/compare: $(BUILD)/tools/compare.o $(TOOL_OBJECTS) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
+# Chapter 12's walkthrough: regions of pictures side by side, enlarged (tools/antialias-docs.sh).
+$(BUILD)/inset: $(BUILD)/tools/inset.o $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
 # Chapter NN's program linked with the modules of chapter MM instead of its own:
 # $(BUILD)/layering-NN-with-MM. With MM = NN - 1 it must fail to link, because every chapter uses what
 # it introduces; tests/test_layering.c checks that for every chapter.
