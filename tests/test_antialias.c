@@ -427,6 +427,15 @@ Test(antialias, counters_and_heatmap_show_the_camera_rays_per_pixel, .timeout = 
     cr_expect_null(strstr(output, "camera rays"), "%s", output);
 }
 
+Test(antialias, the_committed_plots_are_what_their_csv_file_draws, .timeout = 120) {
+    const char *build = getenv("WHITTED_BUILD");
+    char command[256];
+    snprintf(command, sizeof command, "tools/antialias-docs.sh %s --check", build != NULL ? build : "build");
+    cr_expect_eq(run_logged(command, TEST_OUT "/aa-plots.log"), 0,
+                 "docs/results/antialias-*.svg are stale against docs/results/antialias.csv: see " TEST_OUT
+                 "/aa-plots.log");
+}
+
 /* ---- agreement with POV-Ray ----------------------------------------------------------------------- */
 
 /* Renders chapter 12 on its scene with the antialias line replaced by `line`, and its twin with POV-Ray
