@@ -102,7 +102,7 @@ static void adaptive_block(const struct antialias *a, const struct sample_view *
 #define FINEST (1 << (ANTIALIAS_MAX_DEPTH - 1)) /* cells a side of a pixel at the greatest depth */
 
 /* One pixel's table of points: point (p, q) is (i + p / cells, j + q / cells). */
-struct quarters {
+struct pixel_points {
     const struct sample_view *view;
     double threshold;
     int i, j, cells;
@@ -112,7 +112,7 @@ struct quarters {
 };
 
 /* The colour at point (p, q), traced when the pixel has not traced it yet. */
-static vec3 point(struct quarters *t, int p, int q) {
+static vec3 point(struct pixel_points *t, int p, int q) {
     int k = q * (t->cells + 1) + p;
     if (!t->sampled[k]) {
         t->colour[k] = look(t->view, t->i + (double)p / t->cells, t->j + (double)q / t->cells, t->rays);
@@ -123,7 +123,7 @@ static vec3 point(struct quarters *t, int p, int q) {
 
 /* The colour of the square of side `size` (in table steps) with top-left point (p, q), quartered up to
  * `level` more times. */
-static vec3 square(struct quarters *t, int p, int q, int size, int level) {
+static vec3 square(struct pixel_points *t, int p, int q, int size, int level) {
     vec3 top_left = point(t, p, q), bottom_left = point(t, p, q + size);
     vec3 top_right = point(t, p + size, q), bottom_right = point(t, p + size, q + size);
     double limit = t->threshold;
@@ -152,7 +152,7 @@ static void recursive_block(const struct antialias *a, const struct sample_view 
     for (int q = 0; q <= h; q++)
         for (int p = 0; p <= w; p++) /* a corner is counted in the pixel whose top-left it is */
             corner[q * (w + 1) + p] = look(view, left + p, top + q, p < w && q < h ? &rays[q * w + p] : outside);
-    struct quarters t;
+    struct pixel_points t;
     t.view = view;
     t.threshold = a->threshold;
     t.cells = 1 << (a->samples - 1);
@@ -163,11 +163,14 @@ static void recursive_block(const struct antialias *a, const struct sample_view 
             t.j = top + y;
             t.rays = &rays[y * w + x];
             memset(t.sampled, 0, (size_t)side * (size_t)side * sizeof t.sampled[0]);
+            /* the pixel's corners, from the block's: top left, top right, bottom left, bottom right */
             const vec3 *c = &corner[y * (w + 1) + x];
-            int last = side * side - 1;
-            t.colour[0] = c[0], t.colour[t.cells] = c[1];
-            t.colour[last - t.cells] = c[w + 1], t.colour[last] = c[w + 2];
-            t.sampled[0] = t.sampled[t.cells] = t.sampled[last - t.cells] = t.sampled[last] = true;
+            int at[4] = {0, t.cells, side * t.cells, side * side - 1};
+            vec3 from[4] = {c[0], c[1], c[w + 1], c[w + 2]};
+            for (int k = 0; k < 4; k++) {
+                t.colour[at[k]] = from[k];
+                t.sampled[at[k]] = true;
+            }
             colours[y * w + x] = square(&t, 0, 0, t.cells, a->samples - 1);
         }
 }
