@@ -45,7 +45,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := stats camera image outfile infile text_escape name_index antialias sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -56,8 +56,9 @@ MODULES_08 := $(MODULES_07) interior whitted
 MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh accel_bvh
 MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
+MODULES_12 := $(MODULES_11) sample_hash supersample
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast
+            09-kdtree 10-bvh 11-fast 12-antialias
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
@@ -68,7 +69,7 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
 .PHONY: deps all chapters test test-long test-sanitize test-accel-long references compare gallery figures \
-        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11,chapter-$(n) check-$(n))
+        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
@@ -106,9 +107,9 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..11: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# chapter-N for N = 1..12: explicit rules (GNU make skips pattern rules for phony targets). Only the
 # models that the chapter's scene names are made first (mesh paths are relative to scenes/).
-## make chapter-N      build chapter N (1..11) and render its scene to out/chapter-NN.png
+## make chapter-N      build chapter N (1..12) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -117,7 +118,7 @@ chapter-$(1): | out
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call run_chapter_rule,$(n))))
 
 ## make chapters       build and render every written chapter
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
@@ -134,8 +135,8 @@ $(MODELS_TEAPOT): | deps
 # ---- tests -------------------------------------------------------------------------------------
 TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c tests/support/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
-# The picture comparison: the tests', the grader's and build/compare's.
-IMAGE_COMPARE_OBJECT := $(BUILD)/tests/support/image_compare.o
+# The picture comparison (and the box filter that averages a picture down, chapter 12): the tests', the grader's and build/compare's.
+IMAGE_COMPARE_OBJECT := $(BUILD)/tests/support/image_compare.o $(BUILD)/tests/support/box_filter.o
 
 # The tests and what they link: the modules, tests/support/, and the fuzzers' renderer check
 # (fuzz/fuzz.mk), which tests/test_fuzz_regressions.c runs on the saved inputs.
@@ -193,6 +194,10 @@ $(BUILD)/run-accel-long: $(BUILD)/tests/test_accel_long.o $(filter $(BUILD)/test
 ##                     with 20 times the rays, millions, and no time limit
 test-accel-long: $(BUILD)/run-accel-long | deps
 	WHITTED_ACCEL_RAYS=20 WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-accel-long --filter 'accel/*' --timeout 0
+
+# Chapter 12's walkthrough: regions of pictures side by side, enlarged (tools/antialias-docs.sh).
+$(BUILD)/inset: $(BUILD)/tools/inset.o $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # Chapter NN's program linked with the modules of chapter MM instead of its own:
 # $(BUILD)/layering-NN-with-MM. With MM = NN - 1 it must fail to link, because every chapter uses what
@@ -267,14 +272,14 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-## make check-N        grade chapter N's coursework tasks (1..11): each task, then a scoreboard
+## make check-N        grade chapter N's coursework tasks (1..12): each task, then a scoreboard
 define check_rule
 check-$(1): $(BUILD)/check | out
 	@n=$$$$(printf '%02d' $(1)); \
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call check_rule,$(n))))
 
 ## make check          grade every chapter's coursework tasks
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out

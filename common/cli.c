@@ -225,9 +225,11 @@ static void write_twin(struct cli_run *run) {
     }
 }
 
-/* Renders and writes the picture (and the heat-map); prints where they went and the counters. Returns
- * false with run->status set when the camera or an output fails. */
-static bool render_and_write(struct cli_run *run, render_trace_fn trace, const void *world) {
+/* Renders and writes the picture (and the heat-map), its pixels sampled by `sampler` (NULL: one ray
+ * through each centre); prints where they went and the counters. Returns false with run->status set
+ * when the camera or an output fails. */
+static bool render_and_write(struct cli_run *run, render_trace_fn trace, const void *world,
+                             const struct render_sampler *sampler) {
     const struct chapter *ch = run->chapter;
     const struct cli_options *o = &run->options;
     const struct scene *s = &run->scene;
@@ -255,13 +257,14 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
         mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
     struct render_job job = {.camera = &cam, .trace = trace, .world = world, .threads = o->threads,
                              .progress = !o->quiet && isatty(STDERR_FILENO),
-                             .heatmap = o->heatmap != NULL ? &heatmap : NULL};
+                             .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = sampler,
+                             .antialias = &s->antialias};
     double started = seconds_now();
     render_image(&job, &img, &run->total);
     run->render_seconds = seconds_now() - started;
     bool written = image_write_png(&img, o->output, err, sizeof err);
     if (written && o->heatmap != NULL) {
-        heatmap_draw_bar(&heatmap, s->height);
+        heatmap_draw_bar_on(&heatmap, s->height, sampler != NULL ? sampler->heatmap : &heatmap_cost_scale);
         written = image_write_png(&heatmap, o->heatmap, err, sizeof err);
     }
     image_free(&img);
@@ -287,11 +290,16 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
 }
 
 bool cli_render(struct cli_run *run, render_trace_fn trace, const void *world) {
+    return cli_render_sampled(run, trace, world, NULL);
+}
+
+bool cli_render_sampled(struct cli_run *run, render_trace_fn trace, const void *world,
+                        const struct render_sampler *sampler) {
     if (!run->options.quiet)
         scene_scale_warn(&run->scene, stderr);
     if (run->options.pov != NULL) {
         write_twin(run);
         return false;
     }
-    return render_and_write(run, trace, world) && !run->options.quiet;
+    return render_and_write(run, trace, world, sampler) && !run->options.quiet;
 }

@@ -17,7 +17,8 @@
  *
  * `--heatmap FILE` works in every chapter: it writes how much work each pixel's camera ray cost
  * (node visits, box and shape tests, including those of its shadow and secondary rays) as a picture,
- * on one fixed colour scale so that pictures of different chapters can be set side by side. */
+ * on one fixed colour scale so that pictures of different chapters can be set side by side. In
+ * chapter 12 it shows how many camera rays each pixel took instead, on a scale of its own. */
 #ifndef WHITTED_CLI_H
 #define WHITTED_CLI_H
 
@@ -92,6 +93,11 @@ int cli_fail(struct cli_run *run);
  * it went and the counters (into run->total), and returns true when the chapter may add its own
  * report: the picture was written and --quiet not given. On failure sets run->status. */
 bool cli_render(struct cli_run *run, render_trace_fn trace, const void *world);
+
+/* cli_render with the pixels sampled by `sampler` (chapter 12's anti-aliasing, as the scene's antialias
+ * line says) instead of one ray through each pixel centre; its heat-map shows the sampler's scale. */
+bool cli_render_sampled(struct cli_run *run, render_trace_fn trace, const void *world,
+                        const struct render_sampler *sampler);
 
 /* Frees the run's scene and returns its exit status (an enum cli_exit). */
 int cli_finish(struct cli_run *run);

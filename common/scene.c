@@ -318,6 +318,20 @@ static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int 
     return true;
 }
 
+/* The antialias line (antialias.h): a scene has at most one. */
+static bool parse_antialias(const struct parser *p, struct scene *s, char **tok, int n) {
+    struct key_values kv;
+    char why[256];
+    if (s->antialias.line != 0)
+        return fail(p, "a second antialias line (a scene has one)");
+    if (!parse_keys(p, "antialias", tok, n, antialias_keys, ANTIALIAS_KEY_COUNT, &kv))
+        return false;
+    if (!antialias_make(&kv, &s->antialias, why, sizeof why))
+        return fail(p, "%s", why);
+    s->antialias.line = p->line;
+    return true;
+}
+
 /* ---- the kinds of shape ------------------------------------------------------------------------ */
 
 const struct shape_syntax *const scene_syntaxes[] = {&sphere_syntax, &triangle_syntax, &plane_syntax, &box_syntax,
@@ -430,6 +444,8 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
         return parse_light(p, s, args, count);
     if (strcmp(directive, "mesh") == 0)
         return parse_mesh(p, s, args, count);
+    if (strcmp(directive, "antialias") == 0)
+        return parse_antialias(p, s, args, count);
     for (size_t k = 0; k < s->kind_count; k++)
         if (strcmp(directive, s->shapes[k].syntax->keyword) == 0)
             return parse_shape(p, s, &s->shapes[k], args, count);
@@ -596,6 +612,11 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
             note_count(what, sizeof what, s->mesh_count, "mesh", "meshes");
             drop_meshes(s);
         }
+    }
+    if (chapter < ANTIALIAS_CHAPTER && s->antialias.line != 0) {
+        size_t used = strlen(what);
+        snprintf(what + used, sizeof what - used, "%sthe antialias line", used == 0 ? "" : ", ");
+        s->antialias = (struct antialias){0};
     }
     if (what[0] != '\0' && note != NULL) {
         char path[4 * 1024];

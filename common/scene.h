@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "antialias.h"
 #include "mesh.h"
 #include "shape.h"
 
@@ -70,6 +71,7 @@ struct scene {
     int max_depth;        /* rays of this level or deeper are black; the camera ray is level 1 */
     bool shadow_offset;   /* false: shadow rays accept hits from t > 0 (chapter 7's acne demo) */
     double adc_bailout;   /* secondary rays weighing less are not traced (POV-Ray's adc_bailout), 0..1 */
+    struct antialias antialias; /* camera rays per pixel (chapter 12); method NONE without the line */
 
     struct material *materials; size_t material_count; /* materials[0] is "default" */
     struct light *lights;       size_t light_count;
@@ -107,7 +109,8 @@ void scene_free(struct scene *s);
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 
 /* Removes the shapes of every kind the program does not draw (a list without its kind; the meshes go
- * with the triangles), so that chapter `chapter` can read any scene file and draw what it knows. If
+ * with the triangles), and before chapter 12 the antialias line, so that chapter `chapter` can read
+ * any scene file and draw what it knows. If
  * something was removed, prints one line to `note` (when not NULL) saying what was ignored, e.g.
  * "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */
 void scene_drop_unsupported(struct scene *s, int chapter, FILE *note);

@@ -36,7 +36,7 @@ static const struct {
     {2, "sphere_closest"},   {3, "triangle_closest"}, {4, "plane_closest"},
     {5, "world_closest"},    {6, "phong_trace_nearest"}, {7, "shadow_opaque"},
     {8, "whitted_trace"},    {9, "accel_world_create"},  {10, "accel_world_use_bvh"},
-    {11, "accel_world_use_fast_bvh"},
+    {11, "accel_world_use_fast_bvh"}, {12, "supersample_sampler"},
 };
 
 Test(layering, no_chapter_links_with_the_previous_chapters_modules, .timeout = 300) {
@@ -63,7 +63,7 @@ Test(layering, no_chapter_links_with_the_previous_chapters_modules, .timeout = 3
 
 Test(layering, every_chapter_links_with_its_own_modules, .timeout = 300) {
     static char output[65536];
-    for (int n = 1; n <= 11; n++)
+    for (int n = 1; n <= 12; n++)
         cr_assert_eq(link_chapter(n, n, output, sizeof output), 0,
                      "chapter %d failed to link with its own modules:\n%s", n, output);
 }

@@ -675,3 +675,68 @@ bool check_collapse(collapse_fn f, char *why, size_t why_size) {
                     "neither leaf");
     return true;
 }
+
+/* ---- exercise 12.4: n-rooks ------------------------------------------------------------------------ */
+
+#define ROOKS_MAX 16
+#define ROOKS_PIXELS 40 /* pixels looked at for the pairings */
+
+/* The column and row of point k of n, or -1 when it is outside [0, 1). */
+static int cell_of(double v, int n) { return v >= 0.0 && v < 1.0 ? (int)(v * n) : -1; }
+
+bool check_rooks(rooks_fn f, char *why, size_t why_size) {
+    static const int sizes[] = {1, 2, 5, 8, 16};
+    double x[ROOKS_MAX], y[ROOKS_MAX], x2[ROOKS_MAX], y2[ROOKS_MAX];
+    for (int s = 0; s < 5; s++) {
+        int n = sizes[s];
+        for (int p = 0; p < ROOKS_PIXELS; p++) {
+            int i = p % 7, j = p / 7;
+            f(i, j, n, 3, x, y);
+            bool column[ROOKS_MAX] = {false}, row[ROOKS_MAX] = {false};
+            for (int k = 0; k < n; k++) {
+                int c = cell_of(x[k], n), r = cell_of(y[k], n);
+                if (c < 0 || r < 0)
+                    return fail(why, why_size, "pixel (%d, %d), n = %d: point %d is (%g, %g), outside [0, 1) x [0, 1)",
+                                i, j, n, k, x[k], y[k]);
+                if (column[c] || row[r])
+                    return fail(why, why_size, "pixel (%d, %d), n = %d: point %d (%g, %g) shares its %s with another; "
+                                "each of the n columns and rows holds exactly one", i, j, n, k, x[k], y[k],
+                                column[c] ? "column" : "row");
+                column[c] = row[r] = true;
+            }
+            f(i, j, n, 3, x2, y2);
+            for (int k = 0; k < n; k++)
+                if (x2[k] != x[k] || y2[k] != y[k])
+                    return fail(why, why_size, "pixel (%d, %d), n = %d: a second call gave other points (point %d: "
+                                "(%g, %g), then (%g, %g)); they must come from sample_hash alone", i, j, n, k, x[k],
+                                y[k], x2[k], y2[k]);
+        }
+    }
+    /* The pairing of columns with rows changes from pixel to pixel; on the diagonal, every pixel's
+     * points line up along it, and the samples of neighbouring pixels form a regular pattern. */
+    int diagonal = 0, centred = 0;
+    for (int p = 0; p < ROOKS_PIXELS; p++) {
+        f(p, 1, 8, 3, x, y);
+        bool on_diagonal = true;
+        for (int k = 0; k < 8; k++) {
+            on_diagonal = on_diagonal && cell_of(x[k], 8) == cell_of(y[k], 8);
+            centred += fabs(x[k] * 8 - floor(x[k] * 8) - 0.5) < 1e-9;
+        }
+        diagonal += on_diagonal;
+    }
+    if (diagonal > 2)
+        return fail(why, why_size, "n = 8: in %d of %d pixels the points lie in the cells (0, 0), (1, 1), ... of the "
+                    "diagonal; shuffle which column goes with which row, pixel by pixel", diagonal, ROOKS_PIXELS);
+    if (centred > ROOKS_PIXELS)
+        return fail(why, why_size, "n = 8: %d of %d points sit at the middle of their column; each should be at a "
+                    "random place within its cell", centred, 8 * ROOKS_PIXELS);
+    double a[ROOKS_MAX], b[ROOKS_MAX];
+    f(2, 3, 8, 3, x, y);
+    f(2, 3, 8, 4, a, b);
+    bool same = true;
+    for (int k = 0; k < 8; k++)
+        same = same && a[k] == x[k] && b[k] == y[k];
+    if (same)
+        return fail(why, why_size, "pixel (2, 3), n = 8: seeds 3 and 4 give the same points; the seed must change them");
+    return true;
+}

@@ -14,6 +14,7 @@
 #include <limits.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "aabb.h"
 #include "mesh.h"
@@ -106,5 +107,15 @@ struct bvh4_node {
 WEAK int bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
 typedef int (*collapse_fn)(const struct bvh2_node *, int, struct bvh4_node *, int);
 bool check_collapse(collapse_fn f, char *why, size_t why_size);
+
+/* Exercise 12.4 (common/supersample.c): n-rooks sampling, n rays a pixel where the grid takes n x n.
+ * Writes n points of pixel (i, j) into x[0..n) and y[0..n), each in [0, 1) across the pixel, so that
+ * each of the n columns [c / n, (c + 1) / n) and each of the n rows holds exactly one point (n rooks on
+ * an n x n board, none attacking another), at a random place within its cell. The places and which
+ * column goes with which row come from sample_hash(i, j, index, seed) alone: the same pixel and seed
+ * give the same points, other pixels other pairings. */
+WEAK void supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y);
+typedef void (*rooks_fn)(int, int, int, uint32_t, double *, double *);
+bool check_rooks(rooks_fn f, char *why, size_t why_size);
 
 #endif

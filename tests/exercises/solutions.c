@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sample_hash.h"
 #include "shadow.h"
 
 /* ---- 2.4: the disc, a kind of shape: what common/disc.h and common/disc.c hold in a model answer.
@@ -400,4 +401,30 @@ int wrong_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node
     int count = 0;
     collapse_node(tree, root, out, max, &count, false); /* opens the first interior child, not the widest */
     return count;
+}
+
+/* n-rooks: row r gets a random place in column perm[r], the permutation shuffled (Fisher-Yates) with the
+ * pixel's own numbers: index k for the places (2k, 2k + 1), 2n + k for the shuffle. */
+static void rooks(int i, int j, int n, uint32_t seed, double *x, double *y, bool shuffle) {
+    int perm[256];
+    for (int k = 0; k < n; k++)
+        perm[k] = k;
+    for (int k = n - 1; shuffle && k > 0; k--) {
+        int pick = (int)(sample_hash_unit((uint32_t)i, (uint32_t)j, (uint32_t)(2 * n + k), seed) * (k + 1));
+        int t = perm[k];
+        perm[k] = perm[pick];
+        perm[pick] = t;
+    }
+    for (int r = 0; r < n; r++) {
+        x[r] = (perm[r] + sample_hash_unit((uint32_t)i, (uint32_t)j, (uint32_t)(2 * r), seed)) / n;
+        y[r] = (r + sample_hash_unit((uint32_t)i, (uint32_t)j, (uint32_t)(2 * r + 1), seed)) / n;
+    }
+}
+
+void solution_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {
+    rooks(i, j, n, seed, x, y, true);
+}
+
+void wrong_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {
+    rooks(i, j, n, seed, x, y, false); /* never shuffled: every pixel's rooks on the diagonal */
 }

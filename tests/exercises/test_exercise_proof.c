@@ -8,8 +8,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "../image_test_support.h"
-#include "../test_support.h"
+#include "image_test_support.h"
+#include "test_support.h"
 #include "box.h"
 #include "cli.h"
 #include "image.h"
@@ -115,3 +115,4 @@ Test(exercise_checks, a_new_kind_is_one_more_line_in_a_chapters_list_of_kinds, .
               middle[0], middle[1], middle[2]);
     free(rgb);
 }
+PROOF(rooks, check_rooks, solution_supersample_rooks, wrong_supersample_rooks)
