@@ -8,8 +8,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "../image_test_support.h"
-#include "../test_support.h"
+#include "image_test_support.h"
+#include "test_support.h"
 #include "box.h"
 #include "cli.h"
 #include "image.h"
