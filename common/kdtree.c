@@ -85,7 +85,7 @@ static inline enum side classify(const struct aabb *b, int axis, double split) {
  * n_left and n_right triangles on the two sides: one step, then each side's triangles weighted by the
  * chance that the ray crosses that side, the ratio of the areas. With the box's extents e_b, e_c across
  * the axis, a half of length l along it has area 2 (e_b e_c + l (e_b + e_c)). */
-static double sah_cost(struct aabb box, double area, int axis, double split, size_t n_left, size_t n_right) {
+static double plane_cost(struct aabb box, double area, int axis, double split, size_t n_left, size_t n_right) {
     int b = (axis + 1) % 3, c = (axis + 2) % 3;
     double extent_b = vec3_axis(box.max, b) - vec3_axis(box.min, b);
     double extent_c = vec3_axis(box.max, c) - vec3_axis(box.min, c);
@@ -117,7 +117,7 @@ static bool sah_plane(const struct builder *bd, const struct triangles *t, struc
                 at[e[i].type]++;
             right -= at[EVENT_END] + at[EVENT_PLANAR];
             if (p > vec3_axis(box.min, axis) && p < vec3_axis(box.max, axis)) {
-                double cost = sah_cost(box, area, axis, p, left + at[EVENT_PLANAR], right + at[EVENT_PLANAR]);
+                double cost = plane_cost(box, area, axis, p, left + at[EVENT_PLANAR], right + at[EVENT_PLANAR]);
                 if (cost < best_cost) {
                     best_cost = cost;
                     *best_axis = axis;
@@ -248,8 +248,8 @@ static void build(struct builder *bd, enum kd_split rule, struct triangles *t, s
     }
     uint32_t index = (uint32_t)k->info.nodes++;
     double share = bd->root_area > 0.0 ? aabb_surface_area(box) / bd->root_area : 1.0;
-    int axis;
-    float split;
+    int axis = -1;
+    float split = 0.0f;
     bool cut = rule == KD_SPLIT_SEED ? seed_plane(bd, t, box, depth, &axis, &split)
                                      : sah_plane(bd, t, box, depth, &axis, &split);
     if (!cut) {
@@ -382,8 +382,8 @@ static bool report_once(struct query *q, double t, uint32_t face) {
 
 /* Tests faces[0..count) for hits with q->t_min < t < t_max, skipping and recording faces in the mailbox if
  * one is given. Returns false when the walk should stop: any hit found, or the visitor said so. */
-static inline bool test_faces(const struct kdtree *k, struct query *q, const uint32_t *faces, size_t count,
-                              double t_max, uint32_t *mailbox) {
+static bool test_faces(const struct kdtree *k, struct query *q, const uint32_t *faces, size_t count, double t_max,
+                       uint32_t *mailbox) {
     for (size_t i = 0; i < count; i++) {
         uint32_t face = faces[i];
         if (mailbox != NULL) {
