@@ -221,8 +221,8 @@ static void split_triangles(struct builder *bd, const struct triangles *t, int a
 /* Makes nodes[index] a leaf over t's faces, and counts it into the tree's description. */
 static void make_leaf(struct builder *bd, uint32_t index, const struct triangles *t, double share, size_t depth) {
     struct kdtree_info *info = &bd->tree->info;
-    if (info->references + t->count > bd->ref_capacity) {
-        bd->ref_capacity = 2 * bd->ref_capacity + t->count;
+    if (info->references + t->count >= bd->ref_capacity) { /* >=: the first leaf allocates, even if empty */
+        bd->ref_capacity = 2 * bd->ref_capacity + t->count + 64;
         bd->tree->refs = resize(bd->tree->refs, bd->ref_capacity * sizeof(uint32_t));
     }
     bd->tree->nodes[index] = (struct kd_node){KD_LEAF, 0.0f, 0, (uint32_t)info->references, (uint32_t)t->count};
