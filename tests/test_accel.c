@@ -321,19 +321,18 @@ static void build_all(const struct mesh *m, const char *mesh_name, struct accel 
     build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_TOP, &out[ACCEL_COUNT - 1]);
 }
 
-/* Builds the kd-tree over m by each rule (the SAH both ways), checking each one's invariants; returns
- * how many. */
+/* Builds the kd-tree over m by each rule, checking each one's invariants; returns how many. */
 static int build_kdtrees(const struct mesh *m, const char *mesh_name, struct accel out[ACCEL_COUNT]) {
-    static const enum kd_split rules[] = {KD_SPLIT_SEED, KD_SPLIT_SAH, KD_SPLIT_SAH_PLAIN};
-    static const char *const names[] = {"kd-tree seed", "kd-tree SAH", "kd-tree SAH (plain build)"};
-    for (int k = 0; k < 3; k++) {
+    static const enum kd_split rules[] = {KD_SPLIT_SEED, KD_SPLIT_SAH};
+    static const char *const names[] = {"kd-tree seed", "kd-tree SAH"};
+    for (int k = 0; k < 2; k++) {
         char why[256];
         struct kdtree *tree = kdtree_build(m, rules[k]);
         cr_assert_not_null(tree, "%s: %s ran out of memory", mesh_name, names[k]);
         cr_assert(kdtree_is_valid(tree, m, why, sizeof why), "%s: %s invalid: %s", mesh_name, names[k], why);
         out[k] = (struct accel){names[k], tree, kd_closest_of, kd_occluded_of, kd_for_each_hit_of, kd_free_of};
     }
-    return 3;
+    return 2;
 }
 
 static void free_all(struct accel a[ACCEL_COUNT]) {
@@ -853,53 +852,39 @@ Test(accel, info_describes_a_consistent_tree) {
         kdtree_get_info(k, &ki);
         cr_expect(ki.leaves > 0 && ki.leaves < ki.nodes && ki.references >= m.face_count && ki.empty_leaves < ki.leaves,
                   "kd %d: %zu nodes, %zu leaves, %zu references", rule, ki.nodes, ki.leaves, ki.references);
-        cr_expect(ki.sah_cost > 0 && ki.build_ms >= 0, "kd %d: cost %g", rule, ki.sah_cost);
+        cr_expect(ki.sah_cost > 0, "kd %d: cost %g", rule, ki.sah_cost);
         kdtree_free(k);
     }
     mesh_free(&m);
 }
 
-/* The plain SAH build of kdtree.c (every candidate plane priced by counting) and the event sweep of
- * kdtree_events.c must give the very same tree: the sweep is only the fast way to the same planes. */
-static void expect_plain_sah_tree_is_the_sweeps(const char *name, const struct mesh *m) {
-    struct kdtree *fast = kdtree_build(m, KD_SPLIT_SAH), *plain = kdtree_build(m, KD_SPLIT_SAH_PLAIN);
-    cr_assert(fast != NULL && plain != NULL, "%s: a build ran out of memory", name);
-    struct kdtree_info info;
-    kdtree_get_info(fast, &info);
-    cr_expect(kdtree_equal(fast, plain), "%s: the plain SAH build differs from the event sweep's tree (%zu nodes)",
-              name, info.nodes);
-    char why[256];
-    cr_expect(kdtree_is_valid(plain, m, why, sizeof why), "%s: plain SAH tree invalid: %s", name, why);
-    kdtree_free(fast);
-    kdtree_free(plain);
+/* The SAH tree is the cheaper one by the SAH's own measure (the seed's rule prices nothing), and an
+ * empty leaf or more where the triangles leave space empty; on the cost the tree predicts, a tree made
+ * with every candidate plane priced should beat median planes by a wide margin on real meshes. */
+static void expect_sah_tree_cheaper_than_seed(const char *name, const struct mesh *m, double at_least) {
+    struct kdtree *sah = kdtree_build(m, KD_SPLIT_SAH), *seed = kdtree_build(m, KD_SPLIT_SEED);
+    cr_assert(sah != NULL && seed != NULL, "%s: a build ran out of memory", name);
+    struct kdtree_info a, b;
+    kdtree_get_info(sah, &a);
+    kdtree_get_info(seed, &b);
+    cr_expect(a.sah_cost * at_least <= b.sah_cost, "%s: the SAH tree's predicted cost %.2f is not %.1f times below "
+              "the seed's rule's %.2f", name, a.sah_cost, at_least, b.sah_cost);
+    cr_expect(a.empty_leaves > 0, "%s: the SAH cut no empty space away (%zu leaves)", name, a.leaves);
+    kdtree_free(sah);
+    kdtree_free(seed);
 }
 
-Test(accel, kdtree_sah_built_plainly_is_the_tree_the_event_sweep_builds, .timeout = ACCEL_TEST_TIMEOUT) {
-    for (size_t faces = 1; faces <= 1000; faces *= 10)
-        for (int s = 0; s < 3; s++) {
-            char name[64];
-            snprintf(name, sizeof name, "soup of %zu (seed %d)", faces, s);
-            struct mesh m = make_soup(7u * faces + (uint64_t)s, faces);
-            expect_plain_sah_tree_is_the_sweeps(name, &m);
-            mesh_free(&m);
-        }
+Test(accel, kdtree_sah_tree_costs_less_than_the_seed_rules, .timeout = ACCEL_TEST_TIMEOUT) {
     struct mesh sphere = make_sphere(24, 48, vec3_make(0.25, -0.5, 1.0), 1.5), grids = make_grids(12);
-    expect_plain_sah_tree_is_the_sweeps("sphere", &sphere);
-    expect_plain_sah_tree_is_the_sweeps("grids", &grids);
+    expect_sah_tree_cheaper_than_seed("sphere", &sphere, 1.5);
+    expect_sah_tree_cheaper_than_seed("grids", &grids, 1.5);
     mesh_free(&sphere);
     mesh_free(&grids);
-    /* a mesh of zero size: its boxes are flat on every axis (planar events) */
-    struct builder b = {0};
-    for (int k = 0; k < 6; k++)
-        add_triangle(&b, vec3_make(1, 2, 3), vec3_make(1, 2, 3), vec3_make(1, 2, 3));
-    expect_plain_sah_tree_is_the_sweeps("point", &b.m);
-    mesh_free(&b.m);
     struct mesh bunny;
     char err[512];
-    if (mesh_load("scenes/models/bunny.ply", &bunny, err, sizeof err)) {
-        expect_plain_sah_tree_is_the_sweeps("bunny", &bunny);
-        mesh_free(&bunny);
-    }
+    cr_assert(mesh_load("scenes/models/bunny.ply", &bunny, err, sizeof err), "%s", err);
+    expect_sah_tree_cheaper_than_seed("bunny", &bunny, 2.5);
+    mesh_free(&bunny);
 }
 
 /* ---- meshes outside float range (issue 16) ----------------------------------------------------- */
@@ -910,13 +895,11 @@ static void transform_mesh(struct mesh *m, double scale, vec3 shift) {
         m->vertices[k] = vec3_add(vec3_scale(m->vertices[k], scale), shift);
 }
 
-/* Builds the three kd-trees over m (which must not hang: the test's timeout catches that), checks
- * that both SAH builds agree, and checks their answers against the brute-force loop on rays_for(m)
- * rays; frees m. */
+/* Builds the two kd-trees over m (which must not hang: the test's timeout catches that) and checks
+ * their answers against the brute-force loop on rays_for(m) rays; frees m. */
 static void check_mesh_kdtrees(const char *name, struct mesh *m, uint64_t seed) {
     struct checker c;
     checker_init_kdtrees(&c, name, m);
-    cr_expect(kdtree_equal(c.accels[1].structure, c.accels[2].structure), "%s: the two SAH builds differ", name);
     check_rays(&c, seed, rays_for(m));
     checker_free(&c);
     mesh_free(m);

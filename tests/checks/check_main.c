@@ -39,7 +39,7 @@ const struct task check_tasks[] = {
      "4.1 6.1 6.2"},
     {"8.P", "chapter 8's picture", "chapters/08-recursion", "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2"},
     {"9.1", "the dissertation's split rule", "seed_plane in common/kdtree.c", ""},
-    {"9.2", "the surface area heuristic, plainly", "sah_plane in common/kdtree.c", ""},
+    {"9.2", "the surface area heuristic", "sah_plane in common/kdtree.c", ""},
     {"9.3", "front-to-back traversal", "traverse in common/kdtree.c", ""},
     {"9.P", "chapter 9's picture", "chapters/09-kdtree",
      "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3"},
@@ -86,7 +86,7 @@ CHECK(check_recursion_mirror);
 CHECK(check_recursion_depth);
 CHECK(check_seed_row_x);
 CHECK(check_seed_row_z);
-CHECK(check_sah_plain);
+CHECK(check_sah_gap);
 CHECK(check_kd_traversal);
 CHECK(check_kd_occluded);
 CHECK(check_kd_crossing);
@@ -153,7 +153,7 @@ const struct check check_list[] = {
     {"8.P", "the picture matches the reference", check_picture_8},
     {"9.1", "a row along x", check_seed_row_x},
     {"9.1", "a row along z: the axis is chosen", check_seed_row_z},
-    {"9.2", "two clusters: the gap is cut", check_sah_plain},
+    {"9.2", "two clusters: the gap is cut", check_sah_gap},
     {"9.3", "nearest hits in three layers", check_kd_traversal},
     {"9.3", "shadow queries", check_kd_occluded},
     {"9.3", "triangles in many cells: the nearest hit", check_kd_crossing},
