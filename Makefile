@@ -216,12 +216,13 @@ $(BUILD)/layering-%: $$(BUILD)/chapters/$$(call layering_chapter,$$*).o \
 # $(BUILD)/mutant-NAME is that chapter built from a patched copy of common/ and chapters/ in
 # $(BUILD)/mutants/NAME/ (tests/support/patched-copy.sh), by a second make that sees the copy as it
 # is now; the sources themselves never carry the mistake. The tests prove that their checks catch each
-# one (tests/test_images.c, tests/test_watertight.c).
+# one (tests/test_images.c, tests/test_watertight.c). The copy and the second make are one recipe line:
+# make -n runs a line that names $(MAKE), and the second make can only plan once the copy exists.
 mutant_chapter = $(call chapter_dir,$(shell printf '%02d' $$(sed -n 's/^Program: //p' tests/mutants/$(1).patch)))
 
 $(BUILD)/mutant-%: tests/mutants/%.patch tests/support/patched-copy.sh $(wildcard common/*.[ch] chapters/*/main.c)
-	tests/support/patched-copy.sh $< $(BUILD)/mutants/$* common chapters
-	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) MUTANT=$* $(BUILD)/mutants/$*/program
+	tests/support/patched-copy.sh $< $(BUILD)/mutants/$* common chapters && \
+	    $(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) MUTANT=$* $(BUILD)/mutants/$*/program
 	cp $(BUILD)/mutants/$*/program $@
 
 # In the second make (MUTANT=NAME): the copy's objects, with the copy's headers first.
