@@ -63,7 +63,7 @@ LDLIBS := $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := clock stats camera image outfile infile text_escape name_index scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -73,7 +73,7 @@ MODULES_07 := $(MODULES_06) shadow
 MODULES_08 := $(MODULES_07) interior whitted
 MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh accel_bvh
-MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
+MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_build accel_fast_bvh
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh 11-fast
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))

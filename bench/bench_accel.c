@@ -42,6 +42,7 @@
 
 #include "bvh.h"
 #include "fast_bvh.h"
+#include "fast_bvh_build.h"
 #include "camera.h"
 #include "kdtree.h"
 #include "mesh.h"

@@ -1,6 +1,7 @@
 /* cli.c: the command line and the load-render-write sequence shared by all chapters (chapter 1). */
 #include "cli.h"
 
+#include "clock.h"
 #include "heatmap.h"
 #include "outfile.h"
 #include "scene_scale.h"
@@ -14,7 +15,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #define CLI_ERROR_SIZE (PATH_MAX + 1024) /* longest error message kept: a whole path and the reason */
@@ -171,12 +171,6 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
     return CLI_OK;
 }
 
-static double seconds_now(void) {
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
-}
-
 /* Loads the scene and everything the chapter needs; returns the world for trace, or NULL (with
  * *bad_option set when a --set change was at fault rather than the scene). */
 static void *load_world(const struct chapter *ch, const struct options *o, struct scene *s, bool *bad_option,
@@ -222,9 +216,9 @@ static int render_and_write(const struct chapter *ch, const struct options *o, c
     struct render_job job = {.camera = &cam, .trace = ch->trace, .world = world, .threads = o->threads,
                              .progress = !o->quiet && isatty(STDERR_FILENO),
                              .heatmap = o->heatmap != NULL ? &heatmap : NULL};
-    double started = seconds_now();
+    double started = clock_seconds();
     render_image(&job, &img, &total);
-    double elapsed = seconds_now() - started;
+    double elapsed = clock_seconds() - started;
     bool written = image_write_png(&img, o->output, err, sizeof err);
     if (written && o->heatmap != NULL) {
         heatmap_draw_bar(&heatmap, s->height);
