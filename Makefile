@@ -72,7 +72,7 @@ MODULES_06 := $(MODULES_05) phong
 MODULES_07 := $(MODULES_06) shadow
 MODULES_08 := $(MODULES_07) interior whitted
 MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
-MODULES_10 := $(MODULES_09) bvh accel_bvh
+MODULES_10 := $(MODULES_09) bvh bvh_check accel_bvh
 MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_build accel_fast_bvh
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh 11-fast

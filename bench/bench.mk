@@ -17,7 +17,7 @@
 # installing Embree later rebuilds what must change.
 
 BENCH_MODELS := scenes/models/teapot-346k.ply scenes/models/bunny.ply
-BENCH_MODULES := aabb clock big_alloc bvh fast_bvh fast_bvh_build kdtree kdtree_events kdtree_check triangle stats mesh mesh_ply mesh_obj infile camera
+BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_build kdtree kdtree_events kdtree_check triangle stats mesh mesh_ply mesh_obj infile camera
 BENCH_EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
 BENCH_VARIANT := $(if $(BENCH_EMBREE),embree,plain)
 BENCH_SOURCES := bench/bench_accel.c $(if $(BENCH_EMBREE),bench/embree_ref.c)

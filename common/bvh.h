@@ -47,9 +47,11 @@ enum bvh_split {
 #define BVH_COST_TRAVERSAL 1.0
 #define BVH_COST_TRIANGLE 1.0
 
-/* Below this depth the SAH chooses freely; deeper nodes are halved by count, so the depth stays
- * bounded (at most BVH_MAX_DEPTH + 31 levels for 2^31 triangles), and with it the traversal stack. */
+/* Below this depth the SAH chooses freely; deeper nodes are halved by count, so no leaf lies deeper
+ * than BVH_DEEPEST (31 more halvings take 2^31 triangles down to one), and the traversal stacks of
+ * chapters 10 and 11 are sized by that. */
 #define BVH_MAX_DEPTH 64
+#define BVH_DEEPEST (BVH_MAX_DEPTH + 31)
 
 /* Faces are numbered with uint32_t, and a tree of n faces has up to 2n - 1 nodes. */
 #define BVH_MAX_FACES ((size_t)1 << 31)

@@ -40,9 +40,9 @@
 #include "stats.h"
 #include "triangle.h"
 
-/* The deepest the 4-wide tree can be is the binary tree's depth (at most BVH_MAX_DEPTH + 31, bvh.h),
- * and the traversal stack holds at most FAST_BVH_WIDTH - 1 entries per level. */
-#define FAST_BVH_STACK_SIZE ((FAST_BVH_WIDTH - 1) * (BVH_MAX_DEPTH + 32))
+/* The 4-wide tree is no deeper than the binary one (BVH_DEEPEST, bvh.h), and the traversal stack holds
+ * at most FAST_BVH_WIDTH - 1 entries per level. */
+#define FAST_BVH_STACK_SIZE ((FAST_BVH_WIDTH - 1) * (BVH_DEEPEST + 1))
 
 _Static_assert(sizeof(struct fast_bvh_node) == 128, "a node should fill exactly two 64-byte cache lines");
 
