@@ -243,6 +243,22 @@ static uint32_t build_node(struct builder *bd, uint32_t begin, uint32_t end, siz
     return index;
 }
 
+bool bvh_face_box(const struct mesh *m, size_t face, double pad, struct aabb *box) {
+    const uint32_t *v = m->faces[face].v;
+    vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
+    if (triangle_is_sliver(a, b, c))
+        return false;
+    *box = aabb_pad(aabb_grow(aabb_grow(aabb_grow(aabb_empty(), a), b), c), pad);
+    return true;
+}
+
+void bvh_copy_triangles(const struct mesh *m, const uint32_t *faces, size_t count, struct bvh_triangle *triangles) {
+    for (size_t k = 0; k < count; k++) {
+        const uint32_t *v = m->faces[faces[k]].v;
+        triangles[k] = (struct bvh_triangle){m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]};
+    }
+}
+
 struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
     double start = clock_seconds();
     size_t n = m->face_count;
@@ -262,16 +278,14 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
     double pad = triangle_box_pad(m);
     size_t tree = 0, slivers = 0;
     for (size_t f = 0; f < n; f++) {
-        const uint32_t *v = m->faces[f].v;
-        vec3 a = m->vertices[v[0]], bb = m->vertices[v[1]], c = m->vertices[v[2]];
-        if (triangle_is_sliver(a, bb, c)) {
+        struct bvh_prim *p = &prims[tree];
+        if (!bvh_face_box(m, f, pad, &p->box)) {
             b->faces[n - ++slivers] = (uint32_t)f;
             continue;
         }
-        struct bvh_prim *p = &prims[tree++];
-        p->box = aabb_pad(aabb_grow(aabb_grow(aabb_grow(aabb_empty(), a), bb), c), pad);
         p->centroid = vec3_scale(vec3_add(p->box.min, p->box.max), 0.5);
         p->face = (uint32_t)f;
+        tree++;
     }
     b->tree_count = tree;
     struct builder bd = {prims, b, split, 0.0, 0, 0, 0.0};
@@ -291,10 +305,7 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
         bvh_free(b);
         return NULL;
     }
-    for (size_t k = 0; k < n; k++) {
-        const uint32_t *v = m->faces[b->faces[k]].v;
-        b->triangles[k] = (struct bvh_triangle){m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]};
-    }
+    bvh_copy_triangles(m, b->faces, n, b->triangles);
     b->info = (struct bvh_info){b->node_count, bd.leaves, bd.max_depth, 0.0,
                                 bd.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
     b->info.build_ms = 1e3 * (clock_seconds() - start);

@@ -98,6 +98,13 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split);
 /* Frees b and everything it owns. Safe on NULL. */
 void bvh_free(struct bvh *b);
 
+/* The two steps every build of chapters 10 and 11 starts and ends with. bvh_face_box: the box of face
+ * `face` of m grown by pad on every side (pad = triangle_box_pad(m), triangle.h) into *box; false,
+ * leaving *box alone, for a sliver (triangle_is_sliver), which stays out of the tree. bvh_copy_triangles:
+ * the corners of faces faces[0..count) of m into triangles[0..count), in that order. */
+bool bvh_face_box(const struct mesh *m, size_t face, double pad, struct aabb *box);
+void bvh_copy_triangles(const struct mesh *m, const uint32_t *faces, size_t count, struct bvh_triangle *triangles);
+
 /* Finds the nearest face hit by r with t_min < t < t_max. On a hit returns true and stores its
  * distance in *t and its index into the mesh's faces in *face; on a miss returns false and leaves both
  * alone. Among faces hit at exactly the same t, the lowest face index wins, as in a brute-force loop
@@ -122,15 +129,19 @@ void bvh_get_info(const struct bvh *b, struct bvh_info *info);
  * why (why_size bytes). For tests: it walks the whole tree. */
 bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t why_size);
 
-/* The checks of bvh_is_valid and chapter 11's fast_bvh_is_valid on the stored triangles, around their
- * walks of the tree. bvh_check_triangles, before the walk: there are as many as m has faces, each face
- * number is one of m's, and each triangle holds its face's corners. bvh_check_faces, after it: each
- * of the first tree_count triangles was reached (seen[k] nonzero), the slivers and only they are
- * stored after them, and no face number repeats. seen has triangle_count + 1 bytes and is overwritten.
- * Each returns true when all hold; otherwise false with the first broken one, as "what (at index)", in
- * why (why_size bytes). */
+/* The checks of bvh_is_valid and chapter 11's fast_bvh_is_valid on the stored triangles, around and
+ * in their walks of the tree. bvh_check_triangles, before the walk: there are as many as m has faces,
+ * each face number is one of m's, and each triangle holds its face's corners. bvh_check_leaf, at each
+ * leaf: its triangles [first, first + count) lie among the first tree_count, each is reached for the
+ * first time (seen[k] was 0, and is set) and lies inside the leaf's box. bvh_check_faces, after the
+ * walk: each of the first tree_count triangles was reached (seen[k] nonzero), the slivers and only they
+ * are stored after them, and no face number repeats; seen has triangle_count + 1 bytes and is
+ * overwritten. Each returns true when all hold; otherwise false with the first broken one, as "what (at
+ * index)", in why (why_size bytes). */
 bool bvh_check_triangles(const struct mesh *m, const struct bvh_triangle *triangles, const uint32_t *faces,
                          size_t triangle_count, char *why, size_t why_size);
+bool bvh_check_leaf(const struct bvh_triangle *triangles, size_t tree_count, uint32_t first, uint32_t count,
+                    const struct aabb *box, unsigned char *seen, char *why, size_t why_size);
 bool bvh_check_faces(const struct mesh *m, const uint32_t *faces, size_t triangle_count, size_t tree_count,
                      unsigned char *seen, char *why, size_t why_size);
 

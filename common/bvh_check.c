@@ -37,17 +37,8 @@ static bool check_node(struct check *c, uint32_t index, size_t depth) {
             return check_fail(c, "child box sticks out of its parent's", index);
         return check_node(c, n->left, depth + 1) && check_node(c, n->right, depth + 1);
     }
-    if ((size_t)n->first + n->count > c->b->tree_count)
-        return check_fail(c, "leaf runs past the triangles", index);
-    for (uint32_t k = n->first; k < n->first + n->count; k++) {
-        if (c->seen_triangle[k]++)
-            return check_fail(c, "triangle in two leaves", k);
-        const struct bvh_triangle *t = &c->b->triangles[k];
-        struct aabb corners = aabb_grow(aabb_grow(aabb_grow(aabb_empty(), t->a), t->b), t->c);
-        if (!aabb_holds(&n->box, &corners))
-            return check_fail(c, "leaf box does not hold its triangle", k);
-    }
-    return true;
+    return bvh_check_leaf(c->b->triangles, c->b->tree_count, n->first, n->count, &n->box, c->seen_triangle, c->why,
+                          c->why_size);
 }
 
 bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t why_size) {
@@ -64,6 +55,26 @@ bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t w
     free(c.seen_triangle);
     free(c.seen_node);
     return ok;
+}
+
+bool bvh_check_leaf(const struct bvh_triangle *triangles, size_t tree_count, uint32_t first, uint32_t count,
+                    const struct aabb *box, unsigned char *seen, char *why, size_t why_size) {
+    const char *what = NULL;
+    size_t where = first;
+    if ((size_t)first + count > tree_count)
+        what = "leaf runs past the triangles";
+    for (uint32_t k = first; what == NULL && k < first + count; k++) {
+        const struct bvh_triangle *t = &triangles[k];
+        struct aabb corners = aabb_grow(aabb_grow(aabb_grow(aabb_empty(), t->a), t->b), t->c);
+        where = k;
+        if (seen[k]++)
+            what = "triangle in two leaves";
+        else if (!aabb_holds(box, &corners))
+            what = "leaf box does not hold its triangle";
+    }
+    if (what != NULL)
+        snprintf(why, why_size, "%s (at %zu)", what, where);
+    return what == NULL;
 }
 
 bool bvh_check_triangles(const struct mesh *m, const struct bvh_triangle *triangles, const uint32_t *faces,

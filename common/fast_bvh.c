@@ -82,19 +82,9 @@ static struct aabb child_box(const struct fast_bvh_node *n, int k) {
 static bool check_subtree(struct check *c, uint32_t child, uint32_t count, const struct aabb *box, size_t depth) {
     if (depth >= FAST_BVH_STACK_SIZE)
         return check_fail(c, "deeper than the traversal stack", depth);
-    if (count > 0) {
-        if ((size_t)child + count > c->b->tree_count)
-            return check_fail(c, "leaf runs past the triangles", child);
-        for (uint32_t k = child; k < child + count; k++) {
-            if (c->seen_triangle[k]++)
-                return check_fail(c, "triangle in two leaves", k);
-            const struct bvh_triangle *t = &c->b->triangles[k];
-            struct aabb corners = aabb_grow(aabb_grow(aabb_grow(aabb_empty(), t->a), t->b), t->c);
-            if (!aabb_holds(box, &corners))
-                return check_fail(c, "leaf box does not hold its triangle", k);
-        }
-        return true;
-    }
+    if (count > 0)
+        return bvh_check_leaf(c->b->triangles, c->b->tree_count, child, count, box, c->seen_triangle, c->why,
+                              c->why_size);
     if (child >= c->b->node_count || c->seen_node[child]++)
         return check_fail(c, "node index out of range or reached twice", child);
     const struct fast_bvh_node *n = &c->b->nodes[child];
@@ -352,8 +342,11 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
                 hit = child_pair_hit(n, 0, &s, box_min, box_max, &entry[0]) |
                       child_pair_hit(n, 1, &s, box_min, box_max, &entry[1]) << 2;
             } else {
-                for (int k = 0; k < FAST_BVH_WIDTH; k++)
-                    hit |= (unsigned)child_hit(n, k, r, &s, box_min, box_max, &entry[k >> 1][k & 1]) << k;
+                for (int k = 0; k < FAST_BVH_WIDTH; k++) {
+                    double enter; /* a lane of a double2 has no address of its own for clang */
+                    hit |= (unsigned)child_hit(n, k, r, &s, box_min, box_max, &enter) << k;
+                    entry[k >> 1][k & 1] = enter;
+                }
             }
             /* Unused slots have empty boxes, which every slab test misses, except a ray with a NaN or
              * infinite origin or direction (0 * infinity and infinity - infinity are NaN, which the

@@ -482,13 +482,12 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m) {
     double pad = triangle_box_pad(m);
     size_t tree = 0, slivers = 0;
     for (size_t f = 0; f < n; f++) {
-        const uint32_t *v = m->faces[f].v;
-        vec3 a = m->vertices[v[0]], bb = m->vertices[v[1]], c = m->vertices[v[2]];
-        if (triangle_is_sliver(a, bb, c)) {
+        struct aabb box;
+        if (!bvh_face_box(m, f, pad, &box)) {
             b->faces[n - ++slivers] = (uint32_t)f;
             continue;
         }
-        struct aabb box = rounded_to_float(aabb_pad(aabb_grow(aabb_grow(aabb_grow(aabb_empty(), a), bb), c), pad));
+        box = rounded_to_float(box);
         prims[tree] = (struct float_box){{(float)box.min.x, (float)box.min.y, (float)box.min.z, 0.0f},
                                          {(float)box.max.x, (float)box.max.y, (float)box.max.z, 0.0f}};
         b->faces[tree++] = (uint32_t)f;
@@ -540,10 +539,7 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         fast_bvh_free(b);
         return NULL;
     }
-    for (size_t k = 0; k < b->triangle_count; k++) {
-        const uint32_t *v = m->faces[b->faces[k]].v;
-        b->triangles[k] = (struct bvh_triangle){m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]};
-    }
+    bvh_copy_triangles(m, b->faces, b->triangle_count, b->triangles);
     b->info.build_ms = 1e3 * (clock_seconds() - start);
     return b;
 }
