@@ -1,6 +1,5 @@
-/* aabb.c: axis-aligned boxes (chapter 5): the boxes of the shapes that have one, the inverse direction
- * the slab test wants, and the normal of a box's face. The box maths and the slab test itself are in
- * aabb.h. */
+/* aabb.c: axis-aligned boxes (chapter 5): the boxes of the shapes that have one and the normal of a
+ * box's face. The box maths and the slab test are in aabb.h. */
 #include "aabb.h"
 
 struct aabb aabb_of_sphere(const struct sphere *s) {
@@ -13,8 +12,6 @@ struct aabb aabb_of_triangle(vec3 a, vec3 b, vec3 c) {
 }
 
 struct aabb aabb_of_box(const struct box *b) { return (struct aabb){b->min, b->max}; }
-
-vec3 aabb_inverse_direction(vec3 d) { return vec3_make(1.0 / d.x, 1.0 / d.y, 1.0 / d.z); }
 
 vec3 aabb_normal(const struct aabb *b, vec3 p) {
     double distance[6] = {fabs(p.x - b->min.x), fabs(p.x - b->max.x), fabs(p.y - b->min.y),

@@ -65,7 +65,7 @@ struct aabb aabb_of_box(const struct box *b);
 
 /* Returns 1 / d per component. A zero component gives +infinity or -infinity by the sign of the zero,
  * which is what the slab test wants (the ray never leaves or enters that slab). */
-vec3 aabb_inverse_direction(vec3 d);
+static inline vec3 aabb_inverse_direction(vec3 d) { return vec3_make(1.0 / d.x, 1.0 / d.y, 1.0 / d.z); }
 
 /* ---- the slab test ---------------------------------------------------------------------------
  * After Kay and Kajiya (SIGGRAPH 1986), in the form of Williams, Barrus, Morley and Shirley, "An
