@@ -45,7 +45,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index antialias sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -54,8 +54,8 @@ MODULES_06 := $(MODULES_05) phong
 MODULES_07 := $(MODULES_06) shadow
 MODULES_08 := $(MODULES_07) interior whitted
 MODULES_09 := $(MODULES_08) kdtree kdtree_check accel
-MODULES_10 := $(MODULES_09) bvh accel_bvh
-MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
+MODULES_10 := $(MODULES_09) bvh bvh_check accel_bvh
+MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_build accel_fast_bvh
 MODULES_12 := $(MODULES_11) sample_hash supersample
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh 11-fast 12-antialias

@@ -10,8 +10,8 @@
  *
  * The rays are chosen to hurt: random ones, rays aimed at faces, vertices and shared edges, rays along
  * the axes (with signed zero components) through vertices, rays lying in planes through vertices or
- * on the padded planes the structures cut space with (BVH_BOX_PAD and KD_BOX_PAD are 2^-20 of the mesh
- * size), origins on vertices, on the mesh's box faces and inside the mesh, tiny and non-unit
+ * on the padded planes the structures cut space with (TRIANGLE_BOX_PAD and KD_BOX_PAD are 2^-20 of the
+ * mesh size), origins on vertices, on the mesh's box faces and inside the mesh, tiny and non-unit
  * directions, and windows that end or start exactly at a hit. The meshes: random triangle soups with
  * degenerate, coincident and axis-aligned triangles, a tessellated sphere, stacked axis-aligned grids,
  * and the bunny and the small teapot when scenes/models has them. */
@@ -24,6 +24,7 @@
 
 #include "bvh.h"
 #include "fast_bvh.h"
+#include "fast_bvh_build.h"
 #include "kdtree.h"
 #include "mesh.h"
 #include "stats.h"
@@ -40,8 +41,8 @@
 #define ACCEL_TEST_MAX_RAYS 12000
 #define ACCEL_TEST_MIN_RAYS 600
 
-/* The fraction of the mesh's size by which both structures pad their boxes (bvh.c, kdtree.c). */
-#define ACCEL_PAD (1.0 / 1048576.0)
+/* The fraction of the mesh's size by which the structures pad their boxes (triangle.h, kdtree.c). */
+#define ACCEL_PAD TRIANGLE_BOX_PAD
 
 /* ---- reproducible random numbers (splitmix64) ---------------------------------------------------- */
 
@@ -856,6 +857,70 @@ Test(accel, info_describes_a_consistent_tree) {
         kdtree_free(k);
     }
     mesh_free(&m);
+}
+
+/* The leaves of the 4-wide subtree (child, count) of b, as (first << 32 | count) into leaves[*n]. */
+static void wide_leaves(const struct fast_bvh *b, uint32_t child, uint32_t count, uint64_t *leaves, size_t *n) {
+    if (count > 0) {
+        leaves[(*n)++] = (uint64_t)child << 32 | count;
+        return;
+    }
+    for (int k = 0; k < FAST_BVH_WIDTH; k++)
+        if (b->nodes[child].child[k] != FAST_BVH_NO_CHILD)
+            wide_leaves(b, b->nodes[child].child[k], b->nodes[child].count[k], leaves, n);
+}
+
+static int compare_leaves(const void *a, const void *b) {
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
+/* Rungs 2 to 4 change only how chapter 10's tree is stored: the same triangles in the same leaf order,
+ * the same leaves, in a tree of fewer and shallower nodes. */
+Test(accel, rungs_2_to_4_are_chapter_10s_tree_made_wide) {
+    struct mesh m = make_soup(37, 3000);
+    for (int rule = 0; rule < 2; rule++) {
+        enum bvh_split split = rule ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN;
+        struct bvh *binary = bvh_build(&m, split);
+        struct fast_bvh *wide = fast_bvh_build(&m, split, FAST_BVH_RUNG_WIDE);
+        cr_assert(binary != NULL && wide != NULL);
+        cr_expect_eq(memcmp(binary->faces, wide->faces, m.face_count * sizeof *wide->faces), 0,
+                     "rule %d: the triangles are not in chapter 10's leaf order", rule);
+        uint64_t *ours = malloc(m.face_count * sizeof *ours), *theirs = malloc(m.face_count * sizeof *theirs);
+        size_t n_ours = 0, n_theirs = 0;
+        wide_leaves(wide, wide->root_child, wide->root_count, ours, &n_ours);
+        for (size_t k = 0; k < binary->node_count; k++)
+            if (binary->nodes[k].count > 0)
+                theirs[n_theirs++] = (uint64_t)binary->nodes[k].first << 32 | binary->nodes[k].count;
+        qsort(ours, n_ours, sizeof *ours, compare_leaves);
+        qsort(theirs, n_theirs, sizeof *theirs, compare_leaves);
+        cr_expect(n_ours == n_theirs && memcmp(ours, theirs, n_ours * sizeof *ours) == 0,
+                  "rule %d: %zu leaves, chapter 10's tree has %zu, or they differ", rule, n_ours, n_theirs);
+        cr_expect_lt(wide->node_count, binary->node_count - binary->info.leaves, "rule %d", rule);
+        cr_expect_lt(wide->info.max_depth, binary->info.max_depth, "rule %d", rule);
+        free(ours);
+        free(theirs);
+        fast_bvh_free(wide);
+        bvh_free(binary);
+    }
+    mesh_free(&m);
+}
+
+/* Rung 5's float build makes a tree as good as chapter 10's by the SAH's own measure (not node for node:
+ * its centroids are floats and a small node has fewer slots). */
+Test(accel, rung_5_builds_a_tree_as_good_by_the_sah) {
+    struct mesh meshes[] = {make_soup(41, 3000), make_sphere(32, 64, vec3_make(0, 0, 0), 1.0), make_grids(6)};
+    for (size_t k = 0; k < sizeof meshes / sizeof meshes[0]; k++) {
+        struct fast_bvh *collapsed = fast_bvh_build(&meshes[k], BVH_SPLIT_SAH, FAST_BVH_RUNG_PREFETCH);
+        struct fast_bvh *built = fast_bvh_build(&meshes[k], BVH_SPLIT_SAH, FAST_BVH_RUNG_BUILD);
+        cr_assert(collapsed != NULL && built != NULL);
+        double ratio = built->info.sah_cost / collapsed->info.sah_cost;
+        cr_expect(ratio > 0.97 && ratio < 1.03, "mesh %zu: rung 5's tree costs %.4f by the SAH, rung 4's %.4f", k,
+                  built->info.sah_cost, collapsed->info.sah_cost);
+        fast_bvh_free(collapsed);
+        fast_bvh_free(built);
+        mesh_free(&meshes[k]);
+    }
 }
 
 /* The SAH tree is the cheaper one by the SAH's own measure (the seed's rule prices nothing), and an

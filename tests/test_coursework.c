@@ -49,7 +49,7 @@ Test(coursework, student_copy_fails_on_stubs_and_passes_with_each_reference_body
     cr_assert_eq(run(log, "tools/student.sh %s", dir), 0, "make student failed: see %s", log);
     /* This build's objects, older than the blanked files, so that only those are compiled again. */
     cr_assert_eq(run(log, "mkdir -p %s/%s && cp -rp %s/common %s/tools %s/checks %s/chapters %s/%s/ && touch $(grep -l "
-                          "'TODO (chapter' %s/common/*.c)", dir, build, build, build, build, build, dir, build, dir), 0,
+                          "'TODO (chapter' %s/common/*.[ch])", dir, build, build, build, build, build, dir, build, dir), 0,
                  "cannot seed the copy's build: see %s", log);
     cr_assert_eq(run(log, "make -C %s %s -j2 %s/check", dir, san, build), 0, "the student copy does not build: see %s", log);
 

@@ -13,7 +13,7 @@ set -eu
 cd "$(dirname "$0")/.."
 
 marked() {
-    grep -n '^/\* TASK [0-9][0-9]*\.[0-9][0-9]*: .* \*/$' common/*.c chapters/*/main.c 2>/dev/null |
+    grep -n '^/\* TASK [0-9][0-9]*\.[0-9][0-9]*: .* \*/$' common/*.[ch] chapters/*/main.c 2>/dev/null |
         sed 's|^\([^:]*\):[0-9]*:/\* TASK \([0-9.]*\): \(.*\) \*/$|\2 \1 \3|' | sort -t. -k1,1n -k2,2n
 }
 
@@ -53,7 +53,7 @@ printf '%s\n' "$files" | while IFS= read -r f; do
     [ -f "$f" ] || continue # deleted but not yet committed
     mkdir -p "$dir/$(dirname "$f")"
     case "$f" in
-    common/*.c | chapters/*.c) awk -v tasks="$tasks" -f tools/student_blank.awk "$f" >"$tmp" ;;
+    common/*.[ch] | chapters/*.c) awk -v tasks="$tasks" -f tools/student_blank.awk "$f" >"$tmp" ;;
     *) cp "$f" "$tmp" ;;
     esac
     if ! cmp -s "$tmp" "$dir/$f"; then

@@ -9,6 +9,7 @@
 #include "bvh.h"
 #include "check.h"
 #include "fast_bvh.h"
+#include "fast_bvh_build.h"
 #include "hit.h"
 #include "kdtree.h"
 #include "stats.h"

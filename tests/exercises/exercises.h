@@ -88,7 +88,7 @@ WEAK double bvh_split_cost(const struct aabb *boxes, int n, int axis, double pla
 typedef double (*split_cost_fn)(const struct aabb *, int, int, double);
 bool check_split_cost(split_cost_fn f, char *why, size_t why_size);
 
-/* Exercise 11.4 (common/fast_bvh.c): a binary BVH collapsed into a 4-wide one, as rung 2 does. A child
+/* Exercise 11.4 (common/fast_bvh_build.c): a binary BVH collapsed into a 4-wide one, as rung 2 does. A child
  * is written as an int: k >= 0 for node k of the same tree, -1 - L for leaf L (BVH_LEAF(L)). */
 #define BVH_LEAF(l) (-1 - (l))
 #define BVH4_NONE INT_MIN /* an unused slot of a 4-wide node */

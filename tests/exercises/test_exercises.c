@@ -34,5 +34,5 @@ EXERCISE(7, an_area_light_casts_a_penumbra, shadow_area_fraction, check_area_fra
 EXERCISE(8, schlick_reflects_more_at_grazing_angles, whitted_schlick, check_schlick, "common/whitted.c")
 EXERCISE(9, the_grid_walk_lists_the_cells_in_order, grid_walk, check_grid_walk, "common/grid.c")
 EXERCISE(10, the_split_cost_follows_the_sah, bvh_split_cost, check_split_cost, "common/bvh.c")
-EXERCISE(11, four_children_per_node_widest_opened_first, bvh4_collapse, check_collapse, "common/fast_bvh.c")
+EXERCISE(11, four_children_per_node_widest_opened_first, bvh4_collapse, check_collapse, "common/fast_bvh_build.c")
 EXERCISE(12, n_rooks_one_sample_in_each_row_and_column, supersample_rooks, check_rooks, "common/supersample.c")
