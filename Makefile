@@ -185,7 +185,7 @@ $(BUILD)/mutant-moller-trumbore: $(BUILD)/chapters/10-bvh.o $(addprefix $(BUILD)
 
 # $(BUILD)/bench_accel: tests/test_bench_csv.c runs the benchmark on the bunny (without Embree).
 test: all $(BUILD)/run-tests $(MUTANTS) $(BUILD)/bench_accel
-	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
+	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests $(STUDENT_TESTS)
 
 compare: all $(BUILD)/compare
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
@@ -234,8 +234,10 @@ help:
 	@sed -n '2,18p' Makefile | sed 's/^# \{0,1\}//'
 
 # ---- the coursework kit (docs/coursework.md) -----------------------------------------------------
-#   make student DIR=path [TASKS="2.1 5.1"]  a student copy with the marked tasks' bodies blanked
+#   make student DIR=path [TASKS="2.1 5.1"] [ANSWERS=1]  a student copy with the marked tasks' bodies
+#                                              blanked; ANSWERS=1 keeps the model answers (a lecturer's)
 #   make check-N (N = 1..11), make check       grade chapter N (or all): each task, then a scoreboard
+#   make exercises                             the build exercises (★★★) the student has started
 CHECK_OBJECTS := $(patsubst tests/checks/%.c,$(BUILD)/checks/%.o,$(wildcard tests/checks/*.c))
 
 $(BUILD)/checks/%.o: tests/checks/%.c
@@ -257,8 +259,22 @@ check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_nu
 	WHITTED_BUILD=$(BUILD) ./$(BUILD)/check all
 
 student:
-	@test -n "$(DIR)" || { echo 'make student DIR=path [TASKS="2.1 5.1"]: say where the copy goes' >&2; exit 2; }
-	tools/student.sh "$(DIR)" "$(TASKS)"
+	@test -n "$(DIR)" || { echo 'make student DIR=path [TASKS="2.1 5.1"] [ANSWERS=1]: say where the copy goes' >&2; exit 2; }
+	tools/student.sh "$(DIR)" "$(TASKS)" $(if $(filter 1,$(ANSWERS)),--answers)
 
-.PHONY: check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11,check-$(n))
+# The build exercises (★★★): each one whose function common/ defines is linked into a small program of
+# its own and checked; the others say where to start. Needs only the compiler.
+exercises: $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES))) $(BUILD)/tests/exercises/checks.o
+	@CC="$(CC)" CFLAGS="$(CFLAGS)" LDFLAGS="$(LDFLAGS)" LDLIBS="$(LDLIBS)" tests/exercises/runner/run.sh $(BUILD) $^
+
+# In a student copy (tools/student.sh leaves .student-copy in it), make test runs the suites that apply
+# to a student: the framework around the tasks and the kit itself, which pass whatever the tasks hold.
+# make test ALL=1 runs the authors' whole suite, which needs every task done.
+ifneq ($(wildcard .student-copy),)
+ifneq ($(ALL),1)
+STUDENT_TESTS := --filter '@($(shell grep -v '^\#' tests/student-suites | paste -sd'|'))/*'
+endif
+endif
+
+.PHONY: check student exercises $(foreach n,1 2 3 4 5 6 7 8 9 10 11,check-$(n))
 test: $(BUILD)/check

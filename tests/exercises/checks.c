@@ -132,7 +132,17 @@ static bool check_disc_syntax(const struct shape_kind *kind, char *why, size_t w
     return same;
 }
 
+const struct shape_kind *exercise_disc_kind(void) {
+    for (size_t k = 0; k < SHAPE_KIND_COUNT; k++)
+        if (strcmp(shape_kinds[k].keyword, "disc") == 0)
+            return &shape_kinds[k];
+    return NULL;
+}
+
 bool check_disc(const struct shape_kind *kind, char *why, size_t why_size) {
+    if (kind == NULL)
+        return fail(why, why_size, "there is no kind of shape called disc: add #include \"disc.h\" to "
+                    "common/shape_kinds.h, and end disc.h with SHAPE_KIND(disc, discs, DISCS, 2)");
     if (!disc_kind_complete(kind, why, why_size) || !check_disc_syntax(kind, why, why_size))
         return false;
     static const struct {
