@@ -70,12 +70,12 @@ static char *quoted_block(const char *intro) {
 }
 
 /* Makes a student copy of the repository with `tasks` blanked (options: "--answers") in a new folder
- * *dir, its log in *log, and seeds its build with this build's objects and generated models: older than
+ * *dir (outside the repository, as make student requires), its log in *log (under out/test/), and seeds its build with this build's objects and generated models: older than
  * the blanked files, so that only those are compiled again. */
 static void make_copy(char dir[static 64], char log[static 80], const char *tasks, const char *options) {
     snprintf(dir, 64, "/tmp/whitted-coursework-XXXXXX");
     cr_assert_not_null(mkdtemp(dir));
-    snprintf(log, 80, "%s.log", dir);
+    snprintf(log, 80, "out/test/%s.log", strrchr(dir, '/') + 1);
     remove(log);
     cr_assert_eq(run(log, "tools/student.sh %s '%s' %s", dir, tasks, options), 0,
                  "make student failed: see %s", log);
@@ -204,6 +204,15 @@ Test(coursework_long, a_fresh_copy_is_a_hand_out_that_builds_and_passes_its_make
               strstr(again, "/* mine */\n") != NULL && strstr(again, "\nsame\n") != NULL,
               "make student run again over the copy (status %d):\n%s", status, again);
     free(again);
+
+    /* ANSWERS=1: a lecturer's copy keeps the model answers, the patches and the walkthroughs' quotes. */
+    char *lecturer = output_of(&status, "tools/student.sh %1$s.answers all --answers >/dev/null && "
+                                        "ls %1$s.answers/tests/exercises/solutions.c %1$s.answers/tools/gallery/*.patch | "
+                                        "wc -l && cmp docs/02-sphere.md %1$s.answers/docs/02-sphere.md && echo same; "
+                                        "rm -rf %1$s.answers", dir);
+    cr_expect(status == 0 && atoi(lecturer) >= 13 && strstr(lecturer, "\nsame\n") != NULL,
+              "make student ANSWERS=1 (status %d):\n%s", status, lecturer);
+    free(lecturer);
 
     /* It refuses a folder that is not empty and is not a copy. */
     char *refused = output_of(&status, "mkdir -p %1$s.other && touch %1$s.other/notes.txt && tools/student.sh %1$s.other; "
@@ -342,7 +351,7 @@ Test(coursework_long, each_picture_check_needs_exactly_the_tasks_its_program_run
     char dir[64], log[80];
     snprintf(dir, sizeof dir, "/tmp/whitted-coursework-trace-XXXXXX");
     cr_assert_not_null(mkdtemp(dir));
-    snprintf(log, sizeof log, "%s.log", dir);
+    snprintf(log, sizeof log, "out/test/%s.log", strrchr(dir, '/') + 1);
     remove(log);
     cr_assert_eq(run(log, "cp -rp Makefile common chapters bench fuzz reference_images %1$s/ && mkdir -p %1$s/tools "
                           "%1$s/tests %1$s/scenes %1$s/%2$s && cp -rp tools/*.sh tools/*.c tools/*.h tools/*.mk "
@@ -367,5 +376,4 @@ Test(coursework_long, each_picture_check_needs_exactly_the_tasks_its_program_run
         free(needs);
     }
     run(log, "rm -rf %s", dir);
-    remove(log);
 }

@@ -208,37 +208,40 @@ static bool layered_rays(const char *what, const void *tree, closest_fn closest,
     return true;
 }
 
+/* layers() in a mesh with room for `extra` more triangles (three new corners each), added with add_face. */
+static struct mesh layers_with_room(size_t extra) {
+    struct mesh m = layers();
+    struct mesh big = new_mesh(m.face_count + extra);
+    memcpy(big.vertices, m.vertices, m.vertex_count * sizeof *m.vertices);
+    memcpy(big.faces, m.faces, m.face_count * sizeof *m.faces);
+    big.vertex_count = m.vertex_count;
+    big.face_count = m.face_count;
+    mesh_free(&m);
+    return big;
+}
+
+/* Adds the triangle a, b, c to m, which has room for it. */
+static void add_face(struct mesh *m, vec3 a, vec3 b, vec3 c) {
+    size_t v = m->vertex_count;
+    m->vertices[v] = a;
+    m->vertices[v + 1] = b;
+    m->vertices[v + 2] = c;
+    m->faces[m->face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
+    m->vertex_count += 3;
+}
+
 /* layers() with four walls across x (planes x = 0.5, 1.5, 2.5, 3.5, each two triangles) and one long
  * slanted triangle, in the plane x + z = 2.5, that crosses them all: a tree must list it in many cells,
  * and a ray can hit it in the first cell it enters at a point beyond that cell, with a nearer wall in
  * the next. */
 static struct mesh crossed_layers(void) {
-    struct mesh m = layers();
-    struct mesh big = new_mesh(96 + 9);
-    for (size_t k = 0; k < m.vertex_count; k++)
-        big.vertices[k] = m.vertices[k];
-    for (size_t k = 0; k < m.face_count; k++)
-        big.faces[k] = m.faces[k];
-    big.vertex_count = m.vertex_count;
-    big.face_count = m.face_count;
-    mesh_free(&m);
+    struct mesh big = layers_with_room(9);
     for (int w = 0; w < 4; w++) {
-        size_t v = big.vertex_count;
         double x = w + 0.5;
-        big.vertices[v] = vec3_make(x, 0, -3);
-        big.vertices[v + 1] = vec3_make(x, 4, -3);
-        big.vertices[v + 2] = vec3_make(x, 4, 1);
-        big.vertices[v + 3] = vec3_make(x, 0, 1);
-        big.faces[big.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
-        big.faces[big.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 2, (uint32_t)v + 3}};
-        big.vertex_count += 4;
+        add_face(&big, vec3_make(x, 0, -3), vec3_make(x, 4, -3), vec3_make(x, 4, 1));
+        add_face(&big, vec3_make(x, 0, -3), vec3_make(x, 4, 1), vec3_make(x, 0, 1));
     }
-    size_t v = big.vertex_count;
-    big.vertices[v] = vec3_make(4.5, -1, -2);
-    big.vertices[v + 1] = vec3_make(4.5, 6, -2);
-    big.vertices[v + 2] = vec3_make(-1, 2.5, 3.5);
-    big.faces[big.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
-    big.vertex_count += 3;
+    add_face(&big, vec3_make(4.5, -1, -2), vec3_make(4.5, 6, -2), vec3_make(-1, 2.5, 3.5));
     return big;
 }
 
@@ -491,33 +494,27 @@ CHECK(check_bvh_near_first) {
  * the angle between its edges from the first corner is 6.7e-7, below the 1e-6 under which the BVH keeps a
  * triangle out of the tree (BVH_SLIVER_SINE in bvh.c) and has every ray test it. */
 static struct mesh layers_and_a_sliver(void) {
-    struct mesh m = layers();
-    struct mesh big = new_mesh(96 + 1);
-    for (size_t k = 0; k < m.vertex_count; k++)
-        big.vertices[k] = m.vertices[k];
-    for (size_t k = 0; k < m.face_count; k++)
-        big.faces[k] = m.faces[k];
-    big.vertex_count = m.vertex_count;
-    big.face_count = m.face_count;
-    mesh_free(&m);
-    size_t v = big.vertex_count;
-    big.vertices[v] = vec3_make(0.5, 2, 1);
-    big.vertices[v + 1] = vec3_make(3.5, 2, 1);
-    big.vertices[v + 2] = vec3_make(2, 2 + 1e-6, 1);
-    big.faces[big.face_count++] = (struct mesh_face){{(uint32_t)v, (uint32_t)v + 1, (uint32_t)v + 2}};
-    big.vertex_count += 3;
+    struct mesh big = layers_with_room(1);
+    add_face(&big, vec3_make(0.5, 2, 1), vec3_make(3.5, 2, 1), vec3_make(2, 2 + 1e-6, 1));
     return big;
 }
 
-CHECK(check_bvh_slivers) {
-    struct mesh m = layers_and_a_sliver();
-    check_calling("bvh_build", "three layers of triangles and a needle-thin one above them");
+/* Builds the BVH (SAH) over mesh(), which `what` describes; NULL, saying so in why, when bvh_build fails. */
+static struct bvh *bvh_over(struct mesh (*mesh)(void), const char *what, char *why, size_t why_size) {
+    struct mesh m = mesh();
+    check_calling("bvh_build", "%s", what);
     struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
     mesh_free(&m);
-    if (b == NULL) {
-        snprintf(why, why_size, "bvh_build returned NULL");
+    if (b == NULL)
+        snprintf(why, why_size, "bvh_build returned NULL on %s", what);
+    return b;
+}
+
+CHECK(check_bvh_slivers) {
+    struct bvh *b = bvh_over(layers_and_a_sliver, "three layers of triangles and a needle-thin one above them", why,
+                             why_size);
+    if (b == NULL)
         return false;
-    }
     /* Rays down -z from z = 5 through the sliver, where it is 1e-6 high: its hit at t = 4 is nearer than
      * the top layer's at t = 5. */
     const double xs[] = {1.0, 2.0, 2.9};
@@ -546,14 +543,9 @@ CHECK(check_bvh_slivers) {
 }
 
 CHECK(check_bvh_counted) {
-    struct mesh m = layers();
-    check_calling("bvh_build", "three layers of triangles at z = 0, -1, -2 over [0, 4]^2");
-    struct bvh *b = bvh_build(&m, BVH_SPLIT_SAH);
-    mesh_free(&m);
-    if (b == NULL) {
-        snprintf(why, why_size, "bvh_build returned NULL");
+    struct bvh *b = bvh_over(layers, "three layers of triangles at z = 0, -1, -2 over [0, 4]^2", why, why_size);
+    if (b == NULL)
         return false;
-    }
     ray down = {{1.3, 2.6, 5}, {0, 0, -1}};
     double t;
     uint32_t face;

@@ -9,6 +9,8 @@
 #
 #   Check: the tasks whose checks must fail with the fault in (unit tasks, N.K), e.g. "2.1"
 #   Says:  words the grader's report must contain, e.g. "sphere_normal crashed (segmentation fault"
+#   Says-sanitized: what it must contain instead in a build with the sanitizers (BUILD ends in /san), when
+#          that differs: AddressSanitizer reports a crash itself and stops the process with a status
 #
 # The fault goes into a private copy of the sources, built from BUILD's objects so that only the patched
 # file is compiled again; the repository is never touched. Exits 0 when every Check task fails and the
@@ -23,6 +25,7 @@ patch=${2:?usage: tests/checks/prove_fault.sh BUILD PATCH [SAYS]}
 field() { sed -n "s/^$1: //p" "$patch" | head -n 1; }
 tasks=$(field Check)
 says=${3:-$(field Says)}
+case $build in */san) [ -n "$(field Says-sanitized)" ] && says=$(field Says-sanitized) ;; esac
 [ -n "$tasks" ] || { echo "$patch names no Check task" >&2; exit 2; }
 
 work=out/faults/work-$$
