@@ -1,48 +1,30 @@
 # Makefile: builds the chapters of the whitted ray tracer, renders their scenes, runs the tests.
 #
-#   make chapter-N      build chapter N (1..11) and render its scene to out/chapter-NN.png
-#   make chapters       build and render every written chapter
-#   make test           unit tests, image regression, POV-Ray agreement (installs what is missing)
-#   make test-sanitize  the same suite built with AddressSanitizer and UndefinedBehaviorSanitizer
-#   make test-accel-long  the kd-tree and BVH differential tests with millions of rays
-#   make references     re-render the reference images on purpose and say what changed
-#   make gallery        render the gallery of wrong pictures into docs/gallery.md
-#   make figures        redraw the walkthroughs' figures, docs/figures/*.svg, from tools/figures/
-#   make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
-#                       (UPDATE_DOCS=1 also writes the table into docs/povray.md)
-#   make results        the seed's experiments redone: CSVs, plots and tables of docs/results.md
-#                       (QUICK=1: a small version in about a minute, into out/results-quick/)
-#   make bench          kd-tree, BVH and chapter 11's rungs against Embree; peak memory on a 4M-triangle teapot
-#   make check-N        grade chapter N's coursework tasks (make check: all), docs/coursework.md
-#   make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": some)
-#   make fuzz           the libFuzzer harnesses (scene, PLY, OBJ, renderer), FUZZ_SECONDS each
-#   make clean          remove build/ and out/
+# `make help` lists every target: the lines starting with "## " above the rules, here and, where they
+# are included, in the fragments (tools/models/models.mk, bench/bench.mk, fuzz/fuzz.mk,
+# tools/results/results.mk).
 #
 # Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
 # below), so a chapter that reaches for a later idea fails to link.
 
-# ---- dependencies: Debian packages, installed when missing --------------------------------------
-# Each goal asks only for what it needs (tools/install-deps.sh lists the packages): building and
-# rendering a chapter needs gcc and stb; the tests add Criterion and POV-Ray; make compare adds POV-Ray.
-DEPS_NEEDS := build $(if $(filter test test-sanitize test-accel-long %run-tests,$(MAKECMDGOALS)),test) \
-              $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter results,$(MAKECMDGOALS)),results)
-ifeq ($(filter clean help,$(MAKECMDGOALS)),)
-DEPS_READY := $(shell tools/install-deps.sh $(DEPS_NEEDS) >&2 && echo yes)
-ifneq ($(DEPS_READY),yes)
-$(error missing packages: see the message above)
-endif
-endif
+# ---- packages: Debian packages, installed when missing ------------------------------------------
+# Every rule that compiles, and every goal that runs POV-Ray or gnuplot, has `deps` as an order-only
+# prerequisite: before anything is built, tools/build/install-deps.sh installs what this run's goals
+# need and is missing (nothing while the Makefile is only read, so make help and make clean install
+# nothing). Building and rendering a chapter needs gcc and stb; the tests add Criterion, POV-Ray and
+# gnuplot; make compare adds POV-Ray, make results POV-Ray and gnuplot. make bench and make fuzz install
+# Embree and clang in their own recipes, before a second make that sees them. The rule is `deps`, at
+# the end.
+DEPS_NEEDS := build $(strip \
+    $(if $(filter test test-long test-sanitize test-accel-long %run-tests %run-accel-long,$(MAKECMDGOALS)),test) \
+    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter results,$(MAKECMDGOALS)),results))
 
 # stb from the system, or else unpacked into .deps/ by install-deps.sh on a machine without root
-# (linked statically from there, so the programs need nothing from .deps/ at run time).
-LOCAL_STB_LIB := $(firstword $(wildcard .deps/root/usr/lib/*/libstb.a))
-ifeq ($(if $(filter local,$(WHITTED_DEPS)),,$(shell pkg-config --exists stb 2>/dev/null && echo yes)),yes)
-STB_CFLAGS := $(shell pkg-config --cflags stb)
-STB_LIBS := $(shell pkg-config --libs stb)
-else
-STB_CFLAGS := -I.deps/root/usr/include/stb
-STB_LIBS := $(LOCAL_STB_LIB)
-endif
+# (linked statically from there, so the programs need nothing from .deps/ at run time). These are
+# recursive variables, worked out when a recipe uses them, after the packages step.
+STB_FROM_DEPS = $(or $(filter local,$(WHITTED_DEPS)),$(if $(shell pkg-config --exists stb 2>/dev/null && echo yes),,local))
+STB_CFLAGS = $(if $(STB_FROM_DEPS),-I.deps/root/usr/include/stb,$(shell pkg-config --cflags stb))
+STB_LIBS = $(if $(STB_FROM_DEPS),$(firstword $(wildcard .deps/root/usr/lib/*/libstb.a)),$(shell pkg-config --libs stb))
 
 # ---- flags -------------------------------------------------------------------------------------
 CC := gcc
@@ -57,15 +39,15 @@ endif
 # -ffp-contract=off: a*b - c*d is two rounded products and a rounded difference, never a fused
 # multiply-add. The watertight triangle test relies on it (common/triangle.c); -std=c11 implies it in
 # GCC, and saying it keeps it so under -std=gnu11 or on a machine with FMA.
-CFLAGS := -std=c11 -D_DEFAULT_SOURCE -g $(OPT) -ffp-contract=off -Wall -Wextra -Werror -fopenmp -Icommon $(STB_CFLAGS)
+CFLAGS = -std=c11 -D_DEFAULT_SOURCE -g $(OPT) -ffp-contract=off -Wall -Wextra -Werror -fopenmp -Icommon $(STB_CFLAGS)
 LDFLAGS := $(OPT) -fopenmp
-LDLIBS := $(STB_LIBS) -lm
+LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := stats camera image outfile infile text_escape name_index antialias sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
-MODULES_03 := $(MODULES_02) triangle mesh mesh_ply mesh_obj scene_meshes
+MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
 MODULES_05 := $(MODULES_04) aabb box world
 MODULES_06 := $(MODULES_05) phong
@@ -74,41 +56,44 @@ MODULES_08 := $(MODULES_07) interior whitted
 MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh accel_bvh
 MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
+MODULES_12 := $(MODULES_11) sample_hash supersample
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast
+            09-kdtree 10-bvh 11-fast 12-antialias
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
 chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 
-# ---- models: the bunny is committed, the teapots are generated (tools/models.mk) -----------------
-include tools/models.mk
+# The models the chapters' scenes name: the bunny is committed, the teapots are generated
+# (tools/models/models.mk, included below).
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
-.PHONY: all chapters test test-sanitize test-accel-long references compare gallery figures clean help models \
-        $(foreach n,1 2 3 4 5 6 7 8 9 10 11,chapter-$(n))
+.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare gallery figures \
+        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
-.SECONDARY:
 .SECONDEXPANSION:
 
+## make all            build every chapter (build/chapter-NN), build/compare, build/figures and the models
+##                     (what a plain `make` does)
 all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(BUILD)/compare $(BUILD)/figures \
      $(SCENE_MODELS)
 
 # ---- compiling ---------------------------------------------------------------------------------
-$(BUILD)/common/%.o: common/%.c | $(BUILD)/common
+$(BUILD)/common/%.o: common/%.c | $(BUILD)/common deps
 	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
 
-$(BUILD)/chapters/%.o: chapters/%/main.c | $(BUILD)/chapters
+$(BUILD)/chapters/%.o: chapters/%/main.c | $(BUILD)/chapters deps
 	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
 
-$(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests
+$(BUILD)/tests/%.o: tests/%.c | $(BUILD)/tests deps
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS) -Itests/support -MMD -MP -c $< -o $@
 
-$(BUILD)/tools/%.o: tools/%.c | $(BUILD)/tools
-	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
+$(BUILD)/tools/%.o: tools/%.c | $(BUILD)/tools deps
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Itests/support -MMD -MP -c $< -o $@
 
-$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools $(BUILD)/mutants out:
+$(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools out:
 	mkdir -p $@
 
 -include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
@@ -117,13 +102,14 @@ $(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools $(BUILD)/mutants
 define chapter_rules
 $(BUILD)/chapter-$(call chapter_number,$(1)): $(BUILD)/chapters/$(1).o \
         $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
-	tools/link-chapter.sh $(BUILD) $$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
+	tools/build/link-chapter.sh $(BUILD) $$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..11: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# chapter-N for N = 1..12: explicit rules (GNU make skips pattern rules for phony targets). Only the
 # models that the chapter's scene names are made first (mesh paths are relative to scenes/).
+## make chapter-N      build chapter N (1..12) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -132,27 +118,87 @@ chapter-$(1): | out
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call run_chapter_rule,$(n))))
 
+## make chapters       build and render every written chapter
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
 
-# ---- benchmarks (bench/bench.mk): make bench, make bench-accel ----------------------------------
+# ---- models, benchmarks, fuzzing, make results: GNU make fragments -------------------------------
+include tools/models/models.mk
 include bench/bench.mk
-
-# ---- fuzzing (fuzz/fuzz.mk): make fuzz, make fuzz-smoke -----------------------------------------
 include fuzz/fuzz.mk
 include tools/results/results.mk
+# The teapot generator is compiled too, so after the packages step (models.mk also works without this
+# Makefile, so it cannot name `deps` itself).
+$(MODELS_TEAPOT): | deps
 
 # ---- tests -------------------------------------------------------------------------------------
-TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c)
+TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c tests/support/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
-TOOL_OBJECTS := $(BUILD)/tools/image_compare.o
-TEST_TOOL_OBJECTS := $(TOOL_OBJECTS) $(BUILD)/tools/closed_mesh.o
+# The picture comparison (and the box filter that averages a picture down, chapter 12): the tests', the grader's and build/compare's.
+IMAGE_COMPARE_OBJECT := $(BUILD)/tests/support/image_compare.o $(BUILD)/tests/support/box_filter.o
 
-$(BUILD)/run-tests: $(TEST_OBJECTS) $(TEST_TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+# The tests and what they link: the modules, tests/support/, and the fuzzers' renderer check
+# (fuzz/fuzz.mk), which tests/test_fuzz_regressions.c runs on the saved inputs.
+$(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES))) \
+        $(BUILD)/fuzz/render_check.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
 
-$(BUILD)/compare: $(BUILD)/tools/compare.o $(TOOL_OBJECTS) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+$(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
+# The tests that take a minute or more run in make test-long, not make test: Criterion's "suite/test"
+# patterns (`run-tests --filter`). Those that build patched copies of the tree (the gallery's faults,
+# the coursework kit's student copy, the mutants), the results' quick run, the docs' commands run in a
+# copy of the repository, the no-root install, and the largest differential tests (thousands of
+# triangles, meshes beyond float range, whole pictures by every structure and rung). make test and
+# make test-long together run every test once; CI runs both (.ci/run).
+LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
+              coursework/the_grader_ends_every_run_with_a_scoreboard_of_every_task \
+              coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_grades_* coursework_long/* \
+              results/the_quick_mode_runs_every_experiment_and_draws_every_plot_and_table \
+              doc_commands/every_command_runs_as_written deps/without_root_and_without_stb_* \
+              povray_agreement/catches_a_highlight_multiplied_by_the_pigment \
+              watertight/chapter_10_with_moller_trumbore_draws_the_leak \
+              accel/*_soups_of_3000_triangles accel/*_soups_of_5000_triangles accel/*_outside_float_range \
+              accel/*_corners_at_infinity_or_nan acceleration/every_structure_draws_the_brute_force_picture \
+              acceleration/every_rung_of_chapter_11_draws_the_brute_force_picture
+LONG_TESTS_PATTERN := @($(subst $() ,|,$(strip $(LONG_TESTS))))
+RUN_TESTS := LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
+
+## make test           the quick suite, about a minute: unit tests, reference images, agreement with
+##                     POV-Ray, the docs' code and outputs (installs what it needs first)
+test: all $(BUILD)/run-tests $(BUILD)/bench_accel | deps
+	$(RUN_TESTS) --filter '$(TEST_FILTER)'
+
+## make test-long      the tests make test leaves out (LONG_TESTS in the Makefile), ten minutes or more:
+##                     the gallery's faults, the coursework kit, the mutants, make results QUICK=1, the
+##                     docs' commands, the largest differential tests
+test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(MODELS_TEAPOT) | deps
+	$(RUN_TESTS) --filter '$(LONG_TESTS_PATTERN)'
+
+## make test-sanitize  make test's suite built with AddressSanitizer and UndefinedBehaviorSanitizer,
+##                     into build/san (make test-long SAN=1: the long one too)
+test-sanitize:
+	$(MAKE) --no-print-directory SAN=1 test
+
+# The kd-tree and BVH differential tests with 20 times the rays (millions), without a time limit.
+# Its own program: tests/test_accel.c built with ACCEL_TEST_TIMEOUT=0, since a test's own .timeout
+# outranks --timeout 0 and 20 times the rays take longer than the 120 s the tests allow.
+$(BUILD)/tests/test_accel_long.o: tests/test_accel.c | $(BUILD)/tests deps
+	$(CC) $(CFLAGS) -Itests/support -DACCEL_TEST_TIMEOUT=0 -MMD -MP -c $< -o $@
+
+$(BUILD)/run-accel-long: $(BUILD)/tests/test_accel_long.o $(filter $(BUILD)/tests/support/%,$(TEST_OBJECTS)) \
+        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
+
+## make test-accel-long  the kd-tree and BVH differential tests (every rung of chapter 11 included)
+##                     with 20 times the rays, millions, and no time limit
+test-accel-long: $(BUILD)/run-accel-long | deps
+	WHITTED_ACCEL_RAYS=20 WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-accel-long --filter 'accel/*' --timeout 0
+
+# Chapter 12's walkthrough: regions of pictures side by side, enlarged (tools/antialias-docs.sh).
+$(BUILD)/inset: $(BUILD)/tools/inset.o $(BUILD)/common/image.o $(BUILD)/common/outfile.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # Chapter NN's program linked with the modules of chapter MM instead of its own:
@@ -162,125 +208,116 @@ layering_chapter = $(call chapter_dir,$(word 1,$(subst -with-, ,$(1))))
 layering_modules = $(MODULES_$(word 2,$(subst -with-, ,$(1))))
 $(BUILD)/layering-%: $$(BUILD)/chapters/$$(call layering_chapter,$$*).o \
         $$(addprefix $$(BUILD)/common/,$$(addsuffix .o,$$(call layering_modules,$$*)))
-	tools/link-chapter.sh $(BUILD) $(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+	tools/build/link-chapter.sh $(BUILD) $(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-# Deliberately wrong tracers, for the tests that prove the POV-Ray agreement check catches real
-# mistakes: chapter 6 with its highlight multiplied by the pigment colour (see common/phong.c).
-MUTANTS := $(BUILD)/mutant-highlight-times-pigment $(BUILD)/mutant-moller-trumbore
-$(BUILD)/mutants/phong-highlight-times-pigment.o: common/phong.c | $(BUILD)/mutants
-	$(CC) $(CFLAGS) -DWHITTED_MUTANT_HIGHLIGHT_TIMES_PIGMENT -MMD -MP -c $< -o $@
+# ---- mutants: deliberately wrong tracers for the tests ---------------------------------------------
+# tests/mutants/NAME.patch is a classic mistake as a patch, whose "Program: N" line names a chapter.
+# $(BUILD)/mutant-NAME is that chapter built from a patched copy of common/ and chapters/ in
+# $(BUILD)/mutants/NAME/ (tests/support/patched-copy.sh), by a second make that sees the copy as it
+# is now; the sources themselves never carry the mistake. The tests prove that their checks catch each
+# one (tests/test_images.c, tests/test_watertight.c).
+MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
+mutant_chapter = $(call chapter_dir,$(shell printf '%02d' $$(sed -n 's/^Program: //p' tests/mutants/$(1).patch)))
 
-$(BUILD)/mutant-highlight-times-pigment: $(BUILD)/chapters/06-phong.o $(BUILD)/mutants/phong-highlight-times-pigment.o \
-        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(filter-out phong,$(MODULES_06))))
+$(BUILD)/mutant-%: tests/mutants/%.patch tests/support/patched-copy.sh $(wildcard common/*.[ch] chapters/*/main.c)
+	tests/support/patched-copy.sh $< $(BUILD)/mutants/$* common chapters
+	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) MUTANT=$* $(BUILD)/mutants/$*/program
+	cp $(BUILD)/mutants/$*/program $@
+
+# In the second make (MUTANT=NAME): the copy's objects, with the copy's headers first.
+ifneq ($(MUTANT),)
+MUTANT_DIR := $(BUILD)/mutants/$(MUTANT)
+MUTANT_CHAPTER := $(call mutant_chapter,$(MUTANT))
+$(MUTANT_DIR)/%.o: $(MUTANT_DIR)/%.c | deps
+	$(CC) -I$(MUTANT_DIR)/common $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(MUTANT_DIR)/program: $(MUTANT_DIR)/chapters/$(MUTANT_CHAPTER)/main.o \
+        $(addprefix $(MUTANT_DIR)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(MUTANT_CHAPTER)))))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-# Chapter 10 with Moller-Trumbore in place of the watertight triangle test (common/triangle.h), in the
-# brute-force loop, the kd-tree and the BVH alike: the tests show it letting rays through closed meshes.
-$(BUILD)/mutants/mt/%.o: common/%.c | $(BUILD)/mutants
-	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -DWHITTED_MUTANT_MOLLER_TRUMBORE -MMD -MP -c $< -o $@
+-include $(wildcard $(MUTANT_DIR)/common/*.d $(MUTANT_DIR)/chapters/*/*.d)
+endif
 
-$(BUILD)/mutant-moller-trumbore: $(BUILD)/chapters/10-bvh.o $(addprefix $(BUILD)/mutants/mt/,$(addsuffix .o,$(MODULES_10)))
-	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
-
-# $(BUILD)/bench_accel: tests/test_bench_csv.c runs the benchmark on the bunny (without Embree).
-test: all $(BUILD)/run-tests $(MUTANTS) $(BUILD)/bench_accel
-	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests $(TEST_FILTER)
-
-compare: all $(BUILD)/compare
+# ---- the pictures: POV-Ray, references, gallery, figures -------------------------------------------
+## make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
+##                     (UPDATE_DOCS=1 also writes the table into docs/povray.md)
+compare: all $(BUILD)/compare | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
 
-test-sanitize:
-	$(MAKE) --no-print-directory SAN=1 test
-
-# The kd-tree and BVH differential tests with 20 times the rays (millions), without a time limit.
-# Its own program: tests/test_accel.c built with ACCEL_TEST_TIMEOUT=0, since a test's own .timeout
-# outranks --timeout 0 and 20 times the rays take longer than the 120 s make test allows.
-$(BUILD)/tests/test_accel_long.o: tests/test_accel.c | $(BUILD)/tests
-	$(CC) $(CFLAGS) -Itools -DACCEL_TEST_TIMEOUT=0 -MMD -MP -c $< -o $@
-
-$(BUILD)/run-accel-long: $(BUILD)/tests/test_accel_long.o $(BUILD)/tests/test_support.o $(BUILD)/tests/image_test_support.o \
-        $(TEST_TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
-	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
-
-test-accel-long: $(BUILD)/run-accel-long
-	WHITTED_ACCEL_RAYS=20 WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-accel-long --filter 'accel/*' --timeout 0
-
+## make references     re-render the reference images on purpose and say what changed
 references: all $(BUILD)/compare
 	tools/bless-references.sh $(BUILD)
 
-# The gallery of wrong pictures: every fault in tools/gallery/ rendered beside the right picture, into
-# docs/gallery/ and docs/gallery.md.
+## make gallery        render the gallery of wrong pictures (the faults in tools/gallery/) beside the
+##                     right ones, into docs/gallery/ and docs/gallery.md
 gallery: all $(BUILD)/compare
 	tools/gallery.sh $(BUILD)
 
 # The walkthroughs' figures: tools/figures/ draws them as SVG with the chapters' own functions, into
 # docs/figures/ (tests/test_figures.c checks that the committed ones are what it draws now).
 FIGURE_OBJECTS := $(patsubst tools/figures/%.c,$(BUILD)/tools/figures/%.o,$(wildcard tools/figures/*.c))
-$(BUILD)/tools/figures/%.o: tools/figures/%.c
-	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
 
 $(BUILD)/figures: $(FIGURE_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
+## make figures        redraw the walkthroughs' figures, docs/figures/*.svg, from tools/figures/
 figures: $(BUILD)/figures
 	./$(BUILD)/figures docs/figures
 
-clean:
-	rm -rf build out
-
-help:
-	@sed -n '2,18p' Makefile | sed 's/^# \{0,1\}//'
-
 # ---- the coursework kit (docs/coursework.md) -----------------------------------------------------
-#   make student DIR=path [TASKS="2.1 5.1"] [ANSWERS=1]  a student copy with the marked tasks' bodies
-#                                              blanked; ANSWERS=1 keeps the model answers (a lecturer's)
-#   make check-N (N = 1..11), make check       grade chapter N (or all): each task, then a scoreboard
-#   make exercises                             the build exercises (★★★) the student has started
 CHECK_OBJECTS := $(patsubst tests/checks/%.c,$(BUILD)/checks/%.o,$(wildcard tests/checks/*.c))
 
-$(BUILD)/checks/%.o: tests/checks/%.c
+$(BUILD)/checks/%.o: tests/checks/%.c | deps
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Itools -MMD -MP -c $< -o $@
+	$(CC) $(CFLAGS) -Itests/support -MMD -MP -c $< -o $@
 
-$(BUILD)/check: $(CHECK_OBJECTS) $(TOOL_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
+## make check-N        grade chapter N's coursework tasks (1..12): each task, then a scoreboard
 define check_rule
 check-$(1): $(BUILD)/check | out
 	@n=$$$$(printf '%02d' $(1)); \
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call check_rule,$(n))))
 
+## make check          grade every chapter's coursework tasks
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out
 	WHITTED_BUILD=$(BUILD) ./$(BUILD)/check all
 
+## make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": only some), a
+##                     hand-out without the model answers (ANSWERS=1 keeps them: a lecturer's copy)
 student:
 	@test -n "$(DIR)" || { echo 'make student DIR=path [TASKS="2.1 5.1"] [ANSWERS=1]: say where the copy goes' >&2; exit 2; }
 	tools/student.sh "$(DIR)" "$(TASKS)" $(if $(filter 1,$(ANSWERS)),--answers)
 
-# The build exercises (★★★): each one whose function common/ defines is linked into a small program of
-# its own and checked; the others say where to start. Needs only the compiler.
-exercises: $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES))) $(BUILD)/tests/exercises/checks.o
+## make exercises      the build exercises (★★★): each one whose function common/ defines is linked into a
+##                     small program of its own and checked; the others say where to start
+exercises: $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES))) $(BUILD)/tests/exercises/checks.o | deps
 	@CC="$(CC)" CFLAGS="$(CFLAGS)" LDFLAGS="$(LDFLAGS)" LDLIBS="$(LDLIBS)" tests/exercises/runner/run.sh $(BUILD) $^
 
-# make test leaves out the kit's long proofs on student copies (make test-coursework-long runs them). In
-# a student copy (tools/student.sh leaves .student-copy in it), it runs the suites that apply to a student,
-# tests/student-suites: the framework around the tasks and the kit itself, which pass whatever the tasks
-# hold; make test ALL=1 there runs the authors' whole suite, which needs every task done.
-ifeq ($(wildcard .student-copy),)
-TEST_FILTER := --filter '!(coursework_long)/*'
-else ifneq ($(ALL),1)
-TEST_FILTER := --filter '@($(shell grep -v '^\#' tests/student-suites | paste -sd'|'))/*'
+# What make test runs: all but LONG_TESTS; in a student copy (tools/student.sh leaves .student-copy in it)
+# the suites tests/student-suites names, which apply to a student: the framework around the tasks and the
+# kit itself, passing whatever the tasks hold (make test ALL=1 there: all but LONG_TESTS).
+ifeq ($(wildcard .student-copy)$(filter 1,$(ALL)),.student-copy)
+TEST_FILTER = @($(shell grep -v '^\#' tests/student-suites | paste -sd'|'))/*
+else
+TEST_FILTER = !($(LONG_TESTS_PATTERN))
 endif
 
-test-coursework-long: all $(BUILD)/run-tests $(BUILD)/check
-	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests \
-	    --filter 'coursework_long/*'
+# ---- housekeeping ----------------------------------------------------------------------------------
+## make deps           install the Debian packages building needs, and those of the goals named with it
+##                     (every goal that needs packages installs them first anyway)
+deps:
+	@tools/build/install-deps.sh $(DEPS_NEEDS)
 
+## make clean          remove build/ and out/ (installs nothing)
+clean:
+	rm -rf build out
 
-.PHONY: check student exercises test-coursework-long $(foreach n,1 2 3 4 5 6 7 8 9 10 11,check-$(n))
-test: $(BUILD)/check
+## make help           this list (installs nothing)
+help:
+	@awk '/^include / { while ((getline line < $$2) > 0) if (line ~ /^## /) print substr(line, 4); next } \
+	      /^## / { print substr($$0, 4) }' Makefile

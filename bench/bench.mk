@@ -5,7 +5,7 @@
 #   make bench-accel   build $(BUILD)/bench_accel and run it on the big teapot and the bunny, with Intel
 #                      Embree 3 as the yardstick (installs Debian's libembree-dev if it is missing)
 #   make bench-memory  peak memory of chapters 10 and 11 (every rung) per triangle, on a teapot of about
-#                      4 million triangles made by tools/teapot.c into out/bench/
+#                      4 million triangles made by tools/models/teapot.c into out/bench/
 #   make bench         every benchmark: bench-accel, then bench-memory
 #
 # $(BUILD)/bench_accel --csv FILE also writes its tables' rows as CSV (see bench_accel.c), and --size WxH
@@ -13,11 +13,14 @@
 #
 # bench/embree_ref.c is compiled in only when /usr/include/embree3/rtcore.h exists. So the bench-accel
 # recipe installs the package first and only then makes the program, in a second make that sees the
-# header. The objects of the two builds (with and without Embree) live in different directories, so
-# installing Embree later rebuilds what must change.
+# header. The objects of the two variants (with and without Embree) live in different directories, and
+# the program depends on a file named after the variant it was linked as, $(BUILD)/bench/variant-embree
+# or variant-plain, which only one of at a time exists: so after make test built the plain program on a
+# machine without Embree, make bench, which installs Embree, links the Embree one (tests/test_build.c).
 
 BENCH_MODELS := scenes/models/teapot-346k.ply scenes/models/bunny.ply
-BENCH_MODULES := bvh fast_bvh kdtree kdtree_events kdtree_check triangle stats mesh mesh_ply mesh_obj infile camera
+BENCH_MODULES := bvh fast_bvh kdtree kdtree_events kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj infile camera
+# Embree's header, when it is installed (`make BENCH_EMBREE= ...` builds the plain variant anyway).
 BENCH_EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
 BENCH_VARIANT := $(if $(BENCH_EMBREE),embree,plain)
 BENCH_SOURCES := bench/bench_accel.c $(if $(BENCH_EMBREE),bench/embree_ref.c)
@@ -27,21 +30,29 @@ BENCH_LDLIBS := $(if $(BENCH_EMBREE),-lembree3)
 
 .PHONY: bench bench-accel bench-memory
 
+## make bench          every benchmark: make bench-accel, then make bench-memory
 bench: bench-accel bench-memory
 
-bench-accel: $(BENCH_MODELS)
-	tools/install-deps.sh bench
+## make bench-accel    the kd-tree, the BVH and chapter 11's rungs against Intel Embree 3, on the big
+##                     teapot and the bunny (installs libembree-dev first)
+bench-accel: $(BENCH_MODELS) | deps
+	tools/build/install-deps.sh bench
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_accel
 	$(BUILD)/bench_accel $$([ -e /usr/include/embree3/rtcore.h ] && echo --embree) $(BENCH_MODELS)
 
-$(BUILD)/bench/$(BENCH_VARIANT)/%.o: bench/%.c | $(BUILD)/bench/$(BENCH_VARIANT)
+$(BUILD)/bench/$(BENCH_VARIANT)/%.o: bench/%.c | $(BUILD)/bench/$(BENCH_VARIANT) deps
 	$(CC) $(CFLAGS) $(BENCH_CFLAGS) -MMD -MP -c $< -o $@
 
 $(BUILD)/bench/$(BENCH_VARIANT):
 	mkdir -p $@
 
-$(BUILD)/bench_accel: $(BENCH_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(BENCH_MODULES)))
-	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(BENCH_LDLIBS)
+$(BUILD)/bench/variant-$(BENCH_VARIANT): | $(BUILD)/bench/$(BENCH_VARIANT)
+	rm -f $(BUILD)/bench/variant-*
+	touch $@
+
+$(BUILD)/bench_accel: $(BENCH_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(BENCH_MODULES))) \
+        $(BUILD)/bench/variant-$(BENCH_VARIANT)
+	$(CC) $(LDFLAGS) $(filter %.o,$^) -o $@ $(LDLIBS) $(BENCH_LDLIBS)
 
 -include $(wildcard $(BUILD)/bench/*/*.d)
 
@@ -50,7 +61,7 @@ BENCH_MEMORY_TRIANGLES := 4000000
 BENCH_MEMORY_DIR := out/bench
 BENCH_MEMORY_SCENE := $(BENCH_MEMORY_DIR)/teapot-4m.scene
 
-$(BUILD)/peak_rss: bench/peak_rss.c | $(BUILD)/bench/$(BENCH_VARIANT)
+$(BUILD)/peak_rss: bench/peak_rss.c | $(BUILD)/bench/$(BENCH_VARIANT) deps
 	$(CC) $(CFLAGS) $< -o $@
 
 $(BENCH_MEMORY_DIR)/teapot-4m.ply: $(MODELS_TEAPOT)
@@ -62,6 +73,8 @@ $(BENCH_MEMORY_SCENE): $(BENCH_MEMORY_DIR)/teapot-4m.ply
 	printf '%s\n' 'camera eye 0 2.5 9  target 0 1 0  fov 36' 'image 64 48' 'light position -5 8 6  colour 1 1 1' \
 	    'material china colour 0.35 0.55 0.85 ambient 0.1 diffuse 0.7' 'mesh teapot-4m.ply material china' >$@
 
+## make bench-memory   peak memory per triangle of chapters 10 and 11 (every rung) on a teapot of about
+##                     4 million triangles
 bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE)
 	@triangles=$$(awk '/^element face/ { print $$3; exit }' $(BENCH_MEMORY_DIR)/teapot-4m.ply); \
 	echo "peak memory on $(BENCH_MEMORY_SCENE) ($$triangles triangles, 64x48, 1 thread):"; \

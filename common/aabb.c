@@ -20,17 +20,6 @@ struct aabb aabb_union(struct aabb a, struct aabb b) {
     return (struct aabb){vec3_min(a.min, b.min), vec3_max(a.max, b.max)};
 }
 
-struct aabb aabb_of_sphere(const struct sphere *s) {
-    vec3 extent = vec3_make(s->radius, s->radius, s->radius);
-    return (struct aabb){vec3_sub(s->centre, extent), vec3_add(s->centre, extent)};
-}
-
-struct aabb aabb_of_triangle(vec3 a, vec3 b, vec3 c) {
-    return (struct aabb){vec3_min(a, vec3_min(b, c)), vec3_max(a, vec3_max(b, c))};
-}
-
-struct aabb aabb_of_box(const struct box *b) { return (struct aabb){b->min, b->max}; }
-
 double aabb_surface_area(struct aabb b) {
     vec3 e = vec3_sub(b.max, b.min);
     if (!(e.x >= 0.0 && e.y >= 0.0 && e.z >= 0.0))

@@ -8,10 +8,7 @@
 
 #include <stdbool.h>
 
-#include "box.h"
 #include "ray.h"
-#include "sphere.h"
-#include "triangle.h"
 
 struct aabb {
     vec3 min, max;
@@ -25,11 +22,6 @@ struct aabb aabb_grow(struct aabb b, vec3 p);
 
 /* Returns the smallest box holding a and b. */
 struct aabb aabb_union(struct aabb a, struct aabb b);
-
-/* Bounding boxes of the shapes that have one (a plane has none): the smallest box holding the shape. */
-struct aabb aabb_of_sphere(const struct sphere *s);
-struct aabb aabb_of_triangle(vec3 a, vec3 b, vec3 c);
-struct aabb aabb_of_box(const struct box *b);
 
 /* Returns the surface area of b (0 for an empty box); the surface area heuristic's measure. */
 double aabb_surface_area(struct aabb b);

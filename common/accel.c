@@ -9,6 +9,7 @@
 #include "bvh.h" /* only for the names of the split rules */
 #include "text_escape.h"
 #include "kdtree.h"
+#include "triangle.h"
 
 double accel_now_ms(void) {
     struct timespec now;
@@ -18,7 +19,9 @@ double accel_now_ms(void) {
 
 /* Copies every triangle of s into one mesh, with each face's material beside it. */
 static bool gather_triangles(struct accel_world *w, const struct scene *s) {
-    size_t vertices = 3 * s->triangle_count, faces = s->triangle_count;
+    const struct shape_list *lines = scene_shapes(s, &triangle_syntax); /* the `triangle` lines */
+    const struct triangle *triangles = lines->items;
+    size_t vertices = 3 * lines->count, faces = lines->count;
     for (size_t k = 0; k < s->mesh_count; k++) {
         vertices += s->meshes[k].mesh.vertex_count;
         faces += s->meshes[k].mesh.face_count;
@@ -32,8 +35,8 @@ static bool gather_triangles(struct accel_world *w, const struct scene *s) {
     if (all->vertices == NULL || all->faces == NULL || w->materials == NULL)
         return false;
     size_t v = 0, f = 0;
-    for (size_t k = 0; k < s->triangle_count; k++, f++) {
-        const struct triangle *t = &s->triangles[k];
+    for (size_t k = 0; k < lines->count; k++, f++) {
+        const struct triangle *t = &triangles[k];
         all->vertices[v] = t->a;
         all->vertices[v + 1] = t->b;
         all->vertices[v + 2] = t->c;
@@ -104,11 +107,6 @@ void *accel_world_create(struct scene *s, const struct accel_choice *c, accel_bv
 void accel_world_destroy(void *world) {
     accel_world_free(world);
     free(world);
-}
-
-void accel_chapter_report(const void *world, const struct stats *total, double render_seconds, bool detailed) {
-    (void)render_seconds;
-    accel_report(world, total, detailed);
 }
 
 /* The kd-tree's queries in the shape the world expects. */

@@ -69,11 +69,8 @@ typedef bool (*accel_bvh_builder)(struct accel_world *w, int split, char *err, s
 void *accel_world_create(struct scene *s, const struct accel_choice *c, accel_bvh_builder use_bvh, char *err,
                          size_t err_size);
 
-/* Frees a heap-allocated accel_world and what it owns: struct chapter's release. */
+/* Frees a heap-allocated accel_world and what it owns. */
 void accel_world_destroy(void *world);
-
-/* accel_report in the shape of struct chapter's report. */
-void accel_chapter_report(const void *world, const struct stats *total, double render_seconds, bool detailed);
 
 /* Prints what was built and its build time; with `detailed`, also its shape and what tracing it cost
  * per ray, beside the cost the SAH predicted. `total` holds the counters of the whole render. */

@@ -49,3 +49,10 @@ ray camera_ray(const struct camera *cam, int i, int j) {
     direction = vec3_add_scaled(direction, cam->up, y * cam->half_height);
     return (ray){cam->eye, vec3_normalize(direction)};
 }
+
+ray camera_ray_through(const struct camera *cam, double x, double y) {
+    double u = 2.0 * x / cam->width - 1.0, v = 1.0 - 2.0 * y / cam->height; /* [-1, 1], v upwards */
+    vec3 direction = vec3_add_scaled(cam->forward, cam->right, u * cam->half_width);
+    direction = vec3_add_scaled(direction, cam->up, v * cam->half_height);
+    return (ray){cam->eye, vec3_normalize(direction)};
+}

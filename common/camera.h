@@ -32,4 +32,10 @@ bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov
  * has unit length. Valid for any i, j (pixels outside the image give rays outside the view). */
 ray camera_ray(const struct camera *cam, int i, int j);
 
+/* Returns the primary ray through point (x, y) of the picture, measured in pixels from its top-left
+ * corner: pixel (i, j) covers [i, i + 1) x [j, j + 1), and camera_ray(cam, i, j) is the ray through
+ * (i + 0.5, j + 0.5), to the last bit. Chapter 12 uses it for several rays per pixel. The direction has
+ * unit length; valid for any x, y. */
+ray camera_ray_through(const struct camera *cam, double x, double y);
+
 #endif

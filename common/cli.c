@@ -1,4 +1,5 @@
-/* cli.c: the command line and the load-render-write sequence shared by all chapters (chapter 1). */
+/* cli.c: the command line and the steps of reading, rendering and writing shared by all chapters
+ * (chapter 1). */
 #include "cli.h"
 
 #include "heatmap.h"
@@ -17,22 +18,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#define CLI_ERROR_SIZE (PATH_MAX + 1024) /* longest error message kept: a whole path and the reason */
 #define CLI_MAX_THREADS 256  /* more threads than this is a typing mistake */
-
-struct options {
-    const char *scene;
-    const char *output;
-    const char *pov;
-    const char *heatmap;
-    int width, height; /* 0 = as the scene says */
-    int threads;       /* 0 = all cores */
-    bool output_given; /* -o was used; otherwise the picture goes to out/ */
-    bool quiet;
-    bool stats;        /* --stats: the chapter's detailed report too */
-    const char *sets[SCENE_SET_MAX]; /* --set PATH=VALUE changes to the scene, in order */
-    int set_count;
-};
 
 /* Prints one error message and a newline to standard error, with every non-printable byte of it (which
  * can only have come from the input it quotes) escaped as \xNN. */
@@ -88,7 +74,7 @@ static bool option_int(const char *name, const char *text, int lo, int hi, int *
 
 /* Fills *o from the command line. Returns CLI_OK, CLI_USAGE on an error (message printed), or -1 when
  * --help was printed and the program should stop successfully. */
-static int parse_options(const struct chapter *ch, int argc, char **argv, struct options *o) {
+static int parse_options(const struct chapter *ch, int argc, char **argv, struct cli_options *o) {
     static char default_output[32]; /* "out/chapter-NN.png" */
     memset(o, 0, sizeof *o);
     o->scene = ch->default_scene;
@@ -177,123 +163,143 @@ static double seconds_now(void) {
     return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
 }
 
-/* Loads the scene and everything the chapter needs; returns the world for trace, or NULL (with
- * *bad_option set when a --set change was at fault rather than the scene). */
-static void *load_world(const struct chapter *ch, const struct options *o, struct scene *s, bool *bad_option,
-                        char *err, size_t err_size) {
-    if (!scene_load_changed(o->scene, o->sets, o->set_count, s, bad_option, err, err_size))
-        return NULL;
+bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv) {
+    memset(run, 0, sizeof *run);
+    run->chapter = ch;
+    struct cli_options *o = &run->options;
+    int status = parse_options(ch, argc, argv, o);
+    if (status < 0)
+        return false; /* --help */
+    if (status != CLI_OK) {
+        print_usage(stderr, ch, argv[0]);
+        run->status = status;
+        return false;
+    }
+    bool to_stdout = strcmp(o->output, "-") == 0 || (o->heatmap != NULL && strcmp(o->heatmap, "-") == 0) ||
+                     (o->pov != NULL && strcmp(o->pov, "-") == 0);
+    if (to_stdout && !outfile_reserve_stdout()) {
+        complain("cannot set standard output aside for the picture: %s", strerror(errno));
+        run->status = CLI_OUTPUT_FAILED;
+        return false;
+    }
+    struct scene *s = &run->scene;
+    bool bad_option = false;
+    if (!scene_load_changed(o->scene, o->sets, o->set_count, ch->kinds, s, &bad_option, run->err, sizeof run->err)) {
+        complain("%s", run->err);
+        run->status = bad_option ? CLI_USAGE : CLI_BAD_INPUT;
+        return false;
+    }
     if (o->width > 0)
         s->width = o->width;
     if (o->height > 0)
         s->height = o->height;
-    scene_drop_unsupported(s, ch->features, ch->number, o->quiet ? NULL : stderr);
-    if (ch->load_meshes != NULL && !ch->load_meshes(s, err, err_size))
-        return NULL;
-    if (!o->quiet)
-        scene_scale_warn(s, stderr);
-    if (ch->prepare == NULL)
-        return s;
-    return ch->prepare(s, err, err_size);
+    scene_drop_unsupported(s, ch->number, o->quiet ? NULL : stderr);
+    return true;
 }
 
-static int render_and_write(const struct chapter *ch, const struct options *o, const struct scene *s,
-                            const void *world) {
+int cli_fail(struct cli_run *run) {
+    complain("%s", run->err);
+    run->status = CLI_BAD_INPUT;
+    return cli_finish(run);
+}
+
+int cli_finish(struct cli_run *run) {
+    scene_free(&run->scene);
+    return run->status;
+}
+
+/* Writes the POV-Ray twin to the --pov file. */
+static void write_twin(struct cli_run *run) {
+    const struct chapter *ch = run->chapter;
+    const char *pov = run->options.pov;
+    if (!povray_can_express(&run->scene, ch->lighting, run->err, sizeof run->err))
+        run->status = CLI_BAD_INPUT;
+    else if (!povray_write_scene(&run->scene, ch->lighting, pov, run->err, sizeof run->err))
+        run->status = CLI_OUTPUT_FAILED;
+    if (run->status != CLI_OK) {
+        complain("%s", run->err);
+    } else if (!run->options.quiet) {
+        char shown[4 * PATH_MAX];
+        text_escape(pov, shown, sizeof shown);
+        printf("chapter %d (%s): wrote POV-Ray twin %s\n", ch->number, ch->title, shown);
+    }
+}
+
+/* Renders and writes the picture (and the heat-map), its pixels sampled by `sampler` (NULL: one ray
+ * through each centre); prints where they went and the counters. Returns false with run->status set
+ * when the camera or an output fails. */
+static bool render_and_write(struct cli_run *run, render_trace_fn trace, const void *world,
+                             const struct render_sampler *sampler) {
+    const struct chapter *ch = run->chapter;
+    const struct cli_options *o = &run->options;
+    const struct scene *s = &run->scene;
     char err[CLI_ERROR_SIZE];
     struct camera cam;
     if (!camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, err, sizeof err)) {
         complain("%s: %s", s->path, err);
-        return CLI_BAD_INPUT;
+        run->status = CLI_BAD_INPUT;
+        return false;
     }
     struct image img, heatmap = {0};
     if (!image_create(&img, s->width, s->height)) {
         complain("out of memory for a %d x %d image", s->width, s->height);
-        return CLI_OUTPUT_FAILED;
+        run->status = CLI_OUTPUT_FAILED;
+        return false;
     }
     if (o->heatmap != NULL &&
         !image_create(&heatmap, s->width, s->height + heatmap_bar_height(s->width, s->height))) {
         image_free(&img);
         complain("out of memory for the heat-map");
-        return CLI_OUTPUT_FAILED;
+        run->status = CLI_OUTPUT_FAILED;
+        return false;
     }
     if (!o->output_given)
         mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
-    struct stats total = {0};
-    struct render_job job = {.camera = &cam, .trace = ch->trace, .world = world, .threads = o->threads,
+    struct render_job job = {.camera = &cam, .trace = trace, .world = world, .threads = o->threads,
                              .progress = !o->quiet && isatty(STDERR_FILENO),
-                             .heatmap = o->heatmap != NULL ? &heatmap : NULL};
+                             .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = sampler,
+                             .antialias = &s->antialias};
     double started = seconds_now();
-    render_image(&job, &img, &total);
-    double elapsed = seconds_now() - started;
+    render_image(&job, &img, &run->total);
+    run->render_seconds = seconds_now() - started;
     bool written = image_write_png(&img, o->output, err, sizeof err);
     if (written && o->heatmap != NULL) {
-        heatmap_draw_bar(&heatmap, s->height);
+        heatmap_draw_bar_on(&heatmap, s->height, sampler != NULL ? sampler->heatmap : &heatmap_cost_scale);
         written = image_write_png(&heatmap, o->heatmap, err, sizeof err);
     }
     image_free(&img);
     image_free(&heatmap);
     if (!written) {
         complain("%s", err);
-        return CLI_OUTPUT_FAILED;
+        run->status = CLI_OUTPUT_FAILED;
+        return false;
     }
     if (!o->quiet) {
         char shown[4 * PATH_MAX];
         text_escape(strcmp(o->output, "-") == 0 ? "standard output" : o->output, shown, sizeof shown);
         printf("chapter %d (%s): wrote %s (%d x %d) in %.3f s\n", ch->number, ch->title, shown, s->width,
-               s->height, elapsed);
+               s->height, run->render_seconds);
         if (o->heatmap != NULL) {
             text_escape(o->heatmap, shown, sizeof shown);
             printf("heat-map: %s\n", shown);
         }
-        stats_print(stdout, &total);
-        stats_warn_limits(stderr, &total);
-        if (ch->report != NULL)
-            ch->report(world, &total, elapsed, o->stats);
+        stats_print(stdout, &run->total);
+        stats_warn_limits(stderr, &run->total);
     }
-    return CLI_OK;
+    return true;
 }
 
-int cli_run(const struct chapter *ch, int argc, char **argv) {
-    struct options o;
-    int status = parse_options(ch, argc, argv, &o);
-    if (status < 0)
-        return CLI_OK;
-    if (status != CLI_OK) {
-        print_usage(stderr, ch, argv[0]);
-        return status;
+bool cli_render(struct cli_run *run, render_trace_fn trace, const void *world) {
+    return cli_render_sampled(run, trace, world, NULL);
+}
+
+bool cli_render_sampled(struct cli_run *run, render_trace_fn trace, const void *world,
+                        const struct render_sampler *sampler) {
+    if (!run->options.quiet)
+        scene_scale_warn(&run->scene, stderr);
+    if (run->options.pov != NULL) {
+        write_twin(run);
+        return false;
     }
-    bool to_stdout = strcmp(o.output, "-") == 0 || (o.heatmap != NULL && strcmp(o.heatmap, "-") == 0) ||
-                     (o.pov != NULL && strcmp(o.pov, "-") == 0);
-    if (to_stdout && !outfile_reserve_stdout()) {
-        complain("cannot set standard output aside for the picture: %s", strerror(errno));
-        return CLI_OUTPUT_FAILED;
-    }
-    char err[CLI_ERROR_SIZE];
-    struct scene s;
-    bool bad_option = false;
-    void *world = load_world(ch, &o, &s, &bad_option, err, sizeof err);
-    if (world == NULL) {
-        complain("%s", err);
-        scene_free(&s);
-        return bad_option ? CLI_USAGE : CLI_BAD_INPUT;
-    }
-    if (o.pov != NULL) {
-        if (!povray_can_express(&s, ch->lighting, err, sizeof err))
-            status = CLI_BAD_INPUT;
-        else if (!povray_write_scene(&s, ch->lighting, o.pov, err, sizeof err))
-            status = CLI_OUTPUT_FAILED;
-        if (status != CLI_OK)
-            complain("%s", err);
-        else if (!o.quiet) {
-            char shown[4 * PATH_MAX];
-            text_escape(o.pov, shown, sizeof shown);
-            printf("chapter %d (%s): wrote POV-Ray twin %s\n", ch->number, ch->title, shown);
-        }
-    } else {
-        status = render_and_write(ch, &o, &s, world);
-    }
-    if (ch->release != NULL && world != &s)
-        ch->release(world);
-    scene_free(&s);
-    return status;
+    return render_and_write(run, trace, world, sampler) && !run->options.quiet;
 }

@@ -1,8 +1,14 @@
 /* cli.h: what every chapter program shares: its options, reading the scene, rendering, writing the
  * picture and printing the counters (chapter 1).
  *
- * A chapter's main.c describes itself in a `struct chapter` (its number, default scene, which shapes it
- * draws, how it lights them, and its trace function) and hands over to cli_run. Exit codes:
+ * A chapter's main.c describes itself in a `struct chapter` (its number, default scene, the kinds of
+ * shape it draws, how it lights them) and then runs its own steps, e.g. chapter 5's:
+ *     cli_start          the options and the scene, with the kinds of shape the chapter draws
+ *     scene_load_meshes  the mesh files (chapter 3 on)
+ *     world_init         what the chapter builds to search the scene (chapter 5 on)
+ *     cli_render         the picture, or the POV-Ray twin with --pov, and the counters
+ *     cli_finish         the exit status
+ * A step of the chapter's own that fails hands its message to cli_fail. Exit codes:
  *   0  the picture (or POV-Ray twin) was written
  *   1  the scene or a mesh file is wrong (message: "file:line: what is wrong")
  *   2  the command line is wrong (message, then the usage): also an output name longer than the
@@ -11,45 +17,89 @@
  *
  * `--heatmap FILE` works in every chapter: it writes how much work each pixel's camera ray cost
  * (node visits, box and shape tests, including those of its shadow and secondary rays) as a picture,
- * on one fixed colour scale so that pictures of different chapters can be set side by side. */
+ * on one fixed colour scale so that pictures of different chapters can be set side by side. In
+ * chapter 12 it shows how many camera rays each pixel took instead, on a scale of its own. */
 #ifndef WHITTED_CLI_H
 #define WHITTED_CLI_H
 
+#include <limits.h>
 #include <stdbool.h>
 #include <stddef.h>
 
 #include "povray.h"
 #include "render.h"
 #include "scene.h"
+#include "scene_set.h"
+#include "stats.h"
 
 enum cli_exit { CLI_OK = 0, CLI_BAD_INPUT = 1, CLI_USAGE = 2, CLI_OUTPUT_FAILED = 3 };
 
 struct chapter {
-    int number;                     /* 1 .. 10 */
+    int number;                     /* 1 .. 11 */
     const char *title;              /* e.g. "camera" */
     const char *default_scene;      /* path used when no scene is given, relative to the repository */
-    unsigned features;              /* the shapes drawn: a mask of enum scene_feature, or
-                                       SCENE_EVERY_SHAPE for every kind introduced up to `number` */
-    enum pov_lighting lighting;     /* what trace computes, for the POV-Ray twin */
-    /* Optional: loads the mesh files of the scene (scene_load_meshes, from chapter 3 on). */
-    bool (*load_meshes)(struct scene *s, char *err, size_t err_size);
-    /* Optional: builds what trace needs from the scene (e.g. a BVH) and returns it as the `world`
-     * given to trace; returns NULL and fills err on failure. Without it, the world is the scene. */
-    void *(*prepare)(struct scene *s, char *err, size_t err_size);
-    void (*release)(void *world);   /* frees what prepare returned; optional */
-    render_trace_fn trace;          /* the colour seen along a primary ray */
+    /* The kinds of shape the chapter draws, ending with NULL (NULL: none). The scene keeps only those;
+     * the others are reported as ignored. */
+    const struct shape_kind *const *kinds;
+    enum pov_lighting lighting;     /* what the chapter computes, for the POV-Ray twin */
     /* Optional: the chapter's own options. Called with an option the common parser does not know and
      * the word after it (NULL at the end); returns the number of words used (1 or 2), 0 when the
      * option is unknown, or -1 after printing why its value is wrong. */
     int (*parse_option)(const char *option, const char *value);
     const char *options_help;       /* lines describing those options for --help */
-    /* Optional: prints what the chapter built (e.g. build time) after the counters; more with
-     * `detailed` (the --stats option). */
-    void (*report)(const void *world, const struct stats *total, double render_seconds, bool detailed);
 };
 
-/* Runs chapter `ch` with the command line argc/argv: parses the options (see --help), renders and
- * writes the picture, prints where it went and the counters. Returns an enum cli_exit code. */
-int cli_run(const struct chapter *ch, int argc, char **argv);
+#define CLI_ERROR_SIZE (PATH_MAX + 1024) /* longest error message kept: a whole path and the reason */
+
+/* The options every chapter takes (see --help). */
+struct cli_options {
+    const char *scene;
+    const char *output;
+    const char *pov;
+    const char *heatmap;
+    int width, height; /* 0 = as the scene says */
+    int threads;       /* 0 = all cores */
+    bool output_given; /* -o was used; otherwise the picture goes to out/ */
+    bool quiet;
+    bool stats;        /* --stats: the chapter's detailed report too */
+    const char *sets[SCENE_SET_MAX]; /* --set PATH=VALUE changes to the scene, in order */
+    int set_count;
+};
+
+/* One run of a chapter program, from its command line to its exit status. */
+struct cli_run {
+    const struct chapter *chapter;
+    struct cli_options options;
+    struct scene scene;         /* the scene, holding only the kinds of shape the chapter draws */
+    struct stats total;         /* the counters of the whole render (cli_render) */
+    double render_seconds;
+    char err[CLI_ERROR_SIZE];   /* where the chapter's own steps write why they failed, for cli_fail */
+    int status;                 /* an enum cli_exit */
+};
+
+/* Starts chapter `ch` with the command line argc/argv: parses the options, reads the scene with the
+ * chapter's kinds of shape (printing one line about those it ignores) and applies --set, --width and
+ * --height. Returns true when the chapter goes on with its own steps; false when the run is over:
+ * --help was printed, or an error was (run->status says which). Either way, end with cli_finish. */
+bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv);
+
+/* Ends the run with a failure of the chapter's own step (loading meshes, building its world), whose
+ * message is in run->err: prints it and returns cli_finish's status, CLI_BAD_INPUT. */
+int cli_fail(struct cli_run *run);
+
+/* Warns when the scene is too small for the tracer's margins (scene_scale.h). With --pov, writes the
+ * POV-Ray twin of the scene as the chapter lights it and returns false. Otherwise renders the picture,
+ * tracing each pixel's primary ray with trace(world, ray), writes it (and the heat-map), prints where
+ * it went and the counters (into run->total), and returns true when the chapter may add its own
+ * report: the picture was written and --quiet not given. On failure sets run->status. */
+bool cli_render(struct cli_run *run, render_trace_fn trace, const void *world);
+
+/* cli_render with the pixels sampled by `sampler` (chapter 12's anti-aliasing, as the scene's antialias
+ * line says) instead of one ray through each pixel centre; its heat-map shows the sampler's scale. */
+bool cli_render_sampled(struct cli_run *run, render_trace_fn trace, const void *world,
+                        const struct render_sampler *sampler);
+
+/* Frees the run's scene and returns its exit status (an enum cli_exit). */
+int cli_finish(struct cli_run *run);
 
 #endif

@@ -8,8 +8,10 @@
 static const vec3 ramp[] = {{0, 0, 0}, {0.1, 0.2, 0.9}, {0.9, 0.15, 0.1}, {1, 0.9, 0.1}, {1, 1, 1}};
 #define RAMP_STEPS (sizeof ramp / sizeof ramp[0] - 1)
 
-vec3 heatmap_colour(uint32_t cost) {
-    double level = log1p((double)cost) / log1p((double)HEATMAP_MAX_COST);
+vec3 heatmap_colour(uint32_t cost) { return heatmap_colour_on(&heatmap_cost_scale, cost); }
+
+vec3 heatmap_colour_on(const struct heatmap_scale *scale, uint32_t value) {
+    double level = log1p((double)value) / log1p((double)scale->max);
     if (level >= 1.0)
         return ramp[RAMP_STEPS];
     double position = level * RAMP_STEPS;
@@ -25,6 +27,7 @@ vec3 heatmap_colour(uint32_t cost) {
  * heatmap_bar_scale() image pixels. */
 
 const uint32_t heatmap_ticks[HEATMAP_TICKS] = {0, 1, 10, 100, 1000, HEATMAP_MAX_COST};
+const struct heatmap_scale heatmap_cost_scale = {HEATMAP_MAX_COST, heatmap_ticks, HEATMAP_TICKS};
 
 /* The digits 0-9, 5 pixels wide and 7 high: one byte per row, bit 4 the leftmost pixel. */
 static const uint8_t digit_rows[10][7] = {
@@ -56,12 +59,15 @@ int heatmap_bar_height(int width, int height) {
     return height + rows <= IMAGE_MAX_SIDE ? rows : 0;
 }
 
-int heatmap_bar_x(int width, uint32_t cost) {
+/* Returns the column of the bar of `values` at which `value` lies. */
+static int bar_x_on(const struct heatmap_scale *values, int width, uint32_t value) {
     int scale = heatmap_bar_scale(width);
     int left = BAR_MARGIN * scale, length = width - 2 * BAR_MARGIN * scale - 1;
-    double level = log1p((double)cost) / log1p((double)HEATMAP_MAX_COST);
+    double level = log1p((double)value) / log1p((double)values->max);
     return left + (int)floor(fmin(level, 1.0) * length + 0.5);
 }
+
+int heatmap_bar_x(int width, uint32_t cost) { return bar_x_on(&heatmap_cost_scale, width, cost); }
 
 /* Fills the scale x scale block of font pixel (x, y) of the strip that starts at image row top. */
 static void font_pixel(struct image *img, int top, int scale, int x, int y, vec3 colour) {
@@ -86,7 +92,9 @@ static void draw_number(struct image *img, int top, int scale, int centre, int y
                                vec3_make(0, 0, 0));
 }
 
-void heatmap_draw_bar(struct image *img, int top) {
+void heatmap_draw_bar(struct image *img, int top) { heatmap_draw_bar_on(img, top, &heatmap_cost_scale); }
+
+void heatmap_draw_bar_on(struct image *img, int top, const struct heatmap_scale *values) {
     int width = img->width, scale = heatmap_bar_scale(width);
     if (img->height - top < STRIP_HEIGHT * scale)
         return; /* no room: the picture was too tall to have a bar */
@@ -94,20 +102,20 @@ void heatmap_draw_bar(struct image *img, int top) {
         for (int i = 0; i < width; i++)
             image_set(img, i, j, vec3_make(1, 1, 1));
     bool labelled = width >= 4 * BAR_MARGIN * scale;
-    int left = labelled ? heatmap_bar_x(width, 0) : 0, right = labelled ? heatmap_bar_x(width, HEATMAP_MAX_COST) : width - 1;
+    int left = labelled ? bar_x_on(values, width, 0) : 0, right = labelled ? bar_x_on(values, width, values->max) : width - 1;
     for (int i = left; i <= right; i++) {
-        /* the cost whose level lies at this column, so that the bar is the ramp itself */
+        /* the value whose level lies at this column, so that the bar is the ramp itself */
         double level = right > left ? (double)(i - left) / (right - left) : 1.0;
-        uint32_t cost = (uint32_t)floor(expm1(level * log1p((double)HEATMAP_MAX_COST)) + 0.5);
+        uint32_t value = (uint32_t)floor(expm1(level * log1p((double)values->max)) + 0.5);
         for (int j = top + BAR_TOP * scale; j < top + (BAR_TOP + BAR_HEIGHT) * scale; j++)
-            image_set(img, i, j, heatmap_colour(cost));
+            image_set(img, i, j, heatmap_colour_on(values, value));
     }
     if (!labelled)
         return;
-    for (int k = 0; k < HEATMAP_TICKS; k++) {
-        int x = heatmap_bar_x(width, heatmap_ticks[k]);
+    for (int k = 0; k < values->tick_count; k++) {
+        int x = bar_x_on(values, width, values->ticks[k]);
         for (int y = BAR_TOP + BAR_HEIGHT; y < BAR_TOP + BAR_HEIGHT + TICK_LENGTH; y++)
             font_pixel(img, top, scale, x - scale / 2, y, vec3_make(0, 0, 0));
-        draw_number(img, top, scale, x, BAR_TOP + BAR_HEIGHT + TICK_LENGTH + LABEL_GAP, heatmap_ticks[k]);
+        draw_number(img, top, scale, x, BAR_TOP + BAR_HEIGHT + TICK_LENGTH + LABEL_GAP, values->ticks[k]);
     }
 }

@@ -30,6 +30,22 @@ vec3 heatmap_colour(uint32_t cost);
 #define HEATMAP_TICKS 6
 extern const uint32_t heatmap_ticks[HEATMAP_TICKS];
 
+/* A colour scale: the same logarithmic ramp from 0 (black) to `max` (white), and the values marked on
+ * its bar. The cost scale above is heatmap_cost_scale; chapter 12 draws camera rays per pixel on a
+ * scale of its own (supersample.h). */
+struct heatmap_scale {
+    uint32_t max;
+    const uint32_t *ticks;
+    int tick_count;
+};
+extern const struct heatmap_scale heatmap_cost_scale;
+
+/* Returns the colour of `value` on `scale` (heatmap_colour is this on heatmap_cost_scale). */
+vec3 heatmap_colour_on(const struct heatmap_scale *scale, uint32_t value);
+
+/* heatmap_draw_bar for the bar of `scale`. */
+void heatmap_draw_bar_on(struct image *img, int top, const struct heatmap_scale *scale);
+
 /* Returns how many rows the colour bar adds under a width x height heat-map: 0 when the picture with
  * its bar would be taller than IMAGE_MAX_SIDE (then it has no bar). Cannot fail. */
 int heatmap_bar_height(int width, int height);

@@ -2,6 +2,7 @@
 #include "interior.h"
 
 #include "stats.h"
+#include "triangle.h"
 
 bool interior_contains(const struct interior_list *list, int object) {
     for (int k = 0; k < list->count; k++)
@@ -52,18 +53,29 @@ double interior_cross(struct interior_list *list, int object, double ior) {
 
 /* ---- a camera inside glass --------------------------------------------------------------------- */
 
-/* Returns true when p is in box b or on its surface. */
-static bool aabb_contains(const struct aabb *b, vec3 p) {
-    return p.x >= b->min.x && p.x <= b->max.x && p.y >= b->min.y && p.y <= b->max.y && p.z >= b->min.z &&
-           p.z <= b->max.z;
-}
-
 static bool is_transparent(const struct scene *s, int material) {
     return s->materials[material].filter > 0.0 || s->materials[material].transmit > 0.0;
 }
 
-static void add(struct interior_list *list, const struct scene *s, int object, int material) {
-    push(list, object, s->materials[material].ior);
+/* Pushes every transparent shape of one kind that contains `point`. A kind without an inside (a
+ * single triangle) adds nothing. */
+static void add_containing(struct interior_list *list, const struct scene *s, const struct world_shapes *k,
+                           vec3 point) {
+    if (k->count == 0 || k->kind->contains == NULL)
+        return;
+    const struct shape_syntax *syntax = k->kind->syntax;
+    for (size_t n = 0; n < k->count; n++) {
+        const void *item = shape_item(syntax, k->items, n);
+        int material = shape_material(syntax, item);
+        if (is_transparent(s, material) && k->kind->contains(item, point))
+            push(list, k->first_object + (int)n, s->materials[material].ior);
+    }
+}
+
+/* Returns true when p is in box b or on its surface. */
+static bool aabb_contains(const struct aabb *b, vec3 p) {
+    return p.x >= b->min.x && p.x <= b->max.x && p.y >= b->min.y && p.y <= b->max.y && p.z >= b->min.z &&
+           p.z <= b->max.z;
 }
 
 /* Counts the faces of m that the ray from `point` along +z crosses: odd means inside. */
@@ -82,28 +94,16 @@ static bool mesh_contains(const struct mesh *m, vec3 point) {
 struct interior_list interior_at_point(const struct world *w, vec3 point) {
     const struct scene *s = w->scene;
     struct interior_list list = interior_empty();
-    for (size_t k = 0; k < s->sphere_count; k++) {
-        const struct sphere *sp = &s->spheres[k];
-        vec3 d = vec3_sub(point, sp->centre);
-        if (is_transparent(s, sp->material) && vec3_dot(d, d) < sp->radius * sp->radius)
-            add(&list, s, world_object_number(s, WORLD_SPHERE, k), sp->material);
-    }
-    for (size_t k = 0; k < s->box_count; k++) {
-        const struct box *b = &s->boxes[k];
-        struct aabb bounds = {b->min, b->max};
-        if (is_transparent(s, b->material) && aabb_contains(&bounds, point))
-            add(&list, s, world_object_number(s, WORLD_BOX, k), b->material);
-    }
+    for (size_t k = 0; k < w->bounded_count; k++)
+        add_containing(&list, s, &w->bounded[k], point);
+    add_containing(&list, s, &w->triangles, point);
     for (size_t k = 0; k < s->mesh_count; k++) {
         const struct scene_mesh *m = &s->meshes[k];
         if (is_transparent(s, m->material) && aabb_contains(&w->mesh_bounds[k], point) &&
             mesh_contains(&m->mesh, point))
-            add(&list, s, world_object_number(s, WORLD_MESH, k), m->material);
+            push(&list, world_mesh_object_number(s, k), s->materials[m->material].ior);
     }
-    for (size_t k = 0; k < s->plane_count; k++) {
-        const struct plane *p = &s->planes[k];
-        if (is_transparent(s, p->material) && vec3_dot(point, p->normal) < p->distance)
-            add(&list, s, world_object_number(s, WORLD_PLANE, k), p->material);
-    }
+    for (size_t k = 0; k < w->unbounded_count; k++)
+        add_containing(&list, s, &w->unbounded[k], point);
     return list;
 }

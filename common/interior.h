@@ -37,10 +37,11 @@ bool interior_contains(const struct interior_list *list, int object);
  * when nothing bends). Cannot fail; a full list counts one overflow and stays as it is. */
 double interior_cross(struct interior_list *list, int object, double ior);
 
-/* Returns the list of the transparent objects of world w that contain `point`, in world.h's object
- * order, as POV-Ray gives a camera ray that starts inside glass: spheres, boxes and planes (the side
- * the normal points away from) by their shape, meshes by counting crossings along +z (odd is inside,
- * the twin's inside_vector), triangles never. Cannot fail. */
+/* Returns the list of the transparent objects of world w that contain `point`, in the order the world
+ * searches them (struct world), as POV-Ray gives a camera ray that starts inside glass: each kind of
+ * shape by its `contains` (shape.h: spheres, boxes, planes on the side the normal points away from;
+ * triangles never), meshes by counting crossings along +z (odd is inside, the twin's inside_vector).
+ * Cannot fail. */
 struct interior_list interior_at_point(const struct world *w, vec3 point);
 
 #endif

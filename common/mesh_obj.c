@@ -13,7 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "mesh_private.h"
+#include "mesh_obj.h"
 
 #define OBJ_INDEX_SATURATION 1000000000000LL /* larger digit strings stop growing: no overflow */
 

@@ -28,7 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mesh_private.h"
+#include "mesh_ply.h"
 
 #define PLY_MIN_LINE_BYTES 2 /* an ascii value needs a digit and a separator after it */
 

@@ -31,14 +31,7 @@ vec3 phong_shade(const struct scene *s, const struct phong_surface *at, phong_sh
         vec3 diffuse = vec3_scale(m->colour, m->diffuse * cosine * at->opacity);
         double alignment = vec3_dot(mirror, to_light);
         double highlight = (m->phong > 0.0 && alignment > 0.0) ? m->phong * pow(alignment, m->phong_size) : 0.0;
-#ifdef WHITTED_MUTANT_HIGHLIGHT_TIMES_PIGMENT
-        /* A deliberate mistake, compiled only into a test program (see the Makefile's mutants): the
-         * highlight tinted by the surface colour. POV-Ray's is the light's colour alone, and
-         * tests/test_images.c checks that the agreement test catches the difference. */
-        vec3 shine = vec3_scale(m->colour, highlight);
-#else
-        vec3 shine = vec3_make(highlight, highlight, highlight);
-#endif
+        vec3 shine = vec3_make(highlight, highlight, highlight); /* white: tinted only by the light */
         vec3 surface = vec3_add(diffuse, shine);
         colour = vec3_add(colour, vec3_mul(reaching, surface));
     }

@@ -5,13 +5,22 @@
  * exactly edge-on covers no area of the picture). */
 #include "plane.h"
 
+#include "hit.h"
 #include "stats.h"
 
+/* A tie goes to the plane: when a plane is exactly as far as the hit found before it (a box's face or
+ * a triangle lying in the plane), the plane replaces it. This is POV-Ray's rule: it tests the infinite
+ * shapes before the bounded ones, and a later shape replaces the hit only when strictly nearer. Among
+ * planes, the first in the scene keeps a tie, as in POV-Ray. */
 bool plane_closest(const struct plane *planes, size_t count, const ray *r, double t_min, struct hit *h) {
     const struct plane *nearest = NULL;
-    for (size_t k = 0; k < count; k++)
-        if (plane_intersect(&planes[k], r, t_min, h->t, &h->t))
+    for (size_t k = 0; k < count; k++) {
+        double t;
+        if (plane_intersect(&planes[k], r, t_min, INFINITY, &t) && (t < h->t || (t == h->t && nearest == NULL))) {
+            h->t = t;
             nearest = &planes[k];
+        }
+    }
     if (nearest == NULL)
         return false;
     h->normal = nearest->normal;
@@ -58,4 +67,16 @@ static bool plane_bounds(const void *item, vec3 *min, vec3 *max) {
     return false;
 }
 
-const struct shape_behaviour plane_behaviour = {closest_planes, plane_crossings, plane_bounds};
+/* The side the normal points away from: n . P < d. */
+static bool plane_contains(const void *item, vec3 point) {
+    const struct plane *p = item;
+    return vec3_dot(point, p->normal) < p->distance;
+}
+
+const struct shape_kind plane_kind = {
+    .syntax = &plane_syntax,
+    .closest = closest_planes,
+    .crossings = plane_crossings,
+    .bounds = plane_bounds,
+    .contains = plane_contains,
+};

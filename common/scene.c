@@ -7,11 +7,15 @@
  * freed and left empty. */
 #include "scene.h"
 
+#include "box.h"
 #include "camera.h"
 #include "image.h"
 #include "infile.h"
 #include "name_index.h"
+#include "plane.h"
+#include "sphere.h"
 #include "text_escape.h"
+#include "triangle.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -252,28 +256,26 @@ static bool parse_light(const struct parser *p, struct scene *s, char **tok, int
     return true;
 }
 
-/* Reads the line of a shape of kind `kind` (shape_kinds[kind]): its own keys and `material`, then
- * the kind's make. */
-static bool parse_shape(const struct parser *p, struct scene *s, size_t kind, char **tok, int n) {
-    const struct shape_kind *k = &shape_kinds[kind];
-    const struct shape_syntax *syntax = k->syntax;
+/* Reads the line of a shape of the list's kind: its own keys and `material`, then the kind's make. */
+static bool parse_shape(const struct parser *p, struct scene *s, struct shape_list *list, char **tok, int n) {
+    const struct shape_syntax *syntax = list->syntax;
     struct key_spec specs[KEY_MAX];
     memcpy(specs, syntax->keys, (size_t)syntax->key_count * sizeof *specs);
     int material_key = syntax->key_count;
     specs[material_key] = (struct key_spec){"material", 0};
     struct key_values kv;
     int material;
-    if (!parse_keys(p, k->keyword, tok, n, specs, material_key + 1, &kv) ||
-        !require_keys(p, k->keyword, specs, &kv, syntax->required) ||
+    if (!parse_keys(p, syntax->keyword, tok, n, specs, material_key + 1, &kv) ||
+        !require_keys(p, syntax->keyword, specs, &kv, syntax->required) ||
         !material_reference(p, s, &kv, material_key, &material))
         return false;
-    char *item = grow(&s->shapes[kind].items, &s->shapes[kind].count, k->size);
+    char *item = grow(&list->items, &list->count, syntax->size);
     if (item == NULL)
         return fail(p, "out of memory");
     char why[256];
     if (!syntax->make(&kv, item, why, sizeof why))
         return fail(p, "%s", why);
-    memcpy(item + k->material_offset, &material, sizeof material);
+    memcpy(item + syntax->material_offset, &material, sizeof material);
     return true;
 }
 
@@ -316,31 +318,58 @@ static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int 
     return true;
 }
 
+/* The antialias line (antialias.h): a scene has at most one. */
+static bool parse_antialias(const struct parser *p, struct scene *s, char **tok, int n) {
+    struct key_values kv;
+    char why[256];
+    if (s->antialias.line != 0)
+        return fail(p, "a second antialias line (a scene has one)");
+    if (!parse_keys(p, "antialias", tok, n, antialias_keys, ANTIALIAS_KEY_COUNT, &kv))
+        return false;
+    if (!antialias_make(&kv, &s->antialias, why, sizeof why))
+        return fail(p, "%s", why);
+    s->antialias.line = p->line;
+    return true;
+}
+
 /* ---- the kinds of shape ------------------------------------------------------------------------ */
 
-/* Each kind's behaviour is referenced weakly: a program that does not link the kind's module (chapter
- * 1 links none) gets NULL, and never needs it, since scene_drop_unsupported removes the shapes of
- * kinds introduced after its chapter. */
-#define SHAPE_KIND(type, array, FEATURE, chapter) \
-    extern const struct shape_behaviour type##_behaviour __attribute__((weak));
-#include "shape_kinds.h"
-#undef SHAPE_KIND
+const struct shape_syntax *const scene_syntaxes[] = {&sphere_syntax, &triangle_syntax, &plane_syntax, &box_syntax,
+                                                     NULL};
 
-#define SHAPE_KIND(type, array, FEATURE, chapter)                                                         \
-    [SHAPE_##FEATURE] = {#type, #array, chapter, SCENE_##FEATURE, sizeof(struct type),                     \
-                         offsetof(struct type, material), &type##_syntax, &type##_behaviour},
-const struct shape_kind shape_kinds[SHAPE_KIND_COUNT] = {
-#include "shape_kinds.h"
-};
-#undef SHAPE_KIND
+/* Returns the kind in `kinds` (ending with NULL; NULL for none) whose line is `syntax`, or NULL. */
+static const struct shape_kind *kind_with_syntax(const struct shape_kind *const *kinds,
+                                                 const struct shape_syntax *syntax) {
+    for (size_t k = 0; kinds != NULL && kinds[k] != NULL; k++)
+        if (kinds[k]->syntax == syntax)
+            return kinds[k];
+    return NULL;
+}
 
-/* The two views of the scene's shapes (scene.h) must name the same memory. */
-#define SHAPE_KIND(type, array, FEATURE, chapter)                                                         \
-    _Static_assert(offsetof(struct scene, array) == offsetof(struct scene, shapes[SHAPE_##FEATURE].items) && \
-                   offsetof(struct scene, type##_count) == offsetof(struct scene, shapes[SHAPE_##FEATURE].count), \
-                   "struct scene: the " #array " do not overlay shapes[SHAPE_" #FEATURE "]");
-#include "shape_kinds.h"
-#undef SHAPE_KIND
+/* Gives s an empty list for every kind of scene_syntaxes[], with its kind when the program draws it,
+ * then one for every other kind it draws. Returns false when there are more than SCENE_KIND_MAX. */
+static bool make_shape_lists(struct scene *s, const struct shape_kind *const *kinds) {
+    s->kind_count = 0;
+    for (size_t k = 0; scene_syntaxes[k] != NULL; k++) {
+        const struct shape_syntax *syntax = scene_syntaxes[k];
+        s->shapes[s->kind_count++] = (struct shape_list){syntax, kind_with_syntax(kinds, syntax), NULL, 0};
+    }
+    for (size_t k = 0; kinds != NULL && kinds[k] != NULL; k++) {
+        if (scene_shapes(s, kinds[k]->syntax) != NULL)
+            continue;
+        if (s->kind_count == SCENE_KIND_MAX)
+            return false;
+        s->shapes[s->kind_count++] = (struct shape_list){kinds[k]->syntax, kinds[k], NULL, 0};
+    }
+    return true;
+}
+
+const struct shape_list *scene_shapes(const struct scene *s, const struct shape_syntax *syntax) {
+    for (size_t k = 0; k < s->kind_count; k++)
+        if (s->shapes[k].syntax == syntax)
+            return &s->shapes[k];
+    return NULL;
+}
 
 /* ---- lines and files --------------------------------------------------------------------------- */
 
@@ -415,15 +444,16 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
         return parse_light(p, s, args, count);
     if (strcmp(directive, "mesh") == 0)
         return parse_mesh(p, s, args, count);
-    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
-        if (strcmp(directive, shape_kinds[kind].keyword) == 0)
-            return parse_shape(p, s, kind, args, count);
+    if (strcmp(directive, "antialias") == 0)
+        return parse_antialias(p, s, args, count);
+    for (size_t k = 0; k < s->kind_count; k++)
+        if (strcmp(directive, s->shapes[k].syntax->keyword) == 0)
+            return parse_shape(p, s, &s->shapes[k], args, count);
     return fail(p, "unknown directive '%s'", directive);
 }
 
 /* Sets the values a scene has before its first line. */
 static bool scene_defaults(struct scene *s, const char *name) {
-    memset(s, 0, sizeof *s);
     s->path = malloc(strlen(name) + 1);
     struct material *fallback = grow(&s->materials, &s->material_count, sizeof *fallback);
     if (s->path == NULL || fallback == NULL)
@@ -440,7 +470,14 @@ static bool scene_defaults(struct scene *s, const char *name) {
     return true;
 }
 
-bool scene_parse(const char *name, const char *text, struct scene *s, char *err, size_t err_size) {
+bool scene_parse(const char *name, const char *text, const struct shape_kind *const *kinds, struct scene *s,
+                 char *err, size_t err_size) {
+    memset(s, 0, sizeof *s);
+    if (!make_shape_lists(s, kinds)) {
+        scene_free(s);
+        snprintf(err, err_size, "%s: more than %d kinds of shape", name, SCENE_KIND_MAX);
+        return false;
+    }
     struct name_index materials;
     name_index_init(&materials);
     struct parser p = {name, 0, err, err_size, &materials};
@@ -516,12 +553,13 @@ char *scene_read_text(const char *path, char *err, size_t err_size) {
     return text;
 }
 
-bool scene_load(const char *path, struct scene *s, char *err, size_t err_size) {
+bool scene_load(const char *path, const struct shape_kind *const *kinds, struct scene *s, char *err,
+                size_t err_size) {
     memset(s, 0, sizeof *s);
     char *text = scene_read_text(path, err, err_size);
     if (text == NULL)
         return false;
-    bool ok = scene_parse(path, text, s, err, err_size);
+    bool ok = scene_parse(path, text, kinds, s, err, err_size);
     free(text);
     return ok;
 }
@@ -541,8 +579,8 @@ void scene_free(struct scene *s) {
     free(s->path);
     free(s->materials);
     free(s->lights);
-    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
-        free(s->shapes[kind].items);
+    for (size_t k = 0; k < s->kind_count; k++)
+        free(s->shapes[k].items);
     free(s->meshes);
     memset(s, 0, sizeof *s);
 }
@@ -562,18 +600,23 @@ static void note_count(char *note, size_t size, size_t count, const char *one, c
     snprintf(note + used, size - used, "%s%zu %s", used == 0 ? "" : ", ", count, count == 1 ? one : many);
 }
 
-void scene_drop_unsupported(struct scene *s, unsigned supported, int chapter, FILE *note) {
+void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
     char what[256] = "";
-    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
-        const struct shape_kind *k = &shape_kinds[kind];
-        if ((supported & k->feature) && k->chapter <= chapter)
+    for (size_t k = 0; k < s->kind_count; k++) {
+        struct shape_list *list = &s->shapes[k];
+        if (list->kind != NULL)
             continue;
-        note_count(what, sizeof what, s->shapes[kind].count, k->keyword, k->plural);
-        s->shapes[kind].count = 0;
-        if (kind == SHAPE_TRIANGLES) { /* meshes are triangles too */
+        note_count(what, sizeof what, list->count, list->syntax->keyword, list->syntax->plural);
+        list->count = 0;
+        if (list->syntax == &triangle_syntax) { /* meshes are triangles too */
             note_count(what, sizeof what, s->mesh_count, "mesh", "meshes");
             drop_meshes(s);
         }
+    }
+    if (chapter < ANTIALIAS_CHAPTER && s->antialias.line != 0) {
+        size_t used = strlen(what);
+        snprintf(what + used, sizeof what - used, "%sthe antialias line", used == 0 ? "" : ", ");
+        s->antialias = (struct antialias){0};
     }
     if (what[0] != '\0' && note != NULL) {
         char path[4 * 1024];

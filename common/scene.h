@@ -2,9 +2,9 @@
  *
  * A scene file is parsed into plain data: camera, image size, colours, materials, lights and shapes.
  * Parsing needs no intersection code, so chapter 1 can read the same files as chapter 10: each kind of
- * shape brings the syntax of its line in its header (shape.h), and the kinds are listed in
- * shape_kinds.h. Meshes are only named here (file and transform); chapters that draw them load them
- * with scene_load_meshes. */
+ * shape brings the syntax of its line (struct shape_syntax, shape.h), and the reader knows the kinds
+ * listed in scene_syntaxes[] and those the program draws. Meshes are only named here (file and
+ * transform); chapters that draw them load them with scene_load_meshes. */
 #ifndef WHITTED_SCENE_H
 #define WHITTED_SCENE_H
 
@@ -12,9 +12,9 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "antialias.h"
 #include "mesh.h"
 #include "shape.h"
-#include "shape_kinds.h"
 
 #define SCENE_NAME_MAX 64 /* longest material name, including the terminating zero */
 
@@ -47,32 +47,17 @@ struct scene_mesh {
     struct mesh mesh;    /* empty until scene_load_meshes */
 };
 
-/* The kinds of shape, by their position in shape_kinds.h: SHAPE_SPHERES, SHAPE_TRIANGLES, ... */
-#define SHAPE_KIND(type, array, FEATURE, chapter) SHAPE_##FEATURE,
-enum shape_kind_index {
-#include "shape_kinds.h"
-    SHAPE_KIND_COUNT
-};
-#undef SHAPE_KIND
+/* The kinds of shape every chapter reads, whether it draws them or not: the lines of spheres,
+ * triangles, planes and boxes, in this order, ending with NULL. Defined in scene.c. */
+extern const struct shape_syntax *const scene_syntaxes[];
 
-/* Which kinds of shape a chapter draws, one bit per kind: SCENE_SPHERES, SCENE_TRIANGLES (`triangle`
- * and `mesh`), SCENE_PLANES, SCENE_BOXES, ...; see scene_drop_unsupported. */
-#define SHAPE_KIND(type, array, FEATURE, chapter) SCENE_##FEATURE = 1u << SHAPE_##FEATURE,
-enum scene_feature {
-#include "shape_kinds.h"
-};
-#undef SHAPE_KIND
+#define SCENE_KIND_MAX 16 /* the most kinds of shape one scene holds */
 
-/* Every kind of shape introduced up to the chapter: what chapters that search through the world
- * (chapter 5 on) draw, so that a new kind needs no change to them. */
-#define SCENE_EVERY_SHAPE (~0u)
-
-/* Every kind of shape, in the order of shape_kinds.h. Defined in scene.c. */
-extern const struct shape_kind shape_kinds[SHAPE_KIND_COUNT];
-
-/* The shapes of one kind: an array of count structs of that kind (struct sphere, ...). */
-struct scene_shapes {
-    void *items;
+/* The shapes of one kind in a scene. */
+struct shape_list {
+    const struct shape_syntax *syntax; /* the kind's line: its keyword, the size of one shape, ... */
+    const struct shape_kind *kind;     /* the kind's ray queries if the program draws it, else NULL */
+    void *items;                       /* `count` structs of the kind (struct sphere, ...); owned */
     size_t count;
 };
 
@@ -87,26 +72,24 @@ struct scene {
                            * level 1, and a ray of level max_depth + 1 is black */
     bool shadow_offset;   /* false: shadow rays accept hits from t > 0 (chapter 7's acne demo) */
     double adc_bailout;   /* secondary rays weighing less are not traced (POV-Ray's adc_bailout), 0..1 */
+    struct antialias antialias; /* camera rays per pixel (chapter 12); method NONE without the line */
 
     struct material *materials; size_t material_count; /* materials[0] is "default" */
     struct light *lights;       size_t light_count;
     struct scene_mesh *meshes;  size_t mesh_count;
-    /* The shapes, one array per kind, seen two ways: by kind, shapes[SHAPE_SPHERES], for code that
-     * treats every kind alike; and by name, spheres and sphere_count, for code about one kind. */
-    union {
-        struct scene_shapes shapes[SHAPE_KIND_COUNT];
-        struct {
-#define SHAPE_KIND(type, array, FEATURE, chapter) struct type *array; size_t type##_count;
-#include "shape_kinds.h"
-#undef SHAPE_KIND
-        };
-    };
+    /* The shapes, one list per kind: the kinds of scene_syntaxes[] in that order, then the other kinds
+     * the program draws, in the order it lists them. A list may be empty. */
+    struct shape_list shapes[SCENE_KIND_MAX];
+    size_t kind_count;
 };
 
-/* Reads the scene file at `path` into *s. On success returns true; free *s with scene_free. On
- * failure returns false, leaves *s empty and writes "file:line: what is wrong" into err. Mesh files
- * are not opened here (see scene_load_meshes). */
-bool scene_load(const char *path, struct scene *s, char *err, size_t err_size);
+/* Reads the scene file at `path` into *s. `kinds` lists the kinds of shape the program draws, ending
+ * with NULL (NULL for none): their lists get their `kind`, and a kind not in scene_syntaxes[] (a new
+ * one, like the disc of chapter 2's exercises) is read too. On success returns true; free *s with
+ * scene_free. On failure returns false, leaves *s empty and writes "file:line: what is wrong" into
+ * err. Mesh files are not opened here (see scene_load_meshes). */
+bool scene_load(const char *path, const struct shape_kind *const *kinds, struct scene *s, char *err,
+                size_t err_size);
 
 /* Reads the scene file at `path` whole, as scene_load does before parsing it. Returns a malloc'd,
  * zero-terminated string (the caller frees it), or NULL with "file: what is wrong" in err when the file
@@ -115,7 +98,8 @@ char *scene_read_text(const char *path, char *err, size_t err_size);
 
 /* Parses scene text held in memory, as scene_load does for a file; `name` is used in messages and to
  * resolve mesh paths (relative to its folder). Same results and ownership as scene_load. */
-bool scene_parse(const char *name, const char *text, struct scene *s, char *err, size_t err_size);
+bool scene_parse(const char *name, const char *text, const struct shape_kind *const *kinds, struct scene *s,
+                 char *err, size_t err_size);
 
 /* Frees everything *s owns (meshes included) and leaves it empty. Safe on an empty scene. */
 void scene_free(struct scene *s);
@@ -125,11 +109,16 @@ void scene_free(struct scene *s);
  * wrong" in err; meshes loaded so far stay owned by *s. Defined in scene_meshes.c (chapter 3 on). */
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 
-/* Removes the shapes of every kind not in `supported` (a mask of enum scene_feature) or introduced
- * after `chapter` (meshes go with SCENE_TRIANGLES), so that a chapter can read any scene file and draw
- * what it knows. If something was removed, prints one line to `note` (when not NULL) saying what was
- * ignored, e.g. "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */
-void scene_drop_unsupported(struct scene *s, unsigned supported, int chapter, FILE *note);
+/* Removes the shapes of every kind the program does not draw (a list without its kind; the meshes go
+ * with the triangles), and before chapter 12 the antialias line, so that chapter `chapter` can read
+ * any scene file and draw what it knows. If
+ * something was removed, prints one line to `note` (when not NULL) saying what was ignored, e.g.
+ * "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */
+void scene_drop_unsupported(struct scene *s, int chapter, FILE *note);
+
+/* Returns the list of the shapes whose line is `syntax` (one of scene_syntaxes[], or a drawn kind's),
+ * or NULL when s has none. The kinds of scene_syntaxes[] always have a list, perhaps empty. */
+const struct shape_list *scene_shapes(const struct scene *s, const struct shape_syntax *syntax);
 
 /* Returns the index of the material called `name`, or -1 if there is none. */
 int scene_find_material(const struct scene *s, const char *name);

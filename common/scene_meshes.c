@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "triangle.h"
+
 /* The accelerating structures of chapters 5, 9 and 10 keep boxes in float and the SAH multiplies two
  * sides of a box in float to get its area. A side s has an area that is a normal float (about 1.2e-38
  * to 3.4e38) only for s between about 1e-19 and 1e19; beyond that the areas overflow or vanish and the

@@ -15,33 +15,48 @@ static void grow(struct extent *e, vec3 p) {
     e->max = vec3_make(fmax(e->max.x, p.x), fmax(e->max.y, p.y), fmax(e->max.z, p.z));
 }
 
-double scene_extent(const struct scene *s) {
-    struct extent e = {s->eye, s->eye};
-    for (size_t k = 0; k < s->sphere_count; k++) {
-        vec3 c = s->spheres[k].centre;
-        double r = s->spheres[k].radius;
-        grow(&e, vec3_make(c.x - r, c.y - r, c.z - r));
-        grow(&e, vec3_make(c.x + r, c.y + r, c.z + r));
+/* Grows e by the bounding box of every shape of `list` that has one. Returns true when one had. */
+static bool grow_by_shapes(struct extent *e, const struct shape_list *list) {
+    bool bounded = false;
+    for (size_t k = 0; k < list->count; k++) {
+        vec3 min, max;
+        if (list->kind->bounds(shape_item(list->syntax, list->items, k), &min, &max)) {
+            grow(e, min);
+            grow(e, max);
+            bounded = true;
+        }
     }
-    for (size_t k = 0; k < s->box_count; k++) {
-        grow(&e, s->boxes[k].min);
-        grow(&e, s->boxes[k].max);
-    }
-    for (size_t k = 0; k < s->triangle_count; k++) {
-        grow(&e, s->triangles[k].a);
-        grow(&e, s->triangles[k].b);
-        grow(&e, s->triangles[k].c);
-    }
+    return bounded;
+}
+
+/* Grows e by every finite shape of s: the shapes with bounding boxes, the vertices of loaded meshes.
+ * Returns true when s has one. */
+static bool grow_by_scene(struct extent *e, const struct scene *s) {
+    bool finite = s->mesh_count > 0;
+    for (size_t k = 0; k < s->kind_count; k++)
+        if (s->shapes[k].kind != NULL)
+            finite |= grow_by_shapes(e, &s->shapes[k]);
     for (size_t k = 0; k < s->mesh_count; k++)
         for (size_t v = 0; v < s->meshes[k].mesh.vertex_count; v++)
-            grow(&e, s->meshes[k].mesh.vertices[v]);
-    return fmax(e.max.x - e.min.x, fmax(e.max.y - e.min.y, e.max.z - e.min.z));
+            grow(e, s->meshes[k].mesh.vertices[v]);
+    return finite;
+}
+
+static double longest_side(const struct extent *e) {
+    return fmax(e->max.x - e->min.x, fmax(e->max.y - e->min.y, e->max.z - e->min.z));
+}
+
+double scene_extent(const struct scene *s) {
+    struct extent e = {s->eye, s->eye};
+    grow_by_scene(&e, s);
+    return longest_side(&e);
 }
 
 bool scene_scale_warn(const struct scene *s, FILE *out) {
-    if (s->sphere_count + s->box_count + s->triangle_count + s->mesh_count == 0)
+    struct extent e = {s->eye, s->eye};
+    if (!grow_by_scene(&e, s))
         return false; /* nothing finite to measure (chapter 1 draws no shapes at all) */
-    double extent = scene_extent(s);
+    double extent = longest_side(&e);
     double smallest = SCENE_SCALE_MIN_MARGINS * SHADOW_T_MIN;
     if (extent >= smallest)
         return false;

@@ -8,7 +8,8 @@
  *   material.glass.ior=1.45         a key of the material with that name
  *   sphere.2.radius=0.5             a key of the 2nd line of that directive (lights and shapes)
  * VALUE's words replace as many words after the key; a key the line does not have is added to it, and
- * a positional directive the scene does not have (max_depth, say) is added as a new line. */
+ * a positional directive the scene does not have (max_depth, say) is added as a new line, as is an
+ * optional line with keys (antialias.samples=4 adds "antialias samples 4"). */
 #include "scene_set.h"
 
 #include "scene.h"
@@ -124,6 +125,10 @@ static char *rewrite_line(char **words, int count, int fixed, const char *key, c
     return line;
 }
 
+/* Directives with keys that a scene may leave out altogether (their defaults hold): --set on one of
+ * their keys adds the line when the scene has none. */
+static bool is_optional_line(const char *directive) { return strcmp(directive, "antialias") == 0; }
+
 /* Directives whose values are positional (no keys). */
 static bool is_positional(const char *directive) {
     static const char *const positional[] = {"image", "background", "ambient_light", "max_depth", "shadow_offset",
@@ -183,20 +188,21 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
     struct line_span span;
     char *changed = NULL;
     if (!find_line(*text, directive, name, ordinal, &span)) {
-        if (!positional) {
+        if (!positional && !(is_optional_line(directive) && part_count == 2)) {
             if (name != NULL)
                 return set_fail(err, err_size, spec, "the scene has no material called '%s'", name);
             if (ordinal > 0)
                 return set_fail(err, err_size, spec, "the scene has fewer than %d %s lines", ordinal, directive);
             return set_fail(err, err_size, spec, "the scene has no %s line", directive);
         }
-        /* A positional directive the scene leaves at its default: add the line at the end. */
+        /* A directive the scene leaves at its defaults: add the line at the end (with the key, for an
+         * optional line with keys). */
         size_t old = strlen(*text);
-        changed = malloc(old + strlen(directive) + strlen(equals + 1) + 4);
+        changed = malloc(old + strlen(directive) + (key != NULL ? strlen(key) + 1 : 0) + strlen(equals + 1) + 4);
         if (changed == NULL)
             return set_fail(err, err_size, spec, "out of memory");
-        sprintf(changed, "%s%s%s %s\n", *text, old > 0 && (*text)[old - 1] != '\n' ? "\n" : "", directive,
-                equals + 1);
+        sprintf(changed, "%s%s%s%s%s %s\n", *text, old > 0 && (*text)[old - 1] != '\n' ? "\n" : "", directive,
+                key != NULL ? " " : "", key != NULL ? key : "", equals + 1);
     } else {
         char *line = malloc(span.length + 1);
         if (line == NULL)
@@ -232,8 +238,8 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
     return true;
 }
 
-bool scene_load_changed(const char *path, const char *const *specs, int count, struct scene *s, bool *bad_spec,
-                        char *err, size_t err_size) {
+bool scene_load_changed(const char *path, const char *const *specs, int count, const struct shape_kind *const *kinds,
+                        struct scene *s, bool *bad_spec, char *err, size_t err_size) {
     memset(s, 0, sizeof *s);
     *bad_spec = false;
     char *text = scene_read_text(path, err, err_size);
@@ -245,7 +251,7 @@ bool scene_load_changed(const char *path, const char *const *specs, int count, s
             *bad_spec = true;
             return false;
         }
-    bool ok = scene_parse(path, text, s, err, err_size);
+    bool ok = scene_parse(path, text, kinds, s, err, err_size);
     free(text);
     size_t used = strlen(err);
     if (!ok && count > 0 && used + 1 < err_size) /* the line in the file may not show the bad value */

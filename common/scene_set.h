@@ -18,11 +18,13 @@
  * "--set PATH=VALUE: what is wrong". The value itself is not checked here: the parser checks it. */
 bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size);
 
-/* Loads the scene at `path` as scene_load does, with the `count` changes specs[] applied to its text
- * first. Returns true on success (free *s with scene_free). On failure returns false with the message
- * in err, and sets *bad_spec when a change itself was wrong (a command-line error), not the scene. */
+/* Loads the scene at `path` as scene_load does (with the kinds of shape `kinds`, ending with NULL), with
+ * the `count` changes specs[] applied to its text first. Returns true on success (free *s with
+ * scene_free). On failure returns false with the message in err, and sets *bad_spec when a change
+ * itself was wrong (a command-line error), not the scene. */
 struct scene;
-bool scene_load_changed(const char *path, const char *const *specs, int count, struct scene *s, bool *bad_spec,
-                        char *err, size_t err_size);
+struct shape_kind;
+bool scene_load_changed(const char *path, const char *const *specs, int count, const struct shape_kind *const *kinds,
+                        struct scene *s, bool *bad_spec, char *err, size_t err_size);
 
 #endif

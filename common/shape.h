@@ -1,31 +1,36 @@
-/* shape.h: what every kind of shape tells the rest of the tracer about itself (chapter 1).
+/* shape.h: what a kind of shape (sphere, triangle, plane, box, ...) tells the rest of the tracer about
+ * itself, in two tables (chapter 1).
  *
- * A kind of shape (sphere, triangle, plane, box, ...) is one module, e.g. sphere.h and sphere.c, and
- * one line in shape_kinds.h that includes its header. The module has two halves, because a chapter
- * links only the modules of chapters up to its own while every chapter reads every scene:
+ * A kind of shape is one module: sphere.h declares struct sphere and the two tables, sphere_syntax.c
+ * fills the first and sphere.c the second.
  *
- *  - its syntax, in the header: the keys of its scene-file line, how they become the shape's struct,
- *    and how the shape is written for POV-Ray (struct shape_syntax). It is plain arithmetic, compiled
- *    into the scene reader of chapter 1, so chapter 1 reads spheres without any intersection code;
- *  - its behaviour, in the .c file: the nearest hit, every crossing and the bounding box over an
- *    array of its shapes (struct shape_behaviour), linked from the chapter that introduces it.
+ *  - struct shape_syntax, the kind's scene-file line: its keyword, its keys, how they make the shape's
+ *    struct, and how the shape is written for POV-Ray. It is plain arithmetic, linked from chapter 1 on,
+ *    because every chapter reads every scene: chapter 1 reads spheres, and ignores them, without any
+ *    intersection code. The scene reader knows the lines of the kinds in its list (scene.c).
+ *  - struct shape_kind, the kind's ray queries over an array of its shapes: the nearest hit, every
+ *    crossing, the bounding box, whether a point is inside. It is linked from the chapter that
+ *    introduces the kind, and it points at the kind's syntax.
  *
- * The header ends with its registration, outside the include guard:
- *     SHAPE_KIND(sphere, spheres, SPHERES, 2)
- * the struct's name (also the directive's keyword), the name of its array in struct scene (also the
- * plural in messages), its feature bit (SCENE_SPHERES) and the chapter that introduces it. scene.h
- * and scene.c expand these lines into the scene's arrays and the table shape_kinds[]. */
+ * A chapter's main.c lists the kinds it draws, e.g. chapter 3's
+ *     static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, NULL};
+ * and hands the list to the scene reader (cli_start). The scene keeps one struct shape_list per kind,
+ * and every place that treats the kinds alike (the world's searches, the interior list, the scale
+ * warning, the POV-Ray twin) goes through these tables. So a new kind is a new module and one line in
+ * the list of each chapter that draws it (docs/02-sphere.md, "One module per kind of shape"). */
 #ifndef WHITTED_SHAPE_H
 #define WHITTED_SHAPE_H
 
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <string.h>
 
-#include "hit.h"
 #include "ray.h"
 
-/* ---- syntax: the scene-file line (chapter 1) --------------------------------------------------- */
+struct hit; /* hit.h (chapter 2): what the nearest-hit search of a kind fills in */
+
+/* ---- the scene-file line (chapter 1) ----------------------------------------------------------- */
 
 /* One key a directive accepts: its name and how many numbers follow it (0 = one word, not a number). */
 struct key_spec {
@@ -53,6 +58,10 @@ static inline vec3 key_vec3(const struct key_values *kv, int key) {
 static inline void shape_write_vector(FILE *out, vec3 v) { fprintf(out, "<%.17g, %.17g, %.17g>", v.x, v.y, v.z); }
 
 struct shape_syntax {
+    const char *keyword;    /* the directive, e.g. "sphere"; also one shape in messages */
+    const char *plural;     /* e.g. "spheres": several shapes in messages */
+    size_t size;            /* sizeof one shape, e.g. sizeof(struct sphere) */
+    size_t material_offset; /* offsetof its `int material` field */
     /* The keys of the directive besides `material`, which every shape takes (the parser adds it and
      * stores the material's index in the shape's `material` field). */
     const struct key_spec *keys;
@@ -67,14 +76,28 @@ struct shape_syntax {
     void (*write_pov)(FILE *out, const void *item);
 };
 
-/* ---- behaviour: ray queries over an array of shapes (the chapter that introduces the kind) ----- */
+/* Returns the index-th shape of an array of shapes of one kind (a struct sphere *, ...). */
+static inline const void *shape_item(const struct shape_syntax *syntax, const void *items, size_t index) {
+    return (const char *)items + index * syntax->size;
+}
+
+/* Returns the material of the shape `item` of a kind with this syntax. */
+static inline int shape_material(const struct shape_syntax *syntax, const void *item) {
+    int material;
+    memcpy(&material, (const char *)item + syntax->material_offset, sizeof material);
+    return material;
+}
+
+/* ---- the ray queries (the chapter that introduces the kind) ----------------------------------- */
 
 /* Called for one crossing of a surface at distance t; returns false to stop the enumeration. */
 typedef bool (*shape_crossing_visitor)(void *context, double t, int material);
 
-struct shape_behaviour {
+struct shape_kind {
+    const struct shape_syntax *syntax; /* its scene-file line */
     /* Tests r against items[0..count) for hits with t_min < t < h->t and keeps the nearest in *h (t,
-     * the shape's own normal, material). Returns true when *h was replaced. */
+     * the shape's own normal, material, and in h->object its index in items). Returns true when *h
+     * was replaced. */
     bool (*closest)(const void *items, size_t count, const ray *r, double t_min, struct hit *h);
     /* Calls visit(context, t, material) for every crossing of a surface of items[0..count) by r with
      * t_min < t < t_max (both crossings of a closed shape). Returns false as soon as visit does. */
@@ -83,21 +106,10 @@ struct shape_behaviour {
     /* Stores the smallest axis-aligned box holding *item in *min and *max and returns true; returns
      * false for a shape without one (an infinite plane). */
     bool (*bounds)(const void *item, vec3 *min, vec3 *max);
-};
-
-/* ---- the registry entry ------------------------------------------------------------------------ */
-
-/* One kind of shape as the table shape_kinds[] (scene.h) holds it. */
-struct shape_kind {
-    const char *keyword;    /* the directive, e.g. "sphere"; also one shape in messages */
-    const char *plural;     /* e.g. "spheres": several shapes in messages, and the array's name */
-    int chapter;            /* the chapter that introduces it */
-    unsigned feature;       /* its bit of enum scene_feature */
-    size_t size;            /* sizeof one shape */
-    size_t material_offset; /* offsetof its `int material` field */
-    const struct shape_syntax *syntax;
-    /* NULL in a program that does not link the kind's module (chapter 1 links none). */
-    const struct shape_behaviour *behaviour;
+    /* Returns true when `point` is inside *item (a plane: on the side its normal points away from), as
+     * POV-Ray decides for a camera inside glass (chapter 8); NULL for a kind without an inside (a
+     * single triangle). */
+    bool (*contains)(const void *item, vec3 point);
 };
 
 #endif

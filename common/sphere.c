@@ -5,6 +5,7 @@
  * "half b" form saves the factors of 2 and 4 of the textbook formula. */
 #include "sphere.h"
 
+#include "hit.h"
 #include "stats.h"
 
 /* TASK 2.1: ray-sphere intersection, the nearest root */
@@ -78,4 +79,17 @@ static bool sphere_bounds(const void *item, vec3 *min, vec3 *max) {
     return true;
 }
 
-const struct shape_behaviour sphere_behaviour = {closest_spheres, sphere_crossings, sphere_bounds};
+/* Strictly inside: a point on the surface is not. */
+static bool sphere_contains(const void *item, vec3 point) {
+    const struct sphere *s = item;
+    vec3 d = vec3_sub(point, s->centre);
+    return vec3_dot(d, d) < s->radius * s->radius;
+}
+
+const struct shape_kind sphere_kind = {
+    .syntax = &sphere_syntax,
+    .closest = closest_spheres,
+    .crossings = sphere_crossings,
+    .bounds = sphere_bounds,
+    .contains = sphere_contains,
+};

@@ -1,12 +1,11 @@
-/* sphere.h: the sphere and its ray intersection, the first shape of all (chapter 2; its scene line,
- * at the end, is read from chapter 1 on: shape.h explains the two halves of a shape's module). */
+/* sphere.h: the sphere, the first shape of all (chapter 1 reads its scene line, sphere_syntax.c;
+ * chapter 2 intersects it, sphere.c: shape.h explains the two halves of a shape's module). */
 #ifndef WHITTED_SPHERE_H
 #define WHITTED_SPHERE_H
 
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "hit.h"
 #include "ray.h"
 #include "shape.h"
 
@@ -28,39 +27,9 @@ bool sphere_closest(const struct sphere *spheres, size_t count, const ray *r, do
 /* Returns the outward unit normal of s at the surface point p. */
 vec3 sphere_normal(const struct sphere *s, vec3 p);
 
-/* The sphere's ray queries for the world (struct shape_behaviour, shape.h). */
-extern const struct shape_behaviour sphere_behaviour;
+/* The sphere's scene-file line, `sphere centre X Y Z radius R [material NAME]` (sphere_syntax.c,
+ * chapter 1), and the sphere as a kind of shape (shape.h). */
+extern const struct shape_syntax sphere_syntax;
+extern const struct shape_kind sphere_kind;
 
-/* ---- the scene-file line: sphere centre X Y Z radius R [material NAME] (read by chapter 1) ---- */
-
-enum { SPHERE_CENTRE, SPHERE_RADIUS };
-
-/* Makes the sphere from its keys (struct shape_syntax's make). */
-static inline bool sphere_make(const struct key_values *kv, void *item, char *why, size_t why_size) {
-    struct sphere *s = item;
-    s->centre = key_vec3(kv, SPHERE_CENTRE);
-    s->radius = kv->number[SPHERE_RADIUS][0];
-    if (!(s->radius > 0.0)) {
-        snprintf(why, why_size, "sphere radius must be positive, got %g", s->radius);
-        return false;
-    }
-    return true;
-}
-
-/* Writes the sphere for POV-Ray: sphere { <centre>, radius */
-static inline void sphere_write_pov(FILE *out, const void *item) {
-    const struct sphere *s = item;
-    fprintf(out, "sphere { ");
-    shape_write_vector(out, s->centre);
-    fprintf(out, ", %.17g", s->radius);
-}
-
-static const struct key_spec sphere_keys[] = {{"centre", 3}, {"radius", 1}};
-static const int sphere_required[] = {SPHERE_CENTRE, SPHERE_RADIUS, -1};
-static const struct shape_syntax sphere_syntax = {sphere_keys, 2, sphere_required, sphere_make, sphere_write_pov};
-
-#endif
-
-#ifdef SHAPE_KIND /* the registration line: see shape_kinds.h */
-SHAPE_KIND(sphere, spheres, SPHERES, 2)
 #endif

@@ -10,6 +10,9 @@ _Thread_local struct stats stats_thread;
 
 void stats_add(struct stats *into, const struct stats *from) {
     into->primary_rays += from->primary_rays;
+    into->pixels += from->pixels;
+    if (from->camera_rays_max > into->camera_rays_max)
+        into->camera_rays_max = from->camera_rays_max;
     into->shadow_rays += from->shadow_rays;
     into->reflected_rays += from->reflected_rays;
     into->refracted_rays += from->refracted_rays;
@@ -55,16 +58,21 @@ void stats_print(FILE *out, const struct stats *s) {
     print_counter(out, "crossings capped", s->crossings_capped);
     print_counter(out, "budget cuts", s->budget_cut);
     print_counter(out, "interior full", s->interior_overflows);
-    if (s->primary_rays == 0)
+    uint64_t pixels = s->pixels != 0 ? s->pixels : s->primary_rays;
+    if (pixels == 0)
         return;
     fprintf(out, "per pixel (with its shadow and secondary rays):\n");
-    print_ratio(out, "rays", rays, s->primary_rays);
-    print_ratio(out, "sphere tests", s->sphere_tests, s->primary_rays);
-    print_ratio(out, "triangle tests", s->triangle_tests, s->primary_rays);
-    print_ratio(out, "triangles culled", s->triangle_tests_culled, s->primary_rays);
-    print_ratio(out, "plane tests", s->plane_tests, s->primary_rays);
-    print_ratio(out, "box tests", s->box_tests, s->primary_rays);
-    print_ratio(out, "node visits", s->node_visits, s->primary_rays);
+    if (s->primary_rays != pixels || s->camera_rays_max > 1) {
+        print_ratio(out, "camera rays", s->primary_rays, pixels);
+        print_counter(out, "most camera rays", s->camera_rays_max);
+    }
+    print_ratio(out, "rays", rays, pixels);
+    print_ratio(out, "sphere tests", s->sphere_tests, pixels);
+    print_ratio(out, "triangle tests", s->triangle_tests, pixels);
+    print_ratio(out, "triangles culled", s->triangle_tests_culled, pixels);
+    print_ratio(out, "plane tests", s->plane_tests, pixels);
+    print_ratio(out, "box tests", s->box_tests, pixels);
+    print_ratio(out, "node visits", s->node_visits, pixels);
 }
 
 void stats_warn_limits(FILE *out, const struct stats *s) {

@@ -12,7 +12,9 @@
 #include <stdio.h>
 
 struct stats {
-    uint64_t primary_rays;   /* one per pixel */
+    uint64_t primary_rays;   /* camera rays: one per pixel, more with chapter 12's anti-aliasing */
+    uint64_t pixels;         /* pixels rendered (0 when only rays were counted: then one ray a pixel) */
+    uint64_t camera_rays_max; /* the most camera rays one pixel took (chapter 12); stats_add keeps the largest */
     uint64_t shadow_rays;    /* one per (hit, light facing the surface) pair, from chapter 7 */
     uint64_t reflected_rays; /* from chapter 8; only rays within the depth limit */
     uint64_t refracted_rays; /* from chapter 8 */
@@ -44,8 +46,9 @@ void stats_add(struct stats *into, const struct stats *from);
 void stats_reset_thread(void);
 
 /* Prints the non-zero counters of `s` to `out`, one aligned "name: value" line each, with the
- * total number of rays, then each counter divided by the number of camera rays. Cannot fail (write
- * errors on `out` are the caller's to check). */
+ * total number of rays, then each counter divided by the number of pixels (of camera rays when no
+ * pixels were counted); when some pixel took more than one camera ray, also the camera rays per pixel,
+ * their mean and their most. Cannot fail (write errors on `out` are the caller's to check). */
 void stats_print(FILE *out, const struct stats *s);
 
 /* Prints one warning line to `out` for each of chapter 8's limits that cut a ray tree short (crossings

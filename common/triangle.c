@@ -46,6 +46,8 @@
  * tests here reject only det == 0 (ray exactly parallel, or zero area). */
 #include "triangle.h"
 
+#include "hit.h"
+#include "mesh.h"
 #include "stats.h"
 
 /* TASK 3.1: Moller-Trumbore ray-triangle intersection */
@@ -162,4 +164,10 @@ static bool triangle_bounds(const void *item, vec3 *min, vec3 *max) {
     return true;
 }
 
-const struct shape_behaviour triangle_behaviour = {closest_triangles, triangle_crossings, triangle_bounds};
+/* A single triangle has no inside (contains is NULL): only a closed mesh has one. */
+const struct shape_kind triangle_kind = {
+    .syntax = &triangle_syntax,
+    .closest = closest_triangles,
+    .crossings = triangle_crossings,
+    .bounds = triangle_bounds,
+};

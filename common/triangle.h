@@ -1,5 +1,5 @@
-/* triangle.h: the triangle and the watertight ray-triangle test (chapter 3; its scene line, at the end,
- * is read from chapter 1 on: shape.h explains the two halves of a shape's module). */
+/* triangle.h: the triangle and the watertight ray-triangle test (chapter 1 reads its scene line,
+ * triangle_syntax.c; chapter 3 intersects it, triangle.c: shape.h explains the two halves). */
 #ifndef WHITTED_TRIANGLE_H
 #define WHITTED_TRIANGLE_H
 
@@ -7,8 +7,6 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "hit.h"
-#include "mesh.h"
 #include "ray.h"
 #include "shape.h"
 
@@ -62,10 +60,6 @@ static inline double triangle_edge_function(double px, double py, double qx, dou
  * zero: parallel to its plane, or a triangle without area) never crosses. Counts nothing. */
 static inline bool triangle_crossing_prepared(vec3 a, vec3 b, vec3 c, const struct triangle_ray *s, double *t,
                                               double *u, double *v) {
-#ifdef WHITTED_MUTANT_MOLLER_TRUMBORE
-    /* The tests' deliberately leaky tracer (Makefile: mutant-moller-trumbore) uses Moller-Trumbore. */
-    return triangle_crossing_mt(a, b, c, &s->ray, t, u, v);
-#endif
     /* The corners relative to the origin, in the ray's axes, sheared so that the ray runs along z: the
      * question is now whether the point (0, 0) lies in the 2D triangle (ax, ay), (bx, by), (cx, cy).
      * Each corner is transformed on its own, so a corner that two triangles share lands on the same
@@ -129,6 +123,8 @@ bool triangle_intersect_prepared(vec3 a, vec3 b, vec3 c, const struct triangle_r
 bool triangle_closest(const struct triangle *triangles, size_t count, const ray *r, double t_min,
                       struct hit *h);
 
+struct mesh; /* mesh.h (chapter 3) */
+
 /* Tests r against every face of mesh m, one by one (the brute-force loop that chapters 9 and 10
  * accelerate), for hits with t_min < t < h->t; keeps the nearest in *h with the given material.
  * Returns true when *h was replaced. */
@@ -137,13 +133,7 @@ bool triangle_mesh_closest(const struct mesh *m, int material, const ray *r, dou
 /* Returns the unit normal (b - a) x (c - a) of the triangle, by the right-hand rule on its winding. */
 vec3 triangle_normal(vec3 a, vec3 b, vec3 c);
 
-/* The ray queries of the `triangle` directives for the world (struct shape_behaviour, shape.h). Mesh
- * faces are not in this array: the world tests them behind their boxes, or through a kd-tree or BVH. */
-extern const struct shape_behaviour triangle_behaviour;
-
-/* ---- the scene-file line: triangle a X Y Z b X Y Z c X Y Z [material NAME] (read by chapter 1) -- */
-
-enum { TRIANGLE_A, TRIANGLE_B, TRIANGLE_C };
+/* ---- the `triangle` line: triangle a X Y Z b X Y Z c X Y Z [material NAME] --------------------- */
 
 /* The largest coordinate a triangle's corner may have, for `triangle` directives and placed meshes
  * alike. The acceleration structures keep boxes in float and the SAH multiplies two sides of a box in
@@ -157,41 +147,10 @@ static inline bool triangle_corner_in_range(vec3 p) {
     return fabs(p.x) <= TRIANGLE_MAX_COORD && fabs(p.y) <= TRIANGLE_MAX_COORD && fabs(p.z) <= TRIANGLE_MAX_COORD;
 }
 
-/* Makes the triangle from its keys (struct shape_syntax's make). Any three corners within range will
- * do: a triangle of zero area is never hit. A corner out of range is refused, with why. */
-static inline bool triangle_make(const struct key_values *kv, void *item, char *why, size_t why_size) {
-    struct triangle *t = item;
-    t->a = key_vec3(kv, TRIANGLE_A);
-    t->b = key_vec3(kv, TRIANGLE_B);
-    t->c = key_vec3(kv, TRIANGLE_C);
-    const vec3 corner[3] = {t->a, t->b, t->c};
-    for (int k = 0; k < 3; k++)
-        if (!triangle_corner_in_range(corner[k])) {
-            snprintf(why, why_size, "corner %c is at (%g, %g, %g); coordinates must stay within -%g .. %g",
-                     "abc"[k], corner[k].x, corner[k].y, corner[k].z, TRIANGLE_MAX_COORD, TRIANGLE_MAX_COORD);
-            return false;
-        }
-    return true;
-}
+/* The triangle's scene-file line (triangle_syntax.c, chapter 1), and the `triangle` lines as a kind
+ * of shape (shape.h). Mesh faces are not among them: the world tests them behind their boxes, or
+ * through a kd-tree or BVH. */
+extern const struct shape_syntax triangle_syntax;
+extern const struct shape_kind triangle_kind;
 
-/* Writes the triangle for POV-Ray: triangle { <a>, <b>, <c> */
-static inline void triangle_write_pov(FILE *out, const void *item) {
-    const struct triangle *t = item;
-    fprintf(out, "triangle { ");
-    shape_write_vector(out, t->a);
-    fprintf(out, ", ");
-    shape_write_vector(out, t->b);
-    fprintf(out, ", ");
-    shape_write_vector(out, t->c);
-}
-
-static const struct key_spec triangle_keys[] = {{"a", 3}, {"b", 3}, {"c", 3}};
-static const int triangle_required[] = {TRIANGLE_A, TRIANGLE_B, TRIANGLE_C, -1};
-static const struct shape_syntax triangle_syntax = {triangle_keys, 3, triangle_required, triangle_make,
-                                                    triangle_write_pov};
-
-#endif
-
-#ifdef SHAPE_KIND /* the registration line: see shape_kinds.h */
-SHAPE_KIND(triangle, triangles, TRIANGLES, 3)
 #endif

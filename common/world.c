@@ -7,49 +7,57 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "stats.h"
+#include "triangle.h"
 
 struct aabb world_mesh_bounds(const struct mesh *m) {
     struct aabb bounds = aabb_empty();
-    for (size_t k = 0; k < m->face_count; k++) {
-        const uint32_t *corner = m->faces[k].v;
-        bounds = aabb_union(bounds, aabb_of_triangle(m->vertices[corner[0]], m->vertices[corner[1]],
-                                                     m->vertices[corner[2]]));
-    }
+    for (size_t k = 0; k < m->face_count; k++)
+        for (int c = 0; c < 3; c++)
+            bounds = aabb_grow(bounds, m->vertices[m->faces[k].v[c]]);
     return bounds;
 }
 
-/* Where a kind of shape the scene has comes in the search: 0 for shapes with a bounding box (spheres,
- * boxes: few, and a near hit shortens the ray before the meshes' boxes are tested), 1 for the
- * triangles, 2 for shapes without bounds (planes), which no box can turn away. */
-static int search_rank(const struct scene *s, size_t kind) {
-    if (kind == SHAPE_TRIANGLES)
-        return 1;
+int world_object_number(const struct scene *s, const struct shape_list *list, size_t index) {
+    size_t number = index;
+    for (const struct shape_list *before = s->shapes; before < list; before++)
+        number += before->count;
+    return (int)number;
+}
+
+int world_mesh_object_number(const struct scene *s, size_t index) {
+    return world_object_number(s, s->shapes + s->kind_count, index); /* the meshes come after every shape */
+}
+
+/* Adds the shapes of `list` to the world's searches: the triangles apart, since the meshes (and the
+ * acceleration structures) go with them; then by whether the kind has bounding boxes. */
+static void add_shapes(struct world *w, const struct shape_list *list) {
+    struct world_shapes shapes = {list->kind, list->items, list->count, world_object_number(w->scene, list, 0)};
     vec3 min, max;
-    return shape_kinds[kind].behaviour->bounds(s->shapes[kind].items, &min, &max) ? 0 : 2;
+    if (list->syntax == &triangle_syntax)
+        w->triangles = shapes;
+    else if (list->kind->bounds(list->items, &min, &max))
+        w->bounded[w->bounded_count++] = shapes;
+    else
+        w->unbounded[w->unbounded_count++] = shapes;
 }
 
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size) {
+    memset(w, 0, sizeof *w);
     w->scene = s;
-    w->accel = NULL;
-    w->mesh_bounds = NULL;
-    for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++)
-        if (s->shapes[kind].count > 0 && shape_kinds[kind].behaviour == NULL) {
-            snprintf(err, err_size, "%s: this program does not link the code of %s (add its module to the "
-                     "chapter's MODULES_NN in the Makefile)", s->path, shape_kinds[kind].plural);
+    for (size_t k = 0; k < s->kind_count; k++) {
+        const struct shape_list *list = &s->shapes[k];
+        if (list->count == 0)
+            continue;
+        if (list->kind == NULL) {
+            snprintf(err, err_size, "%s: %zu %s of no kind (give the scene reader the kinds the program draws)",
+                     s->path, list->count, list->syntax->plural);
             return false;
         }
-    w->kind_count = 0;
-    for (int rank = 0; rank <= 2; rank++)
-        for (size_t kind = 0; kind < SHAPE_KIND_COUNT; kind++) {
-            if ((kind != SHAPE_TRIANGLES && s->shapes[kind].count == 0) || search_rank(s, kind) != rank)
-                continue;
-            const struct shape_behaviour *b = kind == SHAPE_TRIANGLES ? NULL : shape_kinds[kind].behaviour;
-            w->kinds[w->kind_count++] = (struct world_kind){kind, s->shapes[kind].items, s->shapes[kind].count,
-                                                            b != NULL ? b->closest : NULL,
-                                                            b != NULL ? b->crossings : NULL};
-        }
+        add_shapes(w, list);
+    }
     w->mesh_bounds = calloc(s->mesh_count + 1, sizeof *w->mesh_bounds);
     if (w->mesh_bounds == NULL) {
         snprintf(err, err_size, "out of memory");
@@ -65,52 +73,17 @@ void world_free(struct world *w) {
     w->mesh_bounds = NULL;
 }
 
-void *world_create(struct scene *s, char *err, size_t err_size) {
-    struct world *w = malloc(sizeof *w);
-    if (w == NULL) {
-        snprintf(err, err_size, "out of memory");
-        return NULL;
-    }
-    if (!world_init(w, s, err, err_size)) {
-        free(w);
-        return NULL;
-    }
-    return w;
-}
-
-void world_destroy(void *world) {
-    world_free(world);
-    free(world);
-}
-
-int world_shape_object_number(const struct scene *s, size_t kind, size_t index) {
-    size_t number = index;
-    for (size_t before = 0; before < kind; before++)
-        number += s->shapes[before].count;
-    return (int)number;
-}
-
-int world_object_number(const struct scene *s, enum world_object_kind kind, size_t index) {
-    switch (kind) {
-    case WORLD_SPHERE: return world_shape_object_number(s, SHAPE_SPHERES, index);
-    case WORLD_BOX: return world_shape_object_number(s, SHAPE_BOXES, index);
-    case WORLD_TRIANGLE: return world_shape_object_number(s, SHAPE_TRIANGLES, index);
-    case WORLD_PLANE: return world_shape_object_number(s, SHAPE_PLANES, index);
-    case WORLD_MESH: break;
-    }
-    return world_shape_object_number(s, SHAPE_KIND_COUNT, index); /* the meshes come after every shape */
-}
-
 /* The object a face of the acceleration structure belongs to: the `triangle` directives come first,
  * then the faces of each mesh in order. */
-static int accel_face_object(const struct scene *s, uint32_t face) {
-    if (face < s->triangle_count)
-        return world_object_number(s, WORLD_TRIANGLE, face);
-    size_t first = s->triangle_count;
+static int accel_face_object(const struct world *w, uint32_t face) {
+    if (face < w->triangles.count)
+        return w->triangles.first_object + (int)face;
+    const struct scene *s = w->scene;
+    size_t first = w->triangles.count;
     for (size_t k = 0; k < s->mesh_count; k++) {
         first += s->meshes[k].mesh.face_count;
         if (face < first)
-            return world_object_number(s, WORLD_MESH, k);
+            return world_mesh_object_number(s, k);
     }
     return -1; /* not reached: the structure holds only these faces */
 }
@@ -127,7 +100,16 @@ static bool accel_closest(const struct world *w, const ray *r, double t_min, str
     h->t = t;
     h->normal = triangle_normal(v[corner[0]], v[corner[1]], v[corner[2]]);
     h->material = a->materials[face];
-    h->object = accel_face_object(w->scene, face);
+    h->object = accel_face_object(w, face);
+    return true;
+}
+
+/* Finds the nearest hit among one kind's shapes; the kind leaves the index within its array in
+ * h->object, which becomes the object's number. */
+static bool closest_of_kind(const struct world_shapes *k, const ray *r, double t_min, struct hit *h) {
+    if (k->count == 0 || !k->kind->closest(k->items, k->count, r, t_min, h))
+        return false;
+    h->object += k->first_object;
     return true;
 }
 
@@ -137,16 +119,14 @@ static bool closest_triangle(const struct world *w, const ray *r, double t_min, 
     const struct scene *s = w->scene;
     if (w->accel != NULL)
         return accel_closest(w, r, t_min, h);
-    bool found = triangle_closest(s->triangles, s->triangle_count, r, t_min, h);
-    if (found)
-        h->object = world_object_number(s, WORLD_TRIANGLE, (size_t)h->object);
+    bool found = closest_of_kind(&w->triangles, r, t_min, h);
     vec3 inv_direction = aabb_inverse_direction(r->direction);
     for (size_t k = 0; k < s->mesh_count; k++) {
         const struct mesh *m = &s->meshes[k].mesh;
         if (!aabb_hit(&w->mesh_bounds[k], r->origin, inv_direction, t_min, h->t, NULL)) {
             stats_thread.triangle_tests_culled += m->face_count;
         } else if (triangle_mesh_closest(m, s->meshes[k].material, r, t_min, h)) {
-            h->object = world_object_number(s, WORLD_MESH, k); /* a whole mesh is one object */
+            h->object = world_mesh_object_number(s, k); /* a whole mesh is one object */
             found = true;
         }
     }
@@ -155,15 +135,11 @@ static bool closest_triangle(const struct world *w, const ray *r, double t_min, 
 
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h) {
     bool found = false;
-    for (const struct world_kind *k = w->kinds; k < w->kinds + w->kind_count; k++) {
-        if (k->closest == NULL) {
-            found |= closest_triangle(w, r, t_min, h);
-        } else if (k->closest(k->items, k->count, r, t_min, h)) {
-            /* A kind's closest leaves the index within its array; the world numbers every object. */
-            h->object = world_shape_object_number(w->scene, k->kind, (size_t)h->object);
-            found = true;
-        }
-    }
+    for (size_t k = 0; k < w->bounded_count; k++)
+        found |= closest_of_kind(&w->bounded[k], r, t_min, h);
+    found |= closest_triangle(w, r, t_min, h);
+    for (size_t k = 0; k < w->unbounded_count; k++)
+        found |= closest_of_kind(&w->unbounded[k], r, t_min, h);
     return found;
 }
 
@@ -183,6 +159,12 @@ static bool visit_accel_face(void *context, double t, uint32_t face) {
     return !v->stopped;
 }
 
+/* The crossings of one kind's shapes; returns false if the visitor asked to stop. */
+static bool cross_kind(const struct world_shapes *k, const ray *r, double t_min, double t_max,
+                       world_crossing_visitor visit, void *context) {
+    return k->count == 0 || k->kind->crossings(k->items, k->count, r, t_min, t_max, visit, context);
+}
+
 /* The crossings of the triangles: the `triangle` directives and each mesh behind its bounding box, or
  * the structure's. Returns false if the visitor asked to stop. */
 static bool cross_triangles(const struct world *w, const ray *r, double t_min, double t_max,
@@ -193,8 +175,7 @@ static bool cross_triangles(const struct world *w, const ray *r, double t_min, d
         w->accel->for_each_hit(w->accel->structure, r, t_min, t_max, visit_accel_face, &forward);
         return !forward.stopped;
     }
-    if (!shape_kinds[SHAPE_TRIANGLES].behaviour->crossings(s->triangles, s->triangle_count, r, t_min, t_max,
-                                                           visit, context))
+    if (!cross_kind(&w->triangles, r, t_min, t_max, visit, context))
         return false;
     struct triangle_ray prepared = triangle_ray_make(r); /* once for every mesh triangle below */
     double t, u, v;
@@ -218,13 +199,12 @@ static bool cross_triangles(const struct world *w, const ray *r, double t_min, d
 
 void world_for_each_crossing(const struct world *w, const ray *r, double t_min, double t_max,
                              world_crossing_visitor visit, void *context) {
-    for (const struct world_kind *k = w->kinds; k < w->kinds + w->kind_count; k++) {
-        bool go_on;
-        if (k->crossings == NULL)
-            go_on = cross_triangles(w, r, t_min, t_max, visit, context);
-        else
-            go_on = k->crossings(k->items, k->count, r, t_min, t_max, visit, context);
-        if (!go_on)
+    for (size_t k = 0; k < w->bounded_count; k++)
+        if (!cross_kind(&w->bounded[k], r, t_min, t_max, visit, context))
             return;
-    }
+    if (!cross_triangles(w, r, t_min, t_max, visit, context))
+        return;
+    for (size_t k = 0; k < w->unbounded_count; k++)
+        if (!cross_kind(&w->unbounded[k], r, t_min, t_max, visit, context))
+            return;
 }

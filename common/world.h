@@ -33,59 +33,53 @@ struct world_accel {
                          world_hit_visitor visit, void *context);
 };
 
-/* One kind of shape the world searches: its array and its queries, looked up once by world_init. */
-struct world_kind {
-    size_t kind;        /* index into shape_kinds (enum shape_kind_index) */
-    const void *items;  /* the scene's array of that kind */
+/* The shapes of one kind as the world searches them. */
+struct world_shapes {
+    const struct shape_kind *kind; /* its ray queries (shape.h) */
+    const void *items;             /* the scene's array of that kind */
     size_t count;
-    /* the kind's behaviour (shape.h); NULL for the triangles, which the world searches itself */
-    bool (*closest)(const void *items, size_t count, const ray *r, double t_min, struct hit *h);
-    bool (*crossings)(const void *items, size_t count, const ray *r, double t_min, double t_max,
-                      shape_crossing_visitor visit, void *context);
+    int first_object;              /* the object number of items[0] (see world_object_number) */
 };
 
 struct world {
     const struct scene *scene;
     struct aabb *mesh_bounds;        /* one box per scene mesh; owned */
     const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
-    /* The kinds of shape the queries visit, in this order: those the scene has and that have bounding
-     * boxes, then the triangles (always), then those without bounds. */
-    struct world_kind kinds[SHAPE_KIND_COUNT];
-    size_t kind_count;
+    /* The kinds of shape the queries visit, in this order: those with bounding boxes (spheres, boxes:
+     * few, and a near hit shortens the ray before the meshes' boxes are tested), the triangles with the
+     * meshes, then those without bounds (planes), which no box can turn away. Kinds without shapes are
+     * left out. */
+    struct world_shapes bounded[SCENE_KIND_MAX];
+    size_t bounded_count;
+    struct world_shapes triangles;   /* the `triangle` lines; count 0 when there are none */
+    struct world_shapes unbounded[SCENE_KIND_MAX];
+    size_t unbounded_count;
 };
 
-/* Computes the bounding box of every mesh of s (meshes already loaded). Returns false and writes
- * "out of memory" into err on failure, or "scene: this program does not link the code of discs ..."
- * when s holds shapes of a kind whose module the program does not link. Free with world_free. */
+/* Makes the world of scene s (meshes already loaded), whose shapes must all be of kinds the program
+ * draws (scene_drop_unsupported), and computes the bounding box of every mesh. Free with world_free.
+ * On failure returns false, with nothing to free and the reason in err: "out of memory", or
+ * "scene: 2 spheres of no kind ..." for shapes whose list has no kind. */
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size);
 
 /* Frees what world_init allocated. Safe on a zeroed world. */
 void world_free(struct world *w);
 
-/* The same as world_init on a new heap-allocated world, in the shape of struct chapter's prepare:
- * returns the world, or NULL with the reason in err. Free with world_destroy. */
-void *world_create(struct scene *s, char *err, size_t err_size);
-
-/* Frees a world made by world_create. */
-void world_destroy(void *world);
-
 /* Returns the bounding box of mesh m (the empty box for a mesh without vertices). */
 struct aabb world_mesh_bounds(const struct mesh *m);
 
 /* Every object of a scene has a number, kept in struct hit.object (chapter 8's interior list tells
- * objects apart by it): the shapes kind by kind in the order of shape_kinds.h, then the meshes (one
+ * objects apart by it): the shapes list by list in the scene's order (scene.h), then the meshes (one
  * number for a whole mesh, which is one object with one inside). */
-enum world_object_kind { WORLD_SPHERE, WORLD_BOX, WORLD_TRIANGLE, WORLD_MESH, WORLD_PLANE };
 
-/* Returns the number of the index-th object of the given kind in s. Cannot fail. */
-int world_object_number(const struct scene *s, enum world_object_kind kind, size_t index);
+/* Returns the number of the index-th shape of `list` (one of s's lists). Cannot fail. */
+int world_object_number(const struct scene *s, const struct shape_list *list, size_t index);
 
-/* Returns the number of the index-th shape of kind `kind` (an index into shape_kinds) in s; with kind
- * SHAPE_KIND_COUNT, of the index-th mesh. Cannot fail. */
-int world_shape_object_number(const struct scene *s, size_t kind, size_t index);
+/* Returns the number of s's index-th mesh. Cannot fail. */
+int world_mesh_object_number(const struct scene *s, size_t index);
 
 /* Finds the nearest surface with t_min < t < h->t along r among all shapes, kind by kind in the order
- * of w->kinds, and keeps it in *h (with the object's number in h->object).
+ * of struct world, and keeps it in *h (with the object's number in h->object).
  * Returns true when *h was replaced. Without w->accel, a mesh whose bounding box r misses within
  * (t_min, h->t) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);

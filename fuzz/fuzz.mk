@@ -9,7 +9,7 @@
 # The harnesses and the common/ modules they test are compiled by clang with libFuzzer, AddressSanitizer
 # and UndefinedBehaviorSanitizer, into build/libfuzzer/ (whatever BUILD is: the objects are clang's, not
 # gcc's). fuzz/run.sh runs them; docs/fuzzing.md explains the whole. clang comes from Debian's `clang`
-# package, installed by tools/install-deps.sh fuzz (make test does not need it).
+# package, installed by tools/build/install-deps.sh fuzz (make test does not need it).
 
 FUZZ_SECONDS ?= 120
 FUZZ_BUILD := build/libfuzzer
@@ -35,15 +35,19 @@ FUZZ_EXTRA_render := render_check
 
 .PHONY: fuzz fuzz-build fuzz-smoke
 
+## make fuzz           the libFuzzer harnesses (scene, PLY, OBJ, renderer), FUZZ_SECONDS each (default
+##                     120); installs clang first (docs/fuzzing.md)
 fuzz: fuzz-build
 	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
+## make fuzz-smoke     the same harnesses for a fixed number of runs with a fixed seed (CI)
 fuzz-smoke: fuzz-build
 	fuzz/run.sh --smoke $(FUZZ_BUILD)
 
 # clang is installed first, in its own step, so that a machine without it still runs make test.
-fuzz-build:
-	tools/install-deps.sh fuzz
+## make fuzz-build     build the harnesses into build/libfuzzer/ without running them
+fuzz-build: | deps
+	tools/build/install-deps.sh fuzz
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(addprefix $(FUZZ_BUILD)/fuzz_,$(FUZZ_HARNESSES))
 
 # clang lacks GCC's __builtin_shuffle(v, (int4){i, j, k, l}), which the 4-wide BVH uses; a file that
@@ -76,9 +80,8 @@ $(addprefix $(FUZZ_BUILD)/fuzz_,$(FUZZ_HARNESSES)):
 -include $(wildcard $(FUZZ_BUILD)/*.d $(FUZZ_BUILD)/common/*.d)
 
 # The renderer's check also runs in the tests, on the saved inputs (tests/test_fuzz_regressions.c),
-# compiled there by gcc like every test.
-$(BUILD)/run-tests: $(BUILD)/fuzz/render_check.o
-$(BUILD)/fuzz/render_check.o: fuzz/render_check.c | $(BUILD)/common
+# compiled there by gcc like every test (the Makefile links it into $(BUILD)/run-tests).
+$(BUILD)/fuzz/render_check.o: fuzz/render_check.c | $(BUILD)/common deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -MMD -MP -c $< -o $@
 -include $(wildcard $(BUILD)/fuzz/*.d)

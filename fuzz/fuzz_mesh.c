@@ -5,7 +5,8 @@
 #include <string.h>
 
 #include "fuzz_support.h"
-#include "mesh_private.h"
+#include "mesh_obj.h"
+#include "mesh_ply.h"
 
 bool fuzz_mesh_is_ply(const uint8_t *data, size_t size) {
     return (size >= 4 && memcmp(data, "ply\n", 4) == 0) || (size >= 5 && memcmp(data, "ply\r\n", 5) == 0);

@@ -9,8 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "box.h"
 #include "fuzz_support.h"
+#include "plane.h"
 #include "scene.h"
+#include "sphere.h"
+#include "triangle.h"
 
 #define NAME "fuzz.scene"
 
@@ -51,27 +55,32 @@ static void check_scene(const struct scene *s) {
         check_finite(s->lights[k].position, "light", k);
         check_finite(s->lights[k].colour, "light", k);
     }
-    for (size_t k = 0; k < s->sphere_count; k++) {
-        check_finite(s->spheres[k].centre, "sphere", k);
-        if (!(s->spheres[k].radius > 0.0) || !isfinite(s->spheres[k].radius))
-            fuzz_abort("sphere %zu has radius %g", k, s->spheres[k].radius);
-        check_material(s, s->spheres[k].material, "sphere", k);
+    const struct shape_list *spheres = scene_shapes(s, &sphere_syntax), *planes = scene_shapes(s, &plane_syntax),
+                            *triangles = scene_shapes(s, &triangle_syntax), *boxes = scene_shapes(s, &box_syntax);
+    for (size_t k = 0; k < spheres->count; k++) {
+        const struct sphere *sphere = (const struct sphere *)spheres->items + k;
+        check_finite(sphere->centre, "sphere", k);
+        if (!(sphere->radius > 0.0) || !isfinite(sphere->radius))
+            fuzz_abort("sphere %zu has radius %g", k, sphere->radius);
+        check_material(s, sphere->material, "sphere", k);
     }
-    for (size_t k = 0; k < s->plane_count; k++) {
-        check_finite(s->planes[k].normal, "plane", k);
-        double length = vec3_length(s->planes[k].normal);
-        if (!isfinite(s->planes[k].distance) || !(fabs(length - 1.0) < PLANE_NORMAL_TOLERANCE))
-            fuzz_abort("plane %zu has distance %g and a normal of length %g", k, s->planes[k].distance, length);
-        check_material(s, s->planes[k].material, "plane", k);
+    for (size_t k = 0; k < planes->count; k++) {
+        const struct plane *plane = (const struct plane *)planes->items + k;
+        check_finite(plane->normal, "plane", k);
+        double length = vec3_length(plane->normal);
+        if (!isfinite(plane->distance) || !(fabs(length - 1.0) < PLANE_NORMAL_TOLERANCE))
+            fuzz_abort("plane %zu has distance %g and a normal of length %g", k, plane->distance, length);
+        check_material(s, plane->material, "plane", k);
     }
-    for (size_t k = 0; k < s->triangle_count; k++) {
-        check_finite(s->triangles[k].a, "triangle", k);
-        check_finite(s->triangles[k].b, "triangle", k);
-        check_finite(s->triangles[k].c, "triangle", k);
-        check_material(s, s->triangles[k].material, "triangle", k);
+    for (size_t k = 0; k < triangles->count; k++) {
+        const struct triangle *triangle = (const struct triangle *)triangles->items + k;
+        check_finite(triangle->a, "triangle", k);
+        check_finite(triangle->b, "triangle", k);
+        check_finite(triangle->c, "triangle", k);
+        check_material(s, triangle->material, "triangle", k);
     }
-    for (size_t k = 0; k < s->box_count; k++) {
-        const struct box *b = &s->boxes[k];
+    for (size_t k = 0; k < boxes->count; k++) {
+        const struct box *b = (const struct box *)boxes->items + k;
         check_finite(b->min, "box", k);
         check_finite(b->max, "box", k);
         if (!(b->min.x < b->max.x && b->min.y < b->max.y && b->min.z < b->max.z))
@@ -94,7 +103,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     char *text = fuzz_copy_with_nul(data, size);
     struct scene s;
     char err[512] = "";
-    if (scene_parse(NAME, text, &s, err, sizeof err)) {
+    if (scene_parse(NAME, text, NULL, &s, err, sizeof err)) {
         check_scene(&s);
         scene_free(&s);
     } else if (!fuzz_message_names(err, NAME)) {

@@ -19,9 +19,12 @@
 #include <unistd.h>
 
 #include "accel.h"
+#include "box.h"
 #include "bvh.h"
 #include "camera.h"
 #include "kdtree.h"
+#include "plane.h"
+#include "sphere.h"
 #include "triangle.h"
 #include "whitted.h"
 
@@ -227,19 +230,26 @@ static bool is_near(const struct checker *c, vec3 p) {
     return vec3_is_finite(p) && outside.x <= c->near && outside.y <= c->near && outside.z <= c->near;
 }
 
-/* True when the eye, every light and every sphere, box and plane lie near the triangles, so that no
- * ray of the picture should start far from them (a grazing ray can still hit a plane far away: the
- * colours are compared to a tolerance, and no such case has turned up). */
+/* True when the eye, every light, the bounding box of every shape and the point of every plane nearest
+ * the origin lie near the triangles, so that no ray of the picture should start far from them (a
+ * grazing ray can still hit a plane far away: the colours are compared to a tolerance, and no such
+ * case has turned up). */
 static bool scene_is_near(const struct checker *c, const struct scene *s) {
     bool near = is_near(c, s->eye);
     for (size_t k = 0; k < s->light_count; k++)
         near = near && is_near(c, s->lights[k].position);
-    for (size_t k = 0; k < s->sphere_count; k++)
-        near = near && is_near(c, s->spheres[k].centre) && s->spheres[k].radius <= c->near;
-    for (size_t k = 0; k < s->box_count; k++)
-        near = near && is_near(c, s->boxes[k].min) && is_near(c, s->boxes[k].max);
-    for (size_t k = 0; k < s->plane_count; k++)
-        near = near && is_near(c, vec3_scale(s->planes[k].normal, s->planes[k].distance));
+    for (size_t k = 0; k < s->kind_count; k++) {
+        const struct shape_list *list = &s->shapes[k];
+        for (size_t n = 0; n < list->count; n++) {
+            vec3 min, max;
+            if (list->kind->bounds(shape_item(list->syntax, list->items, n), &min, &max))
+                near = near && is_near(c, min) && is_near(c, max);
+        }
+    }
+    const struct shape_list *planes = scene_shapes(s, &plane_syntax);
+    const struct plane *plane = planes->items;
+    for (size_t k = 0; k < planes->count; k++)
+        near = near && is_near(c, vec3_scale(plane[k].normal, plane[k].distance));
     return near;
 }
 
@@ -414,7 +424,9 @@ static bool build_worlds(struct checker *c, const struct scene *s) {
     vec3 extent = vec3_sub(c->bounds.max, c->bounds.min);
     c->near = faces > 0 ? RENDER_CHECK_NEAR_SIZES * fmax(extent.x, fmax(extent.y, extent.z)) : 0.0;
     c->compare_colours = scene_is_near(c, s);
-    size_t crossings = faces + 2 * s->sphere_count + 2 * s->box_count + s->plane_count + 1;
+    size_t crossings = faces + 1; /* each face once, each other shape at most twice */
+    for (size_t k = 0; k < s->kind_count; k++)
+        crossings += 2 * s->shapes[k].count;
     c->expected = (struct crossings){malloc(crossings * sizeof(double)), 0, crossings};
     c->got = (struct crossings){malloc(crossings * sizeof(double)), 0, crossings};
     if (c->face_t == NULL || c->reported == NULL || c->expected.t == NULL || c->got.t == NULL)
@@ -427,7 +439,8 @@ enum render_check_result render_check_scene(const char *name, const char *text, 
     snprintf(why, why_size, "all checks hold");
     struct scene s;
     char err[512];
-    if (!scene_parse(name, text, &s, err, sizeof err)) {
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
+    if (!scene_parse(name, text, kinds, &s, err, sizeof err)) {
         size_t n = strlen(name);
         if (strncmp(err, name, n) != 0 || err[n] != ':') {
             broken(&c, "the scene is refused with a message that does not start with '%s:': %s", name, err);

@@ -1,4 +1,4 @@
-/* test_deps.c: what each make target asks tools/install-deps.sh for, and the route for a student
+/* test_deps.c: what each make target asks tools/build/install-deps.sh for, and the route for a student
  * without root: `make chapter-1` on a machine where stb is not installed fetches it into .deps/ and
  * builds against it, with no root and no sudo. */
 #include <criterion/criterion.h>
@@ -27,8 +27,8 @@ Test(deps, the_installer_names_what_each_target_needs) {
      * unknown need is a usage error, exit 2, with a message naming the valid ones. */
     const char *log = "out/test/deps-needs.log";
     remove(log);
-    cr_assert_eq(run_logged("tools/install-deps.sh build test compare results", log), 0);
-    cr_assert_eq(run_logged("tools/install-deps.sh everything", log), 2);
+    cr_assert_eq(run_logged("tools/build/install-deps.sh build test compare results", log), 0);
+    cr_assert_eq(run_logged("tools/build/install-deps.sh everything", log), 2);
     cr_assert(file_contains(log, "install-deps.sh: unknown need 'everything' (build, test, compare, results, bench or fuzz)"));
 }
 
@@ -44,7 +44,7 @@ Test(deps, without_root_and_without_stb_make_chapter_1_fetches_stb_and_renders, 
     snprintf(log, sizeof log, "%s.log", dir);
     remove(log);
     snprintf(command, sizeof command,
-             "cp -r Makefile common chapters tools scenes bench fuzz %s/ && rm -rf %s/scenes/models/teapot-* && "
+             "cp -r --parents Makefile common chapters tools tests/support scenes bench fuzz %s/ && rm -rf %s/scenes/models/teapot-* && "
              "chown -R nobody:nogroup %s",
              dir, dir, dir);
     cr_assert_eq(run_logged(command, log), 0, "could not make the copy (see %s)", log);

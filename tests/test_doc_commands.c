@@ -158,6 +158,7 @@ static struct page pages[] = {
     {"docs/05-aabb.md"},   {"docs/06-phong.md"},    {"docs/07-shadows.md"},  {"docs/08-recursion.md"},
     {"docs/09-kdtree.md"}, {"docs/povray.md"},      {"docs/scene-format.md"}, {"docs/gallery.md"},
     {"docs/seed.md"},      {"docs/10-bvh.md"},     {"docs/fuzzing.md"},     {"docs/11-fast.md"},
+    {"docs/12-antialias.md"},
 };
 
 ParameterizedTestParameters(doc_commands, every_command_runs_as_written) {
@@ -179,7 +180,7 @@ ParameterizedTest(struct page *page, doc_commands, every_command_runs_as_written
      * this one runs, and an archiver would stop at a file that changes under it. */
     snprintf(copy, sizeof copy,
              "cd %s && mkdir out scenes build && cd - >/dev/null && "
-             "cp -rp Makefile common chapters tools bench fuzz docs %s/ && cp -p scenes/*.scene %s/scenes/ && "
+             "cp -rp --parents Makefile common chapters tools tests/support bench fuzz docs %s/ && cp -p scenes/*.scene %s/scenes/ && "
              "cp -rp scenes/models %s/scenes/ && "
              "for b in build build/san; do [ -d $b/common ] || continue; mkdir -p %s/$b && "
              "cp -rp $b/common $b/chapters $b/tools %s/$b/ && cp -p $b/chapter-* $b/compare %s/$b/; done >>%s 2>&1",

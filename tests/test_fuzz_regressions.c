@@ -56,7 +56,7 @@ ParameterizedTestParameters(fuzz_regressions, scene_input_loads_or_is_refused_cl
 ParameterizedTest(struct input *in, fuzz_regressions, scene_input_loads_or_is_refused_cleanly) {
     struct scene s;
     char err[512] = "";
-    if (scene_load(in->path, &s, err, sizeof err))
+    if (scene_load(in->path, test_every_kind, &s, err, sizeof err))
         scene_free(&s);
     else
         expect_names_file(err, in->path);

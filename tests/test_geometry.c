@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "aabb.h"
+#include "box.h"
 #include "camera.h"
 #include "headlight.h"
 #include "image.h"
@@ -542,6 +543,21 @@ Test(plane, closest_keeps_the_nearest_and_counts_tests) {
     cr_assert_eq(stats_thread.plane_tests, 2);
 }
 
+Test(plane, closest_takes_a_tie_from_an_earlier_shape_and_the_first_plane_keeps_it) {
+    /* POV-Ray tests planes before bounded shapes and replaces a hit only by a strictly nearer one: a
+     * plane exactly as far as the hit found before it wins, a plane one ulp farther does not, and of
+     * two planes at the same t the first keeps it. Down from the origin, y = -2 is at t = 2 exactly. */
+    struct plane planes[2] = {{{0, 1, 0}, -2, 1}, {{0, -1, 0}, 2, 2}}; /* y = -2 twice */
+    ray r = make_ray(vec3_make(0, 0, 0), vec3_make(0, -1, 0));
+    struct hit h = {2.0, {0, 0, 1}, 9, 5}; /* a box's face, say, found at the same t */
+    cr_assert(plane_closest(planes, 2, &r, RAY_T_MIN, &h));
+    cr_assert_eq(h.t, 2.0);
+    cr_assert_eq(h.material, 1, "the first plane keeps the tie");
+    struct hit nearer = {nextafter(2.0, 0.0), {0, 0, 1}, 9, 5};
+    cr_assert(!plane_closest(planes, 2, &r, RAY_T_MIN, &nearer));
+    cr_assert_eq(nearer.material, 9, "a hit one ulp nearer stays");
+}
+
 /* ---- aabb -------------------------------------------------------------------------------------- */
 
 static const struct aabb unit_box = {{0, 0, 0}, {1, 1, 1}};
@@ -809,26 +825,33 @@ Test(headlight, back_side_is_lit_like_the_front) {
     cr_assert_gt(back.x, 0.0);
 }
 
-/* ---- bounding boxes of shapes ------------------------------------------------------------------ */
+/* ---- bounding boxes of shapes (each kind's bounds, shape.h) ------------------------------------ */
 
-static void assert_box(struct aabb got, vec3 lo, vec3 hi) {
-    cr_assert(got.min.x == lo.x && got.min.y == lo.y && got.min.z == lo.z, "min (%g, %g, %g)", got.min.x,
-              got.min.y, got.min.z);
-    cr_assert(got.max.x == hi.x && got.max.y == hi.y && got.max.z == hi.z, "max (%g, %g, %g)", got.max.x,
-              got.max.y, got.max.z);
+/* Checks that kind's bounds gives exactly [lo, hi] for `item`. */
+static void assert_bounds(const struct shape_kind *kind, const void *item, vec3 lo, vec3 hi) {
+    vec3 min, max;
+    cr_assert(kind->bounds(item, &min, &max), "%s: no bounds", kind->syntax->keyword);
+    cr_assert(min.x == lo.x && min.y == lo.y && min.z == lo.z, "min (%g, %g, %g)", min.x, min.y, min.z);
+    cr_assert(max.x == hi.x && max.y == hi.y && max.z == hi.z, "max (%g, %g, %g)", max.x, max.y, max.z);
 }
 
 Test(aabb, a_sphere_is_bounded_by_centre_plus_minus_radius) {
     struct sphere s = {vec3_make(1, -2, 3), 0.5, 0};
-    assert_box(aabb_of_sphere(&s), vec3_make(0.5, -2.5, 2.5), vec3_make(1.5, -1.5, 3.5));
+    assert_bounds(&sphere_kind, &s, vec3_make(0.5, -2.5, 2.5), vec3_make(1.5, -1.5, 3.5));
 }
 
 Test(aabb, a_triangle_is_bounded_by_its_corners) {
-    assert_box(aabb_of_triangle(vec3_make(0, 5, -1), vec3_make(2, -1, 0), vec3_make(-3, 0, 4)), vec3_make(-3, -1, -1),
-               vec3_make(2, 5, 4));
+    struct triangle t = {vec3_make(0, 5, -1), vec3_make(2, -1, 0), vec3_make(-3, 0, 4), 0};
+    assert_bounds(&triangle_kind, &t, vec3_make(-3, -1, -1), vec3_make(2, 5, 4));
 }
 
 Test(aabb, a_box_is_its_own_bounding_box) {
     struct box b = {vec3_make(-1, 0, 2), vec3_make(1, 3, 4), 0};
-    assert_box(aabb_of_box(&b), b.min, b.max);
+    assert_bounds(&box_kind, &b, b.min, b.max);
+}
+
+Test(aabb, a_plane_has_no_bounding_box) {
+    struct plane p = {vec3_make(0, 1, 0), 2.0, 0};
+    vec3 min, max;
+    cr_assert_not(plane_kind.bounds(&p, &min, &max));
 }

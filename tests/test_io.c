@@ -17,6 +17,7 @@
 #include "name_index.h"
 #include "outfile.h"
 #include "scene.h"
+#include "sphere.h"
 #include "test_support.h"
 #include "text_escape.h"
 
@@ -310,10 +311,11 @@ Test(io, a_hundred_thousand_materials_parse_quickly, .timeout = 15) {
         used += (size_t)snprintf(text + used, size - used, "sphere centre 0 0 0 radius 1 material m%d\n", k);
     struct scene s;
     char err[256];
-    cr_assert(scene_parse("many.scene", text, &s, err, sizeof err), "%s", err);
+    cr_assert(scene_parse("many.scene", text, NULL, &s, err, sizeof err), "%s", err);
     cr_assert_eq(s.material_count, IO_MANY + 1);
-    cr_assert_eq(s.spheres[0].material, IO_MANY); /* m99999, after "default" */
-    cr_assert_eq(s.spheres[1].material, IO_MANY - 7);
+    const struct sphere *spheres = scene_shapes(&s, &sphere_syntax)->items;
+    cr_assert_eq(spheres[0].material, IO_MANY); /* m99999, after "default" */
+    cr_assert_eq(spheres[1].material, IO_MANY - 7);
     cr_assert_eq(scene_find_material(&s, "m123"), 124);
     scene_free(&s);
     free(text);

@@ -19,7 +19,7 @@
 static struct scene parse(const char *text) {
     struct scene s;
     char err[512] = "";
-    cr_assert(scene_parse(NAME, text, &s, err, sizeof err), "refused: %s", err);
+    cr_assert(scene_parse(NAME, text, NULL, &s, err, sizeof err), "refused: %s", err);
     return s;
 }
 

@@ -73,8 +73,81 @@ Test(results, a_changed_number_in_a_csv_makes_its_plot_and_table_stale, .timeout
                                output, sizeof output);
     cr_assert_eq(status, 1, "the check passed a changed CSV:\n%s", output);
     cr_assert_not_null(strstr(output, "out/test/results-stale/bunny-time.svg is stale"), "%s", output);
-    cr_assert_not_null(strstr(output, "out/test/results-stale/results.md: a table is stale"), "%s", output);
+    cr_assert_not_null(strstr(output, "out/test/results-stale/results.md: a table or a number of the text is stale"), "%s", output);
     cr_assert_null(strstr(output, "scene1-depth.svg is stale"), "an unchanged plot was called stale:\n%s", output);
+}
+
+/* Copies the committed data and page into out/test/NAME/, runs the shell command `edit` there, then
+ * publish.sh --check on the copy, which must fail; leaves its messages in `output`. */
+static void check_fails_after(const char *name, const char *edit, char *output, size_t size) {
+    char command[COMMAND_MAX];
+    snprintf(command, sizeof command,
+             "rm -rf out/test/%s && mkdir -p out/test/%s && cp docs/results/* docs/results.md out/test/%s/ && cd out/test/%s && %s",
+             name, name, name, name, edit);
+    cr_assert_eq(system(command), 0, "%s", command);
+    snprintf(command, sizeof command, "tools/results/publish.sh --check out/test/%s out/test/%s out/test/%s/results.md 2>&1",
+             name, name, name);
+    cr_assert_neq(run_capturing(command, output, size), 0, "the check passed after %s:\n%s", edit, output);
+}
+
+Test(results, a_changed_number_in_a_csv_makes_the_numbers_of_the_text_stale, .timeout = 120) {
+    /* The large model's brute-force time doubled: the sentences that quote what follows from it (the
+     * factor over the seed's brute force, the time a triangle test takes) are named, with both values. */
+    char output[OUTPUT_MAX];
+    check_fails_after("results-prose", "awk -F, -v OFS=, '$6 == \"none\" { $8 = $8 * 2 } { print }' large.csv >x && mv x large.csv",
+                      output, sizeof output);
+    cr_assert_not_null(strstr(output, "the number large-brute-over-seed in the text is stale: 11.2, where "
+                                      "out/test/results-prose/*.csv give 5.6"), "%s", output);
+    cr_assert_not_null(strstr(output, "the number large-ns-per-test in the text is stale: 5.0, where"), "%s", output);
+    cr_assert_null(strstr(output, "the number large-cull-factor"), "a number that did not change was named:\n%s", output);
+}
+
+Test(results, a_number_of_the_text_typed_over_or_unknown_is_caught, .timeout = 120) {
+    /* The CSVs as committed: one number of a sentence typed over is named; a name tables.awk does not
+     * compute is refused. */
+    char output[OUTPUT_MAX];
+    check_fails_after("results-typed",
+                      "sed -i 's|<!--n:large-cull-factor-->[^<]*<!--/n-->|<!--n:large-cull-factor-->3.7<!--/n-->|' results.md",
+                      output, sizeof output);
+    cr_assert_not_null(strstr(output, "the number large-cull-factor in the text is stale: 3.7, where "
+                                      "out/test/results-typed/*.csv give 2.7"), "%s", output);
+    check_fails_after("results-unknown", "printf 'A <!--n:no-such-number-->1<!--/n--> here.\\n' >>results.md", output,
+                      sizeof output);
+    cr_assert_not_null(strstr(output, "no number called no-such-number"), "%s", output);
+}
+
+Test(results, sampled_scaling_rows_scale_the_process_time_as_the_large_table_does) {
+    /* A sampled brute-force row multiplies its processor time by the scale, as large.csv does, so the
+     * whole process costs at least its render (before, scaling.csv left it unscaled: 1.5 s beside a
+     * 6.0 s render). Columns: triangles,structure,runs,build_ms,render_s,cpu_best_s,...,scale. */
+    char *csv = read_text_file("docs/results/scaling.csv");
+    cr_assert_not_null(csv);
+    int sampled = 0;
+    char *line = strchr(csv, '\n'); /* after the header */
+    while (line != NULL && line[1] != '\0') {
+        line++;
+        char *end = strchr(line, '\n');
+        if (end != NULL)
+            *end = '\0';
+        char *field[16];
+        int n = 0;
+        for (char *f = line; n < 16; f++) {
+            field[n++] = f;
+            f = strchr(f, ',');
+            if (f == NULL)
+                break;
+            *f = '\0';
+        }
+        cr_assert_eq(n, 12, "a row of %d fields: %s", n, line);
+        if (atof(field[11]) > 1) {
+            sampled++;
+            cr_assert_geq(atof(field[5]), atof(field[4]), "%s triangles: process %s s, render %s s (scale %s)", field[0],
+                          field[5], field[4], field[11]);
+        }
+        line = end;
+    }
+    cr_assert_gt(sampled, 0, "no sampled row in docs/results/scaling.csv");
+    free(csv);
 }
 
 /* The brute force's triangle tests on the bunny scene at depth 1, at width x height. */

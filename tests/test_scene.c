@@ -7,7 +7,11 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "box.h"
+#include "plane.h"
 #include "scene.h"
+#include "sphere.h"
+#include "triangle.h"
 
 #define NAME "test.scene"
 /* The two lines every scene needs; a line appended after them is line 3. */
@@ -21,10 +25,29 @@ static void assert_vec3_eq(vec3 got, vec3 want, const char *what) {
               want.y, want.z);
 }
 
-/* Parses `text` (named NAME) and fails the test with the parser's message if it is refused. */
+/* Parses `text` (named NAME), drawing no kind of shape, and fails the test with the parser's message if
+ * it is refused. */
 static void parse_ok(const char *text, struct scene *s) {
     char err[512] = "";
-    cr_assert(scene_parse(NAME, text, s, err, sizeof err), "refused: %s", err);
+    cr_assert(scene_parse(NAME, text, NULL, s, err, sizeof err), "refused: %s", err);
+}
+
+/* The number of shapes of the kind whose line is `syntax` in s. */
+static size_t count_of(const struct scene *s, const struct shape_syntax *syntax) {
+    return scene_shapes(s, syntax)->count;
+}
+
+/* Those shapes, as an array of the kind's struct. */
+static const void *shapes_of(const struct scene *s, const struct shape_syntax *syntax) {
+    return scene_shapes(s, syntax)->items;
+}
+
+/* The number of shapes of every kind in s, and of meshes. */
+static size_t count_all(const struct scene *s) {
+    size_t count = s->mesh_count;
+    for (size_t k = 0; k < s->kind_count; k++)
+        count += s->shapes[k].count;
+    return count;
 }
 
 /* Parses HEAD followed by `lines` and returns the scene (free it with scene_free). */
@@ -40,8 +63,8 @@ static struct scene parse_with_head(const char *lines) {
 /* An empty scene is all zero bytes: every count 0, every pointer NULL (scene_free memsets it). */
 static void assert_scene_empty(const struct scene *s) {
     static const struct scene empty;
-    cr_assert_eq(memcmp(s, &empty, sizeof empty), 0, "the scene was not left empty (%zu spheres, path %p)",
-                 s->sphere_count, (void *)s->path);
+    cr_assert_eq(memcmp(s, &empty, sizeof empty), 0, "the scene was not left empty (%zu kinds of shape, path %p)",
+                 s->kind_count, (void *)s->path);
 }
 
 /* Parses `text`, expects it to be refused with exactly `message`, and the scene to be left empty. */
@@ -49,7 +72,7 @@ static void expect_error(const char *text, const char *message) {
     char err[512] = "";
     struct scene s;
     memset(&s, 0xA5, sizeof s); /* garbage, as an uninitialised variable would hold */
-    bool accepted = scene_parse(NAME, text, &s, err, sizeof err);
+    bool accepted = scene_parse(NAME, text, NULL, &s, err, sizeof err);
     if (accepted)
         scene_free(&s);
     cr_assert(!accepted, "accepted:\n%s", text);
@@ -88,7 +111,7 @@ Test(scene, minimal_scene_has_the_documented_defaults) {
     cr_assert_eq(s.max_depth, 5);
     cr_assert(s.shadow_offset);
     cr_assert_eq(s.material_count, 1);
-    cr_assert_eq(s.light_count + s.sphere_count + s.plane_count + s.triangle_count + s.box_count + s.mesh_count, 0);
+    cr_assert_eq(s.light_count + count_all(&s), 0);
     scene_free(&s);
 }
 
@@ -161,28 +184,31 @@ Test(scene, sphere_triangle_and_box_with_and_without_material) {
                                      "sphere centre 0 0 0 radius 0.5\n"
                                      "triangle material red c 7 8 9 b 4 5 6 a 1 2 3\n"
                                      "box max 1 2 3 min -1 -2 -3 material red\n");
-    cr_assert_eq(s.sphere_count, 2);
-    assert_vec3_eq(s.spheres[0].centre, vec3_make(1, 2, 3), "centre");
-    cr_assert_eq(s.spheres[0].radius, 2.0);
-    cr_assert_eq(s.spheres[0].material, 1);
-    cr_assert_eq(s.spheres[1].material, 0);
-    cr_assert_eq(s.triangle_count, 1);
-    assert_vec3_eq(s.triangles[0].a, vec3_make(1, 2, 3), "a");
-    assert_vec3_eq(s.triangles[0].b, vec3_make(4, 5, 6), "b");
-    assert_vec3_eq(s.triangles[0].c, vec3_make(7, 8, 9), "c");
-    cr_assert_eq(s.triangles[0].material, 1);
-    cr_assert_eq(s.box_count, 1);
-    assert_vec3_eq(s.boxes[0].min, vec3_make(-1, -2, -3), "min");
-    assert_vec3_eq(s.boxes[0].max, vec3_make(1, 2, 3), "max");
-    cr_assert_eq(s.boxes[0].material, 1);
+    const struct sphere *spheres = shapes_of(&s, &sphere_syntax);
+    const struct triangle *triangles = shapes_of(&s, &triangle_syntax);
+    const struct box *boxes = shapes_of(&s, &box_syntax);
+    cr_assert_eq(count_of(&s, &sphere_syntax), 2);
+    assert_vec3_eq(spheres[0].centre, vec3_make(1, 2, 3), "centre");
+    cr_assert_eq(spheres[0].radius, 2.0);
+    cr_assert_eq(spheres[0].material, 1);
+    cr_assert_eq(spheres[1].material, 0);
+    cr_assert_eq(count_of(&s, &triangle_syntax), 1);
+    assert_vec3_eq(triangles[0].a, vec3_make(1, 2, 3), "a");
+    assert_vec3_eq(triangles[0].b, vec3_make(4, 5, 6), "b");
+    assert_vec3_eq(triangles[0].c, vec3_make(7, 8, 9), "c");
+    cr_assert_eq(triangles[0].material, 1);
+    cr_assert_eq(count_of(&s, &box_syntax), 1);
+    assert_vec3_eq(boxes[0].min, vec3_make(-1, -2, -3), "min");
+    assert_vec3_eq(boxes[0].max, vec3_make(1, 2, 3), "max");
+    cr_assert_eq(boxes[0].material, 1);
     scene_free(&s);
 }
 
 /* Parses one plane line and checks the stored unit normal and distance. */
 static void check_plane(const char *line, vec3 normal, double distance) {
     struct scene s = parse_with_head(line);
-    cr_assert_eq(s.plane_count, 1, "%s", line);
-    struct plane got = s.planes[0];
+    cr_assert_eq(count_of(&s, &plane_syntax), 1, "%s", line);
+    struct plane got = *(const struct plane *)shapes_of(&s, &plane_syntax);
     scene_free(&s);
     assert_vec3_eq(got.normal, normal, line);
     cr_assert_eq(got.distance, distance, "%s: distance %.17g", line, got.distance);
@@ -199,7 +225,8 @@ Test(scene, plane_in_all_three_forms_stores_unit_normal_and_distance) {
 
 Test(scene, plane_material_is_kept) {
     struct scene s = parse_with_head("material floor\nplane material floor normal 0 1 0 distance 0\n");
-    cr_assert_eq(s.planes[0].material, 1);
+    const struct plane *planes = shapes_of(&s, &plane_syntax);
+    cr_assert_eq(planes[0].material, 1);
     scene_free(&s);
 }
 
@@ -227,7 +254,7 @@ Test(scene, mesh_with_every_key_and_its_path_relative_to_the_scene_folder) {
 Test(scene, mesh_path_is_joined_to_the_folder_of_the_scene_name) {
     struct scene s;
     char err[256] = "";
-    cr_assert(scene_parse("scenes/sub/x.scene", HEAD "mesh ../models/m.ply\n", &s, err, sizeof err), "%s", err);
+    cr_assert(scene_parse("scenes/sub/x.scene", HEAD "mesh ../models/m.ply\n", NULL, &s, err, sizeof err), "%s", err);
     cr_assert_str_eq(s.meshes[0].path, "scenes/sub/../models/m.ply");
     scene_free(&s);
 }
@@ -241,9 +268,10 @@ Test(scene, comments_blank_lines_and_crlf_are_ignored) {
              "\tsphere centre 1 2 3 radius 2\r\n"
              "# the last line has no newline",
              &s);
-    cr_assert_eq(s.sphere_count, 2);
-    cr_assert_eq(s.spheres[0].radius, 1.0);
-    assert_vec3_eq(s.spheres[1].centre, vec3_make(1, 2, 3), "centre");
+    const struct sphere *spheres = shapes_of(&s, &sphere_syntax);
+    cr_assert_eq(count_of(&s, &sphere_syntax), 2);
+    cr_assert_eq(spheres[0].radius, 1.0);
+    assert_vec3_eq(spheres[1].centre, vec3_make(1, 2, 3), "centre");
     cr_assert_eq(s.height, 3);
     scene_free(&s);
 }
@@ -255,16 +283,18 @@ Test(scene, many_shapes_are_all_kept_in_order) {
         used += snprintf(text + used, sizeof text - (size_t)used, "sphere centre %d 0 0 radius 1\n", k);
     struct scene s;
     parse_ok(text, &s);
-    cr_assert_eq(s.sphere_count, 100);
+    const struct sphere *spheres = shapes_of(&s, &sphere_syntax);
+    cr_assert_eq(count_of(&s, &sphere_syntax), 100);
     for (int k = 0; k < 100; k++)
-        cr_assert_eq(s.spheres[k].centre.x, (double)k);
+        cr_assert_eq(spheres[k].centre.x, (double)k);
     scene_free(&s);
 }
 
 Test(scene, numbers_in_exponent_notation_are_read) {
     struct scene s = parse_with_head("sphere centre -1e-3 2.5E2 +3 radius .5\n");
-    assert_vec3_eq(s.spheres[0].centre, vec3_make(-1e-3, 250, 3), "centre");
-    cr_assert_eq(s.spheres[0].radius, 0.5);
+    const struct sphere *spheres = shapes_of(&s, &sphere_syntax);
+    assert_vec3_eq(spheres[0].centre, vec3_make(-1e-3, 250, 3), "centre");
+    cr_assert_eq(spheres[0].radius, 0.5);
     scene_free(&s);
 }
 
@@ -460,7 +490,7 @@ Test(scene, tiny_but_finite_numbers_are_accepted) {
     /* 1e-310 is a finite (subnormal) double; strtod reports ERANGE for it, which must not be taken for
      * "not a finite number". */
     struct scene s = parse_with_head("sphere centre 1e-310 0 0 radius 1\n");
-    double x = s.spheres[0].centre.x;
+    double x = ((const struct sphere *)shapes_of(&s, &sphere_syntax))[0].centre.x;
     scene_free(&s);
     cr_assert_eq(x, 1e-310);
 }
@@ -495,11 +525,11 @@ Test(scene_files, load_reads_a_file_and_resolves_mesh_paths_beside_it) {
     struct scene_file f = write_scene_file(text, sizeof text - 1);
     struct scene s;
     char err[256] = "", mesh_path[128];
-    cr_assert(scene_load(f.path, &s, err, sizeof err), "%s", err);
+    cr_assert(scene_load(f.path, NULL, &s, err, sizeof err), "%s", err);
     snprintf(mesh_path, sizeof mesh_path, "%s/models/m.ply", f.dir);
     cr_assert_str_eq(s.meshes[0].path, mesh_path);
     cr_assert_str_eq(s.path, f.path);
-    cr_assert_eq(s.sphere_count, 1);
+    cr_assert_eq(count_of(&s, &sphere_syntax), 1);
     scene_free(&s);
     remove_scene_file(&f);
 }
@@ -510,7 +540,7 @@ static void expect_file_error(const char *bytes, size_t length, const char *mess
     struct scene_file f = write_scene_file(bytes, length);
     struct scene s;
     char err[256] = "", want[192];
-    bool loaded = scene_load(f.path, &s, err, sizeof err);
+    bool loaded = scene_load(f.path, NULL, &s, err, sizeof err);
     remove_scene_file(&f);
     cr_assert(!loaded);
     snprintf(want, sizeof want, "%s%s", f.path, message);
@@ -531,7 +561,7 @@ Test(scene_files, a_zero_byte_is_refused_with_its_line) {
 Test(scene_files, a_missing_file_cannot_be_opened) {
     struct scene s;
     char err[256] = "";
-    cr_assert(!scene_load("/nonexistent/folder/x.scene", &s, err, sizeof err));
+    cr_assert(!scene_load("/nonexistent/folder/x.scene", NULL, &s, err, sizeof err));
     cr_assert_str_eq(err, "/nonexistent/folder/x.scene: cannot open: No such file or directory");
     assert_scene_empty(&s);
 }
@@ -543,49 +573,55 @@ Test(scene_files, a_missing_file_cannot_be_opened) {
          "mesh m.ply\nplane normal 0 1 0 distance 0\nplane normal 0 1 0 distance 1\n"                        \
          "plane normal 0 1 0 distance 2\nbox min 0 0 0 max 1 1 1\n"
 
-/* Drops from a scene with every kind of shape what `supported` leaves out; returns the note printed
- * (malloc'd) and the scene. */
-static char *drop_unsupported(unsigned supported, int chapter, struct scene *s) {
+/* Reads a scene with every kind of shape, drawing `kinds` (ending with NULL), and drops the others as
+ * chapter `chapter` does; returns the note printed (malloc'd) and the scene. */
+static char *drop_unsupported(const struct shape_kind *const *kinds, int chapter, struct scene *s) {
     char *note = NULL;
     size_t size = 0;
     FILE *out = open_memstream(&note, &size);
     cr_assert_not_null(out);
-    parse_ok(ALL_SHAPES, s);
-    scene_drop_unsupported(s, supported, chapter, out);
+    char err[512] = "";
+    cr_assert(scene_parse(NAME, ALL_SHAPES, kinds, s, err, sizeof err), "refused: %s", err);
+    scene_drop_unsupported(s, chapter, out);
     cr_assert_eq(fclose(out), 0);
     return note;
 }
 
 Test(scene_drop, unsupported_shapes_are_counted_in_one_note_and_removed) {
+    static const struct shape_kind *const spheres[] = {&sphere_kind, NULL};
     struct scene s;
-    char *note = drop_unsupported(SCENE_SPHERES, 2, &s);
+    char *note = drop_unsupported(spheres, 2, &s);
     cr_assert_str_eq(note, NAME ": chapter 2 ignores 1 triangle, 1 mesh, 3 planes, 1 box (not introduced yet)\n");
-    cr_assert_eq(s.sphere_count, 2);
-    cr_assert_eq(s.triangle_count + s.mesh_count + s.plane_count + s.box_count, 0);
+    cr_assert_eq(count_of(&s, &sphere_syntax), 2);
+    cr_assert_eq(count_all(&s), 2);
     free(note);
     scene_free(&s);
 }
 
 Test(scene_drop, nothing_dropped_prints_nothing) {
+    static const struct shape_kind *const every[] = {&box_kind, &plane_kind, &triangle_kind, &sphere_kind, NULL};
     struct scene s;
-    char *note = drop_unsupported(SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES, 5, &s);
+    char *note = drop_unsupported(every, 5, &s);
     cr_assert_str_eq(note, "");
-    cr_assert_eq(s.sphere_count + s.triangle_count + s.mesh_count + s.plane_count + s.box_count, 8);
+    cr_assert_eq(count_all(&s), 8);
     free(note);
     scene_free(&s);
 }
 
 Test(scene_drop, chapter_1_drops_every_shape_and_a_null_note_is_allowed) {
     struct scene s;
-    char *note = drop_unsupported(0, 1, &s);
+    char *note = drop_unsupported(NULL, 1, &s);
     cr_assert_str_eq(note,
                      NAME ": chapter 1 ignores 2 spheres, 1 triangle, 1 mesh, 3 planes, 1 box (not introduced yet)\n");
+    cr_assert_eq(count_all(&s), 0);
     free(note);
     scene_free(&s);
-    parse_ok(ALL_SHAPES, &s);
-    scene_drop_unsupported(&s, SCENE_SPHERES | SCENE_PLANES, 4, NULL);
-    cr_assert_eq(s.plane_count, 3);
-    cr_assert_eq(s.triangle_count + s.mesh_count + s.box_count, 0);
+    static const struct shape_kind *const spheres_and_planes[] = {&sphere_kind, &plane_kind, NULL};
+    char err[512] = "";
+    cr_assert(scene_parse(NAME, ALL_SHAPES, spheres_and_planes, &s, err, sizeof err), "refused: %s", err);
+    scene_drop_unsupported(&s, 4, NULL);
+    cr_assert_eq(count_of(&s, &plane_syntax), 3);
+    cr_assert_eq(count_all(&s), 5);
     scene_free(&s);
 }
 

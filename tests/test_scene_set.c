@@ -72,7 +72,7 @@ Test(scene_set, changed_scenes_parse_to_the_new_values) {
     char *text = changed("material.glass.ior=1.33", err, sizeof err);
     cr_assert(scene_set_apply(&text, "max_depth=3", err, sizeof err), "%s", err);
     struct scene s;
-    cr_assert(scene_parse("test.scene", text, &s, err, sizeof err), "%s", err);
+    cr_assert(scene_parse("test.scene", text, NULL, &s, err, sizeof err), "%s", err);
     cr_assert_float_eq(s.materials[scene_find_material(&s, "glass")].ior, 1.33, 1e-15);
     cr_assert_eq(s.max_depth, 3);
     scene_free(&s);
@@ -106,7 +106,7 @@ Test(scene_set, a_bad_value_is_the_parsers_error_at_the_scene_line) {
     bool bad_spec = true;
     char err[512];
     const char *specs[] = {"camera.fov=wide"};
-    cr_assert(!scene_load_changed("scenes/02-sphere.scene", specs, 1, &s, &bad_spec, err, sizeof err));
+    cr_assert(!scene_load_changed("scenes/02-sphere.scene", specs, 1, NULL, &s, &bad_spec, err, sizeof err));
     cr_assert(!bad_spec);
     cr_assert_not_null(strstr(err, "scenes/02-sphere.scene:"), "%s", err);
     cr_assert_not_null(strstr(err, "'wide' (the line as changed by --set)"), "%s", err);

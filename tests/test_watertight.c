@@ -1,7 +1,7 @@
 /* test_watertight.c: no ray slips between the triangles of a closed mesh (chapter 3's watertight
  * triangle test), while Moller-Trumbore, on the very same rays, lets some through.
  *
- * The meshes (tools/closed_mesh.c) share their vertices: a cube whose faces are 64 x 64 grids of
+ * The meshes (tests/support/closed_mesh.c) share their vertices: a cube whose faces are 64 x 64 grids of
  * squares split along a diagonal (49,152 triangles), and an icosphere subdivided five times (20,480).
  * The views look from inside, so every ray must hit the mesh: the cube from its centre straight at a
  * face (a sixteenth of the pixels aim exactly at the face's diagonal edges) and straight at one of its
@@ -11,7 +11,7 @@
  * Three levels: chapter 3's brute-force loop on rays aimed exactly at diagonal edges; whole 1024 x 1024
  * pictures traced with the kd-tree in this process, camera rays and shadow rays; and the programs of
  * chapters 9 and 10 rendering the scene with a red background, beside chapter 10 built with
- * Moller-Trumbore (the Makefile's mutant-moller-trumbore), which must show red pixels, so the check is
+ * Moller-Trumbore (tests/mutants/moller-trumbore.patch), which must show red pixels, so the check is
  * seen to catch a leak, and beside POV-Ray, which shows none either. */
 #include <criterion/criterion.h>
 #include <math.h>
@@ -22,6 +22,7 @@
 
 #include "camera.h"
 #include "closed_mesh.h"
+#include "hit.h"
 #include "image.h"
 #include "image_test_support.h"
 #include "kdtree.h"

@@ -4,6 +4,9 @@
 # (ours | POV-Ray) and chapter-NN-diff.png (|ours - POV-Ray| amplified x16, DIFF_GAIN in tools/compare.c:
 # a 1-level difference shows as 16 of 255, identical pixels are black); prints a Markdown table and
 # writes it to out/compare/table.md (and into docs/povray.md with UPDATE_DOCS=1).
+# A twin from chapter 12 on says how POV-Ray renders it (common/antialias.h): with its anti-aliasing
+# options ("// Antialias options: ..."), or at n times the size in 16 bits, each n x n block then
+# averaged ("// Antialias box: n"). Chapter 12 is also compared with its regular 3 x 3 grid that way.
 set -eu
 build=${1:-build}
 shift || true
@@ -21,29 +24,50 @@ table=$out/table.md
     echo "|---|---|---|---|---|---|---|---|---|"
 } >"$table"
 status=0
-for n in "${chapters[@]}"; do
-    n=$(printf '%02d' "$((10#$n))")
-    scene=scenes/$(basename chapters/"$n"-*).scene
-    "$build/chapter-$n" "$scene" --quiet -o "$out/chapter-$n-ours.png"
-    "$build/chapter-$n" "$scene" --quiet --pov "$out/chapter-$n.pov"
+# compare_one NN TAG [--set ...]: chapter NN's scene (with the --set changes) by the chapter and by
+# POV-Ray, as its twin says; a row of the table.
+compare_one() {
+    local n=$1 tag=$2
+    shift 2
+    local scene=scenes/$(basename chapters/"$n"-*).scene
+    "$build/chapter-$n" "$scene" --quiet -o "$out/$tag-ours.png" "$@"
+    "$build/chapter-$n" "$scene" --quiet --pov "$out/$tag.pov" "$@"
+    local size width height options box
     size=$(awk '$1 == "image" { print $2, $3 }' "$scene")
     width=${size% *}; height=${size#* }
+    options=$(sed -n 's|^// Antialias options: ||p' "$out/$tag.pov")
+    box=$(sed -n 's|^// Antialias box: \([0-9]*\).*|\1|p' "$out/$tag.pov")
+    box=${box:-1}
+    local big=$out/$tag-povray.png format=""
+    if [ "$box" -gt 1 ]; then big=$out/$tag-povray-big.png; format=+FN16; fi
     # Timed in nanoseconds with bash arithmetic (64-bit), so no calculator such as bc is needed.
+    local start elapsed povray_seconds result agrees
     start=$(date +%s%N)
-    povray +I"$out/chapter-$n.pov" +O"$out/chapter-$n-povray.png" +W"$width" +H"$height" \
-        $povray_options >"$out/chapter-$n-povray.log" 2>&1
+    povray +I"$out/$tag.pov" +O"$big" +W$((box * width)) +H$((box * height)) \
+        $povray_options $format $options >"$out/$tag-povray.log" 2>&1
     elapsed=$(( $(date +%s%N) - start ))
     povray_seconds=$(printf '%d.%03d' $((elapsed / 1000000000)) $((elapsed / 1000000 % 1000)))
-    if result=$("$build/compare" "$out/chapter-$n-ours.png" "$out/chapter-$n-povray.png" \
-                "$out/chapter-$n-side-by-side.png" "$out/chapter-$n-diff.png"); then
+    if result=$("$build/compare" --box "$box" "$out/$tag-ours.png" "$big" \
+                "$out/$tag-side-by-side.png" "$out/$tag-diff.png"); then
         agrees=yes
     else
         agrees=NO; status=1
     fi
     # result: max M  mean X  within1 P%  within2 Q%  psnr S dB  over2 K
     set -- $result
-    echo "| $n | ${scene#scenes/} | ${width}x${height} | $2 | $4 | $6 | $8 | ${10} dB | $agrees |" >>"$table"
-    echo "chapter $n: $result (POV-Ray took ${povray_seconds} s)"
+    local label=${scene#scenes/}
+    [ "$tag" = "chapter-$n" ] || label="$label, ${tag#chapter-$n-}"
+    echo "| $n | $label | ${width}x${height} | $2 | $4 | $6 | $8 | ${10} dB | $agrees |" >>"$table"
+    echo "chapter $n ($tag): $result (POV-Ray took ${povray_seconds} s)"
+}
+
+for n in "${chapters[@]}"; do
+    n=$(printf '%02d' "$((10#$n))")
+    compare_one "$n" "chapter-$n"
+    if [ "$n" = 12 ]; then
+        compare_one 12 chapter-12-grid-3 --set antialias.method=grid --set antialias.samples=3
+        compare_one 12 chapter-12-recursive --set antialias.method=recursive
+    fi
 done
 echo
 cat "$table"

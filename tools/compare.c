@@ -1,13 +1,16 @@
-/* compare.c: `compare A.png B.png [SIDE.png DIFF.png]` prints how far two pictures differ and optionally
- * writes them side by side (A | B) to SIDE.png and their difference, amplified DIFF_GAIN times, to DIFF.png
- * (used by `make compare`; a tool, not a chapter).
+/* compare.c: `compare [--box N] A.png B.png [SIDE.png DIFF.png]` prints how far two pictures differ and
+ * optionally writes them side by side (A | B) to SIDE.png and their difference, amplified DIFF_GAIN times,
+ * to DIFF.png (used by `make compare`; a tool, not a chapter). With --box N, B is N times as wide and
+ * high as A and each N x N block of it is averaged first (box_filter.h: chapter 12's grid).
  * Exit status: 0 when the pictures meet the POV-Ray agreement rule, 1 when not, 2 on bad input. */
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "box_filter.h"
 #include "image.h"
 #include "image_compare.h"
 
@@ -34,14 +37,22 @@ static bool write_pictures(const uint8_t *a, const uint8_t *b, int width, int he
 }
 
 int main(int argc, char **argv) {
-    if (argc != 3 && argc != 5) {
-        fprintf(stderr, "usage: %s A.png B.png [SIDE.png DIFF.png]\n", argv[0]);
+    int box = 1;
+    if (argc >= 3 && strcmp(argv[1], "--box") == 0) {
+        box = atoi(argv[2]);
+        argv += 2;
+        argc -= 2;
+    }
+    if ((argc != 3 && argc != 5) || box < 1) {
+        fprintf(stderr, "usage: compare [--box N] A.png B.png [SIDE.png DIFF.png]\n");
         return 2;
     }
     char err[512];
     int wa, ha, wb, hb;
     uint8_t *a = image_read_rgb(argv[1], &wa, &ha, err, sizeof err);
-    uint8_t *b = a == NULL ? NULL : image_read_rgb(argv[2], &wb, &hb, err, sizeof err);
+    uint8_t *b = a == NULL ? NULL
+                 : box > 1 ? box_filter_png(argv[2], box, &wb, &hb, err, sizeof err)
+                           : image_read_rgb(argv[2], &wb, &hb, err, sizeof err);
     if (a == NULL || b == NULL) {
         fprintf(stderr, "%s\n", err);
         free(a);

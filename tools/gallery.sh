@@ -38,7 +38,7 @@ work=out/gallery/work-$$
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$work"
 cp -r Makefile common chapters tools bench fuzz reference_images "$work"/
-mkdir -p "$work/tests" "$work/out" && cp -r tests/checks "$work/tests/"
+mkdir -p "$work/tests" "$work/out" && cp -r tests/checks tests/support "$work/tests/"
 mkdir -p "$work/scenes" && cp scenes/*.scene "$work/scenes/" && cp -r scenes/models "$work/scenes/"
 # The copy builds the way $build was built (build/san: with the sanitizers).
 san=0
@@ -75,7 +75,7 @@ render() { # render PROGRAM PATCH PNG
     eval "\"\$1\" \"\$scene\" ${args} \"\${size[@]}\" --quiet -o \"\$3\""
 }
 
-# Whether pictures a and b pass the reference-image rule (tests/image_test_support.h): at least
+# Whether pictures a and b pass the reference-image rule (tests/support/image_test_support.h): at least
 # 99.95 % of pixels within 1 level and a mean difference of at most 0.01 levels.
 passes_regression() { # passes_regression A B
     local result
@@ -149,7 +149,7 @@ page=docs/gallery.md
     echo
     echo "The pictures are rendered by \`make gallery\` from the patches in"
     echo "[\`tools/gallery/\`](../tools/gallery/): apply one to a copy of the code to see the fault for yourself"
-    echo "(\`git apply tools/gallery/NAME.patch\`, and \`git checkout common\` to undo). \`make test\` proves that"
+    echo "(\`git apply tools/gallery/NAME.patch\`, and \`git checkout common\` to undo). \`make test-long\` proves that"
     echo "the student's grader catches every one (\`tests/test_gallery.c\`): built with the fault, each task named"
     echo "under \"Caught by\" fails its checks (\`make check-N\`, see [the coursework kit](coursework.md)), where"
     echo "N.P is the chapter's picture against its reference."

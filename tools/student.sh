@@ -11,8 +11,8 @@
 # Every file of the repository (what git tracks, plus new files not ignored) goes to DIR; in the C files,
 # the body of each function marked "/* TASK N.K: what */" whose task is chosen becomes a stub
 # (tools/student_blank.awk). Unless --answers is given, the copy is a hand-out: the model answers are
-# left out (the ★★★ exercises' solutions, the gallery's patches and the planted faults, and the proofs
-# that use them), the walkthroughs show the stubs where they quote a blanked body
+# left out (the ★★★ exercises' solutions, the gallery's patches, the tests' mutants and the planted
+# faults, and the proofs that use them), the walkthroughs show the stubs where they quote a blanked body
 # (tools/student_docs.awk), and README.md is written for the student (tools/student_readme.md).
 #
 # A new DIR becomes a git repository with one first commit. DIR must be new, empty, or a copy this
@@ -30,7 +30,7 @@ marked() {
 is_answer() {
     case $1 in
     tests/exercises/solutions.[ch] | tests/exercises/test_exercise_proof.c) return 0 ;;
-    tools/gallery/*.patch | tests/test_gallery.c) return 0 ;;
+    tools/gallery/*.patch | tests/test_gallery.c | tests/mutants/*.patch) return 0 ;;
     tests/checks/faults/* | tests/checks/prove_fault.sh | tests/test_coursework_proof.c) return 0 ;;
     tests/checks/task_trace.awk | tests/test_coursework_long.c) return 0 ;; # they need the reference
     esac

@@ -18,9 +18,11 @@ int main(int argc, char **argv) {
         .number = 1,
         .title = "camera",
         .default_scene = "scenes/01-camera.scene",
-        .features = 0,
+        .kinds = NULL, /* no shapes yet: the scene's are read and ignored */
         .lighting = POV_RAY_DIRECTION,
-        .trace = colour_by_direction,
     };
-    return cli_run(&chapter, argc, argv);
+    struct cli_run run;
+    if (cli_start(&run, &chapter, argc, argv))
+        cli_render(&run, colour_by_direction, NULL);
+    return cli_finish(&run);
 }

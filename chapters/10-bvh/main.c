@@ -5,7 +5,11 @@
  * world by common/accel_bvh.c. Shading is chapter 8's: the picture equals chapters 8 and 9's, only
  * faster. --accel none|kdtree|bvh compares all three on the same scene. */
 #include "accel.h"
+#include "box.h"
 #include "cli.h"
+#include "plane.h"
+#include "sphere.h"
+#include "triangle.h"
 #include "whitted.h"
 
 static struct accel_choice choice = {ACCEL_BVH, true};
@@ -20,21 +24,29 @@ static void *prepare(struct scene *s, char *err, size_t err_size) {
 }
 
 int main(int argc, char **argv) {
+    /* The kinds of shape chapter 10 draws: every kind so far (chapter 5's). */
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
     static const struct chapter chapter = {
         .number = 10,
         .title = "bvh",
         .default_scene = "scenes/10-bvh.scene",
-        .features = SCENE_EVERY_SHAPE,
+        .kinds = kinds,
         .lighting = POV_WHITTED,
-        .load_meshes = scene_load_meshes,
-        .prepare = prepare,
-        .release = accel_world_destroy,
-        .trace = whitted_trace,
         .parse_option = parse_option,
         .options_help = "  --accel KIND     none, kdtree or bvh (default bvh)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
                         "                   kd-tree: the axis holding most objects)\n",
-        .report = accel_chapter_report,
     };
-    return cli_run(&chapter, argc, argv);
+    struct cli_run run;
+    if (!cli_start(&run, &chapter, argc, argv))
+        return cli_finish(&run);
+    if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
+        return cli_fail(&run);
+    struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
+    if (w == NULL)
+        return cli_fail(&run);
+    if (cli_render(&run, whitted_trace, &w->world))
+        accel_report(w, &run.total, run.options.stats);
+    accel_world_destroy(w);
+    return cli_finish(&run);
 }

@@ -8,8 +8,12 @@
 #include <string.h>
 
 #include "accel_fast_bvh.h"
+#include "box.h"
 #include "cli.h"
 #include "fast_bvh.h"
+#include "plane.h"
+#include "sphere.h"
+#include "triangle.h"
 #include "whitted.h"
 
 static struct accel_choice choice = {ACCEL_BVH, true};
@@ -38,23 +42,31 @@ static void *prepare(struct scene *s, char *err, size_t err_size) {
 }
 
 int main(int argc, char **argv) {
+    /* The kinds of shape chapter 11 draws: every kind so far (chapter 5's). */
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
     static const struct chapter chapter = {
         .number = 11,
         .title = "fast",
         .default_scene = "scenes/11-fast.scene",
-        .features = SCENE_SPHERES | SCENE_TRIANGLES | SCENE_PLANES | SCENE_BOXES,
+        .kinds = kinds,
         .lighting = POV_WHITTED,
-        .load_meshes = scene_load_meshes,
-        .prepare = prepare,
-        .release = accel_world_destroy,
-        .trace = whitted_trace,
         .parse_option = parse_option,
         .options_help = "  --rung R         how much of the speed-up to use: 1 plain (chapter 10's BVH),\n"
                         "                   2 wide, 3 simd, 4 prefetch, 5 build (the default); a number or a name\n"
                         "  --accel KIND     none, kdtree or bvh (default bvh: the fast BVH at the chosen rung)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
                         "                   kd-tree: the axis holding most objects)\n",
-        .report = accel_chapter_report,
     };
-    return cli_run(&chapter, argc, argv);
+    struct cli_run run;
+    if (!cli_start(&run, &chapter, argc, argv))
+        return cli_finish(&run);
+    if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
+        return cli_fail(&run);
+    struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
+    if (w == NULL)
+        return cli_fail(&run);
+    if (cli_render(&run, whitted_trace, &w->world))
+        accel_report(w, &run.total, run.options.stats);
+    accel_world_destroy(w);
+    return cli_finish(&run);
 }

@@ -9,6 +9,7 @@
 #include "bvh.h"
 #include "check.h"
 #include "fast_bvh.h"
+#include "hit.h"
 #include "kdtree.h"
 #include "stats.h"
 #include "triangle.h"

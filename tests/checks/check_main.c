@@ -54,6 +54,9 @@ const struct task check_tasks[] = {
     {"11.1", "two children's slab tests at once", "child_pair_hit in common/fast_bvh.c", ""},
     {"11.2", "the children hit, nearest first", "nearest_first in common/fast_bvh.c", ""},
     {"11.P", "chapter 11's picture", "chapters/11-fast", "1.1 2.1 2.2 4.1 6.1 6.2 8.1 8.2 11.1 11.2"},
+    {"12.1", "the box filter over a regular grid", "supersample_grid in common/supersample.c", ""},
+    {"12.2", "POV-Ray's colour difference test", "supersample_differ in common/supersample.c", ""},
+    {"12.P", "chapter 12's picture", "chapters/12-antialias", "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.2 11.1 11.2 12.1 12.2"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -116,6 +119,12 @@ CHECK(check_picture_8);
 CHECK(check_picture_9);
 CHECK(check_picture_10);
 CHECK(check_picture_11);
+CHECK(check_grid_centres);
+CHECK(check_grid_edge);
+CHECK(check_differ_plain);
+CHECK(check_differ_gamma);
+CHECK(check_differ_channels);
+CHECK(check_picture_12);
 
 const struct check check_list[] = {
     {"1.1", "the top-left pixel's ray", check_camera_top_left},
@@ -177,6 +186,12 @@ const struct check check_list[] = {
     {"11.1", "overlapping boxes: the nearest hit, rays along x and z", check_fast_crossing},
     {"11.2", "the nearer children first: few triangle tests", check_fast_near_first},
     {"11.P", "the picture matches the reference", check_picture_11},
+    {"12.1", "the mean of the cells' centres is the pixel's centre", check_grid_centres},
+    {"12.1", "an edge 0.3 across the pixel: 0.3 grey", check_grid_edge},
+    {"12.2", "far colours differ, equal ones do not", check_differ_plain},
+    {"12.2", "POV-Ray's gamma: a dark step counts more", check_differ_gamma},
+    {"12.2", "the channels add up, negative ones count as 0", check_differ_channels},
+    {"12.P", "the picture matches the reference", check_picture_12},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
 
@@ -307,10 +322,10 @@ int main(int argc, char **argv) {
         only = argv[2];
     else if (argc == 2 && strcmp(argv[1], "all") == 0)
         chapter = -1;
-    else if (argc == 2 && atoi(argv[1]) >= 1 && atoi(argv[1]) <= 11)
+    else if (argc == 2 && atoi(argv[1]) >= 1 && atoi(argv[1]) <= 12)
         chapter = atoi(argv[1]);
     else {
-        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..11; make check-N runs it)\n", argv[0]);
+        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..12; make check-N runs it)\n", argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);

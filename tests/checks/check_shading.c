@@ -7,8 +7,10 @@
 
 #include "check.h"
 #include "phong.h"
+#include "plane.h"
 #include "scene.h"
 #include "shadow.h"
+#include "sphere.h"
 #include "stats.h"
 #include "whitted.h"
 #include "world.h"
@@ -16,11 +18,13 @@
 /* Colours are compared to their exact values within this: far above rounding, far below a mistake. */
 #define SHADING_TOLERANCE 1e-9
 
-/* Parses a scene written in the check (camera and image lines added). False with the reason in why. */
+/* Parses a scene written in the check (camera and image lines added), with the kinds of shape the checks
+ * use. False with the reason in why. */
 static bool parse(const char *text, struct scene *s, char *why, size_t why_size) {
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &plane_kind, NULL};
     char full[2048], err[512];
     snprintf(full, sizeof full, "camera eye 0 0 5  target 0 0 0  fov 40\nimage 8 8\n%s", text);
-    if (scene_parse("check.scene", full, s, err, sizeof err))
+    if (scene_parse("check.scene", full, kinds, s, err, sizeof err))
         return true;
     snprintf(why, why_size, "the check's own scene did not parse (a framework problem, not your task): %s", err);
     return false;

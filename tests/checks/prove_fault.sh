@@ -30,15 +30,13 @@ case $build in */san) [ -n "$(field Says-sanitized)" ] && says=$(field Says-sani
 
 work=out/faults/work-$$
 trap 'rm -rf "$work"' EXIT
-mkdir -p "$work/tests" "$work/tools"
-cp -rp Makefile common chapters bench fuzz "$work"/
-cp -rp tools/*.sh tools/*.c tools/*.h tools/*.mk tools/results "$work/tools/"
-cp -rp tests/checks "$work/tests/"
+mkdir -p "$work"
+cp -rp Makefile common chapters bench fuzz tools tests "$work"/
 san=0
 case $build in */san) san=1 ;; esac
 if [ -d "$build/common" ]; then
     mkdir -p "$work/$build"
-    cp -rp "$build"/common "$build"/checks "$build"/tools "$work/$build/" 2>/dev/null
+    cp -rp "$build"/common "$build"/checks "$build"/tests "$build"/tools "$work/$build/" 2>/dev/null
 fi
 # The copy lies inside this repository's tree: GIT_CEILING_DIRECTORIES keeps git apply from finding the
 # repository, so the patch applies to the copy as plain files (with a new time: make recompiles them).

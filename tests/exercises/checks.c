@@ -10,6 +10,7 @@
 
 #include "scene.h"
 #include "shadow.h"
+#include "sphere.h"
 #include "world.h"
 
 #define CHECK_TOLERANCE 1e-9 /* analytic values are met to rounding, far below this */
@@ -60,7 +61,7 @@ static bool make_disc(const struct shape_kind *kind, struct disc_item *item, vec
 }
 
 static void set_material(const struct shape_kind *kind, struct disc_item *item, int material) {
-    memcpy(item->bytes + kind->material_offset, &material, sizeof material);
+    memcpy(item->bytes + kind->syntax->material_offset, &material, sizeof material);
 }
 
 /* Counts the crossings the kind reports along r; stores the last t in *t. */
@@ -80,22 +81,27 @@ static bool count_crossing(void *context, double t, int material) {
 
 /* The parts of the kind that every check below needs; false with the reason when one is missing. */
 static bool disc_kind_complete(const struct shape_kind *kind, char *why, size_t why_size) {
-    if (kind->syntax == NULL || kind->syntax->make == NULL || kind->syntax->write_pov == NULL)
-        return fail(why, why_size, "the disc has no syntax: does disc.h end with SHAPE_KIND(disc, discs, DISCS, 2), "
-                    "and does it define disc_syntax with a make and a write_pov?");
-    if (kind->behaviour == NULL || kind->behaviour->closest == NULL || kind->behaviour->crossings == NULL ||
-        kind->behaviour->bounds == NULL)
-        return fail(why, why_size, "the disc has no behaviour: does disc.c define disc_behaviour (closest, "
-                    "crossings, bounds), and is disc in MODULES_02 of the Makefile?");
-    if (kind->size > DISC_ITEM_MAX || kind->material_offset + sizeof(int) > kind->size)
+    const struct shape_syntax *syntax = kind->syntax;
+    if (syntax == NULL || syntax->make == NULL || syntax->write_pov == NULL || syntax->keys == NULL ||
+        syntax->required == NULL)
+        return fail(why, why_size, "the disc has no syntax: does disc_kind point at disc_syntax, with its keys, its "
+                    "required keys, a make and a write_pov?");
+    if (syntax->keyword == NULL || strcmp(syntax->keyword, "disc") != 0 || syntax->plural == NULL ||
+        strcmp(syntax->plural, "discs") != 0)
+        return fail(why, why_size, "the disc's line should have the keyword \"disc\" and the plural \"discs\", got "
+                    "\"%s\" and \"%s\"", syntax->keyword != NULL ? syntax->keyword : "(none)",
+                    syntax->plural != NULL ? syntax->plural : "(none)");
+    if (kind->closest == NULL || kind->crossings == NULL || kind->bounds == NULL)
+        return fail(why, why_size, "the disc's ray queries are missing: does disc_kind hold closest, crossings "
+                    "and bounds?");
+    if (syntax->size > DISC_ITEM_MAX || syntax->material_offset + sizeof(int) > syntax->size)
         return fail(why, why_size, "struct disc is %zu bytes with its material at %zu: expected a small struct "
-                    "with an int material", kind->size, kind->material_offset);
+                    "with an int material", syntax->size, syntax->material_offset);
     static const struct key_spec wanted[] = {{"centre", 3}, {"normal", 3}, {"radius", 1}};
     for (int n = 0; n < 3; n++) {
         bool found = false;
-        for (int k = 0; k < kind->syntax->key_count; k++)
-            found |= strcmp(kind->syntax->keys[k].name, wanted[n].name) == 0 && kind->syntax->keys[k].count ==
-                     wanted[n].count;
+        for (int k = 0; k < syntax->key_count; k++)
+            found |= strcmp(syntax->keys[k].name, wanted[n].name) == 0 && syntax->keys[k].count == wanted[n].count;
         if (!found)
             return fail(why, why_size, "the disc's keys should include '%s' with %d number%s", wanted[n].name,
                         wanted[n].count, wanted[n].count == 1 ? "" : "s");
@@ -132,17 +138,7 @@ static bool check_disc_syntax(const struct shape_kind *kind, char *why, size_t w
     return same;
 }
 
-const struct shape_kind *exercise_disc_kind(void) {
-    for (size_t k = 0; k < SHAPE_KIND_COUNT; k++)
-        if (strcmp(shape_kinds[k].keyword, "disc") == 0)
-            return &shape_kinds[k];
-    return NULL;
-}
-
 bool check_disc(const struct shape_kind *kind, char *why, size_t why_size) {
-    if (kind == NULL)
-        return fail(why, why_size, "there is no kind of shape called disc: add #include \"disc.h\" to "
-                    "common/shape_kinds.h, and end disc.h with SHAPE_KIND(disc, discs, DISCS, 2)");
     if (!disc_kind_complete(kind, why, why_size) || !check_disc_syntax(kind, why, why_size))
         return false;
     static const struct {
@@ -162,10 +158,9 @@ bool check_disc(const struct shape_kind *kind, char *why, size_t why_size) {
     struct disc_item item;
     make_disc(kind, &item, vec3_make(0, 0, 0), vec3_make(0, 1, 0), 1.0, reason, sizeof reason);
     set_material(kind, &item, 7);
-    const struct shape_behaviour *b = kind->behaviour;
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         struct hit h = hit_nothing(cases[k].t_max);
-        bool hit = b->closest(item.bytes, 1, &cases[k].r, RAY_T_MIN, &h);
+        bool hit = kind->closest(item.bytes, 1, &cases[k].r, RAY_T_MIN, &h);
         if (cases[k].expected < 0 && hit)
             return fail(why, why_size, "disc of radius 1 at the origin facing +y, ray %s: expected a miss, your "
                         "closest returned a hit at t = %g", cases[k].what, h.t);
@@ -181,7 +176,7 @@ bool check_disc(const struct shape_kind *kind, char *why, size_t why_size) {
                         "normal (0, +-1, 0) and material 7, got (%g, %g, %g) and %d", cases[k].what, h.normal.x,
                         h.normal.y, h.normal.z, h.material);
         struct crossing_count crossings = {0, 0.0, -1};
-        b->crossings(item.bytes, 1, &cases[k].r, RAY_T_MIN, cases[k].t_max, count_crossing, &crossings);
+        kind->crossings(item.bytes, 1, &cases[k].r, RAY_T_MIN, cases[k].t_max, count_crossing, &crossings);
         int expected_count = cases[k].expected < 0 ? 0 : 1;
         if (crossings.count != expected_count || (expected_count == 1 && (!near(crossings.t, cases[k].expected) ||
                                                                           crossings.material != 7)))
@@ -194,29 +189,31 @@ bool check_disc(const struct shape_kind *kind, char *why, size_t why_size) {
     struct disc_item pair[2];
     make_disc(kind, &pair[0], vec3_make(0, 0, 0), vec3_make(0, 1, 0), 1.0, reason, sizeof reason);
     make_disc(kind, &pair[1], vec3_make(0, 1, 0), vec3_make(0, 1, 0), 1.0, reason, sizeof reason);
+    size_t size = kind->syntax->size, material_offset = kind->syntax->material_offset;
     unsigned char both[2 * DISC_ITEM_MAX];
-    memcpy(both, pair[0].bytes, kind->size);
-    memcpy(both + kind->size, pair[1].bytes, kind->size);
-    memcpy(both + kind->material_offset, &(int){3}, sizeof(int));
-    memcpy(both + kind->size + kind->material_offset, &(int){4}, sizeof(int));
+    memcpy(both, pair[0].bytes, size);
+    memcpy(both + size, pair[1].bytes, size);
+    memcpy(both + material_offset, &(int){3}, sizeof(int));
+    memcpy(both + size + material_offset, &(int){4}, sizeof(int));
     ray down = make_ray(0.2, 2, 0.1, 0, -1, 0);
     struct hit h = hit_nothing(INFINITY);
-    if (!b->closest(both, 2, &down, RAY_T_MIN, &h) || !near(h.t, 1.0) || h.material != 4)
+    if (!kind->closest(both, 2, &down, RAY_T_MIN, &h) || !near(h.t, 1.0) || h.material != 4 || h.object != 1)
         return fail(why, why_size, "discs at y = 0 (material 3) and y = 1 (material 4), ray straight down from "
-                    "y = 2: expected the nearer at t = 1 with material 4, got t = %g, material %d", h.t, h.material);
+                    "y = 2: expected the nearer at t = 1 with material 4 and object 1 (its index in the array), got "
+                    "t = %g, material %d, object %d", h.t, h.material, h.object);
     /* A tilted disc, given with a normal that is not unit length: a ray along its normal from 4 units
      * away meets its centre at t = 4. */
     vec3 tilted = vec3_normalize(vec3_make(1, 1, 1)), at = {1, 2, 3};
     make_disc(kind, &item, at, vec3_make(1, 1, 1), 0.5, reason, sizeof reason);
     ray r = {vec3_add_scaled(at, tilted, 4.0), vec3_neg(tilted)};
     h = hit_nothing(INFINITY);
-    if (!b->closest(item.bytes, 1, &r, RAY_T_MIN, &h) || !near(h.t, 4.0))
+    if (!kind->closest(item.bytes, 1, &r, RAY_T_MIN, &h) || !near(h.t, 4.0))
         return fail(why, why_size, "disc at (1, 2, 3) facing (1, 1, 1), ray along its normal from 4 away: expected "
                     "t = 4, got %s %.17g (does your code assume the normal is +y, or unit length?)",
                     hit_found(&h) ? "" : "a miss,", h.t);
     /* Its box must hold the rim, and be no larger than the cube around the sphere through the rim. */
     vec3 min, max;
-    if (!b->bounds(item.bytes, &min, &max))
+    if (!kind->bounds(item.bytes, &min, &max))
         return fail(why, why_size, "your bounds say the disc has no bounding box; it has one");
     vec3 u = vec3_normalize(vec3_cross(tilted, vec3_make(0, 0, 1))), v = vec3_cross(tilted, u);
     for (int k = 0; k < 64; k++) {
@@ -377,9 +374,10 @@ bool check_area_fraction(area_fraction_fn f, char *why, size_t why_size) {
     /* A ball of radius 0.5 at (0, 1, 0) over the floor, and a 1 x 1 light at height 3 above it. */
     static const char *const text = "camera eye 0 2 8 target 0 0 0 fov 40\nimage 8 8\n"
                                     "sphere centre 0 1 0 radius 0.5\n";
+    static const struct shape_kind *const kinds[] = {&sphere_kind, NULL};
     struct scene s;
     char err[256];
-    if (!scene_parse("soft-shadow-check.scene", text, &s, err, sizeof err))
+    if (!scene_parse("soft-shadow-check.scene", text, kinds, &s, err, sizeof err))
         return fail(why, why_size, "internal: %s", err);
     struct world w;
     if (!world_init(&w, &s, err, sizeof err)) {
@@ -675,5 +673,70 @@ bool check_collapse(collapse_fn f, char *why, size_t why_size) {
                     "slots should be A0, A1 and leaves 4 and 5; yours holds %s. Open the child with the largest surface "
                     "area (most rays enter it), not the first one", what, four || five ? "only one of the two leaves" :
                     "neither leaf");
+    return true;
+}
+
+/* ---- exercise 12.4: n-rooks ------------------------------------------------------------------------ */
+
+#define ROOKS_MAX 16
+#define ROOKS_PIXELS 40 /* pixels looked at for the pairings */
+
+/* The column and row of point k of n, or -1 when it is outside [0, 1). */
+static int cell_of(double v, int n) { return v >= 0.0 && v < 1.0 ? (int)(v * n) : -1; }
+
+bool check_rooks(rooks_fn f, char *why, size_t why_size) {
+    static const int sizes[] = {1, 2, 5, 8, 16};
+    double x[ROOKS_MAX], y[ROOKS_MAX], x2[ROOKS_MAX], y2[ROOKS_MAX];
+    for (int s = 0; s < 5; s++) {
+        int n = sizes[s];
+        for (int p = 0; p < ROOKS_PIXELS; p++) {
+            int i = p % 7, j = p / 7;
+            f(i, j, n, 3, x, y);
+            bool column[ROOKS_MAX] = {false}, row[ROOKS_MAX] = {false};
+            for (int k = 0; k < n; k++) {
+                int c = cell_of(x[k], n), r = cell_of(y[k], n);
+                if (c < 0 || r < 0)
+                    return fail(why, why_size, "pixel (%d, %d), n = %d: point %d is (%g, %g), outside [0, 1) x [0, 1)",
+                                i, j, n, k, x[k], y[k]);
+                if (column[c] || row[r])
+                    return fail(why, why_size, "pixel (%d, %d), n = %d: point %d (%g, %g) shares its %s with another; "
+                                "each of the n columns and rows holds exactly one", i, j, n, k, x[k], y[k],
+                                column[c] ? "column" : "row");
+                column[c] = row[r] = true;
+            }
+            f(i, j, n, 3, x2, y2);
+            for (int k = 0; k < n; k++)
+                if (x2[k] != x[k] || y2[k] != y[k])
+                    return fail(why, why_size, "pixel (%d, %d), n = %d: a second call gave other points (point %d: "
+                                "(%g, %g), then (%g, %g)); they must come from sample_hash alone", i, j, n, k, x[k],
+                                y[k], x2[k], y2[k]);
+        }
+    }
+    /* The pairing of columns with rows changes from pixel to pixel; on the diagonal, every pixel's
+     * points line up along it, and the samples of neighbouring pixels form a regular pattern. */
+    int diagonal = 0, centred = 0;
+    for (int p = 0; p < ROOKS_PIXELS; p++) {
+        f(p, 1, 8, 3, x, y);
+        bool on_diagonal = true;
+        for (int k = 0; k < 8; k++) {
+            on_diagonal = on_diagonal && cell_of(x[k], 8) == cell_of(y[k], 8);
+            centred += fabs(x[k] * 8 - floor(x[k] * 8) - 0.5) < 1e-9;
+        }
+        diagonal += on_diagonal;
+    }
+    if (diagonal > 2)
+        return fail(why, why_size, "n = 8: in %d of %d pixels the points lie in the cells (0, 0), (1, 1), ... of the "
+                    "diagonal; shuffle which column goes with which row, pixel by pixel", diagonal, ROOKS_PIXELS);
+    if (centred > ROOKS_PIXELS)
+        return fail(why, why_size, "n = 8: %d of %d points sit at the middle of their column; each should be at a "
+                    "random place within its cell", centred, 8 * ROOKS_PIXELS);
+    double a[ROOKS_MAX], b[ROOKS_MAX];
+    f(2, 3, 8, 3, x, y);
+    f(2, 3, 8, 4, a, b);
+    bool same = true;
+    for (int k = 0; k < 8; k++)
+        same = same && a[k] == x[k] && b[k] == y[k];
+    if (same)
+        return fail(why, why_size, "pixel (2, 3), n = 8: seeds 3 and 4 give the same points; the seed must change them");
     return true;
 }

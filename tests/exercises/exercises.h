@@ -3,31 +3,33 @@
  *
  * make exercises (tests/exercises/runner/run.sh) grades each exercise whose function common/ defines,
  * by linking a small program that runs the check below on it (runner/exercise.c); until the function
- * exists it says where to start. Exercise 2.4 is a whole kind of shape: its check looks the kind up in
- * the registry (shape_kinds.h). Each check returns true, or false with a message in the student's terms:
- * the input, what was expected, what came back. tests/exercises/solutions.c holds one correct answer to
- * each and one wrong one, which make test uses to prove that every check passes the first and fails
- * the second (test_exercise_proof.c). */
+ * exists it says where to start. Exercise 2.4 is a whole kind of shape: its check starts once its table,
+ * disc_kind, exists. Each check returns true, or false with a message in the student's terms: the
+ * input, what was expected, what came back. tests/exercises/solutions.c holds one correct answer to each
+ * and one wrong one, which make test uses to prove that every check passes the first and fails the
+ * second (test_exercise_proof.c). */
 #ifndef WHITTED_EXERCISES_H
 #define WHITTED_EXERCISES_H
 
 #include <limits.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "aabb.h"
 #include "mesh.h"
 #include "ray.h"
 #include "shape.h"
 
-/* Exercise 2.4 (common/disc.h, common/disc.c and one line in common/shape_kinds.h): the disc, a new kind
- * of shape, read from the scene line `disc centre X Y Z normal X Y Z radius R [material NAME]`. Its check
- * grades the kind "disc" that exercise_disc_kind finds in shape_kinds[] (NULL fails, saying so):
- * its syntax (a zero normal or a radius <= 0 is refused, the normal is made unit length), its POV-Ray
- * form `disc { <centre>, <normal>, radius`, and its behaviour: the nearest hit among several discs (t,
- * the disc's unit normal, the material; the rim counts), the crossings and the bounding box. */
+/* Exercise 2.4 (common/disc.h and common/disc.c, and &disc_kind in the list of kinds of each chapter that
+ * draws discs): the disc, a new kind of shape, read from the scene line `disc centre X Y Z normal X Y Z
+ * radius R [material NAME]`. Its check grades the kind's tables: its syntax (keyword "disc"; a zero
+ * normal or a radius <= 0 is refused, the normal is made unit length), its POV-Ray form `disc {
+ * <centre>, <normal>, radius`, and its ray queries: the nearest hit among several discs (t, the disc's
+ * unit normal, the material, its index in the array; the rim counts), the crossings and the bounding
+ * box. */
+extern const struct shape_kind disc_kind;
 bool check_disc(const struct shape_kind *kind, char *why, size_t why_size);
-const struct shape_kind *exercise_disc_kind(void);
 
 /* Exercise 3.4 (common/mesh_normals.c): a unit normal for every vertex of m, the average of the normals
  * of the faces around it weighted by their areas (the cross product of two edges, unnormalised, does
@@ -39,7 +41,7 @@ bool check_vertex_normals(vertex_normals_fn f, char *why, size_t why_size);
 /* Exercise 4.4 (common/cylinder.c): where r meets the side of the open cylinder of `radius` whose axis
  * runs from `base` up the +y axis for `height`, with t_min < t < t_max (no caps). */
 bool cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max,
-                             double *t);
+                        double *t);
 typedef bool (*cylinder_fn)(vec3, double, double, const ray *, double, double, double *);
 bool check_cylinder(cylinder_fn f, char *why, size_t why_size);
 
@@ -103,5 +105,15 @@ struct bvh4_node {
 int bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
 typedef int (*collapse_fn)(const struct bvh2_node *, int, struct bvh4_node *, int);
 bool check_collapse(collapse_fn f, char *why, size_t why_size);
+
+/* Exercise 12.4 (common/supersample.c): n-rooks sampling, n rays a pixel where the grid takes n x n.
+ * Writes n points of pixel (i, j) into x[0..n) and y[0..n), each in [0, 1) across the pixel, so that
+ * each of the n columns [c / n, (c + 1) / n) and each of the n rows holds exactly one point (n rooks on
+ * an n x n board, none attacking another), at a random place within its cell. The places and which
+ * column goes with which row come from sample_hash(i, j, index, seed) alone: the same pixel and seed
+ * give the same points, other pixels other pairings. */
+void supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y);
+typedef void (*rooks_fn)(int, int, int, uint32_t, double *, double *);
+bool check_rooks(rooks_fn f, char *why, size_t why_size);
 
 #endif

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sample_hash.h"
 #include "shadow.h"
 
 /* ---- 2.4: the disc, a kind of shape: what common/disc.h and common/disc.c hold in a model answer.
@@ -25,7 +26,7 @@ struct model_disc {
 
 enum { MODEL_DISC_CENTRE, MODEL_DISC_NORMAL, MODEL_DISC_RADIUS };
 
-/* In disc.h: the syntax, `disc centre X Y Z normal X Y Z radius R`. */
+/* The scene-file line, `disc centre X Y Z normal X Y Z radius R`. */
 static bool model_disc_make(const struct key_values *kv, void *item, char *why, size_t why_size) {
     struct model_disc *d = item;
     d->centre = key_vec3(kv, MODEL_DISC_CENTRE);
@@ -54,10 +55,20 @@ static void model_disc_write_pov(FILE *out, const void *item) {
 
 static const struct key_spec model_disc_keys[] = {{"centre", 3}, {"normal", 3}, {"radius", 1}};
 static const int model_disc_required[] = {MODEL_DISC_CENTRE, MODEL_DISC_NORMAL, MODEL_DISC_RADIUS, -1};
-static const struct shape_syntax model_disc_syntax = {model_disc_keys, 3, model_disc_required, model_disc_make,
-                                                      model_disc_write_pov};
 
-/* In disc.c: the intersection, t as for a plane, n . (C - O) / (n . D), kept when within the radius. */
+static const struct shape_syntax model_disc_syntax = {
+    .keyword = "disc",
+    .plural = "discs",
+    .size = sizeof(struct model_disc),
+    .material_offset = offsetof(struct model_disc, material),
+    .keys = model_disc_keys,
+    .key_count = 3,
+    .required = model_disc_required,
+    .make = model_disc_make,
+    .write_pov = model_disc_write_pov,
+};
+
+/* The intersection: t as for a plane, n . (C - O) / (n . D), kept when within the radius. */
 static bool disc(const struct model_disc *d, const ray *r, double t_min, double t_max, double *t,
                  bool within_radius) {
     double facing = vec3_dot(d->normal, r->direction);
@@ -83,6 +94,7 @@ static bool disc_closest(const void *items, size_t count, const ray *r, double t
         return false;
     h->normal = nearest->normal;
     h->material = nearest->material;
+    h->object = (int)(nearest - discs);
     return true;
 }
 
@@ -116,18 +128,19 @@ static bool model_disc_bounds(const void *item, vec3 *min, vec3 *max) {
     return true;
 }
 
-static const struct shape_behaviour model_disc_behaviour = {model_disc_closest, model_disc_crossings,
-                                                            model_disc_bounds};
-static const struct shape_behaviour wrong_disc_behaviour = {wrong_disc_closest, model_disc_crossings,
-                                                            model_disc_bounds};
-
-/* What SHAPE_KIND(disc, discs, DISCS, 2) makes of the model answer in scene.c's table. */
-const struct shape_kind solution_disc_kind = {"disc", "discs", 2, 0, sizeof(struct model_disc),
-                                              offsetof(struct model_disc, material), &model_disc_syntax,
-                                              &model_disc_behaviour};
-const struct shape_kind wrong_disc_kind = {"disc", "discs", 2, 0, sizeof(struct model_disc),
-                                           offsetof(struct model_disc, material), &model_disc_syntax,
-                                           &wrong_disc_behaviour};
+/* A disc has no inside (contains is NULL), like a single triangle. */
+const struct shape_kind solution_disc_kind = {
+    .syntax = &model_disc_syntax,
+    .closest = model_disc_closest,
+    .crossings = model_disc_crossings,
+    .bounds = model_disc_bounds,
+};
+const struct shape_kind wrong_disc_kind = {
+    .syntax = &model_disc_syntax,
+    .closest = wrong_disc_closest,
+    .crossings = model_disc_crossings,
+    .bounds = model_disc_bounds,
+};
 
 /* ---- 3.4 ---- */
 static void vertex_normals(const struct mesh *m, vec3 *normals, bool by_area) {
@@ -388,4 +401,30 @@ int wrong_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node
     int count = 0;
     collapse_node(tree, root, out, max, &count, false); /* opens the first interior child, not the widest */
     return count;
+}
+
+/* n-rooks: row r gets a random place in column perm[r], the permutation shuffled (Fisher-Yates) with the
+ * pixel's own numbers: index k for the places (2k, 2k + 1), 2n + k for the shuffle. */
+static void rooks(int i, int j, int n, uint32_t seed, double *x, double *y, bool shuffle) {
+    int perm[256];
+    for (int k = 0; k < n; k++)
+        perm[k] = k;
+    for (int k = n - 1; shuffle && k > 0; k--) {
+        int pick = (int)(sample_hash_unit((uint32_t)i, (uint32_t)j, (uint32_t)(2 * n + k), seed) * (k + 1));
+        int t = perm[k];
+        perm[k] = perm[pick];
+        perm[pick] = t;
+    }
+    for (int r = 0; r < n; r++) {
+        x[r] = (perm[r] + sample_hash_unit((uint32_t)i, (uint32_t)j, (uint32_t)(2 * r), seed)) / n;
+        y[r] = (r + sample_hash_unit((uint32_t)i, (uint32_t)j, (uint32_t)(2 * r + 1), seed)) / n;
+    }
+}
+
+void solution_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {
+    rooks(i, j, n, seed, x, y, true);
+}
+
+void wrong_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {
+    rooks(i, j, n, seed, x, y, false); /* never shuffled: every pixel's rooks on the diagonal */
 }

@@ -25,5 +25,7 @@ double solution_bvh_split_cost(const struct aabb *boxes, int n, int axis, double
 double wrong_bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
 int solution_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
 int wrong_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
+void solution_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y);
+void wrong_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y);
 
 #endif

@@ -43,7 +43,8 @@ static int group_triangles(const struct group *g, vec3 out[][3]) {
 static struct aabb bound(vec3 triangles[][3], int count) {
     struct aabb box = aabb_empty();
     for (int k = 0; k < count; k++)
-        box = aabb_union(box, aabb_of_triangle(triangles[k][0], triangles[k][1], triangles[k][2]));
+        for (int corner = 0; corner < 3; corner++)
+            box = aabb_grow(box, triangles[k][corner]);
     return box;
 }
 

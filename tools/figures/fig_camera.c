@@ -47,13 +47,14 @@ void figure_camera(FILE *out) {
     svg_text(&s, (svg_point){-w, -h}, -8, -5, "end", SVG_INK, "j = %d", GRID_HEIGHT - 1);
     svg_line(&s, (svg_point){0, 0}, (svg_point){0.6, 0}, SVG_NORMAL, SVG_ARROW);
     svg_line(&s, (svg_point){0, 0}, (svg_point){0, 0.6}, SVG_NORMAL, SVG_ARROW);
-    svg_text(&s, (svg_point){0.6, 0}, 4, 18, "middle", SVG_NORMAL, "right");
+    /* in the corner of a cell, clear of its dot and of the grid lines */
+    svg_text(&s, (svg_point){0.6, 0}, 12, -4, "start", SVG_NORMAL, "right");
     svg_text(&s, (svg_point){0, 0.6}, 6, 4, "start", SVG_NORMAL, "up′");
     /* forward points into the page: a circle with a cross, the tail of an arrow seen from behind */
     svg_circle(&s, (svg_point){0, 0}, 0.07, SVG_NORMAL, SVG_THIN, 0);
     svg_line(&s, (svg_point){-0.05, -0.05}, (svg_point){0.05, 0.05}, SVG_NORMAL, SVG_THIN);
     svg_line(&s, (svg_point){-0.05, 0.05}, (svg_point){0.05, -0.05}, SVG_NORMAL, SVG_THIN);
-    svg_text(&s, (svg_point){0, 0}, -12, 24, "end", SVG_NORMAL, "forward (into the page)");
+    svg_text_px(&s, 250, 405, "middle", SVG_NORMAL, "⊗ at the centre: forward, into the page"); /* the grid has no room */
     svg_text(&s, (svg_point){w, -h}, 0, 20, "end", SVG_INK, "half_width = %.4g", w);
     svg_text(&s, (svg_point){w, h}, 8, 15, "start", SVG_INK, "+%.4g", h);
     svg_text(&s, (svg_point){w, -h}, 8, 0, "start", SVG_INK, "−%.4g", h);
@@ -66,7 +67,7 @@ void figure_camera(FILE *out) {
     svg_line(&s, eye, (svg_point){1, h}, SVG_MUTED, SVG_DASHED);
     svg_line(&s, eye, (svg_point){1, -h}, SVG_MUTED, SVG_DASHED);
     svg_angle(&s, eye, (svg_point){1, -h}, (svg_point){1, h}, 38, SVG_MUTED);
-    svg_text(&s, eye, 34, 62, "start", SVG_MUTED, "fov = %.0f°", FOV_DEGREES);
+    svg_text(&s, eye, 50, 30, "start", SVG_MUTED, "fov = %.0f°", FOV_DEGREES); /* between forward and the lower edge */
     svg_line(&s, eye, (svg_point){1, 0}, SVG_NORMAL, SVG_ARROW);
     svg_text(&s, (svg_point){0.55, 0}, 0, -8, "middle", SVG_NORMAL, "forward");
     svg_line(&s, eye, (svg_point){0, 0.55}, SVG_NORMAL, SVG_ARROW);

@@ -42,12 +42,14 @@ void figure_recursion(FILE *out) {
         svg_line(&s, P, svg_along(P, flat(t), 2.6), SVG_HIT, SVG_ARROW);
         svg_text(&s, svg_along(P, flat(t), 2.6), 8, 0, "start", SVG_HIT, "T, refracted");
         svg_angle(&s, P, (svg_point){0, -1}, flat(t), 70, SVG_HIT);
-        svg_text(&s, P, 18, 92, "start", SVG_HIT, "θ2 = %.1f°", degrees_between(vec3_neg(n), t));
+        /* right of T, clear of the ray */
+        svg_text(&s, P, 62, 95, "start", SVG_HIT, "θ2 = %.1f°", degrees_between(vec3_neg(n), t));
     }
     svg_angle(&s, P, flat(vec3_neg(d)), (svg_point){0, 1}, 60, SVG_RAY);
-    svg_text(&s, P, -26, -68, "end", SVG_RAY, "θ1 = %.1f°", degrees_between(vec3_neg(d), n));
+    /* each angle's label inside its wedge, far enough out to clear D and R */
+    svg_text(&s, P, -45, -115, "middle", SVG_RAY, "θ1 = %.1f°", degrees_between(vec3_neg(d), n));
     svg_angle(&s, P, (svg_point){0, 1}, flat(r), 60, SVG_RAY);
-    svg_text(&s, P, 26, -68, "start", SVG_RAY, "%.1f°", degrees_between(n, r));
+    svg_text(&s, P, 45, -115, "middle", SVG_RAY, "%.1f°", degrees_between(n, r));
     svg_dot(&s, P, SVG_INK);
     svg_text_px(&s, 225, 475, "middle", SVG_INK, "sin θ2 = sin θ1 / %g (Snell)", GLASS_IOR);
 
@@ -61,9 +63,10 @@ void figure_recursion(FILE *out) {
     vec3 r_out = phong_reflect(d_out, inward), t_out;
     if (!whitted_refract(d_out, inward, GLASS_IOR, &t_out)) {
         svg_line(&s, svg_along(P, flat(d_out), -3.2), P, SVG_RAY, SVG_ARROW);
-        svg_text(&s, svg_along(P, flat(d_out), -3.0), 8, 0, "start", SVG_RAY, "D");
+        svg_text(&s, svg_along(P, flat(d_out), -3.0), -8, -4, "end", SVG_RAY, "D"); /* above the ray */
         svg_line(&s, P, svg_along(P, flat(r_out), 3.2), SVG_RAY, SVG_ARROW);
-        svg_text(&s, svg_along(P, flat(r_out), 3.0), -8, 0, "end", SVG_RAY, "R: all the light");
+        /* below the ray, clear of it and of the critical ray's dashed line */
+        svg_text(&s, svg_along(P, flat(r_out), 3.0), 0, 22, "end", SVG_RAY, "R: all the light");
         svg_text(&s, P, 30, -20, "start", SVG_RAY, "k < 0: no T");
     }
     vec3 d_critical = vec3_make(-sin(critical), cos(critical), 0);

@@ -74,7 +74,9 @@ void figure_shadow(FILE *out) {
         if (blocked) {
             svg_line(&s, svg_along(P, L, t), svg_along(P, L, d - gap), SVG_MUTED, SVG_DASHED | SVG_THIN);
             svg_dot(&s, svg_along(P, L, t), SVG_HIT);
-            svg_text(&s, svg_along(P, L, t), 12, 18, "start", SVG_HIT, "blocked at t = %.2f: S = 0", t);
+            /* left of the sphere, above the ray: clear of both */
+            svg_text(&s, svg_along(P, L, t), -12, -20, "end", SVG_HIT, "blocked at t = %.2f:", t);
+            svg_text(&s, svg_along(P, L, t), -12, -4, "end", SVG_HIT, "S = 0");
         } else {
             svg_text(&s, svg_along(P, L, d / 2), 10, 0, "start", SVG_RAY, "nothing in the window: S = 1");
         }
@@ -102,7 +104,7 @@ void figure_shadow(FILE *out) {
     svg_text(&s, again, 10, -10, "start", SVG_HIT, "the surface again, t = %.1e", g.t_again);
     svg_text(&s, svg_along(P, L, 150), 0, -10, "middle", SVG_RAY, "towards the light");
     svg_dot(&s, P, SVG_INK);
-    svg_text(&s, P, -10, 18, "end", SVG_INK, "computed P, %.1e inside", -g.inside);
+    svg_text(&s, P, 0, 22, "middle", SVG_INK, "computed P, %.1e inside", -g.inside); /* within the box */
     svg_text_px(&s, 690, 340, "middle", SVG_INK, "Chapter 7's camera, pixel (%d, %d): the red", g.i, g.j);
     svg_text_px(&s, 690, 360, "middle", SVG_INK, "sphere's hit point rounds to just inside it.");
     svg_text_px(&s, 690, 390, "middle", SVG_INK, "With no margin, %d of the %d lit pixels", g.grains, g.lit);

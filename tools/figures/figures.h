@@ -18,5 +18,6 @@ void figure_shadow(FILE *out);     /* 07-shadow.svg: the shadow ray's window, an
 void figure_recursion(FILE *out);  /* 08-recursion.svg: reflection, refraction, total internal reflection */
 void figure_kdtree(FILE *out);     /* 09-kdtree.svg: a kd-tree's cells in front-to-back order */
 void figure_bvh(FILE *out);        /* 10-bvh.svg: a BVH's overlapping boxes and the SAH's areas */
+void figure_antialias(FILE *out);  /* 12-antialias.svg: an edge over the pixel grid, and each method's rays */
 
 #endif

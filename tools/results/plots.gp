@@ -12,16 +12,17 @@ set grid ytics mytics xtics lc rgb "#dddddd"
 set border lc rgb "#444444"
 
 c_none = "#c0392b"; c_kd = "#8e44ad"; c_median = "#e67e22"; c_sah = "#2471a3"; c_fast = "#138d75"; c_pov = "#7f8c8d"
-# Line styles 1-5: brute force, kd-tree, BVH median, BVH SAH, chapter 11.
+# Line styles 1-5: brute force, kd-tree, BVH median, BVH SAH, chapter 11. The kd-tree's times lie on
+# the BVHs' lines in places: it is dashed with open diamonds, and drawn after them, so it shows on top.
 set style line 1 lw 2 pt 7 ps 0.8 lc rgb c_none
-set style line 2 lw 2 pt 7 ps 0.8 lc rgb c_kd
+set style line 2 lw 2 pt 12 ps 1.1 lc rgb c_kd dt 2
 set style line 3 lw 2 pt 7 ps 0.8 lc rgb c_median
 set style line 4 lw 2 pt 7 ps 0.8 lc rgb c_sah
 set style line 5 lw 2 pt 7 ps 0.8 lc rgb c_fast
 
 # ---- scene 1: time against depth (brute force), two sizes, one light and two -------------------------
 set output figures."/scene1-depth.svg"
-set title "The seed's first scene without acceleration: time against recursion depth"
+set title "The seed's first scene: time against depth, brute force and a BVH"
 set xlabel "recursion depth"
 set ylabel "processor time (s), log scale"
 set logscale y
@@ -62,9 +63,9 @@ do for [model in "bunny teapot-5k"] {
     set ylabel "processor time (s), log scale"
     set logscale y
     plot series."/".model."-time-none" using 1:2 title "brute force" with linespoints ls 1, \
-         series."/".model."-time-kd-sah" using 1:2 title "kd-tree (SAH)" with linespoints ls 2, \
          series."/".model."-time-bvh-median" using 1:2 title "BVH, median split" with linespoints ls 3, \
          series."/".model."-time-bvh-sah" using 1:2 title "BVH, SAH" with linespoints ls 4, \
+         series."/".model."-time-kd-sah" using 1:2 title "kd-tree (SAH)" with linespoints ls 2, \
          series."/".model."-time-povray" using 1:2 title "POV-Ray 3.7" with linespoints lw 2 pt 4 ps 0.8 lc rgb c_pov dt 2
     set output figures."/".model."-tests.svg"
     set title "Triangle tests against recursion depth: ".name
@@ -77,7 +78,7 @@ do for [model in "bunny teapot-5k"] {
 
 # ---- the large model: processor time and triangle tests per structure, and the seed's figures -------------------------
 set output figures."/large.svg"
-set title "The 349,872-triangle teapot at 800×600, depth 1: the whole process"
+set title "The 349,872-triangle teapot at 800×600, depth 1: the whole process\n* sampled on a coarser grid and scaled up: an extrapolation, not a measurement"
 set xlabel ""
 set ylabel "processor time (s), log scale"
 set logscale y
@@ -92,7 +93,7 @@ plot series."/large" using 0:2:(0.7):4:xtic(1) with boxes fc rgb variable, \
      series."/large" using 0:2:(sprintf("%s s%s", $2 >= 1000 ? gprintf("%.0f", $2) : gprintf("%.3g", $2), $3 == 1 ? "*" : "")) \
          with labels offset 0,0.8 font ",11"
 set output figures."/large-tests.svg"
-set title "The 349,872-triangle teapot at 800×600, depth 1: triangle tests"
+set title "The 349,872-triangle teapot at 800×600, depth 1: triangle tests\n* sampled on a coarser grid and scaled up: an extrapolation, not a measurement"
 set ylabel "triangle tests per frame, log scale"
 set yrange [1e5:1e12]
 set format y "10^{%T}"
@@ -127,12 +128,18 @@ do for [measure in "build frame memory"] {
     guide = series."/scaling-".measure."-guides"
     each = series."/scaling-".measure."-"
     # Brute force builds nothing: the build plot has no line for it (a point far off the axes instead).
+    # Its runs on the larger models are sampled on a coarser grid: open points (frame: scaled up, an
+    # extrapolation; memory: the peak of the smaller frame), filled where the whole frame was measured.
     brute = (measure eq "build") ? series."/scaling-frame-none" : each."none"
-    plot brute using 1:(measure eq "build" ? NaN : $2) title (measure eq "build" ? "" : "brute force") with linespoints ls 1, \
-         each."kd-sah" using 1:2 title "kd-tree (SAH)" with linespoints ls 2, \
+    sampled = (measure eq "build") ? "" : (measure eq "frame" ? "sampled (extrapolated)" : "sampled frame")
+    plot brute using 1:(measure eq "build" ? NaN : $2) title (measure eq "build" ? "" : "brute force") with lines ls 1, \
+         brute using 1:(measure eq "build" || $3 > 1 ? NaN : $2) notitle with points ls 1, \
+         brute using 1:(measure eq "build" || $3 == 1 ? NaN : $2) title (measure eq "build" ? "" : "brute force, ".sampled) \
+             with points pt 6 ps 1.0 lw 2 lc rgb c_none, \
          each."bvh-median" using 1:2 title "BVH, median split" with linespoints ls 3, \
          each."bvh-sah" using 1:2 title "BVH, SAH" with linespoints ls 4, \
          each."fast" using 1:2 title "chapter 11's BVH" with linespoints ls 5, \
+         each."kd-sah" using 1:2 title "kd-tree (SAH)" with linespoints ls 2, \
          guide using 1:2 title "guide: n log n" with lines lw 1 lc rgb "black" dt 3, \
          guide using 1:3 title "guide: n" with lines lw 1 lc rgb "black" dt 2
 }

@@ -8,10 +8,11 @@
 #
 # The tables go between marker lines in PAGE: `<!-- results:NAME -->` and `<!-- /results:NAME -->`
 # (NAME as tools/results/tables.awk knows it, with the CSV it reads: `<!-- results:sweep bunny -->`).
-# Everything else in the page is left as it is. The plots are gnuplot SVG, drawn by
-# tools/results/plots.gp. --check redraws everything from the CSVs (committed in docs/results/) into a
-# temporary folder and compares it byte for byte with the plots and page given; it names each stale
-# file and exits 1.
+# The numbers the sentences quote go between inline markers, `<!--n:NAME-->VALUE<!--/n-->` on one
+# line (NAME as tables.awk's table "prose" prints it). Everything else in the page is left as it is. The
+# plots are gnuplot SVG, drawn by tools/results/plots.gp. --check redraws everything from the CSVs
+# (committed in docs/results/) into a temporary folder and compares it byte for byte with the plots
+# and page given; it names each stale file, and each stale number of the text, and exits 1.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -30,9 +31,20 @@ if [ "${1:-}" = --check ]; then
             stale=1
         fi
     done
+    # The numbers of the text, NAME and VALUE a line in the page's order, before and after.
+    numbers() { grep -o '<!--n:[a-z0-9-]*-->[^<]*<!--/n-->' "$1" | sed 's/^<!--n:\([a-z0-9-]*\)-->\(.*\)<!--\/n-->$/\1 \2/'; }
+    numbers "$page" >"$tmp/numbers-page"
+    numbers "$tmp/results.md" >"$tmp/numbers-csv"
+    if ! cmp -s "$tmp/numbers-page" "$tmp/numbers-csv"; then
+        paste -d '\n' "$tmp/numbers-page" "$tmp/numbers-csv" | awk -v page="$page" 'NR % 2 { was = $0; next }
+            $0 != was { name = $1; sub(/^[^ ]* /, "", was); sub(/^[^ ]* /, "")
+                        printf "%s: the number %s in the text is stale: %s, where %s/*.csv give %s\n", page, name, was, data, $0 }' \
+            data="$data" >&2
+        stale=1
+    fi
     if ! cmp -s "$tmp/results.md" "$page"; then
         diff -u "$page" "$tmp/results.md" | head -20 >&2 || true
-        echo "$page: a table is stale against $data/*.csv: make results (or tools/results/publish.sh) rewrites it" >&2
+        echo "$page: a table or a number of the text is stale against $data/*.csv: make results (or tools/results/publish.sh) rewrites it" >&2
         stale=1
     fi
     exit $stale
@@ -108,6 +120,12 @@ for s in none kd-sah bvh-median bvh-sah fast; do
     pick "$data/scaling.csv" structure=$s -- triangles render_s >"$series/scaling-frame-$s"
     pick "$data/scaling.csv" structure=$s -- triangles peak_rss_mb >"$series/scaling-memory-$s"
 done
+# The brute force's rows with a third column, the scale: above 1, sampled on a coarser grid.
+for measure in frame memory; do
+    paste -d ' ' "$series/scaling-$measure-none" <(pick "$data/scaling.csv" structure=none -- triangles scale | cut -d' ' -f2) \
+        >"$series/scaling-$measure-none.scaled"
+    mv "$series/scaling-$measure-none.scaled" "$series/scaling-$measure-none"
+done
 # Guides through one point: n log n and n. Build and memory: through the BVH-SAH's smallest and largest
 # model; frame: through the brute force's smallest, which is linear in n.
 guides() { # guides SERIES-FILE ROW(first|last) OUT
@@ -152,4 +170,28 @@ awk -v data="$data" -v tables_awk=tools/results/tables.awk '
     !skipping { print }
     END { if (skipping) { print "publish.sh: no " close_marker " after its opening marker" > "/dev/stderr"; exit 1 } }
 ' "$page" >"$tables"
-mv "$tables" "$page"
+
+# ---- the numbers of the text ---------------------------------------------------------------------------
+# Each <!--n:NAME-->VALUE<!--/n--> gets the VALUE tables.awk computes for NAME from the CSVs; an unknown
+# NAME, or a marker not closed on its own line, stops the script.
+values=$(mktemp)
+prose_csvs="$data/machine.csv $data/scene1.csv $data/bunny.csv $data/teapot-5k.csv $data/large.csv $data/scaling.csv"
+[ -s "$data/accel.csv" ] && prose_csvs="$prose_csvs $data/accel.csv" # a quick run has no benchmark
+# shellcheck disable=SC2086
+awk -F, -v table=prose -f tools/results/tables.awk $prose_csvs >"$values"
+awk -v values="$values" -v page="$page" '
+    BEGIN { while ((getline line < values) > 0) { k = index(line, " "); value[substr(line, 1, k - 1)] = substr(line, k + 1) } }
+    {
+        out = ""; rest = $0
+        while (match(rest, /<!--n:[a-z0-9-]+-->[^<]*<!--\/n-->/)) {
+            name = substr(rest, RSTART + 6); sub(/-->.*/, "", name)
+            if (!(name in value)) { printf "%s:%d: no number called %s (tools/results/tables.awk, table prose)\n", page, NR, name > "/dev/stderr"; bad = 1 }
+            out = out substr(rest, 1, RSTART - 1) "<!--n:" name "-->" value[name] "<!--/n-->"
+            rest = substr(rest, RSTART + RLENGTH)
+        }
+        if (match(rest, /<!--n:[a-z0-9-]+-->/)) { printf "%s:%d: a <!--n:NAME--> marker without its <!--/n--> on the same line\n", page, NR > "/dev/stderr"; bad = 1 }
+        print out rest
+    }
+    END { exit bad }' "$tables" >"$values.page" || { rm -f "$values" "$values.page" "$tables"; exit 1; }
+rm -f "$values" "$tables"
+mv "$values.page" "$page"

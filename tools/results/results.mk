@@ -7,7 +7,7 @@
 #                         Embree when missing)
 #   make results QUICK=1  the same experiments on small pictures and models, about a minute: the
 #                         CSVs, plots, pictures and a copy of the page with its tables go to
-#                         out/results-quick/, and docs/ is left alone (the tests run this)
+#                         out/results-quick/, and docs/ is left alone (make test-long runs this)
 #
 # tools/results/run.sh runs the experiments, tools/results/publish.sh draws and writes the tables
 # (tools/results/plots.gp, tools/results/tables.awk); publish.sh --check is what the tests use to
@@ -15,20 +15,22 @@
 
 RESULTS_QUICK_DIR := out/results-quick
 
-$(BUILD)/measure: tools/results/measure.c
+$(BUILD)/measure: tools/results/measure.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $< -o $@
 
 .PHONY: results
+## make results        the seed's experiments redone: CSVs, plots and tables of docs/results.md, five to
+##                     ten minutes (QUICK=1: a small version in about a minute, into out/results-quick/)
 ifeq ($(QUICK),1)
-results: all $(BUILD)/measure $(MODELS_TEAPOT)
+results: all $(BUILD)/measure $(MODELS_TEAPOT) | deps
 	BUILD=$(BUILD) TEAPOT=$(MODELS_TEAPOT) tools/results/run.sh --quick $(RESULTS_QUICK_DIR)
 	sed 's#](results/#](#g' docs/results.md >$(RESULTS_QUICK_DIR)/results.md
 	tools/results/publish.sh $(RESULTS_QUICK_DIR) $(RESULTS_QUICK_DIR) $(RESULTS_QUICK_DIR)/results.md
 	@echo "quick results: $(RESULTS_QUICK_DIR)/results.md, with its CSV files, plots and pictures beside it"
 else
-results: all $(BUILD)/measure $(MODELS_TEAPOT)
-	tools/install-deps.sh bench
+results: all $(BUILD)/measure $(MODELS_TEAPOT) | deps
+	tools/build/install-deps.sh bench
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_accel
 	BUILD=$(BUILD) TEAPOT=$(MODELS_TEAPOT) tools/results/run.sh out/results
 	mkdir -p docs/results
@@ -36,6 +38,3 @@ results: all $(BUILD)/measure $(MODELS_TEAPOT)
 	tools/results/publish.sh docs/results docs/results docs/results.md
 	@echo "results: docs/results.md, docs/results/ (CSV files and plots)"
 endif
-
-# The tests run the quick mode and publish.sh --check.
-test: $(BUILD)/measure $(MODELS_TEAPOT)

@@ -22,10 +22,10 @@
 # long (brute force on big models) render a coarser grid of the same picture, and their time and
 # counters are scaled up by the ratio of pixels; their rows say so (measured_width, measured_height
 # and scale > 1). --quick runs the same experiments on small pictures and models, once each, in about
-# a minute, so the pipeline can be tested (make test does).
+# a minute, so the pipeline can be tested (make test-long does).
 #
 # Environment: BUILD (default build) holds the chapters, compare, measure and bench_accel; TEAPOT
-# (default build/teapot) is the teapot generator, tools/teapot.c.
+# (default build/teapot) is the teapot generator, tools/models/teapot.c.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
@@ -260,9 +260,10 @@ for size in $SCALING_SIZES; do
             runs=1
         fi
         run_chapter "$s" "$scene" "$mw" "$mh" 1 "$runs"
-        read -r render rays tests < <(awk -v s="$scale" -v c="$RENDER_S" -v d="$RAYS" -v e="$TESTS" \
-            'BEGIN { printf "%.4f %.0f %.0f\n", c * s, d * s, e * s }')
-        echo "$triangles,$s,$RUNS_DONE,$BUILD_MS,$render,$CPU_BEST,$PEAK_MB,$rays,$tests,$mw,$mh,$scale" >>"$csv"
+        # A sampled run's time and counters scaled up as in sweep_row (large.csv): all but the memory.
+        read -r render cpu rays tests < <(awk -v s="$scale" -v c="$RENDER_S" -v b="$CPU_BEST" -v d="$RAYS" -v e="$TESTS" \
+            'BEGIN { printf "%.4f %.4f %.0f %.0f\n", c * s, b * s, d * s, e * s }')
+        echo "$triangles,$s,$RUNS_DONE,$BUILD_MS,$render,$cpu,$PEAK_MB,$rays,$tests,$mw,$mh,$scale" >>"$csv"
         printf '  %9d triangles  %-10s build %8s ms  frame %9.3f s  %8s MB\n' "$triangles" "$s" "${BUILD_MS:--}" \
             "$render" "$PEAK_MB" >&2
     done

@@ -12,10 +12,10 @@ cd "$(dirname "$0")/../../.."
 build=${1:?usage: tests/exercises/runner/run.sh BUILD OBJECT...}
 shift
 mkdir -p "$build/exercises"
-defined=$(nm -g --defined-only "$@" 2>/dev/null | awk '$2 == "T" { print $3 }')
+defined=$(nm -g --defined-only "$@" 2>/dev/null | awk 'NF == 3 { print $3 }')
 
-# The exercises, one a line: id | title | the function that marks it started | the check (exercises.h) |
-# what the check is given | where to write it | the walkthrough.
+# The exercises, one a line: id | title | the function (or table) that marks it started | the check
+# (exercises.h) | what the check is given | where to write it | the walkthrough.
 done=0 failing=0 waiting=0
 while IFS='|' read -r id title marker check argument where page; do
     if ! printf '%s\n' "$defined" | grep -qx "$marker"; then
@@ -35,7 +35,7 @@ while IFS='|' read -r id title marker check argument where page; do
         failing=$((failing + 1))
     fi
 done <<'TABLE'
-2.4|a disc, a new kind of shape|disc_intersect|check_disc|exercise_disc_kind()|common/disc.h and common/disc.c, then #include "disc.h" in common/shape_kinds.h and disc in MODULES_02|docs/02-sphere.md
+2.4|a disc, a new kind of shape|disc_kind|check_disc|&disc_kind|common/disc.h and common/disc.c, and disc in MODULES_02|docs/02-sphere.md
 3.4|smooth normals|mesh_vertex_normals|check_vertex_normals|mesh_vertex_normals|common/mesh_normals.c, and mesh_normals in MODULES_03|docs/03-triangle.md
 4.4|a cylinder|cylinder_intersect|check_cylinder|cylinder_intersect|common/cylinder.c, and cylinder in MODULES_04|docs/04-plane.md
 5.4|a bounding sphere|mesh_bounding_sphere|check_bounding_sphere|mesh_bounding_sphere|common/bounding_sphere.c, and bounding_sphere in MODULES_05|docs/05-aabb.md
@@ -45,6 +45,7 @@ done <<'TABLE'
 9.4|a uniform grid|grid_walk|check_grid_walk|grid_walk|common/grid.c, and grid in MODULES_09|docs/09-kdtree.md
 10.4|the cost of a split|bvh_split_cost|check_split_cost|bvh_split_cost|common/bvh.c|docs/10-bvh.md
 11.4|four children per node|bvh4_collapse|check_collapse|bvh4_collapse|common/fast_bvh.c|docs/11-fast.md
+12.4|n rooks|supersample_rooks|check_rooks|supersample_rooks|common/supersample.c|docs/12-antialias.md
 TABLE
 echo "exercises: $done done, $failing failing, $waiting not started"
 [ "$failing" -eq 0 ]

@@ -21,7 +21,7 @@
  * Every triangle is counter-clockwise seen from outside the teapot. The mesh is open only where the
  * data is: the rim's inner edge, the lid's outer edge, both ends of the handle and of the spout.
  *
- * Build: gcc -std=c11 -D_DEFAULT_SOURCE -Wall -Wextra -Werror -O2 tools/teapot.c -o build/teapot -lm */
+ * Build: gcc -std=c11 -D_DEFAULT_SOURCE -Wall -Wextra -Werror -O2 tools/models/teapot.c -o build/teapot -lm */
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -384,7 +384,7 @@ static int write_ply(const char *path, const struct mesh *m, int n) {
             "format binary_little_endian 1.0\n"
             "comment Utah teapot: Martin Newell's 1975 Bezier patch data (University of Utah), "
             "32 bicubic patches, 306 control points; public domain\n"
-            "comment tessellated by tools/teapot.c: %d x %d grid cells per patch, 2 triangles per "
+            "comment tessellated by tools/models/teapot.c: %d x %d grid cells per patch, 2 triangles per "
             "cell, zero-area triangles dropped, equal vertices welded\n"
             "comment y is up: each data point (x, y, z) written as (x, z, -y)\n"
             "element vertex %zu\n"
@@ -414,7 +414,7 @@ static int write_ply(const char *path, const struct mesh *m, int n) {
 
 /* ---- command line ----------------------------------------------------------------------------- */
 
-static void usage(void) {
+static _Noreturn void usage(void) {
     fprintf(stderr,
             "usage: teapot N OUTPUT.ply               N subdivisions per patch side (1..%d)\n"
             "       teapot --triangles T OUTPUT.ply   the smallest N giving at least T triangles\n",

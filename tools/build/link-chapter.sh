@@ -18,15 +18,14 @@ introduced=$(awk '/^MODULES_[0-9][0-9] :=/ {
     n = substr($1, 9) + 0
     for (k = 3; k <= NF; k++) if ($k !~ /^\$\(/) print $k, n
 }' Makefile)
+# What each object of common/ defines, "build/common/MODULE.o:ADDRESS TYPE NAME" a line (one nm for all).
+defined=$(nm --defined-only -A "$build"/common/*.o 2>/dev/null)
 grep -o "undefined reference to \`[A-Za-z_0-9]*'" "$log" | sed "s/.*\`\(.*\)'/\1/" | sort -u |
 while read -r name; do
-    for object in "$build"/common/*.o; do
-        if nm --defined-only "$object" 2>/dev/null | grep -q " [TDBR] $name\$"; then
-            module=$(basename "$object" .o)
-            chapter=$(echo "$introduced" | awk -v m="$module" '$1 == m { print $2; exit }')
-            echo "note: $name is in common/$module.c, which chapter ${chapter:-?} introduces; this program links only the modules of its own and earlier chapters (MODULES_NN in the Makefile)" >&2
-            break
-        fi
-    done
+    object=$(echo "$defined" | awk -v name="$name" '$3 == name && $2 ~ /^[TDBR]$/ { sub(/:.*/, "", $1); print $1; exit }')
+    [ -n "$object" ] || continue
+    module=$(basename "$object" .o)
+    chapter=$(echo "$introduced" | awk -v m="$module" '$1 == m { print $2; exit }')
+    echo "note: $name is in common/$module.c, which chapter ${chapter:-?} introduces; this program links only the modules of its own and earlier chapters (MODULES_NN in the Makefile)" >&2
 done
 exit 1

@@ -1,13 +1,13 @@
-# tools/models.mk: the generated models in scenes/models/. A GNU make fragment, included from the
-# top-level Makefile (it also works alone: make -f tools/models.mk models). Paths are relative to the
-# top of the tree. Nothing here needs the network: scenes/models/bunny.ply is committed, and is
-# remade only by hand with tools/fetch-bunny.sh.
+# tools/models/models.mk: the generated models in scenes/models/. A GNU make fragment, included from
+# the top-level Makefile (it also works alone: make -f tools/models/models.mk models). Paths are
+# relative to the top of the tree. Nothing here needs the network: scenes/models/bunny.ply is
+# committed, and is remade only by hand with tools/models/fetch-bunny.sh.
 #
 #   make models          the small and the large teapot (and checks that bunny.ply is there)
 #   make clean-models    removes the generated teapots
 #
 # teapot-5k:   the smallest tessellation with at least 5,000 triangles (N = 9: 5,112 triangles)
-# teapot-346k: the smallest with at least 345,944 triangles, the Stanford Armadillo's count, for which
+# teapot-346k: the smallest with at least 345,994 triangles, the Stanford Armadillo's count, for which
 #              it stands in (N = 74: 349,872 triangles)
 
 MODELS_DIR := scenes/models
@@ -17,9 +17,10 @@ MODELS_GENERATED := $(MODELS_DIR)/teapot-5k.ply $(MODELS_DIR)/teapot-346k.ply
 
 .PHONY: models clean-models
 
+## make models         the small and the large teapot in scenes/models/ (make clean-models removes them)
 models: $(MODELS_GENERATED) $(MODELS_DIR)/bunny.ply
 
-$(MODELS_TEAPOT): tools/teapot.c
+$(MODELS_TEAPOT): tools/models/teapot.c
 	@mkdir -p $(@D)
 	$(CC) $(MODELS_TEAPOT_CFLAGS) $< -o $@ -lm
 
@@ -31,12 +32,13 @@ $(MODELS_DIR)/teapot-5k.ply: $(MODELS_TEAPOT)
 
 $(MODELS_DIR)/teapot-346k.ply: $(MODELS_TEAPOT)
 	@mkdir -p $(@D)
-	$(MODELS_TEAPOT) --triangles 345944 $(@:.ply=.tmp.ply) && mv $(@:.ply=.tmp.ply) $@
+	$(MODELS_TEAPOT) --triangles 345994 $(@:.ply=.tmp.ply) && mv $(@:.ply=.tmp.ply) $@
 
 # Committed; this rule only runs when it is missing, and says how to remake it (needs npm).
 $(MODELS_DIR)/bunny.ply:
-	@echo "$@ is missing: it is committed; remake it with tools/fetch-bunny.sh (needs npm)" >&2
+	@echo "$@ is missing: it is committed; remake it with tools/models/fetch-bunny.sh (needs npm)" >&2
 	@false
 
+## make clean-models   remove the generated teapots
 clean-models:
 	rm -f $(MODELS_GENERATED) $(MODELS_GENERATED:.ply=.tmp.ply)

@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // bunny-to-ply.js: writes the Stanford bunny of the npm package `bunny` as an ASCII PLY file.
 //
-//   node tools/bunny-to-ply.js PACKAGE_DIR [OUTPUT.ply]
+//   node tools/models/bunny-to-ply.js PACKAGE_DIR [OUTPUT.ply]
 //
 // PACKAGE_DIR is the unpacked package (the folder holding its package.json and index.js), or
 // `bunny` to let Node resolve it from node_modules. The package exports
@@ -21,7 +21,7 @@ function fail(msg) {
 
 function main(argv) {
     if (argv.length < 1 || argv.length > 2 || argv[0] === '-h' || argv[0] === '--help') {
-        process.stderr.write('usage: node tools/bunny-to-ply.js PACKAGE_DIR [OUTPUT.ply]\n');
+        process.stderr.write('usage: node tools/models/bunny-to-ply.js PACKAGE_DIR [OUTPUT.ply]\n');
         process.exit(2);
     }
     const where = argv[0];
@@ -51,7 +51,7 @@ function main(argv) {
     lines.push('comment Stanford Bunny: Stanford University Computer Graphics Laboratory, '
         + 'Stanford 3D Scanning Repository (Greg Turk and Marc Levoy, 1994)');
     lines.push('comment converted from the npm package bunny@' + version
-        + ' (Mikola Lysenko, licence "Public Domain") by tools/bunny-to-ply.js; y is up');
+        + ' (Mikola Lysenko, licence "Public Domain") by tools/models/bunny-to-ply.js; y is up');
     lines.push('element vertex ' + positions.length);
     lines.push('property float x');
     lines.push('property float y');

@@ -5,6 +5,12 @@
 
 #include <stddef.h>
 
+struct shape_kind;
+
+/* Every kind of shape (sphere, triangle, plane, box), as chapters 5 to 11 draw them, ending with NULL:
+ * the kinds the tests give the scene reader when they build a world. */
+extern const struct shape_kind *const test_every_kind[];
+
 /* Reads the whole file at `path` into a new NUL-terminated buffer (the caller frees it). Fails the
  * current test if it is not a regular file or cannot be read. */
 char *read_text_file(const char *path);

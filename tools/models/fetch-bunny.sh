@@ -1,19 +1,19 @@
 #!/usr/bin/env bash
 # fetch-bunny.sh: remakes scenes/models/bunny.ply from the npm package bunny@1.0.1.
 #
-#   tools/fetch-bunny.sh [OUTPUT.ply]      (default: scenes/models/bunny.ply)
+#   tools/models/fetch-bunny.sh [OUTPUT.ply]      (default: scenes/models/bunny.ply)
 #
 # Needs node and npm, and the npm registry. The result is committed, so a build never runs this:
 # run it only to check or remake the file. The package tarball is fetched with `npm pack` into a
 # temporary directory, checked against its known SHA-1, unpacked, converted by
-# tools/bunny-to-ply.js, and the temporary directory is removed again.
+# tools/models/bunny-to-ply.js, and the temporary directory is removed again.
 set -euo pipefail
 
 VERSION=1.0.1
 SHA1=86383da45ab7a99571a5a572b7be0e3564815f9e   # the registry's shasum of bunny-1.0.1.tgz
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-root=$(cd "$here/.." && pwd)
+root=$(cd "$here/../.." && pwd)
 out=${1:-"$root/scenes/models/bunny.ply"}
 
 command -v node >/dev/null 2>&1 || { echo "fetch-bunny: node is needed (apt-get install nodejs npm)" >&2; exit 1; }

@@ -1,5 +1,5 @@
-/* image_compare.h: pixel-by-pixel comparison of two 8-bit RGB pictures, as used by the image tests
- * and by `make compare` (tools, not a chapter). */
+/* image_compare.h: pixel-by-pixel comparison of two 8-bit RGB pictures, as used by the image tests,
+ * the coursework grader (make check-N) and `make compare` (test support, not a chapter). */
 #ifndef WHITTED_IMAGE_COMPARE_H
 #define WHITTED_IMAGE_COMPARE_H
 

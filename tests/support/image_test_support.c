@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include "box_filter.h"
 #include "image.h"
 #include "povray.h"
 #include "scene.h"
@@ -18,7 +19,7 @@
 
 static const char *const scene_names[] = {
     NULL, "01-camera", "02-sphere", "03-triangle", "04-plane", "05-aabb",
-    "06-phong", "07-shadows", "08-recursion", "09-kdtree", "10-bvh", "11-fast",
+    "06-phong", "07-shadows", "08-recursion", "09-kdtree", "10-bvh", "11-fast", "12-antialias",
 };
 
 const char *chapter_scene(int n) {
@@ -73,6 +74,17 @@ const char *mutant_program(const char *name) {
     return path;
 }
 
+/* Copies the rest of the twin's line that starts with `label` (a comment, "// Antialias box: ", ...)
+ * into out; "" when the twin has no such line. */
+static void twin_line(const char *pov, const char *label, char *out, size_t size) {
+    char *text = read_text_file(pov);
+    char *at = strstr(text, label);
+    out[0] = '\0';
+    if (at != NULL)
+        snprintf(out, size, "%.*s", (int)strcspn(at + strlen(label), "\n"), at + strlen(label));
+    free(text);
+}
+
 bool render_povray(int n, const char *scene, const char *png) {
     char pov[512], command[COMMAND_MAX];
     snprintf(pov, sizeof pov, "%s.pov", png);
@@ -81,12 +93,19 @@ bool render_povray(int n, const char *scene, const char *png) {
         return false;
     struct scene s;
     char err[512];
-    if (!scene_load(scene, &s, err, sizeof err))
+    if (!scene_load(scene, NULL, &s, err, sizeof err))
         return false;
+    /* Chapter 12's twin says how it is rendered: with POV-Ray's anti-aliasing options, or one ray a
+     * pixel at `box` times the size (in 16 bits), each box x box block averaged afterwards. */
+    char options[512], box_line[64], big[600];
+    twin_line(pov, "// Antialias options: ", options, sizeof options);
+    twin_line(pov, "// Antialias box: ", box_line, sizeof box_line);
+    int box = box_line[0] != '\0' ? atoi(box_line) : 1;
+    snprintf(big, sizeof big, "%s%s", png, box > 1 ? ".big.png" : "");
     /* One thread: the oracle measured identical pixels for any thread count, and the test suite
      * already runs several tests at once. */
-    snprintf(command, sizeof command, "povray +I%s +O%s +W%d +H%d +WT1 %s", pov, png, s.width, s.height,
-             POVRAY_OPTIONS);
+    snprintf(command, sizeof command, "povray +I%s +O%s +W%d +H%d +WT1 %s %s %s", pov, big, box * s.width,
+             box * s.height, POVRAY_OPTIONS, box > 1 ? "+FN16" : "", options);
     scene_free(&s);
     /* POV-Ray is another program on a shared machine: a run that fails once (seen once in hundreds, its
      * output lost among the parallel tests' logs) is tried once more, and both runs' output is kept in
@@ -102,7 +121,15 @@ bool render_povray(int n, const char *scene, const char *png) {
         if (status != 0)
             print_log_tail(log);
     }
-    return status == 0;
+    if (status != 0 || box == 1)
+        return status == 0;
+    int w, h;
+    uint8_t *small = box_filter_png(big, box, &w, &h, err, sizeof err);
+    bool written = small != NULL && image_write_png_bytes(small, w, h, png, err, sizeof err);
+    if (!written)
+        fprintf(stderr, "%s\n", err);
+    free(small);
+    return written;
 }
 
 struct image_difference compare_png(const char *a, const char *b) {
@@ -158,7 +185,7 @@ const char *shifted_camera_line(const char *path, double pixels) {
     static _Thread_local char line[512];
     struct scene s;
     char err[512];
-    cr_assert(scene_load(path, &s, err, sizeof err), "%s", err);
+    cr_assert(scene_load(path, NULL, &s, err, sizeof err), "%s", err);
     vec3 view = vec3_sub(s.target, s.eye);
     vec3 right = vec3_normalize(vec3_cross(view, s.up));
     double pixel_width = 2.0 * vec3_length(view) * tan(s.fov * M_PI / 360.0) / s.height;

@@ -8,6 +8,13 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include "box.h"
+#include "plane.h"
+#include "sphere.h"
+#include "triangle.h"
+
+const struct shape_kind *const test_every_kind[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
+
 char *read_file(const char *path, size_t *size) {
     struct stat info;
     cr_assert(stat(path, &info) == 0 && S_ISREG(info.st_mode), "%s is not a file", path);

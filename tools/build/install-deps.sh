@@ -2,11 +2,11 @@
 # install-deps.sh: makes sure the Debian packages a make target needs are there, installing only what
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
-#   tools/install-deps.sh [NEED...]     NEED: build (the default), test, compare, results, bench, fuzz
+#   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, results, bench, fuzz
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
-#   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test, whose
-#            tests run make results' quick mode and check its committed plots
+#   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test and
+#            make test-long, whose tests check make results' committed plots and run its quick mode
 #   compare  build + POV-Ray: make compare
 #   results  build + POV-Ray and gnuplot: make results (which adds bench for its Embree table)
 #   bench    build + Intel Embree 3 (libembree-dev): make bench
@@ -19,7 +19,7 @@
 # against it (a compiler must already be there). Anything else it cannot install it names, with the
 # command for someone who has root, and fails. WHITTED_DEPS=local forces the .deps/ route for stb.
 set -u
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 needs=("$@")
 [ ${#needs[@]} -eq 0 ] && needs=(build)

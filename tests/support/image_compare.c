@@ -1,5 +1,5 @@
 /* image_compare.c: difference statistics of two pictures, and pictures of them side by side and of their
- * amplified difference (tools). */
+ * amplified difference (test support: the tests, the grader and build/compare use it). */
 #include "image_compare.h"
 
 #include <math.h>

@@ -17,7 +17,7 @@
 #define REGRESSION_MIN_WITHIN_1 0.9995 /* at most 1 pixel in 2000 more than 1 level off */
 #define REGRESSION_MAX_MEAN 0.01       /* levels, averaged over all channels of all pixels */
 
-/* Returns the scene file of chapter n (1..10), e.g. "scenes/02-sphere.scene". */
+/* Returns the scene file of chapter n (1..12), e.g. "scenes/02-sphere.scene". */
 const char *chapter_scene(int n);
 
 /* Returns the program of chapter n in the build under test, e.g. "build/chapter-02". */
@@ -35,12 +35,13 @@ void expect_chapter_run(int n, const char *arguments, int status, const char *ex
 /* Runs the chapter program `program` (a path) as render_chapter does. */
 int render_with(const char *program, const char *scene, const char *png, const char *extra);
 
-/* Returns the path of the deliberately wrong program `name` that the Makefile builds for the tests,
- * e.g. "build/mutant-highlight-times-pigment". */
+/* Returns the path of the deliberately wrong program `name` that the Makefile builds for the tests
+ * from tests/mutants/NAME.patch, e.g. "build/mutant-highlight-times-pigment". */
 const char *mutant_program(const char *name);
 
-/* Writes chapter n's POV-Ray twin of `scene` and renders it with POV-Ray to `png` at the scene's size.
- * Returns true on success. */
+/* Writes chapter n's POV-Ray twin of `scene` and renders it with POV-Ray to `png` at the scene's size,
+ * as the twin's antialias comment lines say (chapter 12): with POV-Ray's anti-aliasing options, or at
+ * n times the size averaged down by n x n blocks. Returns true on success. */
 bool render_povray(int n, const char *scene, const char *png);
 
 /* Reads two PNG files and compares them; fails the current test if either cannot be read or their

@@ -162,7 +162,7 @@ bool closed_mesh_write_ply(const struct mesh *m, const char *path, char *err, si
         snprintf(err, err_size, "%s: cannot write: %s", path, strerror(errno));
         return false;
     }
-    fprintf(out, "ply\nformat ascii 1.0\ncomment closed test mesh with shared vertices (tools/closed_mesh.c)\n");
+    fprintf(out, "ply\nformat ascii 1.0\ncomment closed test mesh with shared vertices (tests/support/closed_mesh.c)\n");
     fprintf(out, "element vertex %zu\nproperty double x\nproperty double y\nproperty double z\n", m->vertex_count);
     fprintf(out, "element face %zu\nproperty list uchar uint vertex_indices\nend_header\n", m->face_count);
     for (size_t k = 0; k < m->vertex_count; k++)

@@ -1,11 +1,13 @@
-/* mesh_private.h: what the mesh readers (mesh.c, mesh_ply.c, mesh_obj.c) share; not for other modules.
+/* mesh_read.h: what the mesh readers share (chapter 3): the file in memory, messages, lines and words,
+ * numbers, growing arrays. For mesh.c and the readers (mesh_ply.c, mesh_obj.c), not for other modules.
  *
- * mesh_load reads the whole file into memory, followed by a NUL byte, and hands it to one reader. The
- * readers parse from that buffer, grow the mesh with mesh_reserve and mesh_add_triangle, and report
- * problems with mesh_fail_*. On failure they may leave a half-built mesh: mesh_load frees it, and it
- * also refuses a successful read that found no faces. */
-#ifndef WHITTED_MESH_PRIVATE_H
-#define WHITTED_MESH_PRIVATE_H
+ * mesh_load (mesh.c) reads the whole file into memory, followed by a NUL byte, and hands it to one
+ * reader. The readers parse from that buffer with the functions below, grow the mesh with
+ * mesh_reserve and mesh_add_triangle, and report problems with mesh_fail_*. On failure they may leave
+ * a half-built mesh: mesh_load frees it, and it also refuses a successful read that found no faces.
+ * mesh_read.c calls no reader, so the calls go one way: mesh.c, then a reader, then these helpers. */
+#ifndef WHITTED_MESH_READ_H
+#define WHITTED_MESH_READ_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -95,9 +97,5 @@ bool mesh_reserve_faces(struct mesh *m, size_t *capacity, size_t wanted);
 
 /* Appends the triangle (a, b, c), growing the face array when it is full; false when out of memory. */
 bool mesh_add_triangle(struct mesh *m, size_t *capacity, uint32_t a, uint32_t b, uint32_t c);
-
-/* The readers: fill the empty mesh m from in, which holds a PLY or an OBJ file. */
-bool mesh_read_ply(const struct mesh_input *in, struct mesh *m);
-bool mesh_read_obj(const struct mesh_input *in, struct mesh *m);
 
 #endif
