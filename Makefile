@@ -171,7 +171,7 @@ RUN_TESTS := LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITT
 
 ## make test           the quick suite, about a minute: unit tests, reference images, agreement with
 ##                     POV-Ray, the docs' code and outputs (installs what it needs first)
-test: all $(BUILD)/run-tests $(BUILD)/bench_accel | deps
+test: all $(BUILD)/run-tests $(BUILD)/check $(BUILD)/bench_accel | deps
 	$(RUN_TESTS) --filter '$(TEST_FILTER)'
 
 ## make test-long      the tests make test leaves out (LONG_TESTS in the Makefile), ten minutes or more:
