@@ -45,7 +45,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -57,8 +57,9 @@ MODULES_09 := $(MODULES_08) kdtree kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh bvh_check accel_bvh
 MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_build accel_fast_bvh
 MODULES_12 := $(MODULES_11) sample_hash supersample
+MODULES_14 := $(MODULES_12) image_map texture
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast 12-antialias
+            09-kdtree 10-bvh 11-fast 12-antialias 14-textures
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
@@ -67,16 +68,19 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 # The models the chapters' scenes name: the bunny is committed, the teapots are generated
 # (tools/models/models.mk, included below).
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
+# The pictures chapter 14's scenes wrap over surfaces: drawn by tools/textures/draw_textures.c, never
+# downloaded.
+SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/textures/grid.jpg
 
 .PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare gallery figures \
-        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,chapter-$(n) check-$(n))
+        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 14,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
 ## make all            build every chapter (build/chapter-NN), build/compare, build/figures and the models
 ##                     (what a plain `make` does)
 all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(BUILD)/compare $(BUILD)/figures \
-     $(SCENE_MODELS)
+     $(SCENE_MODELS) $(SCENE_TEXTURES)
 
 # ---- compiling ---------------------------------------------------------------------------------
 $(BUILD)/common/%.o: common/%.c | $(BUILD)/common deps
@@ -115,10 +119,12 @@ chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
 	if ! ls -d chapters/$$$$n-* >/dev/null 2>&1; then \
 	    echo "chapter $(1) is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
-	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
+	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 } \
+	                 $$$$1 == "pigment" { for (k = 3; k < NF; k++) if ($$$$k == "file") print "scenes/" $$$$(k + 1) }' \
+	             scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 14,$(eval $(call run_chapter_rule,$(n))))
 
 ## make chapters       build and render every written chapter
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
@@ -131,6 +137,15 @@ include tools/results/results.mk
 # The teapot generator is compiled too, so after the packages step (models.mk also works without this
 # Makefile, so it cannot name `deps` itself).
 $(MODELS_TEAPOT): | deps
+
+# The textures: one run of the drawing program writes all three (into a temporary folder first, so an
+# interrupted run leaves no half file under a real name).
+$(BUILD)/draw-textures: tools/textures/draw_textures.c | $(BUILD)/tools deps
+	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -Wall -Wextra -Werror $(STB_CFLAGS) $< -o $@ $(STB_LIBS) -lm
+
+$(SCENE_TEXTURES) &: $(BUILD)/draw-textures
+	@mkdir -p scenes/textures/.tmp
+	$(BUILD)/draw-textures scenes/textures/.tmp && mv scenes/textures/.tmp/* scenes/textures/ && rmdir scenes/textures/.tmp
 
 # ---- tests -------------------------------------------------------------------------------------
 TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c tests/support/*.c)

@@ -90,9 +90,14 @@ static void write_materials(FILE *out, const struct scene *s, enum pov_lighting 
         const struct material *m = &s->materials[k];
         bool headlight = lighting == POV_HEADLIGHT;
         bool transparent = is_transparent(m, lighting);
-        fprintf(out, "#declare M%zu = texture { // material %s\n  pigment { rgbft <%.17g, %.17g, %.17g, %.17g, %.17g> }\n",
-                k, m->name, m->colour.x, m->colour.y, m->colour.z, transparent ? m->filter : 0.0,
-                transparent ? m->transmit : 0.0);
+        fprintf(out, "#declare M%zu = texture { // material %s\n  ", k, m->name);
+        if (m->pigment >= 0) /* chapter 14: a pattern (scene_drop_unsupported removes them before) */
+            pigment_write_pov(out, &s->pigments[m->pigment], transparent ? m->filter : 0.0,
+                              transparent ? m->transmit : 0.0);
+        else
+            fprintf(out, "pigment { rgbft <%.17g, %.17g, %.17g, %.17g, %.17g> }", m->colour.x, m->colour.y,
+                    m->colour.z, transparent ? m->filter : 0.0, transparent ? m->transmit : 0.0);
+        fprintf(out, "\n");
         fprintf(out, "  finish { ambient %.17g diffuse %.17g phong %.17g phong_size %.17g reflection { rgb %.17g } }\n}\n",
                 headlight ? 0.0 : m->ambient, headlight ? 1.0 : m->diffuse, headlight ? 0.0 : m->phong,
                 m->phong_size, lighting == POV_WHITTED ? m->reflection : 0.0);

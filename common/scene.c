@@ -38,6 +38,7 @@ struct parser {
     char *err;
     size_t err_size;
     struct name_index *materials; /* material name -> its index in scene.materials */
+    struct name_index *pigments;  /* pigment name -> its index in scene.pigments */
 };
 
 /* Writes "name:line: message" into the error buffer and returns false, so callers can
@@ -201,10 +202,10 @@ static bool parse_triple(const struct parser *p, const char *directive, char **t
 }
 
 static bool parse_material(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { COLOUR, AMBIENT, DIFFUSE, PHONG, PHONG_SIZE, REFLECTION, FILTER, TRANSMIT, IOR };
+    enum { COLOUR, AMBIENT, DIFFUSE, PHONG, PHONG_SIZE, REFLECTION, FILTER, TRANSMIT, IOR, PIGMENT };
     static const struct key_spec specs[] = {
         {"colour", 3}, {"ambient", 1}, {"diffuse", 1},  {"phong", 1}, {"phong_size", 1},
-        {"reflection", 1}, {"filter", 1}, {"transmit", 1}, {"ior", 1}};
+        {"reflection", 1}, {"filter", 1}, {"transmit", 1}, {"ior", 1}, {"pigment", 0}};
     struct key_values kv;
     if (n < 1)
         return fail(p, "material needs a name");
@@ -212,7 +213,7 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
         return fail(p, "material name longer than %d characters", SCENE_NAME_MAX - 1);
     if (name_index_find(p->materials, tok[0]) >= 0)
         return fail(p, "material '%s' is already defined", tok[0]);
-    if (!parse_keys(p, "material", tok + 1, n - 1, specs, 9, &kv))
+    if (!parse_keys(p, "material", tok + 1, n - 1, specs, 10, &kv))
         return false;
     struct material m = s->materials[0]; /* unspecified keys keep the defaults */
     snprintf(m.name, sizeof m.name, "%s", tok[0]);
@@ -223,6 +224,11 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
             *scalars[k] = kv.number[k][0];
     if (kv.present[COLOUR])
         m.colour = key_vec3(&kv, COLOUR);
+    if (kv.present[PIGMENT]) {
+        m.pigment = name_index_find(p->pigments, kv.word[PIGMENT]);
+        if (m.pigment < 0)
+            return fail(p, "unknown pigment '%s' (define it with a pigment line first)", kv.word[PIGMENT]);
+    }
     for (int k = AMBIENT; k <= TRANSMIT; k++)
         if (*scalars[k] < 0.0)
             return fail(p, "material '%s': %s must not be negative", m.name, specs[k].name);
@@ -289,6 +295,48 @@ static char *resolve_path(const char *scene_name, const char *path) {
         strcpy(joined + folder, path);
     }
     return joined;
+}
+
+/* The pigment line (pigment.h): a name, a pattern, the pattern's keys and the texture transform. */
+static bool parse_pigment(const struct parser *p, struct scene *s, char **tok, int n) {
+    if (n < 2)
+        return fail(p, "pigment needs a name and a pattern");
+    if (strlen(tok[0]) >= PIGMENT_NAME_MAX)
+        return fail(p, "pigment name longer than %d characters", PIGMENT_NAME_MAX - 1);
+    if (name_index_find(p->pigments, tok[0]) >= 0)
+        return fail(p, "pigment '%s' is already defined", tok[0]);
+    const struct pigment_syntax *syntax = NULL;
+    for (size_t k = 0; pigment_syntaxes[k] != NULL; k++)
+        if (strcmp(tok[1], pigment_syntaxes[k]->pattern) == 0)
+            syntax = pigment_syntaxes[k];
+    if (syntax == NULL)
+        return fail(p, "unknown pattern '%s' (checker, gradient, brick, radial or image_map)", tok[1]);
+    struct key_spec specs[KEY_MAX];
+    memcpy(specs, syntax->keys, (size_t)syntax->key_count * sizeof *specs);
+    memcpy(specs + syntax->key_count, pigment_transform_keys, sizeof pigment_transform_keys);
+    struct key_values kv;
+    if (!parse_keys(p, "pigment", tok + 2, n - 2, specs, syntax->key_count + PIGMENT_TRANSFORM_KEY_COUNT, &kv) ||
+        !require_keys(p, "pigment", specs, &kv, syntax->required))
+        return false;
+    struct pigment pigment = {.line = p->line};
+    snprintf(pigment.name, sizeof pigment.name, "%s", tok[0]);
+    char why[256];
+    if (!syntax->make(&kv, &pigment, why, sizeof why) ||
+        !pigment_make_transform(&kv, syntax->key_count, &pigment, why, sizeof why))
+        return fail(p, "%s", why);
+    struct pigment *slot = grow(&s->pigments, &s->pigment_count, sizeof *slot);
+    if (slot == NULL || !name_index_add(p->pigments, pigment.name, (int)(s->pigment_count - 1)))
+        return fail(p, "out of memory");
+    *slot = pigment;
+    if (pigment.pattern == PIGMENT_IMAGE_MAP) { /* the file is read by chapter 14 (texture_load_images) */
+        const char *file = kv.word[0];
+        if (strpbrk(file, "\"\\") != NULL)
+            return fail(p, "pigment '%s': the file name must not hold a quote or a backslash", pigment.name);
+        slot->file = resolve_path(p->name, file);
+        if (slot->file == NULL)
+            return fail(p, "out of memory");
+    }
+    return true;
 }
 
 static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int n) {
@@ -442,6 +490,8 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
         return parse_material(p, s, args, count);
     if (strcmp(directive, "light") == 0)
         return parse_light(p, s, args, count);
+    if (strcmp(directive, "pigment") == 0)
+        return parse_pigment(p, s, args, count);
     if (strcmp(directive, "mesh") == 0)
         return parse_mesh(p, s, args, count);
     if (strcmp(directive, "antialias") == 0)
@@ -461,7 +511,7 @@ static bool scene_defaults(struct scene *s, const char *name) {
     strcpy(s->path, name);
     /* POV-Ray's finish defaults, but a white pigment (POV-Ray's default pigment is black). */
     *fallback = (struct material){.name = "default", .colour = {1, 1, 1}, .ambient = 0.1, .diffuse = 0.6,
-                                  .phong = 0.0, .phong_size = 40.0, .ior = 1.0};
+                                  .phong = 0.0, .phong_size = 40.0, .ior = 1.0, .pigment = -1};
     s->up = vec3_make(0, 1, 0);
     s->ambient_light = vec3_make(1, 1, 1);
     s->max_depth = DEFAULT_MAX_DEPTH;
@@ -478,13 +528,15 @@ bool scene_parse(const char *name, const char *text, const struct shape_kind *co
         snprintf(err, err_size, "%s: more than %d kinds of shape", name, SCENE_KIND_MAX);
         return false;
     }
-    struct name_index materials;
+    struct name_index materials, pigments;
     name_index_init(&materials);
-    struct parser p = {name, 0, err, err_size, &materials};
+    name_index_init(&pigments);
+    struct parser p = {name, 0, err, err_size, &materials, &pigments};
     char *copy = malloc(strlen(text) + 1);
     if (copy == NULL || !scene_defaults(s, name) || !name_index_add(&materials, "default", 0)) {
         free(copy);
         name_index_free(&materials);
+        name_index_free(&pigments);
         scene_free(s);
         snprintf(err, err_size, "%s: out of memory", name);
         return false;
@@ -507,6 +559,7 @@ bool scene_parse(const char *name, const char *text, const struct shape_kind *co
     }
     free(copy);
     name_index_free(&materials);
+    name_index_free(&pigments);
     if (ok && !camera_seen)
         ok = (snprintf(err, err_size, "%s: no camera line (a scene needs one)", name), false);
     if (ok && !image_seen)
@@ -564,6 +617,17 @@ bool scene_load(const char *path, const struct shape_kind *const *kinds, struct 
     return ok;
 }
 
+/* Frees the pigments of s (their files' names and pixels) and forgets them. */
+static void drop_pigments(struct scene *s) {
+    for (size_t k = 0; k < s->pigment_count; k++) {
+        free(s->pigments[k].file);
+        free(s->pigments[k].image.texels);
+    }
+    free(s->pigments);
+    s->pigments = NULL;
+    s->pigment_count = 0;
+}
+
 /* Frees the meshes of s and forgets them. */
 static void drop_meshes(struct scene *s) {
     for (size_t k = 0; k < s->mesh_count; k++) {
@@ -576,6 +640,7 @@ static void drop_meshes(struct scene *s) {
 
 void scene_free(struct scene *s) {
     drop_meshes(s);
+    drop_pigments(s);
     free(s->path);
     free(s->materials);
     free(s->lights);
@@ -617,6 +682,12 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         size_t used = strlen(what);
         snprintf(what + used, sizeof what - used, "%sthe antialias line", used == 0 ? "" : ", ");
         s->antialias = (struct antialias){0};
+    }
+    if (chapter < TEXTURE_CHAPTER && s->pigment_count > 0) {
+        note_count(what, sizeof what, s->pigment_count, "pigment", "pigments");
+        drop_pigments(s);
+        for (size_t k = 0; k < s->material_count; k++)
+            s->materials[k].pigment = -1;
     }
     if (what[0] != '\0' && note != NULL) {
         char path[4 * 1024];

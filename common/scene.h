@@ -14,6 +14,7 @@
 
 #include "antialias.h"
 #include "mesh.h"
+#include "pigment.h"
 #include "shape.h"
 
 #define SCENE_NAME_MAX 64 /* longest material name, including the terminating zero */
@@ -29,6 +30,7 @@ struct material {
     double filter;      /* share of light passing through, tinted by colour (pigment filter) */
     double transmit;    /* share of light passing through untinted (pigment transmit) */
     double ior;         /* index of refraction of the inside (interior ior) */
+    int pigment;        /* index into scene.pigments, or -1: the plain colour (chapter 14; pigment.h) */
 };
 
 struct light {
@@ -61,6 +63,15 @@ struct shape_list {
     size_t count;
 };
 
+struct scene;
+
+/* Chapter 14's hook (texture.h): returns the material of the hit *h at `point` as the surface is there,
+ * either the scene's own material or `painted`, filled from it with its pigment's colour (and an image's
+ * alpha as transmit); and replaces h->normal by the interpolated normal where a mesh is smooth. NULL
+ * before chapter 14: materials are plain and triangles flat. */
+typedef const struct material *(*scene_paint_fn)(const struct scene *s, struct hit *h, vec3 point,
+                                                 struct material *painted);
+
 struct scene {
     char *path; /* the file it was read from; owned */
     vec3 eye, target, up;
@@ -77,6 +88,8 @@ struct scene {
     struct material *materials; size_t material_count; /* materials[0] is "default" */
     struct light *lights;       size_t light_count;
     struct scene_mesh *meshes;  size_t mesh_count;
+    struct pigment *pigments;   size_t pigment_count; /* the pigment lines (chapter 14 draws them) */
+    scene_paint_fn paint;       /* set by chapter 14 (texture.h); NULL: plain materials, flat triangles */
     /* The shapes, one list per kind: the kinds of scene_syntaxes[] in that order, then the other kinds
      * the program draws, in the order it lists them. A list may be empty. */
     struct shape_list shapes[SCENE_KIND_MAX];
@@ -110,9 +123,10 @@ void scene_free(struct scene *s);
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 
 /* Removes the shapes of every kind the program does not draw (a list without its kind; the meshes go
- * with the triangles), and before chapter 12 the antialias line, so that chapter `chapter` can read
- * any scene file and draw what it knows. If
- * something was removed, prints one line to `note` (when not NULL) saying what was ignored, e.g.
+ * with the triangles), before chapter 12 the antialias line and before chapter 14 the pigments (every
+ * material is then its plain colour), so that chapter `chapter` can read any scene file and draw what
+ * it knows. If something was removed, prints one line to `note` (when not NULL) saying what was
+ * ignored, e.g.
  * "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */
 void scene_drop_unsupported(struct scene *s, int chapter, FILE *note);
 

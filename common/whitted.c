@@ -71,6 +71,9 @@ static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level,
             return vec3_add(sum, vec3_mul(through, s->background));
         const struct material *m = &s->materials[h.material];
         vec3 point = ray_at(r, h.t);
+        struct material painted; /* chapter 14 paints the material and smooths the normal (scene.h) */
+        if (s->paint != NULL)
+            m = s->paint(s, &h, point, &painted);
         vec3 facing = hit_facing_normal(&h, r.direction);
         struct phong_surface at = {point, facing, r.direction, m, 1.0 - m->filter - m->transmit};
         vec3 colour = phong_shade(s, &at, shadow_filtered, t->w);

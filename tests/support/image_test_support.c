@@ -19,7 +19,8 @@
 
 static const char *const scene_names[] = {
     NULL, "01-camera", "02-sphere", "03-triangle", "04-plane", "05-aabb",
-    "06-phong", "07-shadows", "08-recursion", "09-kdtree", "10-bvh", "11-fast", "12-antialias",
+    "06-phong", "07-shadows", "08-recursion", "09-kdtree", "10-bvh", "11-fast", "12-antialias", NULL,
+    "14-textures",
 };
 
 const char *chapter_scene(int n) {

@@ -1,0 +1,63 @@
+/* Chapter 14, textures: surfaces whose colour changes from point to point. A material may name a
+ * pigment (common/pigment.h): a procedural pattern (checker, gradient, brick, radial) or an image map
+ * (a PNG or JPEG decoded to linear light, wrapped by a planar or spherical mapping), each moved by its
+ * texture transform. The pigments are evaluated in common/texture.c and common/image_map.c and reach
+ * the shading through the scene's paint hook, which hands chapter 8's tracer the material as the
+ * pigment makes it at each hit. Everything else is chapter 12's: the fast BVH, the same sampling. */
+#include "accel_fast_bvh.h"
+#include "box.h"
+#include "cli.h"
+#include "fast_bvh.h"
+#include "plane.h"
+#include "sphere.h"
+#include "supersample.h"
+#include "texture.h"
+#include "triangle.h"
+#include "whitted.h"
+
+static struct accel_choice choice = {ACCEL_BVH, true};
+
+static int parse_option(const char *option, const char *value) {
+    return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
+}
+
+/* Builds the world as chapter 12 does: the chosen structure, the BVH at chapter 11's top rung. */
+static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
+    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
+    if (w != NULL && choice.kind == ACCEL_BVH &&
+        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_TOP, err,
+                                  err_size)) {
+        accel_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
+int main(int argc, char **argv) {
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
+    static const struct chapter chapter = {
+        .number = 14,
+        .title = "textures",
+        .default_scene = "scenes/14-textures.scene",
+        .kinds = kinds,
+        .lighting = POV_WHITTED,
+        .parse_option = parse_option,
+        .options_help = "  --accel KIND     none, kdtree or bvh (default bvh: chapter 11's fast BVH)\n"
+                        "  --split RULE     sah (default) or seed: the seed's rule\n",
+    };
+    struct cli_run run;
+    if (!cli_start(&run, &chapter, argc, argv))
+        return cli_finish(&run);
+    /* What chapter 14 adds: the image maps read, and every hit painted by its material's pigment. */
+    if (!texture_load_images(&run.scene, run.err, sizeof run.err) ||
+        !scene_load_meshes(&run.scene, run.err, sizeof run.err))
+        return cli_fail(&run);
+    run.scene.paint = texture_paint;
+    struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
+    if (w == NULL)
+        return cli_fail(&run);
+    if (cli_render_sampled(&run, whitted_trace, &w->world, &supersample_sampler))
+        accel_report(w, &run.total, run.options.stats);
+    accel_world_destroy(w);
+    return cli_finish(&run);
+}

@@ -1,0 +1,215 @@
+/* image_map.c: reading image maps into linear light, and looking them up as POV-Ray 3.7 does
+ * (chapter 14; image_map.h says what and why). */
+#include "image_map.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <stb_image.h>
+
+#include "infile.h"
+
+#define IMAGE_MAP_FILE_MAX_BYTES (256L * 1024 * 1024) /* no PNG or JPEG we read is larger */
+/* POV-Ray adds its EPSILON to the pixel coordinates before wrapping them (map_pos). */
+#define IMAGE_MAP_EPSILON 1e-10
+/* The sRGB curve's linear toe ends at this encoded value (POV-Ray's threshold; the older 0.03928 is from
+ * a draft). */
+#define SRGB_DECODE_THRESHOLD 0.04045f
+#define PNG_GAMMA_UNIT 100000.0 /* a gAMA chunk holds the gamma times 100000 */
+
+float image_map_decode_srgb(float encoded) {
+    if (encoded < SRGB_DECODE_THRESHOLD)
+        return encoded / 12.92f;
+    return powf((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+static uint32_t big_endian_32(const uint8_t *b) {
+    return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | (uint32_t)b[3];
+}
+
+double image_map_png_gamma(const uint8_t *bytes, size_t size) {
+    static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (size < sizeof signature || memcmp(bytes, signature, sizeof signature) != 0)
+        return 0.0;
+    double gamma = 0.0;
+    size_t at = sizeof signature;
+    while (size - at >= 12) { /* length, type, data, CRC */
+        uint32_t length = big_endian_32(bytes + at);
+        const uint8_t *type = bytes + at + 4;
+        if (length > size - at - 12 || memcmp(type, "IDAT", 4) == 0)
+            break;
+        if (memcmp(type, "sRGB", 4) == 0)
+            return 0.0; /* the sRGB chunk wins over gAMA, as in POV-Ray */
+        if (memcmp(type, "gAMA", 4) == 0 && length == 4 && big_endian_32(type + 4) > 0)
+            gamma = big_endian_32(type + 4) / PNG_GAMMA_UNIT;
+        at += 12 + (size_t)length;
+    }
+    return gamma;
+}
+
+/* Reads the whole regular file at path; returns a malloc'd buffer and its size, or NULL with why. */
+static uint8_t *read_file(const char *path, size_t *size, char *why, size_t why_size) {
+    FILE *file = infile_open(path, why, why_size);
+    if (file == NULL)
+        return NULL;
+    long length = -1;
+    if (fseek(file, 0, SEEK_END) == 0)
+        length = ftell(file);
+    rewind(file);
+    uint8_t *bytes = NULL;
+    if (length < 0 || length > IMAGE_MAP_FILE_MAX_BYTES)
+        snprintf(why, why_size, "%s: %s", path, length < 0 ? "cannot read" : "larger than 256 MiB; not an image map");
+    else if ((bytes = malloc((size_t)length + 1)) == NULL)
+        snprintf(why, why_size, "%s: out of memory", path);
+    else if (fread(bytes, 1, (size_t)length, file) != (size_t)length) {
+        snprintf(why, why_size, "%s: cannot read", path);
+        free(bytes);
+        bytes = NULL;
+    }
+    fclose(file);
+    *size = (size_t)length;
+    return bytes;
+}
+
+/* Decodes the file's pixels (8 or 16 bits a channel, any channels) into linear RGBA floats. */
+static bool decode(const char *path, const uint8_t *bytes, size_t size, struct pigment_image *image, char *why,
+                   size_t why_size) {
+    int width, height, channels;
+    if (size > INT32_MAX || !stbi_info_from_memory(bytes, (int)size, &width, &height, &channels)) {
+        snprintf(why, why_size, "%s: not a PNG or JPEG image (%s)", path, stbi_failure_reason());
+        return false;
+    }
+    if ((long)width * height > IMAGE_MAP_MAX_PIXELS) {
+        snprintf(why, why_size, "%s: %d x %d pixels is too large (at most %ld pixels)", path, width, height,
+                 IMAGE_MAP_MAX_PIXELS);
+        return false;
+    }
+    bool sixteen = stbi_is_16_bit_from_memory(bytes, (int)size);
+    void *pixels = sixteen ? (void *)stbi_load_16_from_memory(bytes, (int)size, &width, &height, &channels, 4)
+                           : (void *)stbi_load_from_memory(bytes, (int)size, &width, &height, &channels, 4);
+    size_t count = (size_t)width * (size_t)height * 4;
+    image->texels = pixels == NULL ? NULL : malloc(count * sizeof *image->texels);
+    if (image->texels == NULL) {
+        snprintf(why, why_size, "%s: %s", path, pixels == NULL ? stbi_failure_reason() : "out of memory");
+        stbi_image_free(pixels);
+        return false;
+    }
+    double gamma = image_map_png_gamma(bytes, size);
+    float largest = sixteen ? 65535.0f : 255.0f;
+    for (size_t k = 0; k < count; k++) {
+        float value = (sixteen ? ((const uint16_t *)pixels)[k] : ((const uint8_t *)pixels)[k]) / largest;
+        if (k % 4 != 3) /* red, green, blue are encoded light; alpha is a share */
+            value = gamma > 0.0 ? powf(value, (float)(1.0 / gamma)) : image_map_decode_srgb(value);
+        image->texels[k] = value;
+    }
+    stbi_image_free(pixels);
+    image->width = width;
+    image->height = height;
+    return true;
+}
+
+bool image_map_read(const char *path, struct pigment_image *image, char *why, size_t why_size) {
+    *image = (struct pigment_image){0};
+    size_t size = 0;
+    uint8_t *bytes = read_file(path, &size, why, why_size);
+    if (bytes == NULL)
+        return false;
+    bool ok = decode(path, bytes, size, image, why, why_size);
+    free(bytes);
+    return ok;
+}
+
+/* ---- looking up ---------------------------------------------------------------------------------- */
+
+/* x wrapped into [0, limit), as POV-Ray's wrap(). */
+static double wrap(double x, double limit) {
+    double r = fmod(x, limit);
+    if (r < 0.0)
+        r += limit;
+    if (r >= limit)
+        r = 0.0;
+    return r;
+}
+
+/* (u, v) in pixels, before wrapping, by the pigment's mapping; false where the mapping shows nothing. */
+static bool map_point(const struct pigment *p, vec3 q, double *u, double *v) {
+    double width = p->image.width, height = p->image.height;
+    if (p->mapping == PIGMENT_MAP_PLANAR) { /* x across, y up: POV-Ray's gradient <1, -1, 0> */
+        if (p->once && (q.x < 0.0 || q.x > 1.0 || q.y < 0.0 || q.y > 1.0))
+            return false;
+        *u = fmod(q.x * width, width);
+        *v = fmod(q.y * height, height);
+        return true;
+    }
+    double length = vec3_length(q);
+    if (length == 0.0)
+        return false;
+    double x = q.x / length, y = q.y / length, z = q.z / length;
+    double latitude = 0.5 + asin(y) / M_PI; /* 0 at the south pole, 1 at the north */
+    double longitude = 0.0;                 /* 0 towards +x, growing towards +z, 1 all round */
+    double round = sqrt(x * x + z * z);
+    if (round != 0.0) {
+        if (z == 0.0)
+            longitude = x > 0.0 ? 0.0 : M_PI;
+        else {
+            longitude = acos(x / round);
+            if (z < 0.0)
+                longitude = 2.0 * M_PI - longitude;
+        }
+        longitude /= 2.0 * M_PI;
+    }
+    *u = longitude * width;
+    *v = latitude * height;
+    return true;
+}
+
+/* The pixel (x, y) (rows from the top), wrapped round or held at the edge as `once` says. */
+static void pixel(const struct pigment *p, double x, double y, double rgba[4]) {
+    int w = p->image.width, h = p->image.height, ix, iy;
+    if (p->once) {
+        ix = x < 0.0 ? 0 : x >= w ? w - 1 : (int)x;
+        iy = y < 0.0 ? 0 : y >= h ? h - 1 : (int)y;
+    } else {
+        ix = (int)wrap(x, w);
+        iy = (int)wrap(y, h);
+    }
+    const float *t = p->image.texels + 4 * ((size_t)iy * (size_t)w + (size_t)ix);
+    for (int c = 0; c < 4; c++)
+        rgba[c] = t[c];
+}
+
+bool image_map_lookup(const struct pigment *p, vec3 q, double rgba[4]) {
+    double u = 0.0, v = 0.0;
+    int w = p->image.width, h = p->image.height;
+    bool shown = map_point(p, q, &u, &v);
+    u += IMAGE_MAP_EPSILON;
+    v += IMAGE_MAP_EPSILON;
+    if (shown && p->once && (u >= w || v >= h || u < 0.0 || v < 0.0))
+        shown = false;
+    if (!shown) {
+        rgba[0] = rgba[1] = rgba[2] = 1.0;
+        rgba[3] = 0.0;
+        return false;
+    }
+    double x = wrap(u, w), y = wrap(-v, h); /* rows run down the picture, v up */
+    if (p->interpolate == 0) {
+        pixel(p, x, y, rgba);
+        return true;
+    }
+    /* Bilinear, POV-Ray's way: the four pixels whose centres surround the point. */
+    x += 0.5;
+    y += 0.5;
+    int ix = (int)x, iy = (int)y;
+    double fx = x - ix, fy = y - iy;
+    double corner[4][4];
+    pixel(p, ix, iy, corner[0]);
+    pixel(p, ix - 1, iy, corner[1]);
+    pixel(p, ix, iy - 1, corner[2]);
+    pixel(p, ix - 1, iy - 1, corner[3]);
+    double weight[4] = {fx * fy, (1 - fx) * fy, fx * (1 - fy), (1 - fx) * (1 - fy)};
+    for (int c = 0; c < 4; c++)
+        rgba[c] = weight[0] * corner[0][c] + weight[1] * corner[1][c] + weight[2] * corner[2][c] +
+                  weight[3] * corner[3][c];
+    return true;
+}

@@ -1,0 +1,215 @@
+/* pigment_syntax.c: the scene's pigment lines, one table per pattern, and their POV-Ray form (chapter 1:
+ * every chapter reads every scene; pigment.h describes the lines, texture.c draws them). */
+#include "pigment.h"
+
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* POV-Ray's default brick: 8 x 3 x 4.5 units with half a unit of mortar. */
+#define PIGMENT_DEFAULT_BRICK_X 8.0
+#define PIGMENT_DEFAULT_BRICK_Y 3.0
+#define PIGMENT_DEFAULT_BRICK_Z 4.5
+#define PIGMENT_DEFAULT_MORTAR 0.5
+
+const struct key_spec pigment_transform_keys[PIGMENT_TRANSFORM_KEY_COUNT] = {
+    {"scale", 3}, {"rotate", 3}, {"translate", 3}};
+
+bool pigment_make_transform(const struct key_values *kv, int first, struct pigment *p, char *why, size_t why_size) {
+    p->scale = kv->present[first] ? key_vec3(kv, first) : vec3_make(1, 1, 1);
+    p->rotate = kv->present[first + 1] ? key_vec3(kv, first + 1) : vec3_make(0, 0, 0);
+    p->translate = kv->present[first + 2] ? key_vec3(kv, first + 2) : vec3_make(0, 0, 0);
+    if (p->scale.x == 0.0 || p->scale.y == 0.0 || p->scale.z == 0.0) {
+        snprintf(why, why_size, "pigment '%s': scale must not be 0 along any axis", p->name);
+        return false;
+    }
+    return true;
+}
+
+/* ---- the two colours every pattern but the image takes ---------------------------------------- */
+
+enum { KEY_COLOUR, KEY_COLOUR2 }; /* the first two keys of the checker, gradient, brick and radial tables */
+
+/* Reads colour and colour2, which must not be negative. */
+static bool make_colours(const struct key_values *kv, struct pigment *p, char *why, size_t why_size) {
+    p->colour[0] = key_vec3(kv, KEY_COLOUR);
+    p->colour[1] = key_vec3(kv, KEY_COLOUR2);
+    for (int k = 0; k < 2; k++)
+        if (p->colour[k].x < 0.0 || p->colour[k].y < 0.0 || p->colour[k].z < 0.0) {
+            snprintf(why, why_size, "pigment '%s': %s must not be negative", p->name, k == 0 ? "colour" : "colour2");
+            return false;
+        }
+    return true;
+}
+
+static const int two_colours_required[] = {KEY_COLOUR, KEY_COLOUR2, -1};
+
+static bool make_checker(const struct key_values *kv, struct pigment *p, char *why, size_t why_size) {
+    p->pattern = PIGMENT_CHECKER;
+    return make_colours(kv, p, why, why_size);
+}
+
+static bool make_radial(const struct key_values *kv, struct pigment *p, char *why, size_t why_size) {
+    p->pattern = PIGMENT_RADIAL;
+    return make_colours(kv, p, why, why_size);
+}
+
+static const struct key_spec two_colour_keys[] = {{"colour", 3}, {"colour2", 3}};
+
+static const struct pigment_syntax checker_syntax = {"checker", two_colour_keys, 2, two_colours_required,
+                                                     make_checker};
+static const struct pigment_syntax radial_syntax = {"radial", two_colour_keys, 2, two_colours_required,
+                                                    make_radial};
+
+/* ---- gradient ------------------------------------------------------------------------------------ */
+
+enum { GRADIENT_AXIS = 2 };
+static const struct key_spec gradient_keys[] = {{"colour", 3}, {"colour2", 3}, {"axis", 3}};
+static const int gradient_required[] = {KEY_COLOUR, KEY_COLOUR2, GRADIENT_AXIS, -1};
+
+static bool make_gradient(const struct key_values *kv, struct pigment *p, char *why, size_t why_size) {
+    p->pattern = PIGMENT_GRADIENT;
+    vec3 axis = key_vec3(kv, GRADIENT_AXIS);
+    if (vec3_length(axis) == 0.0) {
+        snprintf(why, why_size, "pigment '%s': axis must not be 0 0 0", p->name);
+        return false;
+    }
+    p->axis = vec3_normalize(axis); /* POV-Ray normalises the gradient's vector too */
+    return make_colours(kv, p, why, why_size);
+}
+
+static const struct pigment_syntax gradient_syntax = {"gradient", gradient_keys, 3, gradient_required, make_gradient};
+
+/* ---- brick --------------------------------------------------------------------------------------- */
+
+enum { BRICK_SIZE = 2, BRICK_MORTAR };
+static const struct key_spec brick_keys[] = {{"colour", 3}, {"colour2", 3}, {"brick_size", 3}, {"mortar", 1}};
+
+static bool make_brick(const struct key_values *kv, struct pigment *p, char *why, size_t why_size) {
+    p->pattern = PIGMENT_BRICK;
+    p->brick_size = kv->present[BRICK_SIZE]
+                        ? key_vec3(kv, BRICK_SIZE)
+                        : vec3_make(PIGMENT_DEFAULT_BRICK_X, PIGMENT_DEFAULT_BRICK_Y, PIGMENT_DEFAULT_BRICK_Z);
+    p->mortar = kv->present[BRICK_MORTAR] ? kv->number[BRICK_MORTAR][0] : PIGMENT_DEFAULT_MORTAR;
+    if (!(p->brick_size.x > 0.0 && p->brick_size.y > 0.0 && p->brick_size.z > 0.0)) {
+        snprintf(why, why_size, "pigment '%s': brick_size must be positive", p->name);
+        return false;
+    }
+    if (p->mortar < 0.0) {
+        snprintf(why, why_size, "pigment '%s': mortar must not be negative", p->name);
+        return false;
+    }
+    return make_colours(kv, p, why, why_size);
+}
+
+static const struct pigment_syntax brick_syntax = {"brick", brick_keys, 4, two_colours_required, make_brick};
+
+/* ---- image_map ----------------------------------------------------------------------------------- */
+
+enum { IMAGE_FILE, IMAGE_MAP, IMAGE_INTERPOLATE, IMAGE_WRAP };
+static const struct key_spec image_keys[] = {{"file", 0}, {"map", 0}, {"interpolate", 1}, {"wrap", 0}};
+static const int image_required[] = {IMAGE_FILE, -1};
+
+/* The file's path is resolved by the parser, which knows the scene's folder; here it is only checked. */
+static bool make_image_map(const struct key_values *kv, struct pigment *p, char *why, size_t why_size) {
+    p->pattern = PIGMENT_IMAGE_MAP;
+    p->mapping = PIGMENT_MAP_PLANAR;
+    if (kv->present[IMAGE_MAP]) {
+        const char *map = kv->word[IMAGE_MAP];
+        if (strcmp(map, "spherical") == 0) {
+            p->mapping = PIGMENT_MAP_SPHERICAL;
+        } else if (strcmp(map, "planar") != 0) {
+            snprintf(why, why_size, "pigment '%s': map must be planar or spherical, got '%s'", p->name, map);
+            return false;
+        }
+    }
+    p->interpolate = 0;
+    if (kv->present[IMAGE_INTERPOLATE]) {
+        double interpolate = kv->number[IMAGE_INTERPOLATE][0];
+        if (interpolate != 0.0 && interpolate != 2.0) {
+            snprintf(why, why_size, "pigment '%s': interpolate must be 0 (nearest) or 2 (bilinear), got %g", p->name,
+                     interpolate);
+            return false;
+        }
+        p->interpolate = (int)interpolate;
+    }
+    p->once = false;
+    if (kv->present[IMAGE_WRAP]) {
+        const char *wrap = kv->word[IMAGE_WRAP];
+        if (strcmp(wrap, "once") == 0) {
+            p->once = true;
+        } else if (strcmp(wrap, "repeat") != 0) {
+            snprintf(why, why_size, "pigment '%s': wrap must be repeat or once, got '%s'", p->name, wrap);
+            return false;
+        }
+    }
+    return true;
+}
+
+static const struct pigment_syntax image_map_syntax = {"image_map", image_keys, 4, image_required, make_image_map};
+
+const struct pigment_syntax *const pigment_syntaxes[] = {&checker_syntax, &gradient_syntax, &brick_syntax,
+                                                         &radial_syntax, &image_map_syntax, NULL};
+
+/* ---- POV-Ray ------------------------------------------------------------------------------------- */
+
+static void write_colour(FILE *out, vec3 c, double filter, double transmit) {
+    fprintf(out, "rgbft <%.17g, %.17g, %.17g, %.17g, %.17g>", c.x, c.y, c.z, filter, transmit);
+}
+
+/* A colour map from colour (at 0) to colour2 (at 1). */
+static void write_colour_map(FILE *out, const struct pigment *p, double filter, double transmit) {
+    fprintf(out, " color_map { [0 ");
+    write_colour(out, p->colour[0], filter, transmit);
+    fprintf(out, "] [1 ");
+    write_colour(out, p->colour[1], filter, transmit);
+    fprintf(out, "] }");
+}
+
+void pigment_write_pov(FILE *out, const struct pigment *p, double filter, double transmit) {
+    fprintf(out, "pigment { ");
+    switch (p->pattern) {
+    case PIGMENT_CHECKER:
+    case PIGMENT_BRICK:
+        fprintf(out, "%s ", p->pattern == PIGMENT_CHECKER ? "checker" : "brick");
+        write_colour(out, p->colour[0], filter, transmit);
+        fprintf(out, ", ");
+        write_colour(out, p->colour[1], filter, transmit);
+        if (p->pattern == PIGMENT_BRICK) {
+            fprintf(out, " brick_size ");
+            shape_write_vector(out, p->brick_size);
+            fprintf(out, " mortar %.17g", p->mortar);
+        }
+        break;
+    case PIGMENT_GRADIENT:
+        fprintf(out, "gradient ");
+        shape_write_vector(out, p->axis);
+        write_colour_map(out, p, filter, transmit);
+        break;
+    case PIGMENT_RADIAL:
+        fprintf(out, "radial");
+        write_colour_map(out, p, filter, transmit);
+        break;
+    case PIGMENT_IMAGE_MAP: {
+        const char *dot = strrchr(p->file, '.');
+        bool jpeg = dot != NULL && (strcmp(dot, ".jpg") == 0 || strcmp(dot, ".jpeg") == 0 ||
+                                    strcmp(dot, ".JPG") == 0 || strcmp(dot, ".JPEG") == 0);
+        /* The whole path, so that POV-Ray finds the file from whichever folder it runs in. */
+        char whole[PATH_MAX];
+        const char *file = realpath(p->file, whole) != NULL ? whole : p->file;
+        fprintf(out, "image_map { %s \"%s\" map_type %d", jpeg ? "jpeg" : "png", file, (int)p->mapping);
+        if (p->interpolate != 0) /* POV-Ray refuses `interpolate 0`: no interpolation is its default */
+            fprintf(out, " interpolate %d", p->interpolate);
+        fprintf(out, "%s filter all %.17g transmit all %.17g }", p->once ? " once" : "", filter, transmit);
+        break;
+    }
+    }
+    fprintf(out, "\n    scale ");
+    shape_write_vector(out, p->scale);
+    fprintf(out, " rotate ");
+    shape_write_vector(out, p->rotate);
+    fprintf(out, " translate ");
+    shape_write_vector(out, p->translate);
+    fprintf(out, " }");
+}

@@ -1,0 +1,147 @@
+/* texture.c: pigments evaluated as POV-Ray 3.7 evaluates them (chapter 14; texture.h). The pattern
+ * rules are POV-Ray's own, down to its small offsets, so that a boundary falls where POV-Ray draws it. */
+#include "texture.h"
+
+#include <math.h>
+#include <stdio.h>
+
+#include "hit.h"
+#include "image_map.h"
+
+/* POV-Ray's EPSILON: added before the checker's floors and to the brick's mortar, so that a point on a
+ * boundary (a floor at y = 0) is counted on the upper side. */
+#define TEXTURE_EPSILON 1e-10
+/* POV-Ray folds a pattern's value with fmod(value, 1.00001), not fmod(value, 1): a value of exactly 1
+ * (the far end of a gradient) stays 1 and picks colour2. */
+#define TEXTURE_WAVE_PERIOD 1.00001
+/* Radial: within this distance of the y axis the angle is meaningless and POV-Ray uses 0.25. */
+#define TEXTURE_RADIAL_AXIS 0.001
+
+/* Turns p by -degrees about one axis: the inverse of mesh_transform's turns (POV-Ray's sense). */
+static vec3 unturn_x(vec3 p, double degrees) {
+    double s = sin(-degrees * M_PI / 180.0), c = cos(-degrees * M_PI / 180.0);
+    return (vec3){p.x, p.y * c - p.z * s, p.y * s + p.z * c};
+}
+static vec3 unturn_y(vec3 p, double degrees) {
+    double s = sin(-degrees * M_PI / 180.0), c = cos(-degrees * M_PI / 180.0);
+    return (vec3){p.z * s + p.x * c, p.y, p.z * c - p.x * s};
+}
+static vec3 unturn_z(vec3 p, double degrees) {
+    double s = sin(-degrees * M_PI / 180.0), c = cos(-degrees * M_PI / 180.0);
+    return (vec3){p.x * c - p.y * s, p.x * s + p.y * c, p.z};
+}
+
+vec3 texture_space(const struct pigment *p, vec3 point) {
+    vec3 q = vec3_sub(point, p->translate);
+    q = unturn_x(unturn_y(unturn_z(q, p->rotate.z), p->rotate.y), p->rotate.x);
+    return (vec3){q.x / p->scale.x, q.y / p->scale.y, q.z / p->scale.z};
+}
+
+/* TASK 14.1: the checker pattern */
+static double checker(vec3 q) {
+    int sum = (int)(floor(q.x + TEXTURE_EPSILON) + floor(q.y + TEXTURE_EPSILON) + floor(q.z + TEXTURE_EPSILON));
+    return (sum & 1) ? 1.0 : 0.0;
+}
+
+/* The fractional part of x as POV-Ray's brick takes it: x - (int)x, moved into [0, 1). */
+static double brick_fraction(double x) {
+    double f = x - (double)(int)x;
+    return f < 0.0 ? f + 1.0 : f;
+}
+
+/* POV-Ray's brick: rows of height size.y; every other row shifted by half a brick along x and z. The
+ * mortar is stored as a float in POV-Ray, less twice its EPSILON. */
+static double brick(const struct pigment *p, vec3 q) {
+    double mortar = (double)(float)(p->mortar - 2.0 * TEXTURE_EPSILON);
+    double fudge = TEXTURE_EPSILON + mortar;
+    double x = q.x + fudge, y = q.y + fudge, z = q.z + fudge;
+    vec3 size = p->brick_size;
+    if (brick_fraction(y / size.y) <= mortar / size.y)
+        return 0.0; /* the mortar between rows */
+    bool odd_row = brick_fraction((y / size.y) * 0.5) > 0.5;
+    if (brick_fraction(x / size.x) <= mortar / size.x && !odd_row)
+        return 0.0;
+    if (brick_fraction(x / size.x + 0.5) <= mortar / size.x && odd_row)
+        return 0.0;
+    if (brick_fraction(z / size.z) <= mortar / size.z && odd_row)
+        return 0.0;
+    if (brick_fraction(z / size.z + 0.5) <= mortar / size.z && !odd_row)
+        return 0.0;
+    return 1.0;
+}
+
+/* POV-Ray's ramp wave with frequency 1: the value folded into [0, 1]. */
+static double ramp(double value) {
+    value = fmod(value, TEXTURE_WAVE_PERIOD);
+    if (value < 0.0)
+        value -= floor(value);
+    return value;
+}
+
+static double gradient(const struct pigment *p, vec3 q) {
+    double along = vec3_dot(q, p->axis);
+    return ramp(along > 1.0 ? fmod(along, 1.0) : along);
+}
+
+static double radial(vec3 q) {
+    if (fabs(q.x) < TEXTURE_RADIAL_AXIS && fabs(q.z) < TEXTURE_RADIAL_AXIS)
+        return ramp(0.25);
+    return ramp(0.25 + (atan2(q.x, q.z) + M_PI) / (2.0 * M_PI));
+}
+
+double texture_pattern_value(const struct pigment *p, vec3 q) {
+    switch (p->pattern) {
+    case PIGMENT_CHECKER:
+        return checker(q);
+    case PIGMENT_BRICK:
+        return brick(p, q);
+    case PIGMENT_GRADIENT:
+        return gradient(p, q);
+    case PIGMENT_RADIAL:
+        return radial(q);
+    case PIGMENT_IMAGE_MAP:
+        break;
+    }
+    return 0.0;
+}
+
+struct texture_colour texture_pigment_at(const struct pigment *p, vec3 point) {
+    vec3 q = texture_space(p, point);
+    if (p->pattern == PIGMENT_IMAGE_MAP) {
+        double rgba[4];
+        image_map_lookup(p, q, rgba);
+        return (struct texture_colour){vec3_make(rgba[0], rgba[1], rgba[2]), 1.0 - rgba[3]};
+    }
+    /* The value picks colour (0) or colour2 (1), or blends them in between (POV-Ray's colour map). */
+    double value = texture_pattern_value(p, q);
+    if (value >= 1.0)
+        return (struct texture_colour){p->colour[1], 0.0};
+    if (value <= 0.0)
+        return (struct texture_colour){p->colour[0], 0.0};
+    return (struct texture_colour){vec3_add_scaled(p->colour[0], vec3_sub(p->colour[1], p->colour[0]), value), 0.0};
+}
+
+const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 point, struct material *painted) {
+    const struct material *m = &s->materials[h->material];
+    if (m->pigment < 0)
+        return m;
+    struct texture_colour c = texture_pigment_at(&s->pigments[m->pigment], point);
+    *painted = *m;
+    painted->colour = c.colour;
+    painted->transmit = fmin(m->transmit + c.transmit, 1.0 - m->filter);
+    return painted;
+}
+
+bool texture_load_images(struct scene *s, char *err, size_t err_size) {
+    for (size_t k = 0; k < s->pigment_count; k++) {
+        struct pigment *p = &s->pigments[k];
+        if (p->pattern != PIGMENT_IMAGE_MAP || p->image.texels != NULL)
+            continue;
+        char why[1024];
+        if (!image_map_read(p->file, &p->image, why, sizeof why)) {
+            snprintf(err, err_size, "%s:%d: pigment '%s': %s", s->path, p->line, p->name, why);
+            return false;
+        }
+    }
+    return true;
+}

@@ -1,0 +1,39 @@
+/* texture.h: pigments drawn, the colour of a surface that varies from point to point (chapter 14;
+ * docs/14-textures.md). The scene's pigment lines are read by every chapter (pigment.h); this module
+ * evaluates them as POV-Ray 3.7 does: the point is carried back through the pigment's texture transform,
+ * the pattern gives a number there, and the number picks or blends the pigment's colours. */
+#ifndef WHITTED_TEXTURE_H
+#define WHITTED_TEXTURE_H
+
+#include "scene.h"
+
+/* The colour of a pigment at one point: red, green, blue and the share of light it lets through
+ * untinted (an image's alpha: transmit = 1 - alpha; 0 for the patterns). */
+struct texture_colour {
+    vec3 colour;
+    double transmit;
+};
+
+/* Returns `point` carried back through p's texture transform: translate undone, then the rotations
+ * about z, y and x, then the scale. The pattern is evaluated at the point this returns. */
+vec3 texture_space(const struct pigment *p, vec3 point);
+
+/* Returns POV-Ray's pattern value of p's procedural pattern at the texture-space point q: checker and
+ * brick 0 or 1 (brick: 0 in the mortar), gradient and radial in [0, 1] after POV-Ray's ramp wave.
+ * Not for image maps. */
+double texture_pattern_value(const struct pigment *p, vec3 q);
+
+/* Returns the colour of pigment p at the world-space point `point`. An image map must have been read
+ * (texture_load_images). */
+struct texture_colour texture_pigment_at(const struct pigment *p, vec3 point);
+
+/* The scene's paint hook (scene_paint_fn; set run.scene.paint = texture_paint). For a material with a
+ * pigment, fills *painted from it with the pigment's colour at `point` and its transmit added to the
+ * material's (at most 1 - filter) and returns painted; otherwise returns the scene's material. */
+const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 point, struct material *painted);
+
+/* Reads the image of every image_map pigment of s (image_map.h). Returns false at the first that
+ * fails, with "scene:line: pigment 'name': what is wrong" in err. */
+bool texture_load_images(struct scene *s, char *err, size_t err_size);
+
+#endif

@@ -1,0 +1,288 @@
+/* test_textures.c: chapter 14's pigments and image maps: the pigment line and its errors, each pattern's
+ * value against POV-Ray's rules (boundaries, the 1.00001 fold, the brick's offsets), the texture
+ * transform, the sRGB decoding and the PNG chunks that choose it, nearest and bilinear lookups on a
+ * picture small enough to work out by hand, the errors of a missing or broken image, and agreement with
+ * POV-Ray on procedural and image-mapped scenes. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "image_map.h"
+#include "image_test_support.h"
+#include "scene.h"
+#include "test_support.h"
+#include "texture.h"
+
+#define SCENE_HEAD "camera eye 0 0 5 target 0 0 0 fov 40\nimage 64 48\n"
+#define PIGMENTS_SCENE "tests/data/textures/pigments.scene"
+#define IMAGES_SCENE "tests/data/textures/images.scene"
+
+/* ---- the pigment line ------------------------------------------------------------------------------ */
+
+/* Parses SCENE_HEAD followed by `lines`; returns whether it parsed, the scene in *s and the message. */
+static bool parse_lines(const char *lines, struct scene *s, char *err, size_t err_size) {
+    char text[1024];
+    snprintf(text, sizeof text, SCENE_HEAD "%s\n", lines);
+    return scene_parse("tex.scene", text, NULL, s, err, err_size);
+}
+
+static void expect_refused(const char *lines, const char *message) {
+    struct scene s;
+    char err[512] = "";
+    cr_expect(!parse_lines(lines, &s, err, sizeof err), "'%s' was accepted", lines);
+    cr_expect_str_eq(err, message, "for '%s'", lines);
+}
+
+Test(pigment_line, keys_transform_and_povrays_brick_defaults_are_read) {
+    struct scene s;
+    char err[512] = "";
+    cr_assert(parse_lines("pigment b brick colour 1 1 1 colour2 0.5 0 0 rotate 0 90 0\n"
+                          "pigment g gradient axis 0 2 0 colour 0 0 0 colour2 1 1 1 scale 2 2 2 translate 1 0 0\n"
+                          "material m pigment g diffuse 0.5",
+                          &s, err, sizeof err),
+              "%s", err);
+    cr_assert_eq(s.pigment_count, 2);
+    const struct pigment *b = &s.pigments[0], *g = &s.pigments[1];
+    cr_expect_eq(b->pattern, PIGMENT_BRICK);
+    cr_expect(b->brick_size.x == 8 && b->brick_size.y == 3 && b->brick_size.z == 4.5, "POV-Ray's brick_size");
+    cr_expect_eq(b->mortar, 0.5);
+    cr_expect(b->scale.x == 1 && b->scale.y == 1 && b->scale.z == 1 && b->rotate.y == 90 && b->translate.x == 0);
+    cr_expect_eq(b->line, 3);
+    cr_expect(g->axis.x == 0 && g->axis.y == 1 && g->axis.z == 0, "the axis is normalised, as POV-Ray does");
+    cr_expect(g->scale.x == 2 && g->translate.x == 1);
+    cr_expect_eq(s.materials[1].pigment, 1);
+    cr_expect_eq(s.materials[0].pigment, -1, "the default material is plain");
+    scene_free(&s);
+}
+
+Test(pigment_line, bad_values_are_refused_with_file_and_line) {
+    expect_refused("pigment p", "tex.scene:3: pigment needs a name and a pattern");
+    expect_refused("pigment p marble colour 1 1 1",
+                   "tex.scene:3: unknown pattern 'marble' (checker, gradient, brick, radial or image_map)");
+    expect_refused("pigment p checker colour 1 1 1", "tex.scene:3: pigment needs 'colour2'");
+    expect_refused("pigment p checker colour 1 1 1 colour2 0 0 0 axis 0 1 0", "tex.scene:3: unknown key 'axis' for pigment");
+    expect_refused("pigment p checker colour -1 1 1 colour2 0 0 0", "tex.scene:3: pigment 'p': colour must not be negative");
+    expect_refused("pigment p gradient axis 0 0 0 colour 1 1 1 colour2 0 0 0", "tex.scene:3: pigment 'p': axis must not be 0 0 0");
+    expect_refused("pigment p radial colour 1 1 1 colour2 0 0 0 scale 1 0 1",
+                   "tex.scene:3: pigment 'p': scale must not be 0 along any axis");
+    expect_refused("pigment p brick colour 1 1 1 colour2 0 0 0 mortar -0.1", "tex.scene:3: pigment 'p': mortar must not be negative");
+    expect_refused("pigment p image_map file a.png interpolate 1",
+                   "tex.scene:3: pigment 'p': interpolate must be 0 (nearest) or 2 (bilinear), got 1");
+    expect_refused("pigment p image_map file a.png map cylindrical",
+                   "tex.scene:3: pigment 'p': map must be planar or spherical, got 'cylindrical'");
+    expect_refused("pigment p image_map file a.png wrap mirror", "tex.scene:3: pigment 'p': wrap must be repeat or once, got 'mirror'");
+    expect_refused("pigment p image_map map planar", "tex.scene:3: pigment needs 'file'");
+    expect_refused("pigment p image_map file a\"b.png",
+                   "tex.scene:3: pigment 'p': the file name must not hold a quote or a backslash");
+    expect_refused("pigment p radial colour 1 1 1 colour2 0 0 0\npigment p radial colour 1 1 1 colour2 0 0 0",
+                   "tex.scene:4: pigment 'p' is already defined");
+    expect_refused("material m pigment q", "tex.scene:3: unknown pigment 'q' (define it with a pigment line first)");
+}
+
+Test(pigment_line, chapters_before_14_ignore_pigments_and_draw_the_plain_colour, .timeout = 60) {
+    expect_chapter_run(12, PIGMENTS_SCENE " --quiet --pov " TEST_OUT "/tex-12.pov", 0, "");
+    char *twin = read_text_file(TEST_OUT "/tex-12.pov");
+    cr_expect_null(strstr(twin, "checker"), "chapter 12's twin carries a pigment");
+    free(twin);
+    expect_chapter_run(12, PIGMENTS_SCENE " -o " TEST_OUT "/tex-12.png", 0,
+                       PIGMENTS_SCENE ": chapter 12 ignores 4 pigments (not introduced yet)");
+}
+
+/* ---- the patterns ---------------------------------------------------------------------------------- */
+
+/* A pigment of the pattern with the identity transform. */
+static struct pigment plain(enum pigment_pattern pattern) {
+    return (struct pigment){.pattern = pattern, .colour = {{0, 0, 0}, {1, 1, 1}}, .axis = {0, 1, 0},
+                            .brick_size = {8, 3, 4.5}, .mortar = 0.5, .scale = {1, 1, 1}};
+}
+
+Test(texture, checker_alternates_and_counts_a_point_just_below_a_boundary_on_the_upper_side) {
+    struct pigment p = plain(PIGMENT_CHECKER);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(0.5, 0.5, 0.5)), 0.0);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(1.5, 0.5, 0.5)), 1.0);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(1.5, -0.5, 0.5)), 0.0);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(-0.5, 0.5, 0.5)), 1.0);
+    /* A floor at y = 0 hit at y = -1e-12 (rounding) is still the cube above: POV-Ray adds 1e-10. */
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(0.5, -1e-12, 0.5)), 0.0);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(0.5, -1e-9, 0.5)), 1.0);
+}
+
+Test(texture, gradient_folds_its_value_as_povray_does) {
+    struct pigment p = plain(PIGMENT_GRADIENT);
+    cr_expect_float_eq(texture_pattern_value(&p, vec3_make(0, 0.25, 0)), 0.25, 1e-12);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(0, 1.0, 0)), 1.0, "1 stays 1 (colour2), not 0");
+    cr_expect_float_eq(texture_pattern_value(&p, vec3_make(0, 1.5, 0)), 0.5, 1e-12);
+    cr_expect_float_eq(texture_pattern_value(&p, vec3_make(0, -0.25, 0)), 0.75, 1e-12);
+    /* Below -1 the fold is by 1.00001, POV-Ray's own figure: -2.3 + 2 * 1.00001 + 1. */
+    cr_expect_float_eq(texture_pattern_value(&p, vec3_make(0, -2.3, 0)), 0.70002, 1e-12);
+    struct texture_colour c = texture_pigment_at(&p, vec3_make(0, 0.25, 0));
+    cr_expect_float_eq(c.colour.x, 0.25, 1e-12, "the colour map blends linearly");
+}
+
+Test(texture, radial_turns_once_round_y_from_minus_z) {
+    struct pigment p = plain(PIGMENT_RADIAL);
+    cr_expect_float_eq(texture_pattern_value(&p, vec3_make(0, 0, 1)), 0.75, 1e-12);
+    cr_expect_float_eq(texture_pattern_value(&p, vec3_make(-1, 0, 0)), 0.5, 1e-12);
+    /* Straight behind, 1.25 folds by 1.00001 to 0.24999, a hair short of the 0.25 on the other side. */
+    cr_expect_float_eq(texture_pattern_value(&p, vec3_make(0, 0, -1)), 0.24999, 1e-12);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(1, 0, 0)), 1.0);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(0.0005, 7, 0.0005)), 0.25, "on the axis: POV-Ray's 0.25");
+}
+
+Test(texture, brick_has_mortar_between_rows_and_staggered_ends) {
+    struct pigment p = plain(PIGMENT_BRICK);
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(1, 1.5, 1)), 1.0, "inside a brick");
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(1, 2.9, 1)), 0.0, "the mortar under the next row");
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(7.8, 1.5, 1)), 0.0, "the end of a brick of the first row");
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(7.8, 4.5, 1)), 1.0, "the next row is shifted by half a brick");
+    cr_expect_eq(texture_pattern_value(&p, vec3_make(3.8, 4.5, 1)), 0.0, "its ends are half way along");
+}
+
+Test(texture, texture_space_undoes_scale_then_rotate_then_translate) {
+    struct pigment p = plain(PIGMENT_CHECKER);
+    p.scale = vec3_make(2, 3, 4);
+    p.rotate = vec3_make(30, 45, 60);
+    p.translate = vec3_make(1, -2, 3);
+    vec3 world = vec3_make(0.3 * 2, -0.7 * 3, 1.1 * 4); /* scaled, then turned and moved as a mesh is */
+    struct mesh m = {.vertices = &world, .vertex_count = 1};
+    mesh_transform(&m, 1.0, p.rotate, p.translate);
+    vec3 back = texture_space(&p, world);
+    cr_expect_float_eq(back.x, 0.3, 1e-12);
+    cr_expect_float_eq(back.y, -0.7, 1e-12);
+    cr_expect_float_eq(back.z, 1.1, 1e-12);
+}
+
+/* ---- image maps ------------------------------------------------------------------------------------ */
+
+Test(image_map, srgb_decoding_is_povrays_curve) {
+    cr_expect_eq(image_map_decode_srgb(0.0f), 0.0f);
+    cr_expect_float_eq(image_map_decode_srgb(1.0f), 1.0f, 1e-6);
+    cr_expect_float_eq(image_map_decode_srgb(0.5f), 0.21404f, 1e-5, "mid grey in the file is 21 %% light");
+    cr_expect_float_eq(image_map_decode_srgb(0.04f), 0.04f / 12.92f, 1e-9, "the linear toe");
+}
+
+/* Appends a PNG chunk (with a dummy CRC, which image_map_png_gamma does not check) to bytes at *at. */
+static void chunk(uint8_t *bytes, size_t *at, const char *type, const uint8_t *data, uint32_t length) {
+    uint8_t *b = bytes + *at;
+    b[0] = 0, b[1] = 0, b[2] = (uint8_t)(length >> 8), b[3] = (uint8_t)length;
+    memcpy(b + 4, type, 4);
+    memcpy(b + 8, data, length);
+    memset(b + 8 + length, 0, 4);
+    *at += 12 + length;
+}
+
+Test(image_map, png_chunks_choose_the_curve_as_povray_does) {
+    static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    static const uint8_t header[13] = {0}, gamma[4] = {0, 0, 0xb1, 0x8f} /* 45455 */, srgb[1] = {0};
+    uint8_t bytes[256];
+    size_t at = 8;
+    memcpy(bytes, signature, 8);
+    chunk(bytes, &at, "IHDR", header, 13);
+    cr_expect_eq(image_map_png_gamma(bytes, at), 0.0, "no chunk: sRGB, as the PNG recommendation says");
+    chunk(bytes, &at, "gAMA", gamma, 4);
+    cr_expect_float_eq(image_map_png_gamma(bytes, at), 0.45455, 1e-12, "gAMA alone: its power law");
+    size_t with_gamma = at;
+    chunk(bytes, &at, "sRGB", srgb, 1);
+    cr_expect_eq(image_map_png_gamma(bytes, at), 0.0, "an sRGB chunk wins");
+    at = with_gamma;
+    chunk(bytes, &at, "IDAT", srgb, 1);
+    chunk(bytes, &at, "sRGB", srgb, 1);
+    cr_expect_float_eq(image_map_png_gamma(bytes, at), 0.45455, 1e-12, "chunks after the image data do not count");
+    cr_expect_eq(image_map_png_gamma((const uint8_t *)"GIF89a", 6), 0.0);
+}
+
+/* A 2 x 2 picture: top row red, green; bottom row blue, white (alpha 1, then 0.5 for white). */
+static struct pigment two_by_two(int interpolate, bool once) {
+    static float texels[16] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 1, 1, 0.5f};
+    struct pigment p = plain(PIGMENT_IMAGE_MAP);
+    p.mapping = PIGMENT_MAP_PLANAR;
+    p.interpolate = interpolate;
+    p.once = once;
+    p.image = (struct pigment_image){2, 2, texels};
+    return p;
+}
+
+Test(image_map, nearest_takes_the_pixel_the_point_falls_in_with_v_up) {
+    struct pigment p = two_by_two(0, false);
+    double rgba[4];
+    cr_assert(image_map_lookup(&p, vec3_make(0.25, 0.75, 0), rgba));
+    cr_expect(rgba[0] == 1 && rgba[1] == 0 && rgba[2] == 0, "top left is red");
+    image_map_lookup(&p, vec3_make(0.25, 0.25, 0), rgba);
+    cr_expect(rgba[2] == 1 && rgba[0] == 0, "bottom left is blue: v runs up, rows down");
+    image_map_lookup(&p, vec3_make(1.75, 0.25, 0), rgba);
+    cr_expect(rgba[0] == 1 && rgba[1] == 1 && rgba[3] == 0.5, "repeated: bottom right is white, half transparent");
+    struct texture_colour c = texture_pigment_at(&p, vec3_make(0.75, 0.25, 5));
+    cr_expect_float_eq(c.transmit, 0.5, 1e-12, "alpha 0.5 lets half the light through");
+}
+
+Test(image_map, bilinear_blends_the_four_pixel_centres_around_the_point) {
+    struct pigment p = two_by_two(2, false);
+    double rgba[4];
+    image_map_lookup(&p, vec3_make(0.5, 0.5, 0), rgba); /* the middle: a quarter of each */
+    cr_expect_float_eq(rgba[0], 0.5, 1e-9);
+    cr_expect_float_eq(rgba[1], 0.5, 1e-9);
+    cr_expect_float_eq(rgba[2], 0.5, 1e-9);
+    image_map_lookup(&p, vec3_make(0.25, 0.75, 0), rgba); /* the centre of the red pixel */
+    cr_expect_float_eq(rgba[0], 1.0, 1e-8);
+    cr_expect_float_eq(rgba[1], 0.0, 1e-8);
+}
+
+Test(image_map, once_shows_one_copy_and_nothing_around_it) {
+    struct pigment p = two_by_two(0, true);
+    double rgba[4];
+    cr_expect(image_map_lookup(&p, vec3_make(0.5, 0.5, 0), rgba));
+    cr_expect(!image_map_lookup(&p, vec3_make(1.5, 0.5, 0), rgba));
+    cr_expect(rgba[3] == 0.0, "outside: fully transparent");
+    cr_expect(!image_map_lookup(&p, vec3_make(0.5, -0.1, 0), rgba));
+}
+
+Test(image_map, spherical_map_puts_longitude_0_at_x_and_the_north_at_the_top) {
+    struct pigment p = two_by_two(0, false);
+    p.mapping = PIGMENT_MAP_SPHERICAL;
+    double rgba[4];
+    image_map_lookup(&p, vec3_make(1, 0.5, 0.01), rgba); /* u just above 0, v above the equator */
+    cr_expect(rgba[0] == 1 && rgba[1] == 0, "north of longitude 0: the top left pixel, red");
+    image_map_lookup(&p, vec3_make(-1, -0.5, -0.01), rgba); /* u just under 1/2... past it */
+    cr_expect(rgba[0] == 1 && rgba[1] == 1, "south, longitude just past 180: bottom right, white");
+}
+
+Test(image_map, missing_and_broken_images_name_the_pigment_line, .timeout = 60) {
+    FILE *f = fopen(TEST_OUT "/tex-broken.scene", "w");
+    cr_assert_not_null(f);
+    fprintf(f, SCENE_HEAD "pigment p image_map file no-such.png\nmaterial m pigment p\n");
+    fclose(f);
+    expect_chapter_run(14, TEST_OUT "/tex-broken.scene -o " TEST_OUT "/tex-broken.png", 1,
+                       TEST_OUT "/tex-broken.scene:3: pigment 'p': " TEST_OUT "/no-such.png: cannot open: No such file or directory");
+    f = fopen(TEST_OUT "/tex-broken.scene", "w");
+    cr_assert_not_null(f);
+    fprintf(f, SCENE_HEAD "pigment p image_map file tex-broken.scene\n");
+    fclose(f);
+    expect_chapter_run(14, TEST_OUT "/tex-broken.scene -o " TEST_OUT "/tex-broken.png", 1,
+                       TEST_OUT "/tex-broken.scene:3: pigment 'p': " TEST_OUT "/tex-broken.scene: not a PNG or JPEG image (");
+}
+
+/* ---- agreement with POV-Ray ----------------------------------------------------------------------- */
+
+/* Renders `scene` with chapter 14 and with POV-Ray; expects 99.99 % of pixels within one level. */
+static void expect_agreement(const char *tag, const char *scene) {
+    char ours[256], theirs[256], what[128];
+    snprintf(ours, sizeof ours, TEST_OUT "/tex-%s-ours.png", tag);
+    snprintf(theirs, sizeof theirs, TEST_OUT "/tex-%s-povray.png", tag);
+    cr_assert_eq(render_chapter(14, scene, ours, ""), 0, "chapter 14 failed on %s", scene);
+    cr_assert(render_povray(14, scene, theirs), "POV-Ray failed on the twin of %s", scene);
+    struct image_difference d = compare_png(ours, theirs);
+    snprintf(what, sizeof what, "chapter 14 %s vs POV-Ray", tag);
+    report_difference(what, &d);
+    cr_expect_geq(d.within_1, 0.9999, "%s: %.4f %% of pixels within 1 level of POV-Ray, max %d", tag,
+                  100 * d.within_1, d.max);
+}
+
+Test(povray_agreement, chapter_14_checker_gradient_brick_and_radial, .timeout = 120) {
+    expect_agreement("pigments", PIGMENTS_SCENE);
+}
+
+Test(povray_agreement, chapter_14_image_maps_nearest_bilinear_once_and_jpeg, .timeout = 120) {
+    expect_agreement("images", IMAGES_SCENE);
+}
