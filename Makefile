@@ -57,7 +57,7 @@ MODULES_09 := $(MODULES_08) kdtree kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh bvh_check accel_bvh
 MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_build accel_fast_bvh
 MODULES_12 := $(MODULES_11) sample_hash supersample
-MODULES_14 := $(MODULES_12) image_map texture
+MODULES_14 := $(MODULES_12) image_map mesh_surface texture
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh 11-fast 12-antialias 14-textures
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
@@ -111,9 +111,9 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..12: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# chapter-N for N = 1..12 and 14: explicit rules (GNU make skips pattern rules for phony targets). Only the
 # models that the chapter's scene names are made first (mesh paths are relative to scenes/).
-## make chapter-N      build chapter N (1..12) and render its scene to out/chapter-NN.png
+## make chapter-N      build chapter N (1..12, 14) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -292,14 +292,15 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-## make check-N        grade chapter N's coursework tasks (1..12): each task, then a scoreboard
+## make check-N        grade chapter N's coursework tasks (1..12, 14): each task, then a scoreboard
 define check_rule
 check-$(1): $(BUILD)/check | out
 	@n=$$$$(printf '%02d' $(1)); \
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
-	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
+	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models $(if $(filter 14,$(1)),$(SCENE_TEXTURES)) >/dev/null && \
+	    WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 14,$(eval $(call check_rule,$(n))))
 
 ## make check          grade every chapter's coursework tasks
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out

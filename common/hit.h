@@ -16,10 +16,13 @@ struct hit {
     vec3 normal;   /* unit geometric normal as the shape defines it (not yet turned to face the ray) */
     int material;  /* index into scene.materials */
     int object;    /* which object was hit, as world.h numbers them (chapter 8's interior list needs it) */
+    int face;      /* the triangle hit: its index within its mesh (the mesh is `object`) or among the
+                    * triangle lines; -1 for every other shape. Chapter 14 finds a mesh's normals and
+                    * texture coordinates with it (world.c and triangle_mesh_closest fill it). */
 };
 
 /* Returns an empty hit: nothing found yet, so anything closer than t_max will do. */
-static inline struct hit hit_nothing(double t_max) { return (struct hit){t_max, {0, 0, 0}, 0, -1}; }
+static inline struct hit hit_nothing(double t_max) { return (struct hit){t_max, {0, 0, 0}, 0, -1, -1}; }
 
 /* Returns true when a surface was found (t is finite). */
 static inline bool hit_found(const struct hit *h) { return isfinite(h->t); }

@@ -94,12 +94,20 @@ static bool starts_as_ply(const char *data, size_t size) {
 }
 
 bool mesh_load(const char *path, struct mesh *m, char *err, size_t err_size) {
+    return mesh_load_with_corners(path, m, NULL, err, err_size);
+}
+
+bool mesh_load_with_corners(const char *path, struct mesh *m, struct mesh_corners *corners, char *err,
+                            size_t err_size) {
     *m = (struct mesh){0};
+    if (corners != NULL)
+        *corners = (struct mesh_corners){0};
     char *data;
     size_t size;
     if (!read_file(path, &data, &size, err, err_size))
         return false;
-    struct mesh_input in = {.path = path, .data = data, .size = size, .err = err, .err_size = err_size};
+    struct mesh_input in = {.path = path, .data = data, .size = size, .err = err, .err_size = err_size,
+                            .corners = corners};
     bool ok;
     if (size == 0)
         ok = mesh_fail_file(&in, "empty file");
@@ -110,8 +118,11 @@ bool mesh_load(const char *path, struct mesh *m, char *err, size_t err_size) {
     if (ok && m->face_count == 0)
         ok = mesh_fail_file(&in, "no faces");
     free(data);
-    if (!ok)
+    if (!ok) {
         mesh_free(m);
+        if (corners != NULL)
+            mesh_corners_free(corners);
+    }
     return ok;
 }
 
@@ -119,6 +130,14 @@ void mesh_free(struct mesh *m) {
     free(m->vertices);
     free(m->faces);
     *m = (struct mesh){0};
+}
+
+void mesh_corners_free(struct mesh_corners *c) {
+    free(c->normals);
+    free(c->uvs);
+    free(c->normal_faces);
+    free(c->uv_faces);
+    *c = (struct mesh_corners){0};
 }
 
 /* ---- placing ---------------------------------------------------------------------------------- */
@@ -141,16 +160,27 @@ static void sin_cos_degrees(double degrees, double *s, double *c) {
     *c = cos(radians);
 }
 
+/* Turns p about x, then y, then z, by the angles whose sines and cosines are given. */
+static vec3 turn_point(vec3 p, double sx, double cx, double sy, double cy, double sz, double cz) {
+    p = (vec3){p.x, p.y * cx - p.z * sx, p.y * sx + p.z * cx}; /* about x: (y, z) turn */
+    p = (vec3){p.z * sy + p.x * cy, p.y, p.z * cy - p.x * sy}; /* about y: (z, x) turn */
+    return (vec3){p.x * cz - p.y * sz, p.x * sz + p.y * cz, p.z}; /* about z: (x, y) turn */
+}
+
 void mesh_transform(struct mesh *m, double scale, vec3 rotate_degrees, vec3 translate) {
     double sx, cx, sy, cy, sz, cz;
     sin_cos_degrees(rotate_degrees.x, &sx, &cx);
     sin_cos_degrees(rotate_degrees.y, &sy, &cy);
     sin_cos_degrees(rotate_degrees.z, &sz, &cz);
-    for (size_t k = 0; k < m->vertex_count; k++) {
-        vec3 p = vec3_scale(m->vertices[k], scale);
-        p = (vec3){p.x, p.y * cx - p.z * sx, p.y * sx + p.z * cx}; /* about x: (y, z) turn */
-        p = (vec3){p.z * sy + p.x * cy, p.y, p.z * cy - p.x * sy}; /* about y: (z, x) turn */
-        p = (vec3){p.x * cz - p.y * sz, p.x * sz + p.y * cz, p.z}; /* about z: (x, y) turn */
-        m->vertices[k] = vec3_add(p, translate);
-    }
+    for (size_t k = 0; k < m->vertex_count; k++)
+        m->vertices[k] = vec3_add(turn_point(vec3_scale(m->vertices[k], scale), sx, cx, sy, cy, sz, cz), translate);
+}
+
+void mesh_corners_turn(struct mesh_corners *c, vec3 rotate_degrees) {
+    double sx, cx, sy, cy, sz, cz;
+    sin_cos_degrees(rotate_degrees.x, &sx, &cx);
+    sin_cos_degrees(rotate_degrees.y, &sy, &cy);
+    sin_cos_degrees(rotate_degrees.z, &sz, &cz);
+    for (size_t k = 0; k < c->normal_count; k++)
+        c->normals[k] = turn_point(c->normals[k], sx, cx, sy, cy, sz, cz);
 }

@@ -7,9 +7,9 @@
  *     ply
  *     format binary_little_endian 1.0
  *     element vertex 8
- *     property float x                 (any scalar type; more properties may follow, and are read past)
- *     property float y
- *     property float z
+ *     property float x                 (any scalar type; more properties may follow, and are read past,
+ *     property float y                  but for normals nx ny nz and texture coordinates u v, also
+ *     property float z                  spelt s t or texture_u texture_v, which mesh_load_with_corners keeps)
  *     element face 6
  *     property list uchar int vertex_indices
  *     end_header
@@ -78,7 +78,19 @@ static const struct {
 enum ply_format { PLY_NO_FORMAT, PLY_ASCII, PLY_BINARY_LITTLE_ENDIAN, PLY_BINARY_BIG_ENDIAN };
 
 /* What a property means to us; everything else is read past. */
-enum ply_role { ROLE_SKIPPED, ROLE_X, ROLE_Y, ROLE_Z, ROLE_CORNERS };
+enum ply_role { ROLE_SKIPPED, ROLE_X, ROLE_Y, ROLE_Z, ROLE_NX, ROLE_NY, ROLE_NZ, ROLE_U, ROLE_V, ROLE_CORNERS };
+
+/* A vertex's values by role, ROLE_X .. ROLE_V, and their names in messages. */
+#define PLY_VERTEX_VALUES (ROLE_V - ROLE_X + 1)
+static const char *const vertex_value_names[PLY_VERTEX_VALUES] = {"x", "y", "z", "nx", "ny", "nz", "u", "v"};
+
+/* The names a vertex property goes by (texture coordinates have three spellings in the wild). */
+static const struct {
+    const char *name;
+    enum ply_role role;
+} vertex_roles[] = {{"x", ROLE_X},   {"y", ROLE_Y},   {"z", ROLE_Z},         {"nx", ROLE_NX},
+                    {"ny", ROLE_NY}, {"nz", ROLE_NZ}, {"u", ROLE_U},         {"v", ROLE_V},
+                    {"s", ROLE_U},   {"t", ROLE_V},   {"texture_u", ROLE_U}, {"texture_v", ROLE_V}};
 
 struct ply_property {
     enum ply_type type;       /* of the value, or of a list's items */
@@ -170,9 +182,11 @@ static bool parse_element(const struct mesh_input *in, size_t line, const struct
 static bool property_role(const struct mesh_input *in, size_t line, const struct ply_header *h,
                           const struct ply_element *e, struct mesh_token name, bool is_list, enum ply_role *role) {
     *role = ROLE_SKIPPED;
-    if (e->kind == KIND_VERTEX && name.length == 1 && name.text[0] >= 'x' && name.text[0] <= 'z')
-        *role = (enum ply_role)(ROLE_X + (name.text[0] - 'x'));
-    else if (e->kind == KIND_FACE &&
+    if (e->kind == KIND_VERTEX) {
+        for (size_t k = 0; k < sizeof vertex_roles / sizeof vertex_roles[0]; k++)
+            if (mesh_token_is(name, vertex_roles[k].name) && (vertex_roles[k].role <= ROLE_Z || in->corners != NULL))
+                *role = vertex_roles[k].role; /* normals and (u, v) only when the caller keeps them */
+    } else if (e->kind == KIND_FACE &&
              (mesh_token_is(name, "vertex_indices") || mesh_token_is(name, "vertex_index")))
         *role = ROLE_CORNERS;
     if (*role == ROLE_SKIPPED)
@@ -288,6 +302,15 @@ static bool check_header(const struct mesh_input *in, const struct ply_header *h
     for (int axis = 0; axis < 3; axis++)
         if (!has_role(h, v, (enum ply_role)(ROLE_X + axis)))
             return mesh_fail_line(in, v->line, "element vertex has no %s property", axis_names[axis]);
+    /* Normals and texture coordinates come whole or not at all: nx with ny and nz, u with v. */
+    static const enum ply_role groups[][3] = {{ROLE_NX, ROLE_NY, ROLE_NZ}, {ROLE_U, ROLE_V, ROLE_V}};
+    for (int g = 0; g < 2; g++)
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < 3; j++)
+                if (has_role(h, v, groups[g][k]) && !has_role(h, v, groups[g][j]))
+                    return mesh_fail_line(in, v->line, "element vertex has %s but no %s",
+                                          vertex_value_names[groups[g][k] - ROLE_X],
+                                          vertex_value_names[groups[g][j] - ROLE_X]);
     if (v->count > MESH_MAX_VERTICES)
         return mesh_fail_line(in, v->line, "more than %zu vertices", MESH_MAX_VERTICES);
     if (face == NO_ELEMENT || h->elements[face].count == 0)
@@ -506,9 +529,9 @@ static bool read_corners(struct ply_reader *r, const struct ply_property *p, siz
     return true;
 }
 
-/* Reads one property of the current entry; a vertex's coordinates go into xyz. */
-static bool read_property(struct ply_reader *r, const struct ply_property *p, size_t vertex_count, double xyz[3]) {
-    static const char *const axis_names[] = {"x", "y", "z"};
+/* Reads one property of the current entry; a vertex's values go into values, by role from ROLE_X. */
+static bool read_property(struct ply_reader *r, const struct ply_property *p, size_t vertex_count,
+                          double values[PLY_VERTEX_VALUES]) {
     if (p->role == ROLE_CORNERS)
         return read_corners(r, p, vertex_count);
     if (p->count_type != PLY_NOT_A_TYPE)
@@ -518,10 +541,10 @@ static bool read_property(struct ply_reader *r, const struct ply_property *p, si
         return false;
     if (p->role == ROLE_SKIPPED)
         return true;
-    int axis = (int)(p->role - ROLE_X);
+    int which = (int)(p->role - ROLE_X);
     if (!isfinite(value))
-        return reader_fail(r, "%s is not a finite number (%g)", axis_names[axis], value);
-    xyz[axis] = value;
+        return reader_fail(r, "%s is not a finite number (%g)", vertex_value_names[which], value);
+    values[which] = value;
     return true;
 }
 
@@ -533,26 +556,62 @@ static bool read_element(struct ply_reader *r, const struct ply_element *e, size
     for (size_t index = 0; index < e->count; index++) {
         if (!begin_entry(r, e, index))
             return false;
-        double xyz[3] = {0, 0, 0};
+        double values[PLY_VERTEX_VALUES] = {0};
         for (size_t k = 0; k < e->property_count; k++)
-            if (!read_property(r, &properties[k], vertex_count, xyz))
+            if (!read_property(r, &properties[k], vertex_count, values))
                 return false;
-        if (e->kind == KIND_VERTEX)
-            r->mesh->vertices[index] = (vec3){xyz[0], xyz[1], xyz[2]};
+        struct mesh_corners *c = r->in->corners;
+        if (e->kind == KIND_VERTEX) {
+            r->mesh->vertices[index] = (vec3){values[0], values[1], values[2]};
+            if (c != NULL && c->normals != NULL)
+                c->normals[index] = (vec3){values[3], values[4], values[5]};
+            if (c != NULL && c->uvs != NULL)
+                c->uvs[index] = (struct mesh_uv){values[6], values[7]};
+        }
         if (!end_entry(r))
             return false;
     }
     return true;
 }
 
-/* Allocates the vertex array and room for one triangle per face; their counts fit in the file. */
+/* Allocates the vertex array (and the normals and texture coordinates the vertices have) and room for
+ * one triangle per face; their counts fit in the file. */
 static bool allocate(const struct mesh_input *in, const struct ply_header *h, struct ply_reader *r) {
-    size_t vertex_count = h->elements[find_element(h, KIND_VERTEX)].count;
+    const struct ply_element *v = &h->elements[find_element(h, KIND_VERTEX)];
+    size_t vertex_count = v->count, room = vertex_count > 0 ? vertex_count : 1;
     size_t face_count = h->elements[find_element(h, KIND_FACE)].count;
-    r->mesh->vertices = calloc(vertex_count > 0 ? vertex_count : 1, sizeof *r->mesh->vertices);
-    if (r->mesh->vertices == NULL || !mesh_reserve_faces(r->mesh, &r->face_capacity, face_count))
+    struct mesh *m = r->mesh;
+    struct mesh_corners *c = in->corners; /* has_role finds normals and (u, v) only when it is not NULL */
+    m->vertices = calloc(room, sizeof *m->vertices);
+    bool ok = m->vertices != NULL;
+    if (ok && has_role(h, v, ROLE_NX)) {
+        c->normals = calloc(room, sizeof *c->normals);
+        c->normal_count = vertex_count;
+        ok = c->normals != NULL;
+    }
+    if (ok && has_role(h, v, ROLE_U)) {
+        c->uvs = calloc(room, sizeof *c->uvs);
+        c->uv_count = vertex_count;
+        ok = c->uvs != NULL;
+    }
+    if (!ok || !mesh_reserve_faces(m, &r->face_capacity, face_count))
         return mesh_fail_file(in, "out of memory for %zu vertices and %zu faces", vertex_count, face_count);
-    r->mesh->vertex_count = vertex_count;
+    m->vertex_count = vertex_count;
+    return true;
+}
+
+/* Each face's normals and texture coordinates are its vertices': copies of the faces' indices. */
+static bool index_corners(const struct mesh_input *in, const struct mesh *m) {
+    struct mesh_corners *c = in->corners;
+    if (c == NULL)
+        return true;
+    size_t bytes = (m->face_count > 0 ? m->face_count : 1) * sizeof *m->faces;
+    if (c->normals != NULL && (c->normal_faces = malloc(bytes)) != NULL)
+        memcpy(c->normal_faces, m->faces, m->face_count * sizeof *m->faces);
+    if (c->uvs != NULL && (c->uv_faces = malloc(bytes)) != NULL)
+        memcpy(c->uv_faces, m->faces, m->face_count * sizeof *m->faces);
+    if ((c->normals != NULL && c->normal_faces == NULL) || (c->uvs != NULL && c->uv_faces == NULL))
+        return mesh_fail_file(in, "out of memory for %zu faces", m->face_count);
     return true;
 }
 
@@ -567,6 +626,8 @@ bool mesh_read_ply(const struct mesh_input *in, struct mesh *m) {
         for (size_t k = 0; ok && k < h.element_count; k++)
             ok = read_element(&r, &h.elements[k], m->vertex_count);
     }
+    if (ok)
+        ok = index_corners(in, m);
     free(h.elements);
     free(h.properties);
     return ok;

@@ -30,6 +30,7 @@ struct mesh_input {
     size_t size;
     char *err;
     size_t err_size;
+    struct mesh_corners *corners; /* where normals and texture coordinates go; NULL: read past them */
 };
 
 /* A run of characters inside the input buffer; not NUL-terminated (print it with "%.*s"). */

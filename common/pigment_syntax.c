@@ -119,8 +119,10 @@ static bool make_image_map(const struct key_values *kv, struct pigment *p, char 
         const char *map = kv->word[IMAGE_MAP];
         if (strcmp(map, "spherical") == 0) {
             p->mapping = PIGMENT_MAP_SPHERICAL;
+        } else if (strcmp(map, "uv") == 0) {
+            p->uv_mapping = true;
         } else if (strcmp(map, "planar") != 0) {
-            snprintf(why, why_size, "pigment '%s': map must be planar or spherical, got '%s'", p->name, map);
+            snprintf(why, why_size, "pigment '%s': map must be planar, spherical or uv, got '%s'", p->name, map);
             return false;
         }
     }
@@ -198,7 +200,8 @@ void pigment_write_pov(FILE *out, const struct pigment *p, double filter, double
         /* The whole path, so that POV-Ray finds the file from whichever folder it runs in. */
         char whole[PATH_MAX];
         const char *file = realpath(p->file, whole) != NULL ? whole : p->file;
-        fprintf(out, "image_map { %s \"%s\" map_type %d", jpeg ? "jpeg" : "png", file, (int)p->mapping);
+        fprintf(out, "%simage_map { %s \"%s\" map_type %d", p->uv_mapping ? "uv_mapping " : "", jpeg ? "jpeg" : "png",
+                file, (int)p->mapping);
         if (p->interpolate != 0) /* POV-Ray refuses `interpolate 0`: no interpolation is its default */
             fprintf(out, " interpolate %d", p->interpolate);
         fprintf(out, "%s filter all %.17g transmit all %.17g }", p->once ? " once" : "", filter, transmit);

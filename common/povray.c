@@ -117,6 +117,24 @@ static void write_appearance(FILE *out, const struct scene *s, int material, enu
     fprintf(out, " }\n");
 }
 
+/* A mesh2 block of vectors, e.g. "  vertex_vectors { 3, <...>, <...>, <...> }". */
+static void write_vectors(FILE *out, const char *block, const vec3 *vectors, size_t count) {
+    fprintf(out, "  %s { %zu", block, count);
+    for (size_t v = 0; v < count; v++) {
+        fprintf(out, ",\n    ");
+        shape_write_vector(out, vectors[v]);
+    }
+    fprintf(out, " }\n");
+}
+
+/* A mesh2 block of index triples, e.g. "  face_indices { 1, <0, 1, 2> }". */
+static void write_faces(FILE *out, const char *block, const struct mesh_face *faces, size_t count) {
+    fprintf(out, "  %s { %zu", block, count);
+    for (size_t f = 0; f < count; f++)
+        fprintf(out, ",\n    <%u, %u, %u>", faces[f].v[0], faces[f].v[1], faces[f].v[2]);
+    fprintf(out, " }\n");
+}
+
 /* Every shape, kind by kind in the scene's order (scene.h), then the meshes. */
 static void write_shapes(FILE *out, const struct scene *s, enum pov_lighting lighting) {
     for (size_t k = 0; k < s->kind_count; k++) {
@@ -129,20 +147,28 @@ static void write_shapes(FILE *out, const struct scene *s, enum pov_lighting lig
     }
     for (size_t k = 0; k < s->mesh_count; k++) {
         const struct mesh *m = &s->meshes[k].mesh;
-        fprintf(out, "mesh2 { // %s\n  vertex_vectors { %zu", s->meshes[k].path, m->vertex_count);
-        for (size_t v = 0; v < m->vertex_count; v++) {
-            fprintf(out, ",\n    ");
-            shape_write_vector(out, m->vertices[v]);
+        const struct mesh_corners *c = &s->meshes[k].corners; /* empty before chapter 14 */
+        fprintf(out, "mesh2 { // %s\n", s->meshes[k].path);
+        write_vectors(out, "vertex_vectors", m->vertices, m->vertex_count);
+        if (c->normal_faces != NULL) /* a smooth mesh */
+            write_vectors(out, "normal_vectors", c->normals, c->normal_count);
+        if (c->uv_faces != NULL) {
+            fprintf(out, "  uv_vectors { %zu", c->uv_count);
+            for (size_t t = 0; t < c->uv_count; t++)
+                fprintf(out, ",\n    <%.17g, %.17g>", c->uvs[t].u, c->uvs[t].v);
+            fprintf(out, " }\n");
         }
-        fprintf(out, " }\n  face_indices { %zu", m->face_count);
-        for (size_t f = 0; f < m->face_count; f++)
-            fprintf(out, ",\n    <%u, %u, %u>", m->faces[f].v[0], m->faces[f].v[1], m->faces[f].v[2]);
+        write_faces(out, "face_indices", m->faces, m->face_count);
+        if (c->normal_faces != NULL)
+            write_faces(out, "normal_indices", c->normal_faces, m->face_count);
+        if (c->uv_faces != NULL)
+            write_faces(out, "uv_indices", c->uv_faces, m->face_count);
         /* inside_vector makes POV-Ray search every box of the mesh's own tree that a ray crosses. Without
          * it, the search stops at the first hit beyond 1e-6, and a shadow ray that grazes a face at 1e-5
          * (a hit the shadow test then throws away, being under its 1e-3 margin) never finds the face
          * that really blocks it: chapter 10 had two such pixels, up to 65 levels off. It must come
          * before the texture. */
-        fprintf(out, " }\n  inside_vector <0, 0, 1>\n ");
+        fprintf(out, "  inside_vector <0, 0, 1>\n ");
         write_appearance(out, s, s->meshes[k].material, lighting);
     }
 }

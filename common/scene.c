@@ -340,15 +340,22 @@ static bool parse_pigment(const struct parser *p, struct scene *s, char **tok, i
 }
 
 static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { SCALE, ROTATE, TRANSLATE, MATERIAL };
-    static const struct key_spec specs[] = {{"scale", 1}, {"rotate", 3}, {"translate", 3}, {"material", 0}};
+    enum { SCALE, ROTATE, TRANSLATE, MATERIAL, SMOOTH };
+    static const struct key_spec specs[] = {{"scale", 1}, {"rotate", 3}, {"translate", 3}, {"material", 0},
+                                            {"smooth", 0}};
     struct key_values kv;
     int material;
     if (n < 1)
         return fail(p, "mesh needs a file name");
-    if (!parse_keys(p, "mesh", tok + 1, n - 1, specs, 4, &kv) ||
+    if (!parse_keys(p, "mesh", tok + 1, n - 1, specs, 5, &kv) ||
         !material_reference(p, s, &kv, MATERIAL, &material))
         return false;
+    int smooth = SCENE_SMOOTH_FILE;
+    if (kv.present[SMOOTH]) {
+        if (strcmp(kv.word[SMOOTH], "on") != 0 && strcmp(kv.word[SMOOTH], "off") != 0)
+            return fail(p, "mesh smooth must be on or off, got '%s'", kv.word[SMOOTH]);
+        smooth = strcmp(kv.word[SMOOTH], "on") == 0 ? SCENE_SMOOTH_ON : SCENE_SMOOTH_OFF;
+    }
     double scale = kv.present[SCALE] ? kv.number[SCALE][0] : 1.0;
     if (!(scale > 0.0))
         return fail(p, "mesh scale must be positive, got %g", scale);
@@ -362,6 +369,7 @@ static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int 
     mesh->rotate = kv.present[ROTATE] ? key_vec3(&kv, ROTATE) : vec3_make(0, 0, 0);
     mesh->translate = kv.present[TRANSLATE] ? key_vec3(&kv, TRANSLATE) : vec3_make(0, 0, 0);
     mesh->material = material;
+    mesh->smooth = smooth;
     mesh->line = p->line;
     return true;
 }
@@ -634,6 +642,10 @@ static void drop_meshes(struct scene *s) {
         free(s->meshes[k].path);
         free(s->meshes[k].mesh.vertices);
         free(s->meshes[k].mesh.faces);
+        free(s->meshes[k].corners.normals);
+        free(s->meshes[k].corners.uvs);
+        free(s->meshes[k].corners.normal_faces);
+        free(s->meshes[k].corners.uv_faces);
     }
     s->mesh_count = 0;
 }

@@ -45,9 +45,16 @@ struct scene_mesh {
     vec3 rotate;         /* degrees about x, then y, then z, applied second */
     vec3 translate;      /* applied last */
     int material;
+    int smooth;          /* chapter 14: SCENE_SMOOTH_FILE, _OFF or _ON (mesh_surface.h) */
     int line;            /* line of the directive, for messages */
     struct mesh mesh;    /* empty until scene_load_meshes */
+    struct mesh_corners corners; /* the file's normals and (u, v), world space; chapter 14 only (mesh.h) */
 };
+
+/* How chapter 14 draws a mesh (the mesh line's `smooth` key): with the file's normals when it has them
+ * (no key), flat whatever the file says (off), or smooth, averaging the faces' normals at each vertex
+ * when the file has none (on). */
+enum { SCENE_SMOOTH_FILE, SCENE_SMOOTH_OFF, SCENE_SMOOTH_ON };
 
 /* The kinds of shape every chapter reads, whether it draws them or not: the lines of spheres,
  * triangles, planes and boxes, in this order, ending with NULL. Defined in scene.c. */
@@ -118,7 +125,8 @@ bool scene_parse(const char *name, const char *text, const struct shape_kind *co
 void scene_free(struct scene *s);
 
 /* Loads the file of every mesh directive and moves its vertices into world space (scale, rotate,
- * translate). Returns false at the first file that fails, with the mesh reader's "file:line: what is
+ * translate). The normals and texture coordinates of the files are kept only when s->paint is set
+ * (chapter 14, which draws them); before, they are dropped and every mesh is flat, in the twin too. Returns false at the first file that fails, with the mesh reader's "file:line: what is
  * wrong" in err; meshes loaded so far stay owned by *s. Defined in scene_meshes.c (chapter 3 on). */
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 

@@ -46,9 +46,11 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size) {
         struct scene_mesh *m = &s->meshes[k];
         if (m->mesh.vertices != NULL)
             continue; /* already loaded */
-        if (!mesh_load(m->path, &m->mesh, err, err_size))
+        /* Chapter 14 (which sets s->paint) keeps the corners' normals and (u, v); before, meshes are flat. */
+        if (!mesh_load_with_corners(m->path, &m->mesh, s->paint != NULL ? &m->corners : NULL, err, err_size))
             return false;
         mesh_transform(&m->mesh, m->scale, m->rotate, m->translate);
+        mesh_corners_turn(&m->corners, m->rotate);
         if (!placed_in_range(s, m, err, err_size))
             return false;
     }

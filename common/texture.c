@@ -7,6 +7,7 @@
 
 #include "hit.h"
 #include "image_map.h"
+#include "mesh_surface.h"
 
 /* POV-Ray's EPSILON: added before the checker's floors and to the brick's mortar, so that a point on a
  * boundary (a floor at y = 0) is counted on the upper side. */
@@ -122,10 +123,22 @@ struct texture_colour texture_pigment_at(const struct pigment *p, vec3 point) {
 }
 
 const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 point, struct material *painted) {
+    const struct scene_mesh *mesh = mesh_surface_find(s, h);
+    size_t face = mesh != NULL ? (size_t)h->face : 0;
+    vec3 normal;
+    if (mesh != NULL && mesh_surface_normal(mesh, face, point, &normal))
+        h->normal = normal; /* a smooth mesh: the corners' normals blended */
     const struct material *m = &s->materials[h->material];
     if (m->pigment < 0)
         return m;
-    struct texture_colour c = texture_pigment_at(&s->pigments[m->pigment], point);
+    const struct pigment *p = &s->pigments[m->pigment];
+    if (p->uv_mapping) { /* the picture by the mesh's texture coordinates: (u, v, 0) stands for the point */
+        struct mesh_uv uv = {0, 0};
+        if (mesh != NULL)
+            mesh_surface_uv(mesh, face, point, &uv);
+        point = vec3_make(uv.u, uv.v, 0);
+    }
+    struct texture_colour c = texture_pigment_at(p, point);
     *painted = *m;
     painted->colour = c.colour;
     painted->transmit = fmin(m->transmit + c.transmit, 1.0 - m->filter);

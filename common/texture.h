@@ -27,8 +27,10 @@ double texture_pattern_value(const struct pigment *p, vec3 q);
  * (texture_load_images). */
 struct texture_colour texture_pigment_at(const struct pigment *p, vec3 point);
 
-/* The scene's paint hook (scene_paint_fn; set run.scene.paint = texture_paint). For a material with a
- * pigment, fills *painted from it with the pigment's colour at `point` and its transmit added to the
+/* The scene's paint hook (scene_paint_fn; set run.scene.paint = texture_paint). On a mesh with normals,
+ * replaces h->normal by the blended normal at `point` (mesh_surface.h). For a material with a pigment,
+ * fills *painted from it with the pigment's colour at `point` (or, for `map uv`, at the mesh's blended
+ * texture coordinates (u, v, 0); (0, 0, 0) on a surface without them) and its transmit added to the
  * material's (at most 1 - filter) and returns painted; otherwise returns the scene's material. */
 const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 point, struct material *painted);
 

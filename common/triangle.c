@@ -130,6 +130,7 @@ bool triangle_mesh_closest(const struct mesh *m, int material, const ray *r, dou
         return false;
     h->normal = triangle_normal(m->vertices[nearest->v[0]], m->vertices[nearest->v[1]], m->vertices[nearest->v[2]]);
     h->material = material;
+    h->face = (int)(nearest - m->faces); /* within the mesh; the caller sets the mesh's object number */
     return true;
 }
 

@@ -127,8 +127,8 @@ bool triangle_closest(const struct triangle *triangles, size_t count, const ray 
 struct mesh; /* mesh.h (chapter 3) */
 
 /* Tests r against every face of mesh m, one by one (the brute-force loop that chapters 9 and 10
- * accelerate), for hits with t_min < t < h->t; keeps the nearest in *h with the given material.
- * Returns true when *h was replaced. */
+ * accelerate), for hits with t_min < t < h->t; keeps the nearest in *h with the given material, and in
+ * h->face the face's index within m. Returns true when *h was replaced. */
 bool triangle_mesh_closest(const struct mesh *m, int material, const ray *r, double t_min, struct hit *h);
 
 /* Returns the unit normal (b - a) x (c - a) of the triangle, by the right-hand rule on its winding. */

@@ -74,13 +74,16 @@ void world_free(struct world *w) {
 }
 
 /* The object a face of the acceleration structure belongs to: the `triangle` directives come first,
- * then the faces of each mesh in order. */
-static int accel_face_object(const struct world *w, uint32_t face) {
+ * then the faces of each mesh in order. Stores in *local the face's index within its mesh (or among the
+ * triangle lines). */
+static int accel_face_object(const struct world *w, uint32_t face, int *local) {
+    *local = (int)face;
     if (face < w->triangles.count)
         return w->triangles.first_object + (int)face;
     const struct scene *s = w->scene;
     size_t first = w->triangles.count;
     for (size_t k = 0; k < s->mesh_count; k++) {
+        *local = (int)(face - first);
         first += s->meshes[k].mesh.face_count;
         if (face < first)
             return world_mesh_object_number(s, k);
@@ -100,7 +103,7 @@ static bool accel_closest(const struct world *w, const ray *r, double t_min, str
     h->t = t;
     h->normal = triangle_normal(v[corner[0]], v[corner[1]], v[corner[2]]);
     h->material = a->materials[face];
-    h->object = accel_face_object(w, face);
+    h->object = accel_face_object(w, face, &h->face);
     return true;
 }
 
@@ -109,6 +112,7 @@ static bool accel_closest(const struct world *w, const ray *r, double t_min, str
 static bool closest_of_kind(const struct world_shapes *k, const ray *r, double t_min, struct hit *h) {
     if (k->count == 0 || !k->kind->closest(k->items, k->count, r, t_min, h))
         return false;
+    h->face = k->kind->syntax == &triangle_syntax ? h->object : -1; /* the line's index among them */
     h->object += k->first_object;
     return true;
 }

@@ -549,11 +549,11 @@ Test(plane, closest_takes_a_tie_from_an_earlier_shape_and_the_first_plane_keeps_
      * two planes at the same t the first keeps it. Down from the origin, y = -2 is at t = 2 exactly. */
     struct plane planes[2] = {{{0, 1, 0}, -2, 1}, {{0, -1, 0}, 2, 2}}; /* y = -2 twice */
     ray r = make_ray(vec3_make(0, 0, 0), vec3_make(0, -1, 0));
-    struct hit h = {2.0, {0, 0, 1}, 9, 5}; /* a box's face, say, found at the same t */
+    struct hit h = {2.0, {0, 0, 1}, 9, 5, -1}; /* a box's face, say, found at the same t */
     cr_assert(plane_closest(planes, 2, &r, RAY_T_MIN, &h));
     cr_assert_eq(h.t, 2.0);
     cr_assert_eq(h.material, 1, "the first plane keeps the tie");
-    struct hit nearer = {nextafter(2.0, 0.0), {0, 0, 1}, 9, 5};
+    struct hit nearer = {nextafter(2.0, 0.0), {0, 0, 1}, 9, 5, -1};
     cr_assert(!plane_closest(planes, 2, &r, RAY_T_MIN, &nearer));
     cr_assert_eq(nearer.material, 9, "a hit one ulp nearer stays");
 }
@@ -803,7 +803,7 @@ static vec3 headlight_colour(vec3 n, vec3 d) {
     struct material materials[2] = {{.name = "default", .colour = {1, 1, 1}},
                                     {.name = "orange", .colour = {0.8, 0.4, 0.2}}};
     struct scene s = {.materials = materials, .material_count = 2};
-    struct hit h = {2.0, n, 1, -1};
+    struct hit h = {2.0, n, 1, -1, -1};
     return headlight_shade(&s, &h, vec3_normalize(d));
 }
 

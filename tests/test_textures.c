@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "image_map.h"
+#include "mesh_surface.h"
 #include "image_test_support.h"
 #include "scene.h"
 #include "test_support.h"
@@ -71,7 +72,7 @@ Test(pigment_line, bad_values_are_refused_with_file_and_line) {
     expect_refused("pigment p image_map file a.png interpolate 1",
                    "tex.scene:3: pigment 'p': interpolate must be 0 (nearest) or 2 (bilinear), got 1");
     expect_refused("pigment p image_map file a.png map cylindrical",
-                   "tex.scene:3: pigment 'p': map must be planar or spherical, got 'cylindrical'");
+                   "tex.scene:3: pigment 'p': map must be planar, spherical or uv, got 'cylindrical'");
     expect_refused("pigment p image_map file a.png wrap mirror", "tex.scene:3: pigment 'p': wrap must be repeat or once, got 'mirror'");
     expect_refused("pigment p image_map map planar", "tex.scene:3: pigment needs 'file'");
     expect_refused("pigment p image_map file a\"b.png",
@@ -285,4 +286,138 @@ Test(povray_agreement, chapter_14_checker_gradient_brick_and_radial, .timeout = 
 
 Test(povray_agreement, chapter_14_image_maps_nearest_bilinear_once_and_jpeg, .timeout = 120) {
     expect_agreement("images", IMAGES_SCENE);
+}
+
+/* ---- smooth meshes and texture coordinates -------------------------------------------------------- */
+
+#define QUAD_OBJ "tests/data/textures/quad.obj"
+#define SMOOTH_SCENE "tests/data/textures/smooth.scene"
+
+/* Writes `text` to TEST_OUT/NAME and returns the path. */
+static const char *write_file(const char *name, const char *text) {
+    static char path[256];
+    snprintf(path, sizeof path, TEST_OUT "/%s", name);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f, "cannot write %s", path);
+    fputs(text, f);
+    fclose(f);
+    return path;
+}
+
+/* Loads the mesh text `text` (written to TEST_OUT/NAME) with its corners; expects failure with
+ * `message` after the path, or success when message is NULL. */
+static void expect_mesh(const char *name, const char *text, const char *message) {
+    const char *path = write_file(name, text);
+    struct mesh m;
+    struct mesh_corners c;
+    char err[512] = "", expected[512];
+    bool ok = mesh_load_with_corners(path, &m, &c, err, sizeof err);
+    if (message == NULL) {
+        cr_expect(ok, "%s", err);
+    } else {
+        snprintf(expected, sizeof expected, "%s%s", path, message);
+        cr_expect(!ok, "%s loaded", name);
+        cr_expect_str_eq(err, expected);
+        cr_expect_null(c.normals, "a failed load leaves no normals");
+    }
+    mesh_free(&m);
+    mesh_corners_free(&c);
+}
+
+Test(mesh_surface, obj_corners_number_texture_coordinates_and_normals_apart) {
+    struct mesh m;
+    struct mesh_corners c;
+    char err[512] = "";
+    cr_assert(mesh_load_with_corners(QUAD_OBJ, &m, &c, err, sizeof err), "%s", err);
+    cr_assert_eq(m.face_count, 2, "the quad is a fan of two triangles");
+    cr_expect_eq(c.uv_count, 4);
+    cr_expect_eq(c.normal_count, 4);
+    cr_assert_not_null(c.uv_faces);
+    cr_assert_not_null(c.normal_faces);
+    cr_expect(c.uv_faces[1].v[0] == 0 && c.uv_faces[1].v[1] == 2 && c.uv_faces[1].v[2] == 3);
+    cr_expect(c.normal_faces[1].v[2] == 3 && c.uvs[2].u == 1 && c.uvs[2].v == 1 && c.normals[0].x == -0.4);
+    mesh_free(&m);
+    mesh_corners_free(&c);
+    /* Without the corners (chapters 3 to 12), vt and vn are read past as before. */
+    cr_assert(mesh_load(QUAD_OBJ, &m, err, sizeof err), "%s", err);
+    mesh_free(&m);
+}
+
+Test(mesh_surface, bad_corners_are_refused_with_file_and_line) {
+    static const char *const base = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n";
+    char text[512];
+    snprintf(text, sizeof text, "%sf 1/1/1 2/1/1 3/5/1\n", base);
+    expect_mesh("bad-vt.obj", text, ":6: vt index 5 out of range (1 texture coordinates)");
+    snprintf(text, sizeof text, "%sf 1//1 2//1 3//9\n", base);
+    expect_mesh("bad-vn.obj", text, ":6: vn index 9 out of range (1 normals)");
+    snprintf(text, sizeof text, "%sf 1//-2 2//1 3//1\n", base);
+    expect_mesh("bad-vn-back.obj", text, ":6: vn index -2 reaches before the first normal (1 normals so far)");
+    snprintf(text, sizeof text, "%sf 1//1 2//1 3\n", base);
+    expect_mesh("mixed.obj", text, ":6: corner '3' has no normal index and earlier corners do");
+    snprintf(text, sizeof text, "%sf 1 2 3\nf 1/1 2/1 3/1\n", base);
+    expect_mesh("mixed-vt.obj", text, ":7: corner '1/1' gives a texture coordinate index and earlier corners do not");
+    expect_mesh("half-normal.ply",
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                "property float nx\nproperty float ny\nelement face 1\nproperty list uchar int vertex_indices\n"
+                "end_header\n0 0 0 0 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 1 2\n",
+                ":3: element vertex has nx but no nz");
+    expect_mesh("half-uv.ply",
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                "property float s\nelement face 1\nproperty list uchar int vertex_indices\n"
+                "end_header\n0 0 0 0\n1 0 0 0\n0 1 0 0\n3 0 1 2\n",
+                ":3: element vertex has u but no v");
+    expect_mesh("uv.ply",
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                "property float texture_u\nproperty float texture_v\nelement face 1\n"
+                "property list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n",
+                NULL);
+}
+
+Test(mesh_surface, weights_blend_and_the_blended_normal_is_unit_length) {
+    double w[3];
+    mesh_surface_weights(vec3_make(0, 0, 0), vec3_make(2, 0, 0), vec3_make(0, 2, 0), vec3_make(0.5, 1, 0), w);
+    cr_expect_float_eq(w[0], 0.25, 1e-12);
+    cr_expect_float_eq(w[1], 0.25, 1e-12);
+    cr_expect_float_eq(w[2], 0.5, 1e-12);
+    vec3 vertices[3] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, normals[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    struct mesh_face face = {{0, 1, 2}};
+    struct scene_mesh sm = {.mesh = {.vertices = vertices, .vertex_count = 3, .faces = &face, .face_count = 1},
+                            .corners = {.normals = normals, .normal_count = 3, .normal_faces = &face}};
+    vec3 n;
+    cr_assert(mesh_surface_normal(&sm, 0, vec3_make(2.0 / 3, 2.0 / 3, 0), &n));
+    cr_expect_float_eq(vec3_length(n), 1.0, 1e-12, "renormalised: the plain blend is 1/sqrt(3) long");
+    cr_expect_float_eq(n.x, 1 / sqrt(3.0), 1e-12);
+    cr_expect(mesh_surface_normal(&sm, 0, vec3_make(0, 0, 0), &n) && n.x == 1.0, "at a corner, its own normal");
+}
+
+Test(mesh_surface, averaged_normals_weigh_each_face_by_its_area) {
+    /* Two faces meet at vertices 0 and 1: a large one in the x-y plane and a small one in x-z. */
+    vec3 vertices[4] = {{0, 0, 0}, {1, 0, 0}, {0, 3, 0}, {0, 0, -1}};
+    struct mesh_face faces[2] = {{{0, 1, 2}}, {{0, 1, 3}}};
+    struct mesh m = {.vertices = vertices, .vertex_count = 4, .faces = faces, .face_count = 2};
+    struct mesh_corners c = {0};
+    cr_assert(mesh_surface_average_normals(&m, &c));
+    cr_expect_float_eq(c.normals[2].z, 1.0, 1e-12, "a vertex of one face takes its normal");
+    cr_expect_float_eq(c.normals[3].y, 1.0, 1e-12);
+    cr_expect_float_eq(c.normals[0].z / c.normals[0].y, 3.0, 1e-12, "the larger face weighs three times more");
+    mesh_corners_free(&c);
+}
+
+Test(mesh_surface, chapters_before_14_draw_meshes_flat_and_the_twin_says_so, .timeout = 60) {
+    expect_chapter_run(12, SMOOTH_SCENE " --quiet --pov " TEST_OUT "/smooth-12.pov", 0, "");
+    char *twin = read_text_file(TEST_OUT "/smooth-12.pov");
+    cr_expect_null(strstr(twin, "normal_vectors"), "chapter 12's twin has smooth meshes");
+    free(twin);
+    expect_chapter_run(14, SMOOTH_SCENE " --quiet --pov " TEST_OUT "/smooth-14.pov", 0, "");
+    twin = read_text_file(TEST_OUT "/smooth-14.pov");
+    cr_expect_not_null(strstr(twin, "normal_vectors"), "chapter 14's twin has no smooth meshes");
+    cr_expect_not_null(strstr(twin, "uv_indices"));
+    free(twin);
+    write_file("bad-smooth.scene", SCENE_HEAD "mesh quad.obj smooth yes\n");
+    expect_chapter_run(14, TEST_OUT "/bad-smooth.scene -o " TEST_OUT "/bad.png", 1,
+                       TEST_OUT "/bad-smooth.scene:3: mesh smooth must be on or off, got 'yes'");
+}
+
+Test(povray_agreement, chapter_14_smooth_teapot_and_uv_mapped_card, .timeout = 120) {
+    expect_agreement("smooth", SMOOTH_SCENE);
 }

@@ -1,13 +1,16 @@
 /* Chapter 14, textures: surfaces whose colour changes from point to point. A material may name a
  * pigment (common/pigment.h): a procedural pattern (checker, gradient, brick, radial) or an image map
  * (a PNG or JPEG decoded to linear light, wrapped by a planar or spherical mapping), each moved by its
- * texture transform. The pigments are evaluated in common/texture.c and common/image_map.c and reach
- * the shading through the scene's paint hook, which hands chapter 8's tracer the material as the
- * pigment makes it at each hit. Everything else is chapter 12's: the fast BVH, the same sampling. */
+ * texture transform. Meshes may be smooth: their corners' normals (from the file, or averaged) blended
+ * across each triangle (common/mesh_surface.c), and may carry texture coordinates for `map uv`. The
+ * pigments are evaluated in common/texture.c and common/image_map.c and reach the shading through the
+ * scene's paint hook, which hands chapter 8's tracer the material and the normal as they are at each
+ * hit. Everything else is chapter 12's: the fast BVH, the same sampling. */
 #include "accel_fast_bvh.h"
 #include "box.h"
 #include "cli.h"
 #include "fast_bvh.h"
+#include "mesh_surface.h"
 #include "plane.h"
 #include "sphere.h"
 #include "supersample.h"
@@ -48,11 +51,13 @@ int main(int argc, char **argv) {
     struct cli_run run;
     if (!cli_start(&run, &chapter, argc, argv))
         return cli_finish(&run);
-    /* What chapter 14 adds: the image maps read, and every hit painted by its material's pigment. */
-    if (!texture_load_images(&run.scene, run.err, sizeof run.err) ||
-        !scene_load_meshes(&run.scene, run.err, sizeof run.err))
-        return cli_fail(&run);
+    /* What chapter 14 adds: the image maps read, the meshes' normals and texture coordinates kept (and
+     * averaged where a mesh is to be smooth without them), and every hit painted by texture_paint. */
     run.scene.paint = texture_paint;
+    if (!texture_load_images(&run.scene, run.err, sizeof run.err) ||
+        !scene_load_meshes(&run.scene, run.err, sizeof run.err) ||
+        !mesh_surface_prepare(&run.scene, run.err, sizeof run.err))
+        return cli_fail(&run);
     struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);

@@ -740,3 +740,30 @@ bool check_rooks(rooks_fn f, char *why, size_t why_size) {
         return fail(why, why_size, "pixel (2, 3), n = 8: seeds 3 and 4 give the same points; the seed must change them");
     return true;
 }
+
+/* ---- exercise 14.4: the cylindrical map ---------------------------------------------------------- */
+
+bool check_cylindrical(cylindrical_fn f, char *why, size_t why_size) {
+    static const struct {
+        vec3 q;
+        double u, v;
+    } cases[] = {
+        {{1, 0, 0}, 0.0, 0.0},   {{0, 0.5, 1}, 0.25, 0.5}, {{-2, 3, 0}, 0.5, 3.0},
+        {{0, -1, -1}, 0.75, -1.0}, {{1, 0.25, 1}, 0.125, 0.25}, {{1, 7, -1e-9}, 1.0 - 1e-9 / (2 * M_PI), 7.0},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double u = -1, v = -1;
+        vec3 q = cases[k].q;
+        if (!f(q, &u, &v))
+            return fail(why, why_size, "(%g, %g, %g): returned false, but the point is off the y axis", q.x, q.y, q.z);
+        if (!(fabs(u - cases[k].u) < 1e-9) || !(fabs(v - cases[k].v) < 1e-12))
+            return fail(why, why_size, "(%g, %g, %g): expected u = %.10g, v = %g, got u = %.10g, v = %g", q.x, q.y, q.z,
+                        cases[k].u, cases[k].v, u, v);
+        if (!(u >= 0.0 && u < 1.0))
+            return fail(why, why_size, "(%g, %g, %g): u = %.17g is outside [0, 1)", q.x, q.y, q.z, u);
+    }
+    double u, v;
+    if (f(vec3_make(0, 2, 0), &u, &v))
+        return fail(why, why_size, "(0, 2, 0) is on the y axis: return false there");
+    return true;
+}

@@ -116,4 +116,13 @@ void supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y)
 typedef void (*rooks_fn)(int, int, int, uint32_t, double *, double *);
 bool check_rooks(rooks_fn f, char *why, size_t why_size);
 
+/* Exercise 14.4 (common/image_map.c): POV-Ray's cylindrical map (map_type 2), a picture wrapped once
+ * round the y axis. Stores in *u the longitude of the point q seen from the y axis as a share of a turn,
+ * in [0, 1): 0 towards +x, 1/4 towards +z, 1/2 towards -x; and in *v its height q.y as it is (the
+ * caller folds it into the picture). Returns false on the y axis itself, where the longitude has no
+ * value (POV-Ray shows nothing there). */
+bool image_map_cylindrical(vec3 q, double *u, double *v);
+typedef bool (*cylindrical_fn)(vec3, double *, double *);
+bool check_cylindrical(cylindrical_fn f, char *why, size_t why_size);
+
 #endif

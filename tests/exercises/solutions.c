@@ -428,3 +428,23 @@ void solution_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, d
 void wrong_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {
     rooks(i, j, n, seed, x, y, false); /* never shuffled: every pixel's rooks on the diagonal */
 }
+
+/* The cylindrical map: the longitude by atan2, moved into [0, 1). */
+bool solution_image_map_cylindrical(vec3 q, double *u, double *v) {
+    if (q.x == 0.0 && q.z == 0.0)
+        return false;
+    double turn = atan2(q.z, q.x) / (2.0 * M_PI);
+    *u = turn < 0.0 ? turn + 1.0 : turn;
+    if (*u >= 1.0)
+        *u = 0.0;
+    *v = q.y;
+    return true;
+}
+
+bool wrong_image_map_cylindrical(vec3 q, double *u, double *v) {
+    if (q.x == 0.0 && q.z == 0.0)
+        return false;
+    *u = atan2(q.z, q.x) / (2.0 * M_PI); /* not moved into [0, 1): half the turn is negative */
+    *v = q.y;
+    return true;
+}
