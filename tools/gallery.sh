@@ -40,6 +40,7 @@ mkdir -p "$work"
 cp -r Makefile common chapters tools bench fuzz reference_images "$work"/
 mkdir -p "$work/tests" "$work/out" && cp -r tests/checks tests/support "$work/tests/"
 mkdir -p "$work/scenes" && cp scenes/*.scene "$work/scenes/" && cp -r scenes/models "$work/scenes/"
+[ ! -d scenes/textures ] || cp -r scenes/textures "$work/scenes/" # chapter 14's pictures, drawn by make
 # The copy builds the way $build was built (build/san: with the sanitizers).
 san=0
 case $build in */san) san=1 ;; esac
