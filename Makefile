@@ -45,7 +45,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index antialias sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := stats camera image outfile infile text_escape name_index antialias area_light sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -57,8 +57,9 @@ MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh accel_bvh
 MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
 MODULES_12 := $(MODULES_11) sample_hash supersample
+MODULES_13 := $(MODULES_12) soft_shadow
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast 12-antialias
+            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
@@ -69,7 +70,7 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
 .PHONY: deps all chapters test test-long test-sanitize test-accel-long references compare gallery figures \
-        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,chapter-$(n) check-$(n))
+        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
@@ -107,9 +108,9 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..12: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# chapter-N for N = 1..13: explicit rules (GNU make skips pattern rules for phony targets). Only the
 # models that the chapter's scene names are made first (mesh paths are relative to scenes/).
-## make chapter-N      build chapter N (1..12) and render its scene to out/chapter-NN.png
+## make chapter-N      build chapter N (1..13) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -118,7 +119,7 @@ chapter-$(1): | out
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13,$(eval $(call run_chapter_rule,$(n))))
 
 ## make chapters       build and render every written chapter
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
@@ -272,14 +273,14 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-## make check-N        grade chapter N's coursework tasks (1..12): each task, then a scoreboard
+## make check-N        grade chapter N's coursework tasks (1..13): each task, then a scoreboard
 define check_rule
 check-$(1): $(BUILD)/check | out
 	@n=$$$$(printf '%02d' $(1)); \
 	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13,$(eval $(call check_rule,$(n))))
 
 ## make check          grade every chapter's coursework tasks
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out

@@ -74,6 +74,7 @@ static void write_lights(FILE *out, const struct scene *s, enum pov_lighting lig
         shape_write_vector(out, s->lights[k].position);
         fprintf(out, " color rgb ");
         shape_write_vector(out, s->lights[k].colour);
+        area_light_write_pov(out, &s->lights[k].area); /* nothing for a point light */
         fprintf(out, " }\n");
     }
 }

@@ -242,17 +242,29 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
 }
 
 static bool parse_light(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { POSITION, COLOUR };
-    static const struct key_spec specs[] = {{"position", 3}, {"colour", 3}};
+    enum { POSITION, COLOUR, AREA }; /* then the area keys (area_light.h) */
+    struct key_spec specs[AREA + AREA_LIGHT_KEY_COUNT] = {{"position", 3}, {"colour", 3}};
+    memcpy(specs + AREA, area_light_keys, sizeof area_light_keys);
     static const int required[] = {POSITION, -1};
-    struct key_values kv;
-    if (!parse_keys(p, "light", tok, n, specs, 2, &kv) || !require_keys(p, "light", specs, &kv, required))
+    struct key_values kv, area_kv = {0};
+    char why[256];
+    if (!parse_keys(p, "light", tok, n, specs, AREA + AREA_LIGHT_KEY_COUNT, &kv) ||
+        !require_keys(p, "light", specs, &kv, required))
         return false;
+    for (int k = 0; k < AREA_LIGHT_KEY_COUNT; k++) { /* the area keys' values, as area_light_make reads them */
+        area_kv.present[k] = kv.present[AREA + k];
+        memcpy(area_kv.number[k], kv.number[AREA + k], sizeof area_kv.number[k]);
+        area_kv.word[k] = kv.word[AREA + k];
+    }
+    struct area_light area;
+    if (!area_light_make(&area_kv, &area, why, sizeof why))
+        return fail(p, "%s", why);
     struct light *light = grow(&s->lights, &s->light_count, sizeof *light);
     if (light == NULL)
         return fail(p, "out of memory");
     light->position = key_vec3(&kv, POSITION);
     light->colour = kv.present[COLOUR] ? key_vec3(&kv, COLOUR) : vec3_make(1, 1, 1);
+    light->area = area;
     return true;
 }
 
@@ -617,6 +629,17 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         size_t used = strlen(what);
         snprintf(what + used, sizeof what - used, "%sthe antialias line", used == 0 ? "" : ", ");
         s->antialias = (struct antialias){0};
+    }
+    size_t areas = 0;
+    for (size_t k = 0; chapter < AREA_LIGHT_CHAPTER && k < s->light_count; k++)
+        if (area_light_is_area(&s->lights[k].area)) {
+            s->lights[k].area = (struct area_light){.adaptive = AREA_LIGHT_NOT_ADAPTIVE};
+            areas++;
+        }
+    if (areas > 0) {
+        size_t used = strlen(what);
+        snprintf(what + used, sizeof what - used, "%sthe area of %zu light%s", used == 0 ? "" : ", ", areas,
+                 areas == 1 ? "" : "s");
     }
     if (what[0] != '\0' && note != NULL) {
         char path[4 * 1024];

@@ -13,6 +13,7 @@
 #include <stdio.h>
 
 #include "antialias.h"
+#include "area_light.h"
 #include "mesh.h"
 #include "shape.h"
 
@@ -32,8 +33,9 @@ struct material {
 };
 
 struct light {
-    vec3 position;
-    vec3 colour; /* intensity per channel; no fall-off with distance */
+    vec3 position; /* of the point light, or of an area light's centre */
+    vec3 colour;   /* intensity per channel; no fall-off with distance */
+    struct area_light area; /* a point light unless area_light_is_area (chapter 13) */
 };
 
 /* A `mesh` directive: which file, how to place it, and (once loaded) its triangles in world space. */
@@ -109,7 +111,8 @@ void scene_free(struct scene *s);
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 
 /* Removes the shapes of every kind the program does not draw (a list without its kind; the meshes go
- * with the triangles), and before chapter 12 the antialias line, so that chapter `chapter` can read
+ * with the triangles), before chapter 12 the antialias line and before chapter 13 the area of area
+ * lights (each becomes a point light at its centre), so that chapter `chapter` can read
  * any scene file and draw what it knows. If
  * something was removed, prints one line to `note` (when not NULL) saying what was ignored, e.g.
  * "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */

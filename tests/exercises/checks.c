@@ -400,7 +400,7 @@ bool check_area_fraction(area_fraction_fn f, char *why, size_t why_size) {
         vec3 p = {x, 0, 0};
         double share = f(&w, p, corner, edge_u, edge_v, 4);
         double sixteenths = share * 16.0;
-        struct light centre = {vec3_make(0, 3, 0), vec3_make(1, 1, 1)};
+        struct light centre = {.position = vec3_make(0, 3, 0), .colour = vec3_make(1, 1, 1)};
         double hard = shadow_opaque(&w, p, &centre).x, one = f(&w, p, corner, edge_u, edge_v, 1);
         if (fabs(sixteenths - round(sixteenths)) > 1e-9)
             ok = fail(why, why_size, "at (%g, 0, 0) with a 4 x 4 grid the share must be a whole number of 16ths; got %g",

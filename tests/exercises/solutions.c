@@ -252,7 +252,7 @@ static double area_fraction(const void *world, vec3 point, vec3 corner, vec3 edg
         for (int j = 0; j < n; j++) {
             double offset = centred ? 0.5 : 0.0;
             vec3 p = vec3_add_scaled(vec3_add_scaled(corner, edge_u, (i + offset) / n), edge_v, (j + offset) / n);
-            struct light sample = {p, vec3_make(1, 1, 1)};
+            struct light sample = {.position = p, .colour = vec3_make(1, 1, 1)};
             arrived += shadow_opaque(world, point, &sample).x > 0.0;
         }
     return (double)arrived / (n * n);
