@@ -45,7 +45,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index antialias area_light sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := stats camera image outfile infile text_escape name_index antialias area_light lens sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -57,7 +57,7 @@ MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh accel_bvh
 MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
 MODULES_12 := $(MODULES_11) sample_hash supersample
-MODULES_13 := $(MODULES_12) soft_shadow
+MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh 11-fast 12-antialias 13-distributed
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
@@ -158,6 +158,7 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader coursework/* \
               results/the_quick_mode_runs_every_experiment_and_draws_every_plot_and_table \
               doc_commands/every_command_runs_as_written deps/without_root_and_without_stb_* \
               povray_agreement/catches_a_highlight_multiplied_by_the_pigment \
+              povray_agreement/chapter_13_depth_of_field_check_catches_a_wrong_lens \
               watertight/chapter_10_with_moller_trumbore_draws_the_leak \
               accel/*_soups_of_3000_triangles accel/*_soups_of_5000_triangles accel/*_outside_float_range \
               accel/*_corners_at_infinity_or_nan acceleration/every_structure_draws_the_brute_force_picture \

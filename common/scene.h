@@ -14,6 +14,7 @@
 
 #include "antialias.h"
 #include "area_light.h"
+#include "lens.h"
 #include "mesh.h"
 #include "shape.h"
 
@@ -67,6 +68,7 @@ struct scene {
     char *path; /* the file it was read from; owned */
     vec3 eye, target, up;
     double fov;           /* vertical field of view, degrees */
+    struct lens lens;     /* the camera's lens (chapter 13); a pinhole without its keys */
     int width, height;    /* image size in pixels */
     vec3 background;      /* colour of rays that hit nothing */
     vec3 ambient_light;   /* global ambient light (POV-Ray ambient_light), default 1 1 1 */
@@ -112,7 +114,8 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 
 /* Removes the shapes of every kind the program does not draw (a list without its kind; the meshes go
  * with the triangles), before chapter 12 the antialias line and before chapter 13 the area of area
- * lights (each becomes a point light at its centre), so that chapter `chapter` can read
+ * lights (each becomes a point light at its centre) and the camera's lens (a pinhole again), so that
+ * chapter `chapter` can read
  * any scene file and draw what it knows. If
  * something was removed, prints one line to `note` (when not NULL) saying what was ignored, e.g.
  * "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */

@@ -1,9 +1,11 @@
-/* Chapter 13, distributed ray tracing: soft shadows from area lights.
+/* Chapter 13, distributed ray tracing: soft shadows from area lights, and depth of field.
  *
  * A light with axis1, axis2 and samples on its line (common/area_light.h) is a rectangle of point
  * lights, and a point that sees part of it lies in the penumbra: its shadow ray becomes several, one
  * per point of the grid, fewer where POV-Ray's adaptive rule finds the corners agree
- * (common/soft_shadow.c). Everything else is chapter 12's: the pixels sampled by the scene's antialias
+ * (common/soft_shadow.c). A camera with an aperture (common/lens.h) is a lens instead of a pinhole:
+ * each camera sample becomes several rays from points over the lens, sharp only on the focal plane
+ * (common/thin_lens.c). Everything else is chapter 12's: the pixels sampled by the scene's antialias
  * line, chapter 11's fast BVH, the same threads. */
 #include "accel_fast_bvh.h"
 #include "box.h"
@@ -12,7 +14,7 @@
 #include "plane.h"
 #include "soft_shadow.h"
 #include "sphere.h"
-#include "supersample.h"
+#include "thin_lens.h"
 #include "triangle.h"
 #include "whitted.h"
 
@@ -45,7 +47,8 @@ int main(int argc, char **argv) {
                         "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
                         "                   kd-tree: the axis holding most objects)\n"
                         "  (a light's samples and adaptive keys say how many shadow rays it takes, e.g.\n"
-                        "   --set light.1.samples=\"9 9\" --set light.1.adaptive=1)\n",
+                        "   --set light.1.samples=\"9 9\" --set light.1.adaptive=1; the camera's aperture\n"
+                        "   and focal_point give it a lens, e.g. --set camera.aperture=0)\n",
     };
     struct cli_run run;
     if (!cli_start(&run, &chapter, argc, argv))
@@ -55,7 +58,8 @@ int main(int argc, char **argv) {
     struct accel_world *w = accel_world_create(&run.scene, &choice, use_fast_bvh, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
-    if (cli_render_sampled(&run, trace_soft, &w->world, &supersample_sampler))
+    /* What chapter 13 adds: soft shadows in the tracer, and the camera samples traced through the lens. */
+    if (cli_render_sampled(&run, trace_soft, &w->world, &thin_lens_sampler))
         accel_report(w, &run.total, run.options.stats);
     accel_world_destroy(w);
     return cli_finish(&run);
