@@ -73,7 +73,10 @@ static bool corners_differ(const struct light_grid *g, vec3 a, vec3 b) {
     return distance > SOFT_SHADOW_THRESHOLD;
 }
 
-/* The share let through by the grid rectangle [u1, u2] x [v1, v2], at `level` cuts from the whole. */
+/* The share let through by the grid rectangle [u1, u2] x [v1, v2], at `level` cuts from the whole:
+ * the mean of its four corners, or, while it spans more than one step and its level is forced or two
+ * neighbouring corners differ, the mean of its four quarters (the rule of soft_shadow.h). */
+/* TASK 13.1: POV-Ray's area light: corners, quarters and the adaptive rule */
 static vec3 rectangle(struct light_grid *g, int u1, int v1, int u2, int v2, int level) {
     vec3 corner[4] = {grid_point(g, u1, v1), grid_point(g, u2, v1), grid_point(g, u1, v2), grid_point(g, u2, v2)};
     int adaptive = g->light->area.adaptive;
@@ -91,7 +94,6 @@ static vec3 rectangle(struct light_grid *g, int u1, int v1, int u2, int v2, int 
     return vec3_scale(vec3_add(vec3_add(vec3_add(corner[0], corner[1]), corner[2]), corner[3]), 0.25);
 }
 
-/* TASK 13.1: the area light's shadow, POV-Ray's recursive rule */
 vec3 soft_shadow_filtered(const void *world, vec3 point, const struct light *light) {
     const struct area_light *a = &light->area;
     if (!area_light_is_area(a))

@@ -56,6 +56,12 @@ const struct task check_tasks[] = {
     {"12.2", "POV-Ray's colour difference test", "supersample_differ in common/supersample.c", ""},
     {"12.P", "chapter 12's picture", "chapters/12-antialias",
      "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3 11.1 11.2 12.1 12.2"},
+    {"13.1", "POV-Ray's area light: corners, quarters and the adaptive rule", "rectangle in common/soft_shadow.c",
+     "2.1"},
+    {"13.2", "the thin lens: a ray from a point of the lens through the focal plane", "thin_lens_ray in common/thin_lens.c",
+     ""},
+    {"13.P", "chapter 13's picture", "chapters/13-distributed",
+     "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3 11.1 11.2 12.1 12.2 13.1"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -116,6 +122,12 @@ CHECK(check_differ_plain);
 CHECK(check_differ_gamma);
 CHECK(check_differ_channels);
 CHECK(check_picture_12);
+CHECK(check_area_open_sky);
+CHECK(check_area_weights);
+CHECK(check_area_adaptive);
+CHECK(check_lens_focus);
+CHECK(check_lens_spread);
+CHECK(check_picture_13);
 
 const struct check check_list[] = {
     {"1.1", "the top-left pixel's ray", check_camera_top_left},
@@ -175,6 +187,12 @@ const struct check check_list[] = {
     {"12.2", "POV-Ray's gamma: a dark step counts more", check_differ_gamma},
     {"12.2", "the channels add up, negative ones count as 0", check_differ_channels},
     {"12.P", "the picture matches the reference", check_picture_12},
+    {"13.1", "open sky: every point traced, all the light", check_area_open_sky},
+    {"13.1", "one column of 3 hidden: POV-Ray's weights give 3/4", check_area_weights},
+    {"13.1", "adaptive 0: corners that agree, of light not of shares", check_area_adaptive},
+    {"13.2", "lens rays start on the lens and meet on the focal plane", check_lens_focus},
+    {"13.2", "the lens points spread around the eye; aperture 0 is a pinhole", check_lens_spread},
+    {"13.P", "the picture matches the reference", check_picture_13},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
 
@@ -261,10 +279,10 @@ int main(int argc, char **argv) {
         only = argv[2];
     else if (argc == 2 && strcmp(argv[1], "all") == 0)
         chapter = -1;
-    else if (argc == 2 && atoi(argv[1]) >= 1 && atoi(argv[1]) <= 12)
+    else if (argc == 2 && atoi(argv[1]) >= 1 && atoi(argv[1]) <= 13)
         chapter = atoi(argv[1]);
     else {
-        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K   (N = 1..12; make check-N runs it)\n", argv[0]);
+        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K   (N = 1..13; make check-N runs it)\n", argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);
