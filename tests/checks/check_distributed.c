@@ -69,7 +69,10 @@ CHECK(check_area_weights) {
     snprintf(why, why_size, "a 3 x 3 area light whose column x = -1 is hidden: the whole is the mean of its four "
              "quarters, each the mean of its corners, so the edge columns weigh 1/4 and the middle one 1/2: 0.75 "
              "arrives; your code gave %.6g with %lu shadow rays%s", share.x, rays,
-             check_near(share.x, 2.0 / 3.0, 1e-6) ? ": a plain mean of the 9 points is not POV-Ray's rule" : "");
+             check_near(share.x, 2.0 / 3.0, 1e-6) ? ": a plain mean of the 9 points is not POV-Ray's rule"
+             : check_near(share.x, 1, 1e-6) ? ": nothing was hidden: do the points run from -1/2 to +1/2 of each axis "
+                                               "around the light's position?"
+                                             : "");
     return false;
 }
 
