@@ -428,3 +428,30 @@ void solution_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, d
 void wrong_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {
     rooks(i, j, n, seed, x, y, false); /* never shuffled: every pixel's rooks on the diagonal */
 }
+
+/* The concentric map; the wrong one pushes each point of the square straight out from the centre onto
+ * the circle of its square (POV-Ray's circular area lights do that): shells keep their areas, but along
+ * each side the points crowd towards the diagonals. */
+void solution_thin_lens_concentric(double u, double v, double *x, double *y) {
+    double a = 2 * u - 1, b = 2 * v - 1, r, angle;
+    if (a == 0 && b == 0) {
+        *x = *y = 0;
+        return;
+    }
+    if (fabs(a) > fabs(b)) {
+        r = a;
+        angle = M_PI / 4 * (b / a);
+    } else {
+        r = b;
+        angle = M_PI / 2 - M_PI / 4 * (a / b);
+    }
+    *x = r * cos(angle);
+    *y = r * sin(angle);
+}
+
+void wrong_thin_lens_concentric(double u, double v, double *x, double *y) {
+    double a = 2 * u - 1, b = 2 * v - 1, length = hypot(a, b);
+    double scale = length > 0 ? fmax(fabs(a), fabs(b)) / length : 0;
+    *x = a * scale;
+    *y = b * scale;
+}

@@ -36,3 +36,4 @@ EXERCISE(9, the_grid_walk_lists_the_cells_in_order, grid_walk, check_grid_walk, 
 EXERCISE(10, the_split_cost_follows_the_sah, bvh_split_cost, check_split_cost, "common/bvh.c")
 EXERCISE(11, four_children_per_node_widest_opened_first, bvh4_collapse, check_collapse, "common/fast_bvh.c")
 EXERCISE(12, n_rooks_one_sample_in_each_row_and_column, supersample_rooks, check_rooks, "common/supersample.c")
+EXERCISE(13, the_concentric_map_keeps_areas, thin_lens_concentric, check_concentric, "common/thin_lens.c")
