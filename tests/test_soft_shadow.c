@@ -19,19 +19,14 @@
 
 /* ---- the light line's area keys -------------------------------------------------------------------- */
 
-/* Parses SCENE_HEAD followed by `lines`; returns whether it parsed, the scene in *s (free it) and the
- * message in err. */
+/* Parses SCENE_HEAD followed by `lines` with every kind of shape; returns whether it parsed, the scene
+ * in *s (free it) and the message in err. */
 static bool parse_lines(const char *lines, struct scene *s, char *err, size_t err_size) {
-    char text[1024];
-    snprintf(text, sizeof text, SCENE_HEAD "%s\n", lines);
-    return scene_parse("soft.scene", text, test_every_kind, s, err, err_size);
+    return parse_scene_lines("soft.scene", SCENE_HEAD, lines, test_every_kind, s, err, err_size);
 }
 
 static void expect_refused(const char *line, const char *message) {
-    struct scene s;
-    char err[512] = "";
-    cr_expect(!parse_lines(line, &s, err, sizeof err), "'%s' was accepted", line);
-    cr_expect_str_eq(err, message, "for '%s'", line);
+    expect_scene_refused("soft.scene", SCENE_HEAD, line, test_every_kind, message);
 }
 
 Test(area_light_line, keys_are_read_and_a_light_without_them_is_a_point) {
@@ -248,24 +243,12 @@ Test(soft_shadow, point_lights_draw_chapter_12s_picture, .timeout = 120) {
     cr_expect_eq(d.max, 0, "chapter 13 on chapter 12's scene differs by up to %d levels", d.max);
 }
 
-/* Renders chapter 13's scene with the --set changes `extra` and its twin with POV-Ray, as TAG. */
-static struct image_difference against_povray(const char *tag, const char *extra) {
-    char ours[256], theirs[256], variant[256], what[256];
-    snprintf(ours, sizeof ours, TEST_OUT "/soft-%s.png", tag);
-    snprintf(theirs, sizeof theirs, TEST_OUT "/soft-%s-povray.png", tag);
-    snprintf(variant, sizeof variant, "scenes/13-distributed.scene.%s.variant", tag);
-    /* The variant scene: the chapter's with the area light's line replaced. */
-    const char *olds[] = {"light position -2 6 3   colour 0.9 0.88 0.8  axis1 3 0 0  axis2 0 0 3  samples 9 9  "
-                          "adaptive 1"},
-               *news[] = {extra};
-    write_scene_variant(chapter_scene(13), variant, olds, news, 1, NULL);
-    bool rendered = render_chapter(13, variant, ours, "") == 0 && render_povray(13, variant, theirs);
-    remove(variant);
-    cr_assert(rendered, "chapter 13 or POV-Ray failed on '%s'", extra);
-    struct image_difference d = compare_png(ours, theirs);
-    snprintf(what, sizeof what, "chapter 13 '%s' vs POV-Ray", extra);
-    report_difference(what, &d);
-    return d;
+/* Chapter 13's scene with its area light's line replaced by `line`, against POV-Ray. */
+static struct image_difference against_povray(const char *tag, const char *line) {
+    char name[128];
+    snprintf(name, sizeof name, "soft-%s", tag);
+    return variant_against_povray(13, "light position -2 6 3   colour 0.9 0.88 0.8  axis1 3 0 0  axis2 0 0 3  "
+                                      "samples 9 9  adaptive 1", line, name);
 }
 
 static void expect_agreement(const char *tag, const char *line) {

@@ -19,16 +19,11 @@
 /* ---- the camera line's lens keys ------------------------------------------------------------------ */
 
 static bool parse_camera(const char *camera, struct scene *s, char *err, size_t err_size) {
-    char text[512];
-    snprintf(text, sizeof text, "%s\nimage 64 48\n", camera);
-    return scene_parse("lens.scene", text, NULL, s, err, err_size);
+    return parse_scene_lines("lens.scene", camera, "\nimage 64 48", NULL, s, err, err_size);
 }
 
 static void expect_refused(const char *camera, const char *message) {
-    struct scene s;
-    char err[512] = "";
-    cr_expect(!parse_camera(camera, &s, err, sizeof err), "'%s' was accepted", camera);
-    cr_expect_str_eq(err, message, "for '%s'", camera);
+    expect_scene_refused("lens.scene", camera, "\nimage 64 48", NULL, message);
 }
 
 #define CAMERA "camera eye 0 0 5 target 0 0 0 fov 40"
