@@ -163,6 +163,9 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader coursework/* \
               accel/*_soups_of_3000_triangles accel/*_soups_of_5000_triangles accel/*_outside_float_range \
               accel/*_corners_at_infinity_or_nan acceleration/every_structure_draws_the_brute_force_picture \
               acceleration/every_rung_of_chapter_11_draws_the_brute_force_picture
+# The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
+# here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
+MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
 LONG_TESTS_PATTERN := @($(subst $() ,|,$(strip $(LONG_TESTS))))
 RUN_TESTS := LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
 
@@ -215,13 +218,13 @@ $(BUILD)/layering-%: $$(BUILD)/chapters/$$(call layering_chapter,$$*).o \
 # $(BUILD)/mutant-NAME is that chapter built from a patched copy of common/ and chapters/ in
 # $(BUILD)/mutants/NAME/ (tests/support/patched-copy.sh), by a second make that sees the copy as it
 # is now; the sources themselves never carry the mistake. The tests prove that their checks catch each
-# one (tests/test_images.c, tests/test_watertight.c).
-MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
+# one (tests/test_images.c, tests/test_watertight.c). The copy and the second make are one recipe line:
+# make -n runs a line that names $(MAKE), and the second make can only plan once the copy exists.
 mutant_chapter = $(call chapter_dir,$(shell printf '%02d' $$(sed -n 's/^Program: //p' tests/mutants/$(1).patch)))
 
 $(BUILD)/mutant-%: tests/mutants/%.patch tests/support/patched-copy.sh $(wildcard common/*.[ch] chapters/*/main.c)
-	tests/support/patched-copy.sh $< $(BUILD)/mutants/$* common chapters
-	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) MUTANT=$* $(BUILD)/mutants/$*/program
+	tests/support/patched-copy.sh $< $(BUILD)/mutants/$* common chapters && \
+	    $(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) MUTANT=$* $(BUILD)/mutants/$*/program
 	cp $(BUILD)/mutants/$*/program $@
 
 # In the second make (MUTANT=NAME): the copy's objects, with the copy's headers first.

@@ -141,3 +141,22 @@ Test(build, make_bench_after_make_test_links_bench_accel_with_embree, .timeout =
     remove_copy(dir);
     remove(log);
 }
+
+Test(build, test_long_builds_every_mutant_first) {
+    /* make test-long runs the deliberately wrong tracers of tests/mutants/, so it must build them: read
+     * its prerequisites from make's database (make -p, which builds nothing here). A list defined after
+     * the rule that names it would be empty there, and a fresh clone would run tests on programs that
+     * do not exist. */
+    static char database[OUTPUT_MAX];
+    cr_assert_eq(run_capturing(MAKE " -pq help 2>/dev/null | grep '^test-long:'", database, sizeof database), 0);
+    char patches[4096];
+    cr_assert_eq(run_capturing("cd tests/mutants && ls *.patch | sed 's/\\.patch$//'", patches, sizeof patches), 0);
+    size_t mutants = 0;
+    for (char *name = strtok(patches, "\n"); name != NULL; name = strtok(NULL, "\n")) {
+        char program[256];
+        snprintf(program, sizeof program, " %s/mutant-%s", build_dir(), name);
+        cr_expect_not_null(strstr(database, program), "make test-long does not build%s:\n%s", program, database);
+        mutants++;
+    }
+    cr_assert_geq(mutants, 2, "tests/mutants/ holds %zu patches", mutants);
+}
