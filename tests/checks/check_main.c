@@ -57,7 +57,7 @@ const struct task check_tasks[] = {
     {"12.P", "chapter 12's picture", "chapters/12-antialias",
      "1.1 2.1 2.2 3.1 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 9.1 9.2 9.3 10.1 10.2 10.3 11.1 11.2 12.1 12.2"},
     {"13.1", "POV-Ray's area light: corners, quarters and the adaptive rule", "rectangle in common/soft_shadow.c",
-     "2.1"},
+     "5.1 5.2"},
     {"13.2", "the thin lens: a ray from a point of the lens through the focal plane", "thin_lens_ray in common/thin_lens.c",
      ""},
     {"13.P", "chapter 13's picture", "chapters/13-distributed",
