@@ -47,8 +47,9 @@ void thin_lens_init(struct thin_lens *t, const struct camera *camera, const stru
 /* Returns lens ray k (0 <= k < t->samples) of the camera sample at image point (x, y) (pixels from the
  * top-left corner): from eye + D (gx right + gy up), (gx, gy) being grid point k moved by
  * (u - 1/2, v - 1/2) cells, towards the point where the pinhole's ray through (x + s - 1/2, y + r - 1/2)
- * meets the focal plane, moved 1/32 of a pixel left and up as POV-Ray's are (thin_lens.c); u, v, s, r are sample_hash_unit's numbers 4k .. 4k + 3 for the image point
- * (to 1 / THIN_LENS_POINT_STEPS of a pixel) and the seed. The direction has unit length. */
+ * meets the focal plane, moved 1/32 of a pixel left and up as POV-Ray's are (thin_lens.c); u, v, s, r
+ * are sample_hash_unit's numbers 4k .. 4k + 3 for the image point (to 1 / THIN_LENS_POINT_STEPS of a
+ * pixel) and the seed. The direction has unit length. */
 ray thin_lens_ray(const struct thin_lens *t, double x, double y, int k);
 
 /* The renderer's way of sampling with a lens: supersample_sampler's (the antialias line) with each

@@ -31,7 +31,9 @@ static bool use_fast_bvh(struct accel_world *w, int split, char *err, size_t err
 
 /* What chapter 13 adds to the tracer: every light's shadow by soft_shadow_filtered, which is chapter 8's
  * filtered shadow ray for a point light and a grid of them for an area light. */
-static vec3 trace_soft(const void *world, const ray *r) { return whitted_trace_shadowed(world, r, soft_shadow_filtered); }
+static vec3 trace_soft(const void *world, const ray *r) {
+    return whitted_trace_shadowed(world, r, soft_shadow_filtered);
+}
 
 int main(int argc, char **argv) {
     /* The kinds of shape chapter 13 draws: every kind so far (chapter 5's). */
