@@ -45,7 +45,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := stats camera image outfile infile text_escape name_index antialias area_light lens sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light lens sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -53,9 +53,9 @@ MODULES_05 := $(MODULES_04) aabb box world
 MODULES_06 := $(MODULES_05) phong
 MODULES_07 := $(MODULES_06) shadow
 MODULES_08 := $(MODULES_07) interior whitted
-MODULES_09 := $(MODULES_08) kdtree kdtree_events kdtree_check accel
-MODULES_10 := $(MODULES_09) bvh accel_bvh
-MODULES_11 := $(MODULES_10) fast_bvh accel_fast_bvh
+MODULES_09 := $(MODULES_08) kdtree kdtree_check accel
+MODULES_10 := $(MODULES_09) bvh bvh_check accel_bvh
+MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_build accel_fast_bvh
 MODULES_12 := $(MODULES_11) sample_hash supersample
 MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
@@ -69,7 +69,7 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 # (tools/models/models.mk, included below).
 SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 
-.PHONY: deps all chapters test test-long test-sanitize test-accel-long references compare gallery figures \
+.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare gallery figures \
         clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
@@ -154,7 +154,9 @@ $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/comm
 # copy of the repository, the no-root install, and the largest differential tests (thousands of
 # triangles, meshes beyond float range, whole pictures by every structure and rung). make test and
 # make test-long together run every test once; CI runs both (.ci/run).
-LONG_TESTS := gallery/every_fault_is_caught_by_the_grader coursework/* \
+LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
+              coursework/the_grader_ends_every_run_with_a_scoreboard_of_every_task \
+              coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_grades_* coursework_long/* \
               results/the_quick_mode_runs_every_experiment_and_draws_every_plot_and_table \
               doc_commands/every_command_runs_as_written deps/without_root_and_without_stb_* \
               povray_agreement/catches_a_highlight_multiplied_by_the_pigment \
@@ -171,8 +173,8 @@ RUN_TESTS := LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITT
 
 ## make test           the quick suite, about a minute: unit tests, reference images, agreement with
 ##                     POV-Ray, the docs' code and outputs (installs what it needs first)
-test: all $(BUILD)/run-tests $(BUILD)/bench_accel | deps
-	$(RUN_TESTS) --filter '!($(LONG_TESTS_PATTERN))'
+test: all $(BUILD)/run-tests $(BUILD)/check $(BUILD)/bench_accel | deps
+	$(RUN_TESTS) --filter '$(TEST_FILTER)'
 
 ## make test-long      the tests make test leaves out (LONG_TESTS in the Makefile), ten minutes or more:
 ##                     the gallery's faults, the coursework kit, the mutants, make results QUICK=1, the
@@ -290,10 +292,25 @@ $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13,$(eval $(call check_rule,$(n))))
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out
 	WHITTED_BUILD=$(BUILD) ./$(BUILD)/check all
 
-## make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": only some)
+## make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": only some), a
+##                     hand-out without the model answers (ANSWERS=1 keeps them: a lecturer's copy)
 student:
-	@test -n "$(DIR)" || { echo 'make student DIR=path [TASKS="2.1 5.1"]: say where the copy goes' >&2; exit 2; }
-	tools/student.sh "$(DIR)" "$(TASKS)"
+	@test -n "$(DIR)" || { echo 'make student DIR=path [TASKS="2.1 5.1"] [ANSWERS=1]: say where the copy goes' >&2; exit 2; }
+	tools/student.sh "$(DIR)" "$(TASKS)" $(if $(filter 1,$(ANSWERS)),--answers)
+
+## make exercises      the build exercises (★★★): each one whose function common/ defines is linked into a
+##                     small program of its own and checked; the others say where to start
+exercises: $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES))) $(BUILD)/tests/exercises/checks.o | deps
+	@CC="$(CC)" CFLAGS="$(CFLAGS)" LDFLAGS="$(LDFLAGS)" LDLIBS="$(LDLIBS)" tests/exercises/runner/run.sh $(BUILD) $^
+
+# What make test runs: all but LONG_TESTS; in a student copy (tools/student.sh leaves .student-copy in it)
+# the suites tests/student-suites names, which apply to a student: the framework around the tasks and the
+# kit itself, passing whatever the tasks hold (make test ALL=1 there: all but LONG_TESTS).
+ifeq ($(wildcard .student-copy)$(filter 1,$(ALL)),.student-copy)
+TEST_FILTER = @($(shell grep -v '^\#' tests/student-suites | paste -sd'|'))/*
+else
+TEST_FILTER = !($(LONG_TESTS_PATTERN))
+endif
 
 # ---- housekeeping ----------------------------------------------------------------------------------
 ## make deps           install the Debian packages building needs, and those of the goals named with it

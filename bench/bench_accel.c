@@ -38,10 +38,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bvh.h"
+#include "clock.h"
 #include "fast_bvh.h"
+#include "fast_bvh_build.h"
 #include "camera.h"
 #include "kdtree.h"
 #include "mesh.h"
@@ -66,37 +67,73 @@ bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light
                       double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
 #endif
 
-/* The processor time the whole process has used, in milliseconds, all its threads together (the
- * benchmark's clock, see bench_accel.c's comment). */
-static double now_ms(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
+/* The benchmark's clock, in milliseconds: the processor time of the whole process (see the comment at
+ * the top). */
+static double processor_ms(void) { return 1e3 * clock_processor_seconds(); }
 
 /* ---- the structures behind one interface -------------------------------------------------------- */
+
+enum structure { NAIVE, KDTREE, BVH, FAST_BVH };
 
 struct accel {
     const char *name;     /* as the table and --only say it */
     const char *csv_name; /* the stable machine name in the CSV's "structure" column */
-    void *(*build)(const struct mesh *m, double *build_ms, double *sah_cost); /* NULL on out of memory */
-    void (*destroy)(void *structure);
-    bool (*closest)(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face);
-    bool (*occluded)(const void *structure, const ray *r, double t_min, double t_max);
+    enum structure structure;
+    int rule;  /* an enum kd_split for KDTREE, an enum bvh_split for BVH, an enum fast_bvh_rung for FAST_BVH
+                  (built by the SAH) */
     int below; /* the row of the rung below, for the ratio; -1 when not a rung */
 };
 
-/* The brute-force loop: every face, every ray. */
-static void *naive_build(const struct mesh *m, double *build_ms, double *sah_cost) {
-    *build_ms = 0.0;
-    *sah_cost = (double)m->face_count;
-    return (void *)m;
+/* A structure built over the model, as one row of the table has it. */
+struct built {
+    enum structure structure;
+    const struct mesh *mesh;   /* NAIVE: the faces tested one by one */
+    struct kdtree *kdtree;     /* KDTREE */
+    struct bvh *bvh;           /* BVH */
+    struct fast_bvh *fast_bvh; /* FAST_BVH */
+};
+
+/* Builds a's structure over m into *out, timing it into *build_ms (0 for the brute-force loop, which
+ * builds nothing) and putting its own predicted cost per ray in *sah_cost. Returns false when memory
+ * runs out. */
+static bool build(const struct accel *a, const struct mesh *m, struct built *out, double *build_ms,
+                  double *sah_cost) {
+    *out = (struct built){a->structure, m, NULL, NULL, NULL};
+    double start = processor_ms();
+    switch (a->structure) {
+    case NAIVE:
+        *build_ms = 0.0;
+        *sah_cost = (double)m->face_count;
+        return true;
+    case KDTREE:
+        out->kdtree = kdtree_build(m, (enum kd_split)a->rule);
+        break;
+    case BVH:
+        out->bvh = bvh_build(m, (enum bvh_split)a->rule);
+        break;
+    case FAST_BVH:
+        out->fast_bvh = fast_bvh_build(m, BVH_SPLIT_SAH, (enum fast_bvh_rung)a->rule);
+        break;
+    }
+    *build_ms = processor_ms() - start;
+    struct kdtree_info kd_info;
+    if (out->kdtree != NULL)
+        kdtree_get_info(out->kdtree, &kd_info);
+    *sah_cost = out->kdtree != NULL ? kd_info.sah_cost
+              : out->bvh != NULL    ? out->bvh->info.sah_cost
+              : out->fast_bvh != NULL ? out->fast_bvh->info.sah_cost
+                                      : 0.0;
+    return out->kdtree != NULL || out->bvh != NULL || out->fast_bvh != NULL;
 }
 
-static void naive_destroy(void *structure) { (void)structure; }
+static void destroy(struct built *b) {
+    kdtree_free(b->kdtree);
+    bvh_free(b->bvh);
+    fast_bvh_free(b->fast_bvh);
+}
 
-static bool naive_closest(const void *structure, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
-    const struct mesh *m = structure;
+/* The brute-force loop: every face, every ray. */
+static bool naive_closest(const struct mesh *m, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
     bool found = false;
     struct triangle_ray prepared = triangle_ray_make(r); /* once for all faces, as triangle_mesh_closest does */
     double u, v;
@@ -113,8 +150,7 @@ static bool naive_closest(const void *structure, const ray *r, double t_min, dou
     return found;
 }
 
-static bool naive_occluded(const void *structure, const ray *r, double t_min, double t_max) {
-    const struct mesh *m = structure;
+static bool naive_occluded(const struct mesh *m, const ray *r, double t_min, double t_max) {
     struct triangle_ray prepared = triangle_ray_make(r);
     double t, u, v;
     for (size_t k = 0; k < m->face_count; k++) {
@@ -126,90 +162,46 @@ static bool naive_occluded(const void *structure, const ray *r, double t_min, do
     return false;
 }
 
-#define BVH_ADAPTER(tag, rule)                                                                            \
-    static void *tag##_build(const struct mesh *m, double *build_ms, double *sah_cost) {                  \
-        double start = now_ms();                                                                          \
-        struct bvh *b = bvh_build(m, rule);                                                               \
-        struct bvh_info info;                                                                             \
-        if (b != NULL) {                                                                                  \
-            bvh_get_info(b, &info);                                                                       \
-            *build_ms = now_ms() - start;                                                                 \
-            *sah_cost = info.sah_cost;                                                                    \
-        }                                                                                                 \
-        return b;                                                                                         \
+/* The nearest face b's structure finds on r with t_min < t < t_max. */
+static bool closest(const struct built *b, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    switch (b->structure) {
+    case KDTREE:
+        return kdtree_closest(b->kdtree, r, t_min, t_max, t, face);
+    case BVH:
+        return bvh_closest(b->bvh, r, t_min, t_max, t, face);
+    case FAST_BVH:
+        return fast_bvh_closest(b->fast_bvh, r, t_min, t_max, t, face);
+    default:
+        return naive_closest(b->mesh, r, t_min, t_max, t, face);
     }
+}
 
-#define KD_ADAPTER(tag, rule)                                                                             \
-    static void *tag##_build(const struct mesh *m, double *build_ms, double *sah_cost) {                  \
-        double start = now_ms();                                                                          \
-        struct kdtree *k = kdtree_build(m, rule);                                                         \
-        struct kdtree_info info;                                                                          \
-        if (k != NULL) {                                                                                  \
-            kdtree_get_info(k, &info);                                                                    \
-            *build_ms = now_ms() - start;                                                                 \
-            *sah_cost = info.sah_cost;                                                                    \
-        }                                                                                                 \
-        return k;                                                                                         \
+/* Whether b's structure finds anything on r with t_min < t < t_max. */
+static bool occluded(const struct built *b, const ray *r, double t_min, double t_max) {
+    switch (b->structure) {
+    case KDTREE:
+        return kdtree_occluded(b->kdtree, r, t_min, t_max);
+    case BVH:
+        return bvh_occluded(b->bvh, r, t_min, t_max);
+    case FAST_BVH:
+        return fast_bvh_occluded(b->fast_bvh, r, t_min, t_max);
+    default:
+        return naive_occluded(b->mesh, r, t_min, t_max);
     }
-
-BVH_ADAPTER(bvh_median, BVH_SPLIT_MEDIAN)
-BVH_ADAPTER(bvh_sah, BVH_SPLIT_SAH)
-KD_ADAPTER(kd_seed, KD_SPLIT_SEED)
-KD_ADAPTER(kd_sah, KD_SPLIT_SAH)
-
-static void bvh_destroy(void *s) { bvh_free(s); }
-static bool bvh_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
-    return bvh_closest(s, r, t_min, t_max, t, face);
-}
-static bool bvh_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
-    return bvh_occluded(s, r, t_min, t_max);
-}
-#define FAST_ADAPTER(rung)                                                                                \
-    static void *fast_##rung##_build(const struct mesh *m, double *build_ms, double *sah_cost) {           \
-        double start = now_ms();                                                                          \
-        struct fast_bvh *b = fast_bvh_build(m, BVH_SPLIT_SAH, rung);                                      \
-        struct bvh_info info;                                                                             \
-        if (b != NULL) {                                                                                  \
-            fast_bvh_get_info(b, &info);                                                                  \
-            *build_ms = now_ms() - start;                                                                 \
-            *sah_cost = info.sah_cost;                                                                    \
-        }                                                                                                 \
-        return b;                                                                                         \
-    }
-
-FAST_ADAPTER(FAST_BVH_RUNG_WIDE)
-FAST_ADAPTER(FAST_BVH_RUNG_SIMD)
-FAST_ADAPTER(FAST_BVH_RUNG_PREFETCH)
-FAST_ADAPTER(FAST_BVH_RUNG_BUILD)
-
-static void fast_destroy(void *s) { fast_bvh_free(s); }
-static bool fast_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
-    return fast_bvh_closest(s, r, t_min, t_max, t, face);
-}
-static bool fast_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
-    return fast_bvh_occluded(s, r, t_min, t_max);
-}
-static void kd_destroy(void *s) { kdtree_free(s); }
-static bool kd_closest_any(const void *s, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
-    return kdtree_closest(s, r, t_min, t_max, t, face);
-}
-static bool kd_occluded_any(const void *s, const ray *r, double t_min, double t_max) {
-    return kdtree_occluded(s, r, t_min, t_max);
 }
 
 /* In the order the table prints them; BVH-SAH (index ACCEL_REFERENCE) is traced first and is the
  * frame the others are checked against. */
 static const struct accel accels[] = {
-    {"naive", "naive", naive_build, naive_destroy, naive_closest, naive_occluded, -1},
-    {"kd-seed", "kd-seed", kd_seed_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
-    {"kd-SAH", "kd-sah", kd_sah_build, kd_destroy, kd_closest_any, kd_occluded_any, -1},
-    {"BVH-median", "bvh-median", bvh_median_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
-    {"BVH-SAH (rung 1 plain)", "bvh-sah", bvh_sah_build, bvh_destroy, bvh_closest_any, bvh_occluded_any, -1},
-    {"rung 2 wide", "rung-2", fast_FAST_BVH_RUNG_WIDE_build, fast_destroy, fast_closest_any, fast_occluded_any, 4},
-    {"rung 3 simd", "rung-3", fast_FAST_BVH_RUNG_SIMD_build, fast_destroy, fast_closest_any, fast_occluded_any, 5},
-    {"rung 4 prefetch", "rung-4", fast_FAST_BVH_RUNG_PREFETCH_build, fast_destroy, fast_closest_any,
-     fast_occluded_any, 6},
-    {"rung 5 build", "rung-5", fast_FAST_BVH_RUNG_BUILD_build, fast_destroy, fast_closest_any, fast_occluded_any, 7},
+    {"naive", "naive", NAIVE, 0, -1},
+    {"kd-seed", "kd-seed", KDTREE, KD_SPLIT_SEED, -1},
+    {"kd-SAH", "kd-sah", KDTREE, KD_SPLIT_SAH, -1},
+    {"BVH-median", "bvh-median", BVH, BVH_SPLIT_MEDIAN, -1},
+    {"BVH-SAH (rung 1 plain)", "bvh-sah", BVH, BVH_SPLIT_SAH, -1},
+    {"rung 2 wide", "rung-2", FAST_BVH, FAST_BVH_RUNG_WIDE, 4},
+    {"rung 3 simd", "rung-3", FAST_BVH, FAST_BVH_RUNG_SIMD, 5},
+    {"rung 4 prefetch", "rung-4", FAST_BVH, FAST_BVH_RUNG_PREFETCH, 6},
+    {"rung 5 build", "rung-5", FAST_BVH, FAST_BVH_RUNG_BUILD, 7},
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
 #define ACCEL_NAIVE 0
@@ -231,11 +223,11 @@ struct frame {
 };
 
 /* Traces the rows listed in rows[0..row_count) into pixels (indexed by j * width + i). */
-static void trace_frame(const struct accel *a, const void *structure, const struct camera *cam, vec3 light,
-                        const int *rows, int row_count, struct pixel *pixels, struct frame *out) {
+static void trace_frame(const struct built *structure, const struct camera *cam, vec3 light, const int *rows,
+                        int row_count, struct pixel *pixels, struct frame *out) {
     stats_reset_thread();
     uint64_t primary_tests = 0;
-    double start = now_ms();
+    double start = processor_ms();
     for (int k = 0; k < row_count; k++) {
         int j = rows[k];
         for (int i = 0; i < cam->width; i++) {
@@ -243,7 +235,7 @@ static void trace_frame(const struct accel *a, const void *structure, const stru
             stats_thread.primary_rays++;
             struct pixel p = {INFINITY, UINT32_MAX, false};
             uint64_t before = stats_thread.triangle_tests;
-            bool hit = a->closest(structure, &r, RAY_T_MIN, INFINITY, &p.t, &p.face);
+            bool hit = closest(structure, &r, RAY_T_MIN, INFINITY, &p.t, &p.face);
             primary_tests += stats_thread.triangle_tests - before;
             if (hit) {
                 vec3 point = ray_at(r, p.t);
@@ -251,12 +243,12 @@ static void trace_frame(const struct accel *a, const void *structure, const stru
                 double distance = vec3_length(to_light);
                 ray shadow = {point, vec3_scale(to_light, 1.0 / distance)};
                 stats_thread.shadow_rays++;
-                p.shadowed = a->occluded(structure, &shadow, SHADOW_T_MIN, distance - SHADOW_T_MIN);
+                p.shadowed = occluded(structure, &shadow, SHADOW_T_MIN, distance - SHADOW_T_MIN);
             }
             pixels[(size_t)j * cam->width + i] = p;
         }
     }
-    out->ms = now_ms() - start;
+    out->ms = processor_ms() - start;
     out->counters = stats_thread;
     out->primary_tests = primary_tests;
 }
@@ -543,14 +535,14 @@ static int bench_model(const char *path, const struct options *options) {
                 row->frame_ms = INFINITY;
             }
             double build_ms = 0, sah_cost = 0;
-            void *s = a->build(&m, &build_ms, &sah_cost);
-            if (s == NULL) {
+            struct built structure;
+            if (!build(a, &m, &structure, &build_ms, &sah_cost)) {
                 fprintf(stderr, "bench_accel: %s: out of memory building %s\n", path, a->name);
                 return 1;
             }
             struct frame f;
-            trace_frame(a, s, &cam, light, list, list_count, k == ACCEL_REFERENCE ? reference : pixels, &f);
-            a->destroy(s);
+            trace_frame(&structure, &cam, light, list, list_count, k == ACCEL_REFERENCE ? reference : pixels, &f);
+            destroy(&structure);
             double scale = (double)cam.height / list_count; /* extrapolation of the sampled rows */
             row->build_ms = build_ms < row->build_ms ? build_ms : row->build_ms;
             if (f.ms * scale < row->frame_ms) {

@@ -14,22 +14,14 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
-#include <time.h>
 
 #include "camera.h"
+#include "clock.h"
 #include "mesh.h"
 
 /* Also declared in bench_accel.c (the benchmark has no header of its own). */
 bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int repeats, double *build_ms,
                       double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
-
-/* The processor time the whole process has used, in milliseconds, all its threads together (the
- * benchmark's clock, see bench_accel.c's comment). */
-static double now_ms(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
-}
 
 /* A scene holding m as one triangle geometry, not yet committed (built). NULL on failure. */
 static RTCScene new_scene(RTCDevice device, const struct mesh *m) {
@@ -76,7 +68,7 @@ static void set_ray(struct RTCRay *out, vec3 origin, vec3 direction, double t_mi
 static double trace_frame(RTCScene scene, const struct camera *cam, vec3 light, unsigned char *pixels) {
     struct RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    double start = now_ms();
+    double start = 1e3 * clock_processor_seconds();
     for (int j = 0; j < cam->height; j++) {
         for (int i = 0; i < cam->width; i++) {
             ray r = camera_ray(cam, i, j);
@@ -98,7 +90,7 @@ static double trace_frame(RTCScene scene, const struct camera *cam, vec3 light, 
             pixels[(size_t)j * cam->width + i] = code;
         }
     }
-    return now_ms() - start;
+    return 1e3 * clock_processor_seconds() - start;
 }
 
 /* Builds the scene `repeats` times and traces the frame `repeats` times; reports the fastest of each
@@ -119,9 +111,9 @@ bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light
             rtcReleaseDevice(device);
             return false;
         }
-        double start = now_ms();
+        double start = 1e3 * clock_processor_seconds();
         rtcCommitScene(scene);
-        double built = now_ms() - start;
+        double built = 1e3 * clock_processor_seconds() - start;
         if (rtcGetDeviceError(device) != RTC_ERROR_NONE) {
             snprintf(err, err_size, "embree: rtcCommitScene failed");
             rtcReleaseScene(scene);

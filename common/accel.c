@@ -4,18 +4,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-#include "bvh.h" /* only for the names of the split rules */
-#include "text_escape.h"
+#include "clock.h"
 #include "kdtree.h"
+#include "text_escape.h"
 #include "triangle.h"
-
-double accel_now_ms(void) {
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return 1e3 * (double)now.tv_sec + 1e-6 * (double)now.tv_nsec;
-}
 
 /* Copies every triangle of s into one mesh, with each face's material beside it. */
 static bool gather_triangles(struct accel_world *w, const struct scene *s) {
@@ -83,8 +76,7 @@ void accel_world_free(struct accel_world *w) {
     memset(w, 0, sizeof *w);
 }
 
-void *accel_world_create(struct scene *s, const struct accel_choice *c, accel_bvh_builder use_bvh, char *err,
-                         size_t err_size) {
+struct accel_world *accel_world_create(struct scene *s, const struct accel_choice *c, char *err, size_t err_size) {
     struct accel_world *w = malloc(sizeof *w);
     if (w == NULL || !accel_world_init(w, s, err, err_size)) {
         if (w == NULL)
@@ -92,12 +84,7 @@ void *accel_world_create(struct scene *s, const struct accel_choice *c, accel_bv
         free(w);
         return NULL;
     }
-    bool built = true;
-    if (c->kind == ACCEL_KDTREE)
-        built = accel_world_use_kdtree(w, c->sah ? KD_SPLIT_SAH : KD_SPLIT_SEED, err, err_size);
-    else if (c->kind == ACCEL_BVH && use_bvh != NULL)
-        built = use_bvh(w, c->sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, err, err_size);
-    if (!built) {
+    if (c->kind == ACCEL_KDTREE && !accel_world_use_kdtree(w, c->sah ? KD_SPLIT_SAH : KD_SPLIT_SEED, err, err_size)) {
         accel_world_destroy(w);
         return NULL;
     }
@@ -176,9 +163,9 @@ void accel_report(const struct accel_world *w, const struct stats *total, bool d
 }
 
 bool accel_world_use_kdtree(struct accel_world *w, int split, char *err, size_t err_size) {
-    double started = accel_now_ms();
+    double started = clock_seconds();
     struct kdtree *tree = kdtree_build(&w->triangles, (enum kd_split)split);
-    double build_ms = accel_now_ms() - started;
+    double build_ms = 1e3 * (clock_seconds() - started);
     if (tree == NULL) {
         snprintf(err, err_size, "out of memory building the kd-tree");
         return false;

@@ -61,13 +61,11 @@ struct accel_choice {
  * not one of these, -1 after printing why the value is wrong. */
 int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *option, const char *value);
 
-/* Builds a BVH into w: accel_world_use_bvh, passed in by chapter 10 (chapter 9 has none to pass). */
-typedef bool (*accel_bvh_builder)(struct accel_world *w, int split, char *err, size_t err_size);
-
-/* Makes a heap-allocated accel_world for s with the structure `c` asks for (a BVH through use_bvh).
- * Returns it, or NULL with the reason in err. Free with accel_world_destroy. */
-void *accel_world_create(struct scene *s, const struct accel_choice *c, accel_bvh_builder use_bvh, char *err,
-                         size_t err_size);
+/* Makes a heap-allocated accel_world for s with the structure `c` asks for when it is chapter 9's (none
+ * or the kd-tree). A later chapter's structure is that chapter's to add: for ACCEL_BVH the world is made
+ * without one, for accel_world_use_bvh (chapter 10) or accel_world_use_fast_bvh (chapter 11). Returns
+ * it, or NULL with the reason in err. Free with accel_world_destroy. */
+struct accel_world *accel_world_create(struct scene *s, const struct accel_choice *c, char *err, size_t err_size);
 
 /* Frees a heap-allocated accel_world and what it owns. */
 void accel_world_destroy(void *world);
@@ -75,8 +73,5 @@ void accel_world_destroy(void *world);
 /* Prints what was built and its build time; with `detailed`, also its shape and what tracing it cost
  * per ray, beside the cost the SAH predicted. `total` holds the counters of the whole render. */
 void accel_report(const struct accel_world *w, const struct stats *total, bool detailed);
-
-/* Returns the wall-clock time in milliseconds since an arbitrary fixed point, for build timings. */
-double accel_now_ms(void);
 
 #endif

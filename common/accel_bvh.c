@@ -4,6 +4,7 @@
 #include <stdio.h>
 
 #include "bvh.h"
+#include "clock.h"
 
 static bool bvh_closest_any(const void *bvh, const ray *r, double t_min, double t_max, double *t,
                             uint32_t *face) {
@@ -22,9 +23,9 @@ static void bvh_for_each_hit_any(const void *bvh, const ray *r, double t_min, do
 static void bvh_free_any(void *bvh) { bvh_free(bvh); }
 
 bool accel_world_use_bvh(struct accel_world *w, int split, char *err, size_t err_size) {
-    double started = accel_now_ms();
+    double started = clock_seconds();
     struct bvh *bvh = bvh_build(&w->triangles, (enum bvh_split)split);
-    double build_ms = accel_now_ms() - started;
+    double build_ms = 1e3 * (clock_seconds() - started);
     if (bvh == NULL) {
         snprintf(err, err_size, "out of memory building the BVH");
         return false;

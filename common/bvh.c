@@ -1,7 +1,7 @@
 /* bvh.c: bounding volume hierarchy: median and binned-SAH builds, ordered traversal (chapter 10).
  *
- * The build sorts the triangles into a binary tree of boxes. Each node has the box around its
- * triangles; an interior node has two children, a leaf a run of triangles. BVH_SPLIT_MEDIAN is the
+ * The build sorts the triangles into a binary tree of chapter 5's boxes. Each node has the box around
+ * its triangles; an interior node has two children, a leaf a run of triangles. BVH_SPLIT_MEDIAN is the
  * dissertation's rule (halve the triangles by centroid along the longest axis). BVH_SPLIT_SAH is the
  * binned surface area heuristic of Wald, "On fast construction of SAH-based bounding volume
  * hierarchies" (IEEE RT 2007): the centroids are dropped into BVH_BINS slots per axis, and of the
@@ -12,22 +12,22 @@
  * Booth 1990), so the sum is the expected cost of a ray that reaches the node.
  *
  * The traversal keeps a stack of nodes still to visit, each with the distance at which the ray enters
- * its box. At an interior node it tests both children's boxes and visits the nearer first; a node that
- * starts beyond the best hit so far is skipped. A shadow ray stops at its first hit.
+ * its box. At an interior node it tests both children's boxes with chapter 5's slab test (aabb_hit)
+ * and visits the nearer first; a node that starts beyond the best hit so far is skipped. A shadow ray
+ * stops at its first hit.
  *
  * Exact agreement with the brute-force loop. A query must return the very face and t that testing
- * every face with triangle_intersect would. Four things make sure of it:
+ * every face with triangle_intersect would. Four things make sure of it (triangle.h states each rule):
  *  - Triangles are tested with triangle_crossing_prepared (triangle.h), the very arithmetic
  *    triangle_intersect uses (the ray made ready once per query), on the very corners the mesh holds,
  *    so t is the same double to the last bit.
  *  - A box may only be skipped when no triangle inside can be reported hit. The triangle test rounds:
  *    it may call a ray that passes a hair outside a triangle a hit. So every triangle's box is grown by
- *    BVH_BOX_PAD times the mesh's size, far more than any such rounding error (about 1e-16 of the
- *    distance from the ray's origin) and far too little to cost anything measurable.
- *  - Needle-thin triangles (BVH_SLIVER_SINE), whose rounding errors no pad covers, are kept out of the
- *    tree and tested by every ray.
+ *    triangle_box_pad, far more than any such rounding error and far too little to cost anything.
+ *  - Needle-thin triangles (triangle_is_sliver), whose rounding errors no pad covers, are kept out of
+ *    the tree and tested by every ray.
  *  - Ties: a box is skipped only when it starts strictly after the best hit so far, and a triangle at
- *    the same t as the best replaces it only with a lower face index.
+ *    the same t as the best replaces it only with a lower face index (triangle_hit_wins).
  * What is left: a ray starting more than about a thousand mesh sizes away, or one meeting a triangle's
  * plane at a grazing angle below about 1e-8 radians, has rounding errors the pad may not cover. Neither
  * occurs in tests/test_accel.c's hundreds of thousands of chosen rays nor, as far as we know, in a scene.
@@ -38,106 +38,21 @@
 
 #include <float.h>
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "stats.h"
 #include "triangle.h"
 
-/* Centroid slots per axis for the SAH build. Wald (2007) found 16 within a few percent of testing
- * every plane; more bins build slower and help little (exercise 1). */
-#define BVH_BINS 16
-
-/* An SAH node with more triangles than this is always split, even when the heuristic would rather
- * not: a long leaf is costly for every ray that reaches it, which the heuristic's averages hide. */
-#define BVH_MAX_LEAF_SIZE 8
-
-/* The dissertation's median build stops at one or two triangles per node. */
-#define BVH_MEDIAN_LEAF_SIZE 2
-
-/* Relative costs of visiting a node (testing both children's boxes) and of one triangle test, as the
- * heuristic sees them. Measured on this code they are about equal (each is some twenty floating point
- * operations and a few branches); the program prints the predicted cost next to the measured. */
-#define BVH_COST_TRAVERSAL 1.0
-#define BVH_COST_TRIANGLE 1.0
-
-/* Below this depth the SAH chooses freely; deeper nodes are halved by count, so the depth stays
- * bounded (at most BVH_MAX_DEPTH + 31 levels for 2^31 triangles), and with it the traversal stack,
- * which holds at most one node per level plus one. */
-#define BVH_MAX_DEPTH 64
-#define BVH_STACK_SIZE (BVH_MAX_DEPTH + 33)
-
-/* Every triangle's box is grown by this fraction of the mesh's largest extent (see the file comment):
- * 2^-20, about 1e-6, is ten orders of magnitude above the triangle test's rounding for rays starting
- * within a thousand mesh sizes, and invisible in the statistics. */
-#define BVH_BOX_PAD (1.0 / 1048576.0)
-
-/* A triangle whose edges b - a and c - a are this close to parallel (the sine of the angle between
- * them is below it, yet not zero) is kept out of the tree and tested by every ray. For such a sliver
- * a triangle test divides by a value that is mostly rounding noise, and can report a "hit" far
- * outside the triangle (measured: 2.6e-4 away, for a triangle whose middle corner is the midpoint of
- * its long edge): no box can be trusted to hold it. Above 1e-6 the error stays below 1e-9 of the ray's
- * distance, well inside BVH_BOX_PAD. Edges with an exactly zero cross product are never hit at all
- * (triangle_intersect rejects them), so those stay in the tree. Real meshes have few slivers or none. */
-#define BVH_SLIVER_SINE 1e-6
-
-/* Faces are numbered with uint32_t, and a tree of n faces has up to 2n - 1 nodes. */
-#define BVH_MAX_FACES ((size_t)1 << 31)
-
-struct bvh_box {
-    double lo[3], hi[3];
-};
-
-struct bvh_node {
-    struct bvh_box box;    /* holds every triangle below the node */
-    uint32_t left, right;  /* an interior node's children (indices into the nodes) */
-    uint32_t first, count; /* a leaf's triangles: count > 0 of them from triangles[first]; 0 for interior */
-};
-
-/* A triangle as the intersection test wants it: its three corners, copied from the mesh. */
-struct bvh_triangle {
-    vec3 a, b, c;
-};
-
-struct bvh {
-    struct bvh_node *nodes;         /* node_count entries; the root is nodes[0] */
-    size_t node_count;
-    struct bvh_triangle *triangles; /* triangle_count entries: tree_count in leaf order, then the slivers */
-    uint32_t *faces;                /* faces[k] = index into the mesh's faces of triangles[k] */
-    size_t triangle_count, tree_count;
-    struct bvh_info info;
-};
-
-/* ==== boxes =================================================================================== */
-
-static const struct bvh_box box_empty = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
-
-/* Grows *b to hold c. A NaN bound of c (a corner beyond double's range) compares false and changes
- * nothing. (Written as comparisons rather than fmin and fmax, which GCC calls as library functions:
- * that made the whole build five times slower.) */
-static void box_grow(struct bvh_box *b, const struct bvh_box *c) {
-    for (int a = 0; a < 3; a++) {
-        b->lo[a] = c->lo[a] < b->lo[a] ? c->lo[a] : b->lo[a];
-        b->hi[a] = c->hi[a] > b->hi[a] ? c->hi[a] : b->hi[a];
-    }
-}
-
-/* Surface area; 0 for an empty box. */
-static double box_area(const struct bvh_box *b) {
-    double x = b->hi[0] - b->lo[0], y = b->hi[1] - b->lo[1], z = b->hi[2] - b->lo[2];
-    if (!(x >= 0.0 && y >= 0.0 && z >= 0.0))
-        return 0.0;
-    return 2.0 * (x * y + y * z + z * x);
-}
+/* The traversal stack holds at most one node per level of the tree (BVH_DEEPEST + 1 of them) plus one. */
+#define BVH_STACK_SIZE (BVH_DEEPEST + 2)
 
 /* ==== building ================================================================================ */
 
 /* A triangle while building: its padded box, the centre of that box, and its face number. */
 struct bvh_prim {
-    struct bvh_box box;
-    double centroid[3];
+    struct aabb box;
+    vec3 centroid;
     uint32_t face;
 };
 
@@ -151,15 +66,13 @@ struct builder {
 };
 
 /* The box around prims [begin, end), and the box around their centroids. */
-static void range_boxes(const struct bvh_prim *p, uint32_t begin, uint32_t end, struct bvh_box *box,
-                        struct bvh_box *centroids) {
-    *box = box_empty;
-    *centroids = box_empty;
+static void range_boxes(const struct bvh_prim *p, uint32_t begin, uint32_t end, struct aabb *box,
+                        struct aabb *centroids) {
+    *box = aabb_empty();
+    *centroids = aabb_empty();
     for (uint32_t k = begin; k < end; k++) {
-        box_grow(box, &p[k].box);
-        struct bvh_box c = {{p[k].centroid[0], p[k].centroid[1], p[k].centroid[2]},
-                            {p[k].centroid[0], p[k].centroid[1], p[k].centroid[2]}};
-        box_grow(centroids, &c);
+        *box = aabb_union(*box, p[k].box);
+        *centroids = aabb_grow(*centroids, p[k].centroid);
     }
 }
 
@@ -174,10 +87,10 @@ static void swap_prims(struct bvh_prim *p, uint32_t i, uint32_t j) {
  * three-way partition so that many equal centroids cost nothing extra). */
 static void select_nth(struct bvh_prim *p, uint32_t begin, uint32_t end, uint32_t nth, int axis) {
     while (end - begin > 1) {
-        double pivot = p[begin + (end - begin) / 2].centroid[axis];
+        double pivot = vec3_axis(p[begin + (end - begin) / 2].centroid, axis);
         uint32_t less = begin, i = begin, greater = end; /* [begin,less) < pivot, [greater,end) > pivot */
         while (i < greater) {
-            double key = p[i].centroid[axis];
+            double key = vec3_axis(p[i].centroid, axis);
             if (key < pivot)
                 swap_prims(p, less++, i++);
             else if (key > pivot)
@@ -197,10 +110,11 @@ static void select_nth(struct bvh_prim *p, uint32_t begin, uint32_t end, uint32_
 /* The dissertation's split: half the prims on each side, by centroid, along the longest axis of the
  * centroids' box. Returns where the right half begins. */
 /* TASK 10.1: BVH build: the median split */
-static uint32_t split_median(struct builder *bd, uint32_t begin, uint32_t end, const struct bvh_box *centroids) {
+static uint32_t split_median(struct builder *bd, uint32_t begin, uint32_t end, const struct aabb *centroids) {
+    vec3 extent = vec3_sub(centroids->max, centroids->min);
     int axis = 0;
     for (int a = 1; a < 3; a++)
-        if (centroids->hi[a] - centroids->lo[a] > centroids->hi[axis] - centroids->lo[axis])
+        if (vec3_axis(extent, a) > vec3_axis(extent, axis))
             axis = a;
     uint32_t mid = begin + (end - begin) / 2;
     select_nth(bd->prims, begin, end, mid, axis);
@@ -223,49 +137,49 @@ static int bin_of(double c, double lo, double extent) {
  * leaving the prims alone, when a leaf is cheaper or no plane separates the centroids; otherwise
  * partitions them and stores where the right side begins in *mid. */
 /* TASK 10.2: BVH build: the binned SAH */
-static bool split_sah(struct builder *bd, uint32_t begin, uint32_t end, const struct bvh_box *box,
-                      const struct bvh_box *centroids, uint32_t *mid) {
+static bool split_sah(struct builder *bd, uint32_t begin, uint32_t end, const struct aabb *box,
+                      const struct aabb *centroids, uint32_t *mid) {
     struct bvh_prim *p = bd->prims;
     uint32_t n = end - begin;
     double best_cost = INFINITY; /* area(L) * count(L) + area(R) * count(R) of the best plane */
     int best_axis = -1, best_plane = 0;
     for (int a = 0; a < 3; a++) {
-        double lo = centroids->lo[a], extent = centroids->hi[a] - lo;
+        double lo = vec3_axis(centroids->min, a), extent = vec3_axis(centroids->max, a) - lo;
         if (!(extent > 0.0))
             continue; /* all centroids in one plane: this axis cannot separate them */
         struct {
-            struct bvh_box box;
+            struct aabb box;
             uint32_t count;
         } bins[BVH_BINS];
         for (int k = 0; k < BVH_BINS; k++) {
-            bins[k].box = box_empty;
+            bins[k].box = aabb_empty();
             bins[k].count = 0;
         }
         for (uint32_t i = begin; i < end; i++) {
-            int k = bin_of(p[i].centroid[a], lo, extent);
-            box_grow(&bins[k].box, &p[i].box);
+            int k = bin_of(vec3_axis(p[i].centroid, a), lo, extent);
+            bins[k].box = aabb_union(bins[k].box, p[i].box);
             bins[k].count++;
         }
         /* Sweep from the right: the area and count of everything right of the plane before slot k. */
         double right_area[BVH_BINS];
         uint32_t right_count[BVH_BINS];
-        struct bvh_box side = box_empty;
+        struct aabb side = aabb_empty();
         uint32_t count = 0;
         for (int k = BVH_BINS - 1; k > 0; k--) {
-            box_grow(&side, &bins[k].box);
+            side = aabb_union(side, bins[k].box);
             count += bins[k].count;
-            right_area[k] = box_area(&side);
+            right_area[k] = aabb_surface_area(side);
             right_count[k] = count;
         }
         /* Sweep from the left, pricing each plane on the way. */
-        side = box_empty;
+        side = aabb_empty();
         count = 0;
         for (int k = 1; k < BVH_BINS; k++) {
-            box_grow(&side, &bins[k - 1].box);
+            side = aabb_union(side, bins[k - 1].box);
             count += bins[k - 1].count;
             if (count == 0 || right_count[k] == 0)
                 continue; /* everything on one side: not a split */
-            double cost = box_area(&side) * count + right_area[k] * right_count[k];
+            double cost = aabb_surface_area(side) * count + right_area[k] * right_count[k];
             if (cost < best_cost) {
                 best_cost = cost;
                 best_axis = a;
@@ -275,13 +189,13 @@ static bool split_sah(struct builder *bd, uint32_t begin, uint32_t end, const st
     }
     if (best_axis < 0)
         return false;
-    double split_cost = BVH_COST_TRAVERSAL + BVH_COST_TRIANGLE * best_cost / box_area(box);
+    double split_cost = BVH_COST_TRAVERSAL + BVH_COST_TRIANGLE * best_cost / aabb_surface_area(*box);
     if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_TRIANGLE * n <= split_cost)
         return false;
     uint32_t i = begin, j = end; /* [begin, i) go left, [j, end) go right */
-    double lo = centroids->lo[best_axis], extent = centroids->hi[best_axis] - lo;
+    double lo = vec3_axis(centroids->min, best_axis), extent = vec3_axis(centroids->max, best_axis) - lo;
     while (i < j) {
-        if (bin_of(p[i].centroid[best_axis], lo, extent) < best_plane)
+        if (bin_of(vec3_axis(p[i].centroid, best_axis), lo, extent) < best_plane)
             i++;
         else
             swap_prims(p, i, --j);
@@ -294,9 +208,9 @@ static bool split_sah(struct builder *bd, uint32_t begin, uint32_t end, const st
 static uint32_t build_node(struct builder *bd, uint32_t begin, uint32_t end, size_t depth) {
     uint32_t index = (uint32_t)bd->b->node_count++;
     struct bvh_node *node = &bd->b->nodes[index];
-    struct bvh_box centroids;
+    struct aabb centroids;
     range_boxes(bd->prims, begin, end, &node->box, &centroids);
-    double area_ratio = bd->root_area > 0.0 ? box_area(&node->box) / bd->root_area : 1.0;
+    double area_ratio = bd->root_area > 0.0 ? aabb_surface_area(node->box) / bd->root_area : 1.0;
     uint32_t n = end - begin, mid = begin;
     bool split = false;
     if (bd->split == BVH_SPLIT_MEDIAN) {
@@ -329,21 +243,24 @@ static uint32_t build_node(struct builder *bd, uint32_t begin, uint32_t end, siz
     return index;
 }
 
-bool bvh_is_sliver(const struct mesh *m, size_t face) {
+bool bvh_face_box(const struct mesh *m, size_t face, double pad, struct aabb *box) {
     const uint32_t *v = m->faces[face].v;
-    vec3 a = m->vertices[v[0]], e1 = vec3_sub(m->vertices[v[1]], a), e2 = vec3_sub(m->vertices[v[2]], a);
-    double cross = vec3_length(vec3_cross(e1, e2));
-    return cross > 0.0 && cross < BVH_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
+    vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
+    if (triangle_is_sliver(a, b, c))
+        return false;
+    *box = aabb_pad(aabb_grow(aabb_grow(aabb_grow(aabb_empty(), a), b), c), pad);
+    return true;
 }
 
-double bvh_now_ms(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
+void bvh_copy_triangles(const struct mesh *m, const uint32_t *faces, size_t count, struct bvh_triangle *triangles) {
+    for (size_t k = 0; k < count; k++) {
+        const uint32_t *v = m->faces[faces[k]].v;
+        triangles[k] = (struct bvh_triangle){m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]};
+    }
 }
 
 struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
-    double start = bvh_now_ms();
+    double start = clock_seconds();
     size_t n = m->face_count;
     struct bvh *b = n <= BVH_MAX_FACES ? calloc(1, sizeof *b) : NULL;
     if (b == NULL)
@@ -357,39 +274,25 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
         bvh_free(b);
         return NULL;
     }
-    /* The pad: BVH_BOX_PAD times the largest extent of the mesh's corners. */
-    struct bvh_box all = box_empty;
-    for (size_t f = 0; f < n; f++)
-        for (int c = 0; c < 3; c++) {
-            vec3 p = m->vertices[m->faces[f].v[c]];
-            box_grow(&all, &(struct bvh_box){{p.x, p.y, p.z}, {p.x, p.y, p.z}});
-        }
-    double pad = 0.0;
-    for (int a = 0; a < 3 && n > 0; a++)
-        pad = fmax(pad, BVH_BOX_PAD * (all.hi[a] - all.lo[a]));
-    /* One prim per face, slivers to the end of faces[]. */
+    /* One prim per face, its box padded; slivers to the end of faces[]. */
+    double pad = triangle_box_pad(m);
     size_t tree = 0, slivers = 0;
     for (size_t f = 0; f < n; f++) {
-        if (bvh_is_sliver(m, f)) {
+        struct bvh_prim *p = &prims[tree];
+        if (!bvh_face_box(m, f, pad, &p->box)) {
             b->faces[n - ++slivers] = (uint32_t)f;
             continue;
         }
-        struct bvh_prim *p = &prims[tree++];
-        p->box = box_empty;
-        for (int c = 0; c < 3; c++) {
-            vec3 v = m->vertices[m->faces[f].v[c]];
-            box_grow(&p->box, &(struct bvh_box){{v.x - pad, v.y - pad, v.z - pad}, {v.x + pad, v.y + pad, v.z + pad}});
-        }
-        for (int a = 0; a < 3; a++)
-            p->centroid[a] = 0.5 * (p->box.lo[a] + p->box.hi[a]);
+        p->centroid = vec3_scale(vec3_add(p->box.min, p->box.max), 0.5);
         p->face = (uint32_t)f;
+        tree++;
     }
     b->tree_count = tree;
     struct builder bd = {prims, b, split, 0.0, 0, 0, 0.0};
     if (tree > 0) {
-        struct bvh_box root, centroids;
+        struct aabb root, centroids;
         range_boxes(prims, 0, (uint32_t)tree, &root, &centroids);
-        bd.root_area = box_area(&root);
+        bd.root_area = aabb_surface_area(root);
         build_node(&bd, 0, (uint32_t)tree, 0);
     }
     /* The triangles in leaf order, as the intersection test wants them; the slivers after them.
@@ -402,13 +305,10 @@ struct bvh *bvh_build(const struct mesh *m, enum bvh_split split) {
         bvh_free(b);
         return NULL;
     }
-    for (size_t k = 0; k < n; k++) {
-        const uint32_t *v = m->faces[b->faces[k]].v;
-        b->triangles[k] = (struct bvh_triangle){m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]};
-    }
+    bvh_copy_triangles(m, b->faces, n, b->triangles);
     b->info = (struct bvh_info){b->node_count, bd.leaves, bd.max_depth, 0.0,
                                 bd.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
-    b->info.build_ms = bvh_now_ms() - start;
+    b->info.build_ms = 1e3 * (clock_seconds() - start);
     return b;
 }
 
@@ -424,24 +324,6 @@ void bvh_free(struct bvh *b) {
 void bvh_get_info(const struct bvh *b, struct bvh_info *info) { *info = b->info; }
 
 /* ==== traversal =============================================================================== */
-
-/* The slab test (chapter 5) of box against the ray with origin o and inverse direction inv (1 / D,
- * infinite where D has a zero), within [t_near, t_far]. Returns whether the ray is inside the box for
- * some t there, and where it enters in *entry. On each axis the ray enters through the low face when
- * it moves towards larger values and through the high face otherwise. An origin exactly on a face
- * plane with a zero direction component gives 0 * infinity = NaN, which compares false and so leaves
- * the window alone: a ray running in a face's plane is inside. */
-static bool box_hit(const struct bvh_box *box, const double o[3], const double inv[3], double t_near,
-                    double t_far, double *entry) {
-    for (int a = 0; a < 3; a++) {
-        double t0 = ((inv[a] < 0.0 ? box->hi[a] : box->lo[a]) - o[a]) * inv[a];
-        double t1 = ((inv[a] < 0.0 ? box->lo[a] : box->hi[a]) - o[a]) * inv[a];
-        t_near = t0 > t_near ? t0 : t_near;
-        t_far = t1 < t_far ? t1 : t_far;
-    }
-    *entry = t_near;
-    return t_near <= t_far;
-}
 
 /* The three questions one traversal answers. */
 enum query {
@@ -481,7 +363,7 @@ static bool test_triangles(const struct bvh *b, const struct triangle_ray *r, ui
             q->found = true;
             if (!q->visit(q->ctx, t, face))
                 return false;
-        } else if (!q->found || t < q->t || (t == q->t && face < q->face)) {
+        } else if (triangle_hit_wins(t, face, q->t, q->face)) { /* q->t is t_max until the first hit */
             q->found = true;
             q->t = t;
             q->face = face;
@@ -509,13 +391,11 @@ static bool traverse(const struct bvh *b, const ray *r, double t_min, double t_m
     uint32_t slivers = (uint32_t)(b->triangle_count - b->tree_count);
     if (!test_triangles(b, &ready, (uint32_t)b->tree_count, slivers, t_min, t_max, q, &box_max) || b->tree_count == 0)
         return q->found;
-    double o[3] = {r->origin.x, r->origin.y, r->origin.z};
-    double inv[3] = {1.0 / r->direction.x, 1.0 / r->direction.y, 1.0 / r->direction.z};
+    vec3 inv = aabb_inverse_direction(r->direction); /* the slab tests' per-ray work */
     struct stack_entry stack[BVH_STACK_SIZE];
     int top = 0;
     double entry;
-    stats_thread.box_tests++;
-    if (box_hit(&b->nodes[0].box, o, inv, box_min, box_max, &entry))
+    if (aabb_hit(&b->nodes[0].box, r->origin, inv, box_min, box_max, &entry))
         stack[top++] = (struct stack_entry){0, entry};
     while (top > 0) {
         struct stack_entry e = stack[--top];
@@ -528,10 +408,9 @@ static bool traverse(const struct bvh *b, const ray *r, double t_min, double t_m
                 break;
             continue;
         }
-        double enter_left, enter_right;
-        bool left = box_hit(&b->nodes[n->left].box, o, inv, box_min, box_max, &enter_left);
-        bool right = box_hit(&b->nodes[n->right].box, o, inv, box_min, box_max, &enter_right);
-        stats_thread.box_tests += 2;
+        double enter_left = INFINITY, enter_right = INFINITY; /* stay so for a box the ray misses */
+        bool left = aabb_hit(&b->nodes[n->left].box, r->origin, inv, box_min, box_max, &enter_left);
+        bool right = aabb_hit(&b->nodes[n->right].box, r->origin, inv, box_min, box_max, &enter_right);
         struct stack_entry near = {n->left, enter_left}, far = {n->right, enter_right};
         bool near_hit = left, far_hit = right;
         if (q->kind == QUERY_CLOSEST && enter_right < enter_left) { /* the right child comes first */
@@ -566,105 +445,4 @@ void bvh_for_each_hit(const struct bvh *b, const ray *r, double t_min, double t_
                       bool (*visit)(void *ctx, double t, uint32_t face), void *ctx) {
     struct query_state q = {.kind = QUERY_ALL, .visit = visit, .ctx = ctx};
     traverse(b, r, t_min, t_max, &q);
-}
-
-/* ==== checking ================================================================================ */
-
-struct check {
-    const struct bvh *b;
-    const struct mesh *m;
-    unsigned char *seen_triangle, *seen_node;
-    char *why;
-    size_t why_size;
-};
-
-static bool check_fail(struct check *c, const char *message, size_t where) {
-    snprintf(c->why, c->why_size, "%s (at %zu)", message, where);
-    return false;
-}
-
-/* True when box b holds box c (a NaN bound, from a corner beyond double's range, holds anything). */
-static bool box_holds(const struct bvh_box *b, const struct bvh_box *c) {
-    for (int a = 0; a < 3; a++)
-        if (b->lo[a] > c->lo[a] || b->hi[a] < c->hi[a])
-            return false;
-    return true;
-}
-
-/* Checks the subtree at node `index`, at the given depth. */
-static bool check_node(struct check *c, uint32_t index, size_t depth) {
-    if (depth + 1 >= BVH_STACK_SIZE)
-        return check_fail(c, "deeper than the traversal stack", depth);
-    if (index >= c->b->node_count || c->seen_node[index]++)
-        return check_fail(c, "node index out of range or reached twice", index);
-    const struct bvh_node *n = &c->b->nodes[index];
-    if (n->count == 0) {
-        if (n->left >= c->b->node_count || n->right >= c->b->node_count)
-            return check_fail(c, "child index out of range", index);
-        if (!box_holds(&n->box, &c->b->nodes[n->left].box) || !box_holds(&n->box, &c->b->nodes[n->right].box))
-            return check_fail(c, "child box sticks out of its parent's", index);
-        return check_node(c, n->left, depth + 1) && check_node(c, n->right, depth + 1);
-    }
-    if ((size_t)n->first + n->count > c->b->tree_count)
-        return check_fail(c, "leaf runs past the triangles", index);
-    for (uint32_t k = n->first; k < n->first + n->count; k++) {
-        if (c->seen_triangle[k]++)
-            return check_fail(c, "triangle in two leaves", k);
-        const uint32_t *v = c->m->faces[c->b->faces[k]].v;
-        for (int corner = 0; corner < 3; corner++) {
-            vec3 p = c->m->vertices[v[corner]];
-            if (!box_holds(&n->box, &(struct bvh_box){{p.x, p.y, p.z}, {p.x, p.y, p.z}}))
-                return check_fail(c, "leaf box does not hold its triangle", k);
-        }
-    }
-    return true;
-}
-
-bool bvh_is_valid(const struct bvh *b, const struct mesh *m, char *why, size_t why_size) {
-    struct check c = {b, m, calloc(b->triangle_count + 1, 1), calloc(b->node_count + 1, 1), why, why_size};
-    bool ok = c.seen_triangle != NULL && c.seen_node != NULL;
-    if (!ok)
-        snprintf(why, why_size, "out of memory");
-    if (ok && b->triangle_count != m->face_count)
-        ok = check_fail(&c, "triangle count differs from the mesh's face count", b->triangle_count);
-    for (size_t k = 0; ok && k < b->triangle_count; k++) {
-        uint32_t f = b->faces[k];
-        if (f >= m->face_count) {
-            ok = check_fail(&c, "face number out of range", k);
-            break;
-        }
-        const uint32_t *v = m->faces[f].v;
-        const struct bvh_triangle *t = &b->triangles[k];
-        if (memcmp(&t->a, &m->vertices[v[0]], sizeof t->a) != 0 || memcmp(&t->b, &m->vertices[v[1]], sizeof t->b) != 0 ||
-            memcmp(&t->c, &m->vertices[v[2]], sizeof t->c) != 0)
-            ok = check_fail(&c, "stored triangle differs from its face", k);
-    }
-    if (ok && b->tree_count > 0)
-        ok = check_node(&c, 0, 0);
-    if (ok)
-        ok = bvh_check_faces(m, b->faces, b->triangle_count, b->tree_count, c.seen_triangle, why, why_size);
-    free(c.seen_triangle);
-    free(c.seen_node);
-    return ok;
-}
-
-bool bvh_check_faces(const struct mesh *m, const uint32_t *faces, size_t triangle_count, size_t tree_count,
-                     unsigned char *seen, char *why, size_t why_size) {
-    const char *what = NULL;
-    size_t where = 0;
-    for (size_t k = 0; what == NULL && k < tree_count; k++)
-        if (!seen[k])
-            what = "triangle in no leaf", where = k;
-    for (size_t k = 0; what == NULL && k < triangle_count; k++)
-        if (bvh_is_sliver(m, faces[k]) != (k >= tree_count))
-            what = "sliver in the tree, or other triangle among the slivers", where = k;
-    if (what == NULL) { /* every face once: no face number repeats */
-        memset(seen, 0, triangle_count + 1);
-        for (size_t k = 0; what == NULL && k < triangle_count; k++)
-            if (seen[faces[k]]++)
-                what = "face stored twice", where = faces[k];
-    }
-    if (what != NULL)
-        snprintf(why, why_size, "%s (at %zu)", what, where);
-    return what == NULL;
 }

@@ -2,6 +2,7 @@
  * (chapter 1). */
 #include "cli.h"
 
+#include "clock.h"
 #include "heatmap.h"
 #include "outfile.h"
 #include "scene_scale.h"
@@ -15,7 +16,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 #include <unistd.h>
 
 #define CLI_MAX_THREADS 256  /* more threads than this is a typing mistake */
@@ -157,12 +157,6 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
     return CLI_OK;
 }
 
-static double seconds_now(void) {
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
-}
-
 bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv) {
     memset(run, 0, sizeof *run);
     run->chapter = ch;
@@ -259,9 +253,9 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
                              .progress = !o->quiet && isatty(STDERR_FILENO),
                              .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = sampler,
                              .antialias = &s->antialias, .lens = &s->lens};
-    double started = seconds_now();
+    double started = clock_seconds();
     render_image(&job, &img, &run->total);
-    run->render_seconds = seconds_now() - started;
+    run->render_seconds = clock_seconds() - started;
     bool written = image_write_png(&img, o->output, err, sizeof err);
     if (written && o->heatmap != NULL) {
         heatmap_draw_bar_on(&heatmap, s->height, sampler != NULL ? sampler->heatmap : &heatmap_cost_scale);

@@ -1,12 +1,13 @@
 /* fast_bvh.h: the bounding volume hierarchy of chapter 10 made fast, one optimisation (a "rung") at a
  * time (chapter 11).
  *
- * The same two build rules as chapter 10's bvh.h (enum bvh_split), the same three queries and the same
- * promise: every query gives exactly the answer of the brute-force loop over all faces with
- * triangle_intersect (same t to the last bit, same face, same tie rule). What changes is how the tree
- * is stored and walked; fast_bvh.c says what each rung adds and why it pays. All queries are safe to
- * run from several threads at once on one hierarchy; they add to the calling thread's counters
- * (stats.h): node_visits, box_tests and triangle_tests. */
+ * The same two build rules as chapter 10's bvh.h (enum bvh_split, and its constants), the same three
+ * queries and the same promise: every query gives exactly the answer of the brute-force loop over all
+ * faces with triangle_intersect (same t to the last bit, same face, same tie rule). What changes is how
+ * the tree is stored, walked and built: fast_bvh.c walks it, fast_bvh_build.c (fast_bvh_build.h) builds
+ * it, and each says what its rungs add and why they pay. All queries are safe to run from several threads
+ * at once on one hierarchy; they add to the calling thread's counters (stats.h): node_visits,
+ * box_tests and triangle_tests. */
 #ifndef WHITTED_FAST_BVH_H
 #define WHITTED_FAST_BVH_H
 
@@ -14,30 +15,52 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "bvh.h" /* enum bvh_split, struct bvh_info */
+#include "aabb.h"
+#include "bvh.h" /* enum bvh_split, struct bvh_triangle, struct bvh_info, the build's constants */
 #include "mesh.h"
 #include "ray.h"
 
 /* The rungs of chapter 11's ladder. Rung 1 is chapter 10's binary BVH (bvh.h) and is not built here;
- * each rung from 2 on keeps everything of the rung below and adds one thing. */
+ * each rung from 2 on keeps everything of the rung below and changes one thing. */
 enum fast_bvh_rung {
     FAST_BVH_RUNG_PLAIN = 1,    /* chapter 10's bvh.c, for comparison (built by accel_fast_bvh.c) */
-    FAST_BVH_RUNG_WIDE = 2,     /* four children per node, their float boxes side by side, one child's
-                                   slab test at a time */
+    FAST_BVH_RUNG_WIDE = 2,     /* chapter 10's tree collapsed to four children per node, their boxes
+                                   side by side in floats; each child's box tested as in chapter 10 */
     FAST_BVH_RUNG_SIMD = 3,     /* two children's slab tests per instruction (SSE2) */
     FAST_BVH_RUNG_PREFETCH = 4, /* the children put aside are fetched from memory while the ray goes on */
-    FAST_BVH_RUNG_BUILD = 5,    /* the build: SAH bins filled four ways at once, big pages for big arrays */
+    FAST_BVH_RUNG_BUILD = 5,    /* the SAH build in float, straight into the 4-wide layout: slots filled
+                                   four ways at once, big pages for big arrays */
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
 #define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_BUILD
 
-struct fast_bvh; /* opaque */
+/* Children per node. */
+#define FAST_BVH_WIDTH 4
 
-/* Builds a hierarchy over the faces of m with the given split rule, at the given rung (from
- * FAST_BVH_RUNG_FIRST to FAST_BVH_RUNG_TOP; others give NULL). m is only read, and not kept: it may be
- * changed or freed afterwards. A mesh without faces gives a hierarchy that nothing hits. Returns NULL
- * when memory runs out. Free the result with fast_bvh_free. */
-struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum fast_bvh_rung rung);
+/* An unused child slot. */
+#define FAST_BVH_NO_CHILD UINT32_MAX
+
+/* A node: the boxes of its four children side by side, 128 bytes (two cache lines). A child is another
+ * node or a leaf, a run of triangles. The bounds are floats, rounded outward from the double boxes
+ * they stand for; an unused slot has the empty box (low +infinity, high -infinity). */
+struct fast_bvh_node {
+    float bounds[3][2][FAST_BVH_WIDTH]; /* [axis][0 = low, 1 = high][child]: the children's boxes, side by side */
+    uint32_t child[FAST_BVH_WIDTH];     /* a child node's index, a leaf's first triangle, or FAST_BVH_NO_CHILD */
+    uint32_t count[FAST_BVH_WIDTH];     /* 0 when the child is a node (or no child); else the leaf's triangles */
+};
+
+/* The hierarchy: the nodes, the triangles in leaf order, and how to reach the root. */
+struct fast_bvh {
+    enum fast_bvh_rung rung;
+    struct fast_bvh_node *nodes;     /* node_count entries, 64-byte aligned */
+    size_t node_count;
+    struct aabb root_box;            /* the box around every triangle in the tree */
+    uint32_t root_child, root_count; /* the root, as a child is referred to in a node */
+    struct bvh_triangle *triangles;  /* triangle_count entries: tree_count in leaf order, then the slivers */
+    uint32_t *faces;                 /* faces[k] = index into the mesh's faces of triangles[k] */
+    size_t triangle_count, tree_count;
+    struct bvh_info info;            /* nodes counted in the 4-wide tree */
+};
 
 /* Frees b and everything it owns. Safe on NULL. */
 void fast_bvh_free(struct fast_bvh *b);

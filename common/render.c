@@ -1,21 +1,15 @@
 /* render.c: the parallel pixel loop with progress report and per-pixel cost (chapter 1). */
 #include "render.h"
 
+#include "clock.h"
 #include "heatmap.h"
 
 #include <stdio.h>
-#include <time.h>
 #include <unistd.h>
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-static double seconds_now(void) {
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
-}
 
 uint64_t render_thread_cost(void) {
     const struct stats *s = &stats_thread;
@@ -23,7 +17,7 @@ uint64_t render_thread_cost(void) {
 }
 
 static void print_progress(int done, int pieces, double started) {
-    double elapsed = seconds_now() - started;
+    double elapsed = clock_seconds() - started;
     double left = done > 0 ? elapsed * (pieces - done) / done : 0.0;
     fprintf(stderr, "\rrendering: %3d%%  %6.1f s elapsed, about %6.1f s left ", 100 * done / pieces,
             elapsed, left);
@@ -62,7 +56,7 @@ void render_image(const struct render_job *job, struct image *img, struct stats 
         pieces = ((img->width + ANTIALIAS_BLOCK - 1) / ANTIALIAS_BLOCK) *
                  ((img->height + ANTIALIAS_BLOCK - 1) / ANTIALIAS_BLOCK);
     int pieces_done = 0;
-    double started = seconds_now();
+    double started = clock_seconds();
     bool progress = job->progress;
 #ifdef _OPENMP
     int threads = job->threads > 0 ? job->threads : omp_get_max_threads();

@@ -72,7 +72,8 @@ struct scene {
     int width, height;    /* image size in pixels */
     vec3 background;      /* colour of rays that hit nothing */
     vec3 ambient_light;   /* global ambient light (POV-Ray ambient_light), default 1 1 1 */
-    int max_depth;        /* rays of this level or deeper are black; the camera ray is level 1 */
+    int max_depth;        /* the deepest ray level traced, POV-Ray's max_trace_level: the camera ray is
+                           * level 1, and a ray of level max_depth + 1 is black */
     bool shadow_offset;   /* false: shadow rays accept hits from t > 0 (chapter 7's acne demo) */
     double adc_bailout;   /* secondary rays weighing less are not traced (POV-Ray's adc_bailout), 0..1 */
     struct antialias antialias; /* camera rays per pixel (chapter 12); method NONE without the line */

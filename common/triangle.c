@@ -137,6 +137,24 @@ vec3 triangle_normal(vec3 a, vec3 b, vec3 c) {
     return vec3_normalize(vec3_cross(vec3_sub(b, a), vec3_sub(c, a)));
 }
 
+double triangle_box_pad(const struct mesh *m) {
+    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t f = 0; f < m->face_count; f++)
+        for (int c = 0; c < 3; c++) {
+            vec3 p = m->vertices[m->faces[f].v[c]];
+            lo = vec3_min(p, lo); /* p first: a NaN coordinate of p compares false and leaves lo alone */
+            hi = vec3_max(p, hi);
+        }
+    vec3 side = vec3_sub(hi, lo);
+    return m->face_count > 0 ? TRIANGLE_BOX_PAD * fmax(side.x, fmax(side.y, side.z)) : 0.0;
+}
+
+bool triangle_is_sliver(vec3 a, vec3 b, vec3 c) {
+    vec3 e1 = vec3_sub(b, a), e2 = vec3_sub(c, a);
+    double cross = vec3_length(vec3_cross(e1, e2));
+    return cross > 0.0 && cross < TRIANGLE_SLIVER_SINE * vec3_length(e1) * vec3_length(e2);
+}
+
 /* ---- the `triangle` directive as one kind of shape (shape.h) ------------------------------------ */
 
 static bool closest_triangles(const void *items, size_t count, const ray *r, double t_min, struct hit *h) {

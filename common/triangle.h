@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "ray.h"
 #include "shape.h"
@@ -132,6 +133,38 @@ bool triangle_mesh_closest(const struct mesh *m, int material, const ray *r, dou
 
 /* Returns the unit normal (b - a) x (c - a) of the triangle, by the right-hand rule on its winding. */
 vec3 triangle_normal(vec3 a, vec3 b, vec3 c);
+
+/* ---- what keeps the acceleration structures' answers the brute-force loop's (chapters 9 to 11) -- */
+
+/* How far outside a triangle the watertight test may report a hit: for a ray starting within a thousand
+ * mesh sizes, under about 1e-16 of its distance (triangle.c). The structures grow the box around every
+ * triangle by this fraction of the mesh's size, 2^-20 (about 1e-6): ten orders of magnitude more than
+ * the rounding, and too little to show in the counters. */
+#define TRIANGLE_BOX_PAD (1.0 / 1048576.0)
+
+/* Returns how far the structures grow the box around every face of m, on every side: TRIANGLE_BOX_PAD
+ * times the longest side of the box around the corners m's faces use (corners beyond double's range,
+ * NaN, left out); 0 when m has no faces. */
+double triangle_box_pad(const struct mesh *m);
+
+/* The exception to that bound: a triangle whose edges b - a and c - a are this close to parallel (the
+ * sine of the angle between them is below it, yet not zero). Its test divides by a value that is
+ * mostly rounding noise and can report a hit far outside the triangle (measured: 2.6e-4 away, for a
+ * triangle whose middle corner is the midpoint of its long edge), so no box can be trusted to hold its
+ * hits. Above 1e-6 the error stays below 1e-9 of the ray's distance, well inside the pad. */
+#define TRIANGLE_SLIVER_SINE 1e-6
+
+/* Returns true when the triangle (a, b, c) is such a sliver: the structures keep it out of their trees
+ * and test it for every ray. Real meshes have few or none. A triangle whose edges have an exactly zero
+ * cross product is not a sliver: the test never reports a hit on it. */
+bool triangle_is_sliver(vec3 a, vec3 b, vec3 c);
+
+/* The brute-force loop's choice among the faces a ray hits, for a structure that meets them in another
+ * order: a hit at t on face `face` replaces the best so far (best_t, on best_face) when it is nearer, or
+ * as near on a lower face, since the loop, going up the faces, keeps the first of equal t. */
+static inline bool triangle_hit_wins(double t, uint32_t face, double best_t, uint32_t best_face) {
+    return t < best_t || (t == best_t && face < best_face);
+}
 
 /* ---- the `triangle` line: triangle a X Y Z b X Y Z c X Y Z [material NAME] --------------------- */
 

@@ -50,19 +50,8 @@ fuzz-build: | deps
 	tools/build/install-deps.sh fuzz
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(addprefix $(FUZZ_BUILD)/fuzz_,$(FUZZ_HARNESSES))
 
-# clang lacks GCC's __builtin_shuffle(v, (int4){i, j, k, l}), which the 4-wide BVH uses; a file that
-# uses it is compiled from a copy spelling it the clang way, __builtin_shufflevector(v, v, i, j, k, l),
-# with a #line so that messages and stack traces still name common/FILE.c.
-FUZZ_SHUFFLE_SED := s/__builtin_shuffle\(([a-z_0-9]+), \(int4\)\{([0-9, ]+)\}\)/__builtin_shufflevector(\1, \1, \2)/g
 $(FUZZ_BUILD)/common/%.o: common/%.c | $(FUZZ_BUILD)/common
-	@if grep -q __builtin_shuffle $<; then \
-	    { echo '#line 1 "$<"'; sed -E '$(FUZZ_SHUFFLE_SED)' $<; } > $(@:.o=-clang.c); \
-	    echo "$(FUZZ_CC) ... -c $(@:.o=-clang.c) (from $<, with clang's __builtin_shufflevector)"; \
-	    $(FUZZ_CC) $(FUZZ_CFLAGS) -MMD -MP -MT $@ -MF $(@:.o=.d) -c $(@:.o=-clang.c) -o $@; \
-	else \
-	    echo "$(FUZZ_CC) ... -c $< -o $@"; \
-	    $(FUZZ_CC) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@; \
-	fi
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@
 
 $(FUZZ_BUILD)/%.o: fuzz/%.c | $(FUZZ_BUILD)/common
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -MMD -MP -c $< -o $@

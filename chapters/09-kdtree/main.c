@@ -19,8 +19,8 @@ static int parse_option(const char *option, const char *value) {
 }
 
 /* Builds the world with the chosen structure over every triangle of the scene. */
-static void *prepare(struct scene *s, char *err, size_t err_size) {
-    return accel_world_create(s, &choice, NULL, err, err_size);
+static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
+    return accel_world_create(s, &choice, err, err_size);
 }
 
 int main(int argc, char **argv) {

@@ -6,6 +6,7 @@
  * faster. --accel none|kdtree|bvh compares all three on the same scene. */
 #include "accel.h"
 #include "box.h"
+#include "bvh.h"
 #include "cli.h"
 #include "plane.h"
 #include "sphere.h"
@@ -18,9 +19,15 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* Builds the world with the chosen structure over every triangle of the scene. */
-static void *prepare(struct scene *s, char *err, size_t err_size) {
-    return accel_world_create(s, &choice, accel_world_use_bvh, err, err_size);
+/* Builds the world with the chosen structure over every triangle of the scene: chapter 9's, or the BVH. */
+static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
+    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
+    if (w != NULL && choice.kind == ACCEL_BVH &&
+        !accel_world_use_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, err, err_size)) {
+        accel_world_destroy(w);
+        return NULL;
+    }
+    return w;
 }
 
 int main(int argc, char **argv) {

@@ -31,14 +31,16 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* accel_world_use_fast_bvh at the rung the command line asked for. */
-static bool use_fast_bvh(struct accel_world *w, int split, char *err, size_t err_size) {
-    return accel_world_use_fast_bvh(w, split, rung, err, err_size);
-}
-
-/* Builds the world with the chosen structure over every triangle of the scene. */
-static void *prepare(struct scene *s, char *err, size_t err_size) {
-    return accel_world_create(s, &choice, use_fast_bvh, err, err_size);
+/* Builds the world with the chosen structure over every triangle of the scene: chapter 9's, or the BVH
+ * at the chosen rung. */
+static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
+    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
+    if (w != NULL && choice.kind == ACCEL_BVH &&
+        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, rung, err, err_size)) {
+        accel_world_destroy(w);
+        return NULL;
+    }
+    return w;
 }
 
 int main(int argc, char **argv) {

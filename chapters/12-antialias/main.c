@@ -22,9 +22,17 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* accel_world_use_fast_bvh at chapter 11's top rung. */
-static bool use_fast_bvh(struct accel_world *w, int split, char *err, size_t err_size) {
-    return accel_world_use_fast_bvh(w, split, FAST_BVH_RUNG_TOP, err, err_size);
+/* Builds the world with the chosen structure over every triangle of the scene: chapter 9's, or the BVH
+ * at chapter 11's top rung. */
+static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
+    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
+    if (w != NULL && choice.kind == ACCEL_BVH &&
+        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_TOP, err,
+                                  err_size)) {
+        accel_world_destroy(w);
+        return NULL;
+    }
+    return w;
 }
 
 int main(int argc, char **argv) {
@@ -48,7 +56,7 @@ int main(int argc, char **argv) {
         return cli_finish(&run);
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    struct accel_world *w = accel_world_create(&run.scene, &choice, use_fast_bvh, run.err, sizeof run.err);
+    struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
     /* What chapter 12 adds: the pixels sampled by the scene's antialias line. */

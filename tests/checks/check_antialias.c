@@ -29,6 +29,7 @@ CHECK(check_grid_centres) {
         int n = sizes[k];
         struct position_view seen = {0};
         struct sample_view view = {position_colour, &seen};
+        check_calling("supersample_grid", "pixel (5, 2), n = %d, of a picture whose colour is (x, y, 1)", n);
         vec3 got = supersample_grid(&view, 5, 2, n);
         char g[64];
         if (seen.looks != n * n) {
@@ -59,6 +60,7 @@ static vec3 edge_colour(const void *context, double x, double y) {
 /* An edge 0.3 of the way across pixel 7: with n = 10, the first 3 columns of samples are white. */
 CHECK(check_grid_edge) {
     struct sample_view view = {edge_colour, NULL};
+    check_calling("supersample_grid", "pixel (7, 0), n = 10, of a picture white left of x = 7.3, black from there");
     vec3 got = supersample_grid(&view, 7, 0, 10);
     if (check_near(got.x, 0.3, ANTIALIAS_TOLERANCE))
         return true;
@@ -70,6 +72,7 @@ CHECK(check_grid_edge) {
 /* ---- 12.2 supersample_differ ----------------------------------------------------------------- */
 
 CHECK(check_differ_plain) {
+    check_calling("supersample_differ", "black and white, and two equal colours (0.4, 0.5, 0.6)");
     if (!supersample_differ(vec3_make(0, 0, 0), vec3_make(1, 1, 1), 0.3)) {
         snprintf(why, why_size, "supersample_differ(black, white, 0.3) is false; their distance is 3");
         return false;
@@ -90,6 +93,7 @@ CHECK(check_differ_plain) {
  * 0.01 in one channel differs at threshold 0.15 but not at 0.16; compared linearly it would be 0.01. */
 CHECK(check_differ_gamma) {
     vec3 black = vec3_make(0, 0, 0), dark = vec3_make(0.01, 0, 0);
+    check_calling("supersample_differ", "(0.01, 0, 0) and black, thresholds 0.15 and 0.16");
     bool at_015 = supersample_differ(dark, black, 0.15), at_016 = supersample_differ(dark, black, 0.16);
     if (at_015 && !at_016)
         return true;
@@ -104,6 +108,7 @@ CHECK(check_differ_gamma) {
 CHECK(check_differ_channels) {
     double one = pow(0.2, 0.4) - pow(0.1, 0.4); /* 0.1218 */
     vec3 a = vec3_make(0.2, 0.2, 0.2), b = vec3_make(0.1, 0.1, 0.1);
+    check_calling("supersample_differ", "(0.2, 0.2, 0.2) and (0.1, 0.1, 0.1), and (-1, 0, 0) and (0.01, 0, 0)");
     if (!supersample_differ(a, b, 3 * one - 1e-6) || supersample_differ(a, b, 3 * one + 1e-6)) {
         snprintf(why, why_size, "supersample_differ((0.2, 0.2, 0.2), (0.1, 0.1, 0.1), t): the distance is the sum of "
                  "the three channels' differences, 3 x (0.2^0.4 - 0.1^0.4) = %.4f; your answer changes elsewhere",

@@ -10,6 +10,7 @@
 #include "check.h"
 #include "plane.h"
 #include "sphere.h"
+#include "stats.h"
 #include "triangle.h"
 
 /* Hits are compared to their exact values within this: far above rounding, far below any mistake. */
@@ -28,6 +29,7 @@ static bool camera_pixel(int i, int j, char *why, size_t why_size) {
         return false;
     }
     vec3 expected = vec3_normalize(vec3_make(i == 0 ? -0.5 : 0.5, j == 0 ? 0.5 : -0.5, -1.0));
+    check_calling("camera_ray", "pixel (%d, %d) of a 2 x 2 picture, fov 90, eye at the origin looking down -z", i, j);
     ray r = camera_ray(&cam, i, j);
     char e[64], g[64];
     if (!check_vec_near(r.origin, vec3_make(0, 0, 0), GEOMETRY_TOLERANCE)) {
@@ -65,6 +67,9 @@ static bool sphere_case(const char *what, vec3 centre, double radius, const ray 
                         char *why, size_t why_size) {
     struct sphere s = {centre, radius, 0};
     double t = NAN;
+    char c[64], ray_text[160];
+    check_calling("sphere_intersect", "%s: %s and the sphere of radius %g around %s, t_min 1e-9, t_max %g", what,
+                  check_ray_text(r, ray_text), radius, check_vec_text(centre, c), t_max);
     bool hit = sphere_intersect(&s, r, 1e-9, t_max, &t);
     if (isnan(expected)) {
         if (!hit)
@@ -105,16 +110,37 @@ CHECK(check_sphere_misses) {
                        why, why_size);
 }
 
+/* One call of sphere_intersect on r, for the counter's check: how much it added to the sphere tests. */
+static uint64_t sphere_tests_of_one_call(const ray *r) {
+    const struct sphere s = {{0, 0, -5}, 1.0, 0};
+    double t;
+    uint64_t before = stats_thread.sphere_tests;
+    sphere_intersect(&s, r, 1e-9, INFINITY, &t);
+    return stats_thread.sphere_tests - before;
+}
+
+CHECK(check_sphere_counted) {
+    static const ray hit = {{0, 0, 0}, {0, 0, -1}}, miss = {{3, 0, 0}, {0, 0, -1}};
+    check_calling("sphere_intersect", "a ray from the origin down -z and the sphere of radius 1 around (0, 0, -5)");
+    if (!check_counted_once(sphere_tests_of_one_call(&hit), "sphere_intersect on a ray that hits", "one sphere test",
+                            "sphere tests", why, why_size))
+        return false;
+    check_calling("sphere_intersect", "a ray from (3, 0, 0) down -z and the sphere of radius 1 around (0, 0, -5)");
+    return check_counted_once(sphere_tests_of_one_call(&miss), "sphere_intersect on a ray that misses",
+                              "one sphere test", "sphere tests", why, why_size);
+}
+
 CHECK(check_sphere_normal) {
     struct sphere s = {{1, 2, 3}, 2.0, 0};
     vec3 expected = vec3_normalize(vec3_make(1, -1, 1));
     vec3 p = vec3_add_scaled(s.centre, expected, 2.0);
+    char e[64], g[64], q[64];
+    check_calling("sphere_normal", "the point %s of the sphere of radius 2 around (1, 2, 3)", check_vec_text(p, q));
     vec3 got = sphere_normal(&s, p);
     if (check_vec_near(got, expected, GEOMETRY_TOLERANCE))
         return true;
-    char e[64], g[64], q[64];
-    snprintf(why, why_size, "sphere_normal at %s on the sphere of radius 2 around (1, 2, 3): expected %s, got %s%s",
-             check_vec_text(p, q), check_vec_text(expected, e), check_vec_text(got, g),
+    snprintf(why, why_size, "sphere_normal at %s on the sphere of radius 2 around (1, 2, 3): expected %s, got %s%s", q,
+             check_vec_text(expected, e), check_vec_text(got, g),
              check_near(vec3_length(got), 2.0, 1e-6) ? ": divide by the radius to make it unit length"
              : check_vec_near(got, vec3_scale(expected, -1), 1e-9) ? ": it points inwards" : "");
     return false;
@@ -129,6 +155,8 @@ CHECK(check_triangle_hit) {
     vec3 a = {0, 0, -2}, b = {4, 0, -2}, c = {0, 4, -2};
     ray r = {{1, 2, 0}, {0, 0, -1}};
     double t = NAN, u = NAN, v = NAN;
+    check_calling("triangle_crossing_mt", "a ray from (1, 2, 0) down -z and the triangle (0, 0, -2), (4, 0, -2), "
+                  "(0, 4, -2)");
     bool hit = triangle_crossing_mt(a, b, c, &r, &t, &u, &v);
     if (hit && check_near(t, 2.0, GEOMETRY_TOLERANCE) && check_near(u, 0.25, GEOMETRY_TOLERANCE) &&
         check_near(v, 0.5, GEOMETRY_TOLERANCE))
@@ -154,6 +182,7 @@ CHECK(check_triangle_misses) {
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         double t = NAN, u, v;
+        check_calling("triangle_crossing_mt", "%s, and the triangle (0, 0, -2), (4, 0, -2), (0, 4, -2)", cases[k].what);
         if (triangle_crossing_mt(a, b, c, &cases[k].r, &t, &u, &v)) {
             snprintf(why, why_size, "triangle_crossing_mt: %s must miss the triangle (0, 0, -2), (4, 0, -2), "
                      "(0, 4, -2); your code returned a hit at t = %g", cases[k].what, t);
@@ -163,10 +192,16 @@ CHECK(check_triangle_misses) {
     /* Behind the origin: the line still crosses, at t = -2, and the caller's window drops it. */
     ray away = {{1, 1, 0}, {0, 0, 1}};
     double t = NAN, u, v;
-    if (triangle_crossing_mt(a, b, c, &away, &t, &u, &v) && check_near(t, -2.0, GEOMETRY_TOLERANCE))
+    check_calling("triangle_crossing_mt", "a ray from (1, 1, 0) up +z, the triangle (0, 0, -2), (4, 0, -2), (0, 4, -2) "
+                  "behind it");
+    bool hit = triangle_crossing_mt(a, b, c, &away, &t, &u, &v);
+    if (hit && check_near(t, -2.0, GEOMETRY_TOLERANCE))
         return true;
+    char got[64] = "no crossing";
+    if (hit)
+        snprintf(got, sizeof got, "t = %g", t);
     snprintf(why, why_size, "triangle_crossing_mt: a ray from (1, 1, 0) up +z has the triangle behind it: its line "
-             "crosses at t = -2 (the caller's window of t rejects it); your code returned %s%g", "t = ", t);
+             "crosses at t = -2 (the caller's window of t rejects it); your code returned %s", got);
     return false;
 }
 
@@ -180,13 +215,16 @@ CHECK(check_plane_hit) {
     double expected[2] = {1.0, M_SQRT2};
     for (int k = 0; k < 2; k++) {
         double t = NAN;
+        char d[64], got[64] = "no hit";
+        check_calling("plane_intersect", "the plane y = -1 (normal (0, 1, 0), distance -1) and a ray from the origin "
+                      "along %s", check_vec_text(rays[k].direction, d));
         bool hit = plane_intersect(&floor, &rays[k], 1e-9, INFINITY, &t);
         if (hit && check_near(t, expected[k], GEOMETRY_TOLERANCE))
             continue;
-        char d[64];
+        if (hit)
+            snprintf(got, sizeof got, "%.4f", t);
         snprintf(why, why_size, "plane_intersect: the plane y = -1 (normal (0, 1, 0), distance -1) and a ray from the "
-                 "origin along %s: the hit is %.4f along the ray; your code returned %s%.4f%s",
-                 check_vec_text(rays[k].direction, d), expected[k], hit ? "" : "no hit, t = ", hit ? t : NAN,
+                 "origin along %s: the hit is %.4f along the ray; your code returned %s%s", d, expected[k], got,
                  hit && check_near(t, -expected[k], 1e-9) ? ": the sign of the distance?" : "");
         return false;
     }
@@ -201,6 +239,7 @@ CHECK(check_plane_misses) {
     };
     for (int k = 0; k < 2; k++) {
         double t = NAN;
+        check_calling("plane_intersect", "the plane y = -1 and %s from the origin", cases[k].what);
         if (plane_intersect(&floor, &cases[k].r, 1e-9, INFINITY, &t)) {
             snprintf(why, why_size, "plane_intersect: the plane y = -1 and %s from the origin: expected a miss; your "
                      "code returned a hit at t = %g", cases[k].what, t);
@@ -210,26 +249,71 @@ CHECK(check_plane_misses) {
     return true;
 }
 
+/* One call of plane_intersect on r, for the counter's check: how much it added to the plane tests. */
+static uint64_t plane_tests_of_one_call(const ray *r) {
+    const struct plane floor = {{0, 1, 0}, -1.0, 0};
+    double t;
+    uint64_t before = stats_thread.plane_tests;
+    plane_intersect(&floor, r, 1e-9, INFINITY, &t);
+    return stats_thread.plane_tests - before;
+}
+
+CHECK(check_plane_counted) {
+    static const ray hit = {{0, 0, 0}, {0, -1, 0}}, miss = {{0, 0, 0}, {0, 1, 0}};
+    check_calling("plane_intersect", "the plane y = -1 and a ray from the origin down");
+    if (!check_counted_once(plane_tests_of_one_call(&hit), "plane_intersect on a ray that hits", "one plane test",
+                            "plane tests", why, why_size))
+        return false;
+    check_calling("plane_intersect", "the plane y = -1 and a ray from the origin up");
+    return check_counted_once(plane_tests_of_one_call(&miss), "plane_intersect on a ray that misses", "one plane test",
+                              "plane tests", why, why_size);
+}
+
 /* ---- 5.1 the slab test, 5.2 box_intersect ------------------------------------------------------ */
+
+/* Whether ray r runs in the plane of one of the box [-1, 1]^3's faces: a zero direction component with
+ * the origin on that face's plane, where (plane - origin) * (1 / 0) is 0 * infinity = NaN. */
+static bool in_a_face_plane(ray r) {
+    double o[3] = {r.origin.x, r.origin.y, r.origin.z}, d[3] = {r.direction.x, r.direction.y, r.direction.z};
+    for (int a = 0; a < 3; a++)
+        if (d[a] == 0.0 && fabs(o[a]) == 1.0)
+            return true;
+    return false;
+}
+
+/* Why the slab test may have missed a ray that enters the box at t = expected. */
+static const char *missed_hint(ray r) {
+    if (in_a_face_plane(r))
+        return ": a NaN? The ray runs in a face's plane, so on that axis (plane - origin) * (1 / 0) is "
+               "0 * infinity = NaN. Write the comparisons so that a NaN changes nothing, if (t0 > *t_near) "
+               "*t_near = t0 (false for NaN), not *t_near = *t_near > t0 ? *t_near : t0 (which takes the NaN), "
+               "nor fmin and fmax (which drop the NaN and keep the infinity)";
+    if (r.direction.x < 0 || r.direction.y < 0 || r.direction.z < 0)
+        return ": the slabs entered from the far side? Moving towards minus, the ray meets the high plane "
+               "first: swap t0 and t1 when 1/d < 0";
+    return "";
+}
 
 /* The box [-1, 1]^3 and a ray: where aabb_hit says it enters (NAN: a miss). */
 static bool slab_case(const char *what, ray r, double expected, char *why, size_t why_size) {
     struct aabb b = {{-1, -1, -1}, {1, 1, 1}};
     double entry = NAN;
+    char ray_text[160];
+    check_calling("clip_to_slab (through aabb_hit)", "the box [-1, 1]^3 and %s, %s", what, check_ray_text(&r, ray_text));
     bool hit = aabb_hit(&b, r.origin, aabb_inverse_direction(r.direction), 0.0, INFINITY, &entry);
     if (isnan(expected) ? !hit : hit && check_near(entry, expected, GEOMETRY_TOLERANCE))
         return true;
-    char o[64], d[64];
     if (isnan(expected))
-        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s from %s "
-                 "along %s: expected a miss; it said the ray enters at t = %g", what, check_vec_text(r.origin, o),
-                 check_vec_text(r.direction, d), entry);
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+                 "expected a miss; it said the ray enters at t = %g", what, ray_text, entry);
+    else if (!hit)
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+                 "the ray enters at t = %g; it said the ray misses%s", what, ray_text, expected, missed_hint(r));
     else
-        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s from %s "
-                 "along %s: the ray enters at t = %g; it said %s%g%s", what, check_vec_text(r.origin, o),
-                 check_vec_text(r.direction, d), expected, hit ? "t = " : "a miss, ", hit ? entry : NAN,
-                 hit && check_near(entry, expected + 2.0, 1e-9) ? ": the exit, not the entry? (swap t0 and t1 when 1/d < 0)"
-                                                                  : "");
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+                 "the ray enters at t = %g; it said t = %g%s", what, ray_text, expected, entry,
+                 check_near(entry, expected + 2.0, 1e-9) ? ": the exit, not the entry? (swap t0 and t1 when 1/d < 0)"
+                 : "");
     return false;
 }
 
@@ -248,18 +332,34 @@ CHECK(check_slab_misses) {
                      why_size);
 }
 
+/* Chapter 5's NaN case: a ray running in the plane of a face has an origin on a slab's plane and a zero
+ * direction component on that axis. A box's boundary belongs to the box, so the other slabs decide. */
+CHECK(check_slab_face_planes) {
+    return slab_case("a ray in the plane of the face z = 1", (ray){{-5, 0, 1}, {1, 0, 0}}, 4.0, why, why_size) &&
+           slab_case("a ray in the plane of the face z = -1", (ray){{-5, 0, -1}, {1, 0, 0}}, 4.0, why, why_size) &&
+           slab_case("a ray in the plane of the face x = 1, moving towards minus z", (ray){{1, 0, 5}, {0, 0, -1}}, 4.0,
+                     why, why_size) &&
+           slab_case("a ray along the edge where the faces y = 1 and z = 1 meet", (ray){{-5, 1, 1}, {1, 0, 0}}, 4.0,
+                     why, why_size) &&
+           slab_case("a ray in the plane of the face z = 1 but above the box (y = 2)", (ray){{-5, 2, 1}, {1, 0, 0}},
+                     NAN, why, why_size);
+}
+
 static bool box_case(const char *what, ray r, double expected, char *why, size_t why_size) {
     struct box b = {{-1, -1, -1}, {1, 1, 1}, 0};
     double t = NAN;
+    check_calling("box_intersect", "the box [-1, 1]^3 and %s", what);
     bool hit = box_intersect(&b, &r, 1e-9, INFINITY, &t);
     if (isnan(expected) ? !hit : hit && check_near(t, expected, GEOMETRY_TOLERANCE))
         return true;
-    snprintf(why, why_size, "box_intersect: the box [-1, 1]^3 and %s: expected %s%g; your code returned %s%g", what,
-             isnan(expected) ? "a miss" : "a hit at t = ", isnan(expected) ? 0.0 : expected, hit ? "a hit at t = " : "no hit",
-             hit ? t : 0.0);
-    if (!isnan(expected) && !hit)
-        snprintf(why + strlen(why), why_size - strlen(why), "%s",
-                 expected < 2 ? ": a ray starting inside hits the box where it leaves" : "");
+    char wanted[64] = "a miss", got[64] = "no hit";
+    if (!isnan(expected))
+        snprintf(wanted, sizeof wanted, "a hit at t = %g", expected);
+    if (hit)
+        snprintf(got, sizeof got, "a hit at t = %g", t);
+    snprintf(why, why_size, "box_intersect: the box [-1, 1]^3 and %s: expected %s; your code returned %s%s", what,
+             wanted, got, !isnan(expected) && !hit && expected < 2 ? ": a ray starting inside hits the box where it "
+             "leaves" : "");
     return false;
 }
 
@@ -270,4 +370,24 @@ CHECK(check_box_outside) {
 
 CHECK(check_box_inside) {
     return box_case("a ray from its centre along +x", (ray){{0, 0, 0}, {1, 0, 0}}, 1.0, why, why_size);
+}
+
+/* One call of box_intersect on r, for the counter's check: how much it added to the box tests. */
+static uint64_t box_tests_of_one_call(const ray *r) {
+    const struct box b = {{-1, -1, -1}, {1, 1, 1}, 0};
+    double t;
+    uint64_t before = stats_thread.box_tests;
+    box_intersect(&b, r, 1e-9, INFINITY, &t);
+    return stats_thread.box_tests - before;
+}
+
+CHECK(check_box_counted) {
+    static const ray hit = {{0, 0, 5}, {0, 0, -1}}, miss = {{3, 0, 5}, {0, 0, -1}};
+    check_calling("box_intersect", "the box [-1, 1]^3 and a ray from (0, 0, 5) down -z");
+    if (!check_counted_once(box_tests_of_one_call(&hit), "box_intersect on a ray that hits", "one box test",
+                            "box tests", why, why_size))
+        return false;
+    check_calling("box_intersect", "the box [-1, 1]^3 and a ray from (3, 0, 5) down -z");
+    return check_counted_once(box_tests_of_one_call(&miss), "box_intersect on a ray that misses", "one box test",
+                              "box tests", why, why_size);
 }

@@ -4,11 +4,17 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "image.h"
 #include "image_compare.h"
+
+extern char **environ;
 
 /* The regression rule of the image tests: at most 1 pixel in 2000 more than 1 level off, and a mean
  * difference of at most 0.01 levels. Noise from rounding passes, a real change does not. */
@@ -104,21 +110,50 @@ static void describe(const uint8_t *expected, const uint8_t *got, int w, int h, 
         snprintf(out + n, size - (size_t)n, "; it looks %s", symptom);
 }
 
+/* Runs ./BUILD/chapter-NN --quiet -o got_path with its messages in log_path. Returns its wait status, or
+ * -1 when it could not be started. */
+static int render(const char *program, const char *got_path, const char *log_path) {
+    posix_spawn_file_actions_t files;
+    posix_spawn_file_actions_init(&files);
+    posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, log_path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
+    char *const args[] = {(char *)program, "--quiet", "-o", (char *)got_path, NULL};
+    pid_t pid;
+    int started = posix_spawn(&pid, program, &files, NULL, args, environ);
+    posix_spawn_file_actions_destroy(&files);
+    int status;
+    if (started != 0 || waitpid(pid, &status, 0) != pid)
+        return -1;
+    return status;
+}
+
 /* Renders chapter n with the student's program into out/check/ and compares it with its reference. */
 static bool picture(int n, char *why, size_t why_size) {
     const char *build = getenv("WHITTED_BUILD") ? getenv("WHITTED_BUILD") : "build";
-    char got_path[256], ref_path[256], panel_path[256], command[1024], err[512];
+    char got_path[256], ref_path[256], panel_path[256], program[256], log_path[256], err[512];
     mkdir("out", 0777);
     mkdir("out/check", 0777);
     snprintf(got_path, sizeof got_path, "out/check/chapter-%02d-got.png", n);
     snprintf(ref_path, sizeof ref_path, "reference_images/chapter-%02d.png", n);
     snprintf(panel_path, sizeof panel_path, "out/check/chapter-%02d-expected-got-difference.png", n);
+    snprintf(program, sizeof program, "./%s/chapter-%02d", build, n);
+    snprintf(log_path, sizeof log_path, "out/check/chapter-%02d.log", n);
     remove(got_path);
-    snprintf(command, sizeof command, "./%s/chapter-%02d --quiet -o %s > out/check/chapter-%02d.log 2>&1", build, n,
-             got_path, n);
-    if (system(command) != 0) {
-        snprintf(why, why_size, "./%s/chapter-%02d failed (its messages are in out/check/chapter-%02d.log); is it built? "
-                 "make check-%d builds it", build, n, n, n);
+    check_calling(program, "its own scene (its messages go to %s)", log_path);
+    int status = render(program, got_path, log_path);
+    if (status == -1) {
+        snprintf(why, why_size, "%s could not be started; is it built? make check-%d builds it", program, n);
+        return false;
+    }
+    if (WIFSIGNALED(status)) {
+        snprintf(why, why_size, "%s crashed (%s) rendering its own scene (its messages are in %s): run it yourself, "
+                 "or build with the sanitizers (make SAN=1 check-%d), to see where", program,
+                 strsignal(WTERMSIG(status)), log_path, n);
+        return false;
+    }
+    if (WEXITSTATUS(status) != 0) {
+        snprintf(why, why_size, "%s failed (exit status %d; its messages are in %s)", program, WEXITSTATUS(status),
+                 log_path);
         return false;
     }
     int w, h, gw, gh;

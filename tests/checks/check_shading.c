@@ -11,6 +11,7 @@
 #include "scene.h"
 #include "shadow.h"
 #include "sphere.h"
+#include "stats.h"
 #include "whitted.h"
 #include "world.h"
 
@@ -45,6 +46,7 @@ static bool parse_world(const char *text, struct scene *s, struct world *w, char
 
 CHECK(check_reflect) {
     vec3 d = vec3_normalize(vec3_make(1, -1, 0)), n = vec3_make(0, 1, 0);
+    check_calling("phong_reflect", "the direction (0.707, -0.707, 0) and the normal (0, 1, 0)");
     vec3 expected = vec3_normalize(vec3_make(1, 1, 0)), got = phong_reflect(d, n);
     if (check_vec_near(got, expected, SHADING_TOLERANCE))
         return true;
@@ -71,6 +73,7 @@ static bool phong_case(const char *where, vec3 light, char *why, size_t why_size
         return false;
     const struct material *m = &s.materials[scene_find_material(&s, "m")];
     struct phong_surface at = {vec3_make(0, 0, 0), vec3_make(0, 1, 0), vec3_make(0, -1, 0), m, 1.0};
+    check_calling("phong_shade", "the origin, normal (0, 1, 0), seen from above, one white light %s", where);
     vec3 got = phong_shade(&s, &at, NULL, NULL);
     vec3 colour = vec3_make(1, 0.5, 0.25), l = vec3_normalize(light);
     double cosine = l.y, mirror = l.y; /* N = R = (0, 1, 0) here */
@@ -116,15 +119,17 @@ static bool shadow_case(const char *what, const char *spheres, vec3 point, vec3 
     struct world w;
     if (!parse_world(text, &s, &w, why, why_size))
         return false;
+    char p[64], l[64], g[64];
+    check_calling("shadow_opaque", "the point %s and a light at %s, %s", check_vec_text(point, p),
+                  check_vec_text(light, l), what);
     vec3 got = shadow_opaque(&w, point, &s.lights[0]);
     world_free(&w);
     scene_free(&s);
     vec3 expected = lit ? vec3_make(1, 1, 1) : vec3_make(0, 0, 0);
     if (check_vec_near(got, expected, 0.0))
         return true;
-    char p[64], l[64], g[64];
-    snprintf(why, why_size, "shadow_opaque from %s to a light at %s, %s: expected %s, got %s", check_vec_text(point, p),
-             check_vec_text(light, l), what, lit ? "(1, 1, 1), lit" : "(0, 0, 0), in shadow", check_vec_text(got, g));
+    snprintf(why, why_size, "shadow_opaque from %s to a light at %s, %s: expected %s, got %s", p, l, what,
+             lit ? "(1, 1, 1), lit" : "(0, 0, 0), in shadow", check_vec_text(got, g));
     return false;
 }
 
@@ -155,6 +160,38 @@ CHECK(check_shadow_no_acne) {
     return true;
 }
 
+/* The margin at the end of the shadow ray: its surface passes SHADOW_T_MIN / 2 below the light, so the
+ * sphere holds the light, and meets the shadow ray within the last SHADOW_T_MIN before it. */
+CHECK(check_shadow_end_margin) {
+    char spheres[128], what[512];
+    snprintf(spheres, sizeof spheres, "sphere centre 0 %.17g 0 radius 1\n", 11.0 - SHADOW_T_MIN / 2);
+    snprintf(what, sizeof what, "a sphere of radius 1 whose lowest point is %g below the light, within the margin at "
+             "the end: a shape that touches the light must not block it (blockers count only for SHADOW_T_MIN < t < "
+             "distance - SHADOW_T_MIN)", SHADOW_T_MIN / 2);
+    return shadow_case(what, spheres, vec3_make(0, 0, 0), vec3_make(0, 10, 0), true, why, why_size);
+}
+
+CHECK(check_shadow_counted) {
+    struct scene s;
+    struct world w;
+    if (!parse_world("light position 0 10 0\nsphere centre 0 5 0 radius 1\n", &s, &w, why, why_size))
+        return false;
+    check_calling("shadow_opaque", "the point (5, 0, 0) and a light at (5, 10, 0)");
+    uint64_t before = stats_thread.shadow_rays;
+    shadow_opaque(&w, vec3_make(5, 0, 0), &s.lights[0]);
+    uint64_t clear = stats_thread.shadow_rays - before;
+    check_calling("shadow_opaque", "the point (0, 0, 0) and a light at (0, 10, 0), a sphere in between");
+    before = stats_thread.shadow_rays;
+    shadow_opaque(&w, vec3_make(0, 0, 0), &s.lights[0]);
+    uint64_t blocked = stats_thread.shadow_rays - before;
+    world_free(&w);
+    scene_free(&s);
+    return check_counted_once(clear, "shadow_opaque towards a light in view", "one shadow ray", "shadow rays", why,
+                              why_size) &&
+           check_counted_once(blocked, "shadow_opaque towards a light behind a sphere", "one shadow ray",
+                              "shadow rays", why, why_size);
+}
+
 /* ---- 8.1 whitted_refract ----------------------------------------------------------------------- */
 
 CHECK(check_refract_snell) {
@@ -162,6 +199,7 @@ CHECK(check_refract_snell) {
     vec3 d = vec3_normalize(vec3_make(1, -1, 0)), n = vec3_make(0, 1, 0), got = vec3_make(0, 0, 0);
     double s = M_SQRT1_2 / 1.5;
     vec3 expected = vec3_make(s, -sqrt(1 - s * s), 0);
+    check_calling("whitted_refract", "the direction (0.707, -0.707, 0), the normal (0, 1, 0) and eta 1/1.5");
     bool ok = whitted_refract(d, n, 1.0 / 1.5, &got);
     if (ok && check_vec_near(got, expected, SHADING_TOLERANCE))
         return true;
@@ -175,12 +213,14 @@ CHECK(check_refract_snell) {
 CHECK(check_refract_total_internal_reflection) {
     /* From glass into air (eta = 1.5) at 60 degrees: 1.5 sin 60 = 1.3 > 1, no refracted ray. */
     vec3 d = vec3_make(sin(M_PI / 3), -cos(M_PI / 3), 0), n = vec3_make(0, 1, 0), got = vec3_make(7, 7, 7);
-    if (!whitted_refract(d, n, 1.5, &got) && check_vec_near(got, vec3_make(7, 7, 7), 0.0))
+    check_calling("whitted_refract", "the direction (0.866, -0.5, 0), the normal (0, 1, 0) and eta 1.5");
+    bool refracted = whitted_refract(d, n, 1.5, &got);
+    if (!refracted && check_vec_near(got, vec3_make(7, 7, 7), 0.0))
         return true;
     char g[64];
     snprintf(why, why_size, "whitted_refract at 60 degrees from glass (eta 1.5) into air: 1.5 sin 60 = 1.3 > 1, "
              "so it must return false and leave *out alone (total internal reflection); it returned %s%s",
-             whitted_refract(d, n, 1.5, &got) ? "true with " : "false but wrote ", check_vec_text(got, g));
+             refracted ? "true with " : "false but wrote ", check_vec_text(got, g));
     return false;
 }
 
@@ -192,6 +232,8 @@ static bool trace_case(const char *what, const char *text, ray r, vec3 expected,
     struct world w;
     if (!parse_world(text, &s, &w, why, why_size))
         return false;
+    char ray_text[160];
+    check_calling("trace (through whitted_trace)", "%s: %s", what, check_ray_text(&r, ray_text));
     vec3 got = whitted_trace(&w, &r);
     world_free(&w);
     scene_free(&s);

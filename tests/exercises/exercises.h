@@ -1,13 +1,13 @@
 /* exercises.h: the functions the walkthroughs' build exercises (★★★) ask a student to write, and the
  * checks that grade them.
  *
- * Each function is declared weak: until a student writes it (in the module the exercise names), its
- * address is NULL and its test in test_exercises.c is skipped with a note saying where to start. Once
- * it exists, the test runs the check below on it. Exercise 2.4 is a whole kind of shape: its test is
- * skipped until its table, disc_kind, exists. Each check returns true, or false with a message in
- * the student's terms: the input, what was expected, what came back. tests/exercises/solutions.c holds
- * one correct answer to each, linked only into build/run-exercise-solutions, which make test runs to
- * prove that every check passes a right answer and fails a wrong one. */
+ * make exercises (tests/exercises/runner/run.sh) grades each exercise whose function common/ defines,
+ * by linking a small program that runs the check below on it (runner/exercise.c); until the function
+ * exists it says where to start. Exercise 2.4 is a whole kind of shape: its check starts once its table,
+ * disc_kind, exists. Each check returns true, or false with a message in the student's terms: the
+ * input, what was expected, what came back. tests/exercises/solutions.c holds one correct answer to each
+ * and one wrong one, which make test uses to prove that every check passes the first and fails the
+ * second (test_exercise_proof.c). */
 #ifndef WHITTED_EXERCISES_H
 #define WHITTED_EXERCISES_H
 
@@ -21,48 +21,46 @@
 #include "ray.h"
 #include "shape.h"
 
-#define WEAK __attribute__((weak))
-
 /* Exercise 2.4 (common/disc.h and common/disc.c, and &disc_kind in the list of kinds of each chapter that
  * draws discs): the disc, a new kind of shape, read from the scene line `disc centre X Y Z normal X Y Z
- * radius R [material NAME]`. Its test grades the kind's tables: its syntax (keyword "disc"; a zero
+ * radius R [material NAME]`. Its check grades the kind's tables: its syntax (keyword "disc"; a zero
  * normal or a radius <= 0 is refused, the normal is made unit length), its POV-Ray form `disc {
  * <centre>, <normal>, radius`, and its ray queries: the nearest hit among several discs (t, the disc's
  * unit normal, the material, its index in the array; the rim counts), the crossings and the bounding
  * box. */
-WEAK extern const struct shape_kind disc_kind;
+extern const struct shape_kind disc_kind;
 bool check_disc(const struct shape_kind *kind, char *why, size_t why_size);
 
 /* Exercise 3.4 (common/mesh_normals.c): a unit normal for every vertex of m, the average of the normals
  * of the faces around it weighted by their areas (the cross product of two edges, unnormalised, does
  * both at once); (0, 0, 0) for a vertex no face uses. normals has m->vertex_count entries. */
-WEAK void mesh_vertex_normals(const struct mesh *m, vec3 *normals);
+void mesh_vertex_normals(const struct mesh *m, vec3 *normals);
 typedef void (*vertex_normals_fn)(const struct mesh *, vec3 *);
 bool check_vertex_normals(vertex_normals_fn f, char *why, size_t why_size);
 
 /* Exercise 4.4 (common/cylinder.c): where r meets the side of the open cylinder of `radius` whose axis
  * runs from `base` up the +y axis for `height`, with t_min < t < t_max (no caps). */
-WEAK bool cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max,
-                             double *t);
+bool cylinder_intersect(vec3 base, double radius, double height, const ray *r, double t_min, double t_max,
+                        double *t);
 typedef bool (*cylinder_fn)(vec3, double, double, const ray *, double, double, double *);
 bool check_cylinder(cylinder_fn f, char *why, size_t why_size);
 
 /* Exercise 5.4 (common/bounding_sphere.c): a sphere that holds every vertex of m, no larger than the
  * sphere around m's bounding box. */
-WEAK void mesh_bounding_sphere(const struct mesh *m, vec3 *centre, double *radius);
+void mesh_bounding_sphere(const struct mesh *m, vec3 *centre, double *radius);
 typedef void (*bounding_sphere_fn)(const struct mesh *, vec3 *, double *);
 bool check_bounding_sphere(bounding_sphere_fn f, char *why, size_t why_size);
 
 /* Exercise 6.4 (common/phong.c): Blinn's highlight, max(0, N · H)^exponent with H the unit half vector
  * between the unit vectors towards the light and towards the eye; 0 when the light is behind. */
-WEAK double phong_blinn_highlight(vec3 normal, vec3 to_light, vec3 to_eye, double exponent);
+double phong_blinn_highlight(vec3 normal, vec3 to_light, vec3 to_eye, double exponent);
 typedef double (*blinn_fn)(vec3, vec3, vec3, double);
 bool check_blinn(blinn_fn f, char *why, size_t why_size);
 
 /* Exercise 7.4 (common/shadow.c): the share of a rectangular area light (corner, edges edge_u and
  * edge_v) visible from `point`: the light is cut into n x n equal cells, one shadow ray to each cell's
  * centre (shadow_opaque), and the result is the fraction that arrive. `world` is a struct world. */
-WEAK double shadow_area_fraction(const void *world, vec3 point, vec3 corner, vec3 edge_u, vec3 edge_v, int n);
+double shadow_area_fraction(const void *world, vec3 point, vec3 corner, vec3 edge_u, vec3 edge_v, int n);
 typedef double (*area_fraction_fn)(const void *, vec3, vec3, vec3, vec3, int);
 bool check_area_fraction(area_fraction_fn f, char *why, size_t why_size);
 
@@ -70,25 +68,25 @@ bool check_area_fraction(area_fraction_fn f, char *why, size_t why_size);
  * n1 (the ray's side) and n2 reflects, for a ray whose angle to the normal has cosine cos_incident:
  * R0 + (1 - R0)(1 - c)^5 with R0 = ((n1 - n2) / (n1 + n2))^2, where c is the cosine on the denser
  * side; 1 when the ray cannot leave (total internal reflection). */
-WEAK double whitted_schlick(double cos_incident, double n1, double n2);
+double whitted_schlick(double cos_incident, double n1, double n2);
 typedef double (*schlick_fn)(double, double, double);
 bool check_schlick(schlick_fn f, char *why, size_t why_size);
 
 /* Exercise 9.4 (common/grid.c): the cells of a uniform grid that r crosses, in order, for t >= 0. The
  * grid divides the box [lo, hi] into `cells` equal cells per axis. Writes up to `max` cells as
  * {x, y, z} indices into out and returns how many the ray crosses (3D-DDA, Amanatides and Woo 1987). */
-WEAK int grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max);
+int grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max);
 typedef int (*grid_walk_fn)(vec3, vec3, int, const ray *, int (*)[3], int);
 bool check_grid_walk(grid_walk_fn f, char *why, size_t why_size);
 
 /* Exercise 10.4 (common/bvh.c): the SAH cost of splitting the n boxes at `plane` on `axis`: boxes whose
  * centre is below the plane go left, the rest right; cost = 1 + (area(L) * count(L) + area(R) *
  * count(R)) / area(all), with a side's area that of the union of its boxes (0 when it is empty). */
-WEAK double bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
+double bvh_split_cost(const struct aabb *boxes, int n, int axis, double plane);
 typedef double (*split_cost_fn)(const struct aabb *, int, int, double);
 bool check_split_cost(split_cost_fn f, char *why, size_t why_size);
 
-/* Exercise 11.4 (common/fast_bvh.c): a binary BVH collapsed into a 4-wide one, as rung 2 does. A child
+/* Exercise 11.4 (common/fast_bvh_build.c): a binary BVH collapsed into a 4-wide one, as rung 2 does. A child
  * is written as an int: k >= 0 for node k of the same tree, -1 - L for leaf L (BVH_LEAF(L)). */
 #define BVH_LEAF(l) (-1 - (l))
 #define BVH4_NONE INT_MIN /* an unused slot of a 4-wide node */
@@ -104,7 +102,7 @@ struct bvh4_node {
  * binary node's two children and, while it has fewer than four, replaces the interior (not leaf) child
  * with the largest surface area by that child's two children; every interior child left becomes a
  * 4-wide node of its own in the same way. */
-WEAK int bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
+int bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
 typedef int (*collapse_fn)(const struct bvh2_node *, int, struct bvh4_node *, int);
 bool check_collapse(collapse_fn f, char *why, size_t why_size);
 
@@ -114,7 +112,7 @@ bool check_collapse(collapse_fn f, char *why, size_t why_size);
  * an n x n board, none attacking another), at a random place within its cell. The places and which
  * column goes with which row come from sample_hash(i, j, index, seed) alone: the same pixel and seed
  * give the same points, other pixels other pairings. */
-WEAK void supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y);
+void supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y);
 typedef void (*rooks_fn)(int, int, int, uint32_t, double *, double *);
 bool check_rooks(rooks_fn f, char *why, size_t why_size);
 
@@ -124,7 +122,7 @@ bool check_rooks(rooks_fn f, char *why, size_t why_size);
  * radius, each of its four sides to a quarter of the circle (where |a| > |b|: r = a, angle pi/4 * b / a;
  * otherwise r = b, angle pi/2 - pi/4 * a / b; (0, 0) for the centre). Areas are kept: uniform points in
  * the square give uniform points in the disc, and stratified ones stay stratified. */
-WEAK void thin_lens_concentric(double u, double v, double *x, double *y);
+void thin_lens_concentric(double u, double v, double *x, double *y);
 typedef void (*concentric_fn)(double, double, double *, double *);
 bool check_concentric(concentric_fn f, char *why, size_t why_size);
 

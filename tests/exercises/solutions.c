@@ -2,8 +2,8 @@
  * tests can prove every check passes the first and fails the second (test_exercise_proof.c).
  *
  * For lecturers: these are the model answers. They are named solution_* and wrong_*, not by the
- * names the exercises ask for, so the students' checks in test_exercises.c stay skipped until a
- * student writes the real function; `make student` leaves this file out of the student copy. */
+ * names the exercises ask for, so that make exercises still says "not started" until a student writes
+ * the real function; `make student` leaves this file out of the student copy. */
 #include "solutions.h"
 
 #include <math.h>

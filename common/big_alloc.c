@@ -1,0 +1,30 @@
+/* big_alloc.c: aligned arrays, with 2 MB pages for the big ones when asked (chapter 11).
+ *
+ * Memory comes from the kernel in 4 KB pages, each costing a page fault the first time it is touched and
+ * an entry in the processor's small cache of page addresses (the TLB) whenever it is used. Linux can
+ * back an array with 2 MB pages instead (madvise MADV_HUGEPAGE, when the array is aligned to 2 MB): one
+ * fault per 2 MB instead of one per 4 KB, and 512 times fewer TLB entries. On the virtual machine this
+ * was measured on, first-touch page faults cost 70 ms per 25 MB, most of a big build's time. The advice
+ * is only a hint: elsewhere, or when the kernel refuses it, the array is an ordinary one. */
+#include "big_alloc.h"
+
+#include <stdlib.h>
+#include <sys/mman.h>
+
+/* The size of a big page, and the smallest array worth one. */
+#define BIG_ALLOC_HUGE_PAGE ((size_t)1 << 21)
+
+/* Every array starts on a cache line, so that a 64-byte node never straddles two. */
+#define BIG_ALLOC_ALIGNMENT 64
+
+void *big_alloc(size_t bytes, bool huge_pages) {
+    if (bytes < BIG_ALLOC_HUGE_PAGE || !huge_pages) /* aligned_alloc wants a multiple of the alignment */
+        return aligned_alloc(BIG_ALLOC_ALIGNMENT, (bytes / BIG_ALLOC_ALIGNMENT + 1) * BIG_ALLOC_ALIGNMENT);
+    size_t rounded = (bytes + BIG_ALLOC_HUGE_PAGE - 1) / BIG_ALLOC_HUGE_PAGE * BIG_ALLOC_HUGE_PAGE;
+    void *p = aligned_alloc(BIG_ALLOC_HUGE_PAGE, rounded);
+#if defined(MADV_HUGEPAGE)
+    if (p != NULL)
+        madvise(p, rounded, MADV_HUGEPAGE); /* only a hint: failure changes nothing */
+#endif
+    return p;
+}

@@ -1,0 +1,545 @@
+/* fast_bvh_build.c: building chapter 11's 4-wide hierarchy, by collapsing chapter 10's tree (rungs 2 to
+ * 4) or in float, straight into the 4-wide layout (rung 5) (chapter 11).
+ *
+ * Rungs 2 to 4 change only how the tree is stored and walked (fast_bvh.c), so they take chapter 10's
+ * tree as it is: bvh_build makes it, and fast_bvh_collapse gives each node four children instead of
+ * two. A 4-wide node starts with its binary node's two children and, while it has room, replaces the
+ * interior child with the largest surface area (the one most rays enter) by that child's own two
+ * children, as Embree's BVH4 does. The double boxes are rounded outward to float (float_below,
+ * float_above), so that every float box holds the padded double box it stands for.
+ *
+ * Rung 5 changes only the build. It makes the same kind of tree by the same binned SAH (bvh.h's rule
+ * and constants), but faster:
+ *  - in float, four lanes at a time (struct float_box: x, y, z and an unused lane), with half the
+ *    memory traffic of chapter 10's double boxes; all three axes binned in one pass over the triangles;
+ *  - a small node gets one slot per triangle instead of BVH_BINS mostly empty ones;
+ *  - big nodes fill FAST_BVH_BIN_SETS sets of slots at once (see there);
+ *  - straight into the 4-wide layout: a node's children are split as soon as the node is made, by the
+ *    very rule fast_bvh_collapse follows, so the binary tree is never stored (40 bytes a triangle
+ *    less at the build's peak);
+ *  - its big arrays on 2 MB pages (big_alloc).
+ * Its tree is not chapter 10's node for node (float centroids, other slots), but as good by the SAH's
+ * measure. Where the SAH finds no plane or the tree is deeper than BVH_MAX_DEPTH, chapter 10 halves a
+ * node by its median; rung 5 halves it by count as its triangles lie (all centroids at one point give
+ * the same halves), so that there is one quickselect, chapter 10's. The median rule itself is built as
+ * on rungs 2 to 4: it is quick already. */
+#include "fast_bvh_build.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
+#include "big_alloc.h"
+#include "clock.h"
+#include "triangle.h"
+
+/* Nodes of at least FAST_BVH_MANY_SETS_FROM triangles are binned into FAST_BVH_BIN_SETS sets of slots,
+ * prim i into set i % FAST_BVH_BIN_SETS, and the sets are added up afterwards. Neighbouring prims
+ * usually fall into the same slot, and with one set each update of a slot waits for the previous one
+ * to be stored; with four, four updates are under way at once. It took a fifth off the build of the
+ * 350k-triangle teapot. Small nodes use one set: there, clearing the extra slots costs more than it
+ * saves. */
+#define FAST_BVH_BIN_SETS 4
+#define FAST_BVH_MANY_SETS_FROM 256
+
+/* The largest float <= x and the smallest float >= x: a float box built from these holds the double
+ * box exactly. A NaN (from a corner at infinity) gives the infinity on the safe side, so that no NaN
+ * reaches a box. */
+static float float_below(double x) {
+    if (isnan(x))
+        return -INFINITY; /* a corner beyond double's range: a box open on that side holds it */
+    float f = (float)x;
+    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+}
+
+static float float_above(double x) {
+    if (isnan(x))
+        return INFINITY;
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+/* Returns box rounded outward to the nearest floats (widened back to double, exactly). */
+static struct aabb rounded_to_float(struct aabb box) {
+    return (struct aabb){{float_below(box.min.x), float_below(box.min.y), float_below(box.min.z)},
+                         {float_above(box.max.x), float_above(box.max.y), float_above(box.max.z)}};
+}
+
+/* Writes slot k of node n: the child (or leaf) and its box, rounded outward to float. */
+static void set_slot(struct fast_bvh_node *n, int k, struct aabb box, uint32_t child, uint32_t count) {
+    struct aabb rounded = rounded_to_float(box);
+    for (int a = 0; a < 3; a++) {
+        n->bounds[a][0][k] = (float)vec3_axis(rounded.min, a);
+        n->bounds[a][1][k] = (float)vec3_axis(rounded.max, a);
+    }
+    n->child[k] = child;
+    n->count[k] = count;
+}
+
+/* The shape and SAH cost of the 4-wide tree, added up as its nodes are made. */
+struct tree_shape {
+    double root_area;
+    size_t node_count, leaves, max_depth;
+    double sah_cost;
+};
+
+/* Counts a node or a leaf of the given box (and count of triangles, 0 for a node) at the given depth. */
+static void count_child(struct tree_shape *shape, struct aabb box, uint32_t count, size_t depth) {
+    double area_ratio = shape->root_area > 0.0 ? aabb_surface_area(box) / shape->root_area : 1.0;
+    if (count == 0) {
+        shape->sah_cost += BVH_COST_TRAVERSAL * area_ratio;
+        return;
+    }
+    shape->leaves++;
+    shape->sah_cost += BVH_COST_TRIANGLE * count * area_ratio;
+    shape->max_depth = depth > shape->max_depth ? depth : shape->max_depth;
+}
+
+/* ==== rung 2: chapter 10's tree, collapsed ===================================================== */
+
+struct collapser {
+    const struct bvh *binary;
+    struct fast_bvh_node *nodes;
+    struct tree_shape shape;
+};
+
+/* Makes a 4-wide node out of binary node `index` and its descendants, at the given depth of the 4-wide
+ * tree, and returns its index. */
+static uint32_t collapse_node(struct collapser *c, uint32_t index, size_t depth) {
+    const struct bvh_node *nodes = c->binary->nodes;
+    uint32_t slots[FAST_BVH_WIDTH] = {nodes[index].left, nodes[index].right};
+    int used = 2;
+    while (used < FAST_BVH_WIDTH) {
+        int widest = -1;
+        double widest_area = -1.0;
+        for (int k = 0; k < used; k++)
+            if (nodes[slots[k]].count == 0 && aabb_surface_area(nodes[slots[k]].box) > widest_area) {
+                widest = k;
+                widest_area = aabb_surface_area(nodes[slots[k]].box);
+            }
+        if (widest < 0)
+            break; /* every child is a leaf */
+        const struct bvh_node *open = &nodes[slots[widest]];
+        slots[widest] = open->left;
+        slots[used++] = open->right;
+    }
+    uint32_t out = (uint32_t)c->shape.node_count++;
+    count_child(&c->shape, nodes[index].box, 0, depth);
+    for (int k = 0; k < FAST_BVH_WIDTH; k++) {
+        if (k >= used) {
+            set_slot(&c->nodes[out], k, aabb_empty(), FAST_BVH_NO_CHILD, 0);
+            continue;
+        }
+        const struct bvh_node *n = &nodes[slots[k]];
+        uint32_t child = n->count > 0 ? n->first : collapse_node(c, slots[k], depth + 1);
+        if (n->count > 0)
+            count_child(&c->shape, n->box, n->count, depth + 1);
+        set_slot(&c->nodes[out], k, n->box, child, n->count);
+    }
+    return out;
+}
+
+struct fast_bvh *fast_bvh_collapse(struct bvh *binary, enum fast_bvh_rung rung) {
+    double start = clock_seconds();
+    struct fast_bvh *b = calloc(1, sizeof *b);
+    size_t interior = binary->node_count - binary->info.leaves; /* the 4-wide tree has no more nodes */
+    struct fast_bvh_node *nodes = big_alloc((interior > 0 ? interior : 1) * sizeof *nodes, false);
+    if (b == NULL || nodes == NULL) {
+        free(b);
+        free(nodes);
+        return NULL;
+    }
+    struct collapser c = {binary, nodes, {0.0, 0, 0, 0, 0.0}};
+    b->rung = rung;
+    b->nodes = nodes;
+    b->root_box = aabb_empty();
+    if (binary->tree_count > 0) {
+        const struct bvh_node *root = &binary->nodes[0];
+        b->root_box = rounded_to_float(root->box); /* so that it holds its children's float boxes */
+        c.shape.root_area = aabb_surface_area(root->box);
+        b->root_count = root->count;
+        b->root_child = root->count > 0 ? root->first : collapse_node(&c, 0, 0);
+        if (root->count > 0)
+            count_child(&c.shape, root->box, root->count, 0);
+    }
+    b->node_count = c.shape.node_count;
+    b->triangles = binary->triangles; /* taken over: the same triangles in the same leaf order */
+    b->faces = binary->faces;
+    binary->triangles = NULL;
+    binary->faces = NULL;
+    b->triangle_count = binary->triangle_count;
+    b->tree_count = binary->tree_count;
+    b->info = (struct bvh_info){c.shape.node_count + c.shape.leaves, c.shape.leaves, c.shape.max_depth, 0.0,
+                                c.shape.sah_cost + BVH_COST_TRIANGLE * binary->info.slivers, binary->info.slivers};
+    b->info.build_ms = binary->info.build_ms + 1e3 * (clock_seconds() - start);
+    return b;
+}
+
+/* ==== rung 5: the float build ================================================================== */
+
+/* GCC's vector extension: four floats processed by one instruction (SSE on x86-64). */
+typedef float float4 __attribute__((vector_size(16)));
+typedef int32_t int4 __attribute__((vector_size(16)));
+
+/* Lane by lane, a < b ? a : b and a > b ? a : b (a NaN in a gives b). SSE has each as one instruction;
+ * elsewhere a compare and a select. */
+static inline float4 min4(float4 a, float4 b) {
+#if defined(__SSE__)
+    return _mm_min_ps(a, b);
+#else
+    int4 pick_a = a < b;
+    return (float4)(((int4)a & pick_a) | ((int4)b & ~pick_a));
+#endif
+}
+
+static inline float4 max4(float4 a, float4 b) {
+#if defined(__SSE__)
+    return _mm_max_ps(a, b);
+#else
+    int4 pick_a = a > b;
+    return (float4)(((int4)a & pick_a) | ((int4)b & ~pick_a));
+#endif
+}
+
+/* Chapter 5's box in float, four lanes at a time: x, y, z and an unused lane, 0 in both corners. The
+ * bounds are rounded outward from the double box they stand for. */
+struct float_box {
+    float4 lo, hi;
+};
+
+static inline struct float_box float_box_empty(void) {
+    return (struct float_box){{INFINITY, INFINITY, INFINITY, 0.0f}, {-INFINITY, -INFINITY, -INFINITY, 0.0f}};
+}
+
+static inline void float_box_grow(struct float_box *b, float4 lo, float4 hi) {
+    b->lo = min4(b->lo, lo);
+    b->hi = max4(b->hi, hi);
+}
+
+/* Half the surface area of a box that is not empty, in float: what the SAH sweeps compare. */
+static inline float float_box_half_area(const struct float_box *b) {
+    float4 e = b->hi - b->lo;
+    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+}
+
+/* The box as chapter 5's, in double (exactly: every float is a double). */
+static struct aabb float_box_widened(const struct float_box *b) {
+    return (struct aabb){{b->lo[0], b->lo[1], b->lo[2]}, {b->hi[0], b->hi[1], b->hi[2]}};
+}
+
+/* Twice the centre of a prim's box: the point the split sorts by. */
+static inline float4 centroid_of(const struct float_box *p) { return p->lo + p->hi; }
+
+/* A run of prims (see struct builder), with the box of their boxes and the box of their centroids. */
+struct build_range {
+    uint32_t begin, end;
+    struct float_box box, centroids;
+};
+
+struct builder {
+    struct float_box *prims;     /* one padded box per triangle; the splits reorder them into leaf order */
+    uint32_t *faces;             /* the face number of each prim, reordered along with them */
+    struct fast_bvh_node *nodes; /* the 4-wide tree */
+    struct tree_shape shape;
+};
+
+static inline void swap_prims(struct builder *bd, uint32_t i, uint32_t j) {
+    struct float_box box = bd->prims[i];
+    bd->prims[i] = bd->prims[j];
+    bd->prims[j] = box;
+    uint32_t face = bd->faces[i];
+    bd->faces[i] = bd->faces[j];
+    bd->faces[j] = face;
+}
+
+/* Fills r->box and r->centroids from its prims. */
+static void range_bounds(const struct builder *bd, struct build_range *r) {
+    r->box = float_box_empty();
+    r->centroids = float_box_empty();
+    for (uint32_t k = r->begin; k < r->end; k++) {
+        float_box_grow(&r->box, bd->prims[k].lo, bd->prims[k].hi);
+        float4 c = centroid_of(&bd->prims[k]);
+        float_box_grow(&r->centroids, c, c);
+    }
+}
+
+/* Halves r by count, its prims as they lie: where the SAH cannot choose (see the file comment). */
+static void halve(const struct builder *bd, const struct build_range *r, struct build_range *left,
+                  struct build_range *right) {
+    uint32_t mid = r->begin + (r->end - r->begin) / 2;
+    left->begin = r->begin;
+    left->end = mid;
+    right->begin = mid;
+    right->end = r->end;
+    range_bounds(bd, left);
+    range_bounds(bd, right);
+}
+
+struct bin {
+    struct float_box box;
+    uint32_t count;
+};
+
+/* The slots of a centroid on all three axes: the same expression in binning and partitioning, so both
+ * agree. Slot = floor((centroid - origin) * scale), clamped to [0, slots - 1] before it is converted to
+ * an integer, so that a NaN or infinite centroid (a mesh beyond float's range) lands in slot 0 or the
+ * last slot instead of becoming INT_MIN and indexing outside the bins. */
+static inline int4 bins_of(float4 centroid, float4 origin, float4 scale, int slots) {
+    float4 last = {(float)(slots - 1), (float)(slots - 1), (float)(slots - 1), (float)(slots - 1)};
+    float4 x = max4((centroid - origin) * scale, (float4){0, 0, 0, 0}); /* a NaN gives 0 */
+    return __builtin_convertvector(min4(x, last), int4);
+}
+
+/* Looks for the cheapest SAH split of r. Returns false, leaving the prims alone, when a leaf is
+ * cheaper or no plane separates the centroids; otherwise partitions r into *left and *right. */
+static bool split_sah(struct builder *bd, const struct build_range *r, struct build_range *left,
+                      struct build_range *right) {
+    struct bin bins[FAST_BVH_BIN_SETS][3][BVH_BINS]; /* [set][axis][slot]; the sets are summed into set 0 */
+    uint32_t n = r->end - r->begin;
+    int slots = n < BVH_BINS ? (int)n : BVH_BINS; /* slots used per axis */
+    int sets = n >= FAST_BVH_MANY_SETS_FROM ? FAST_BVH_BIN_SETS : 1;
+    float4 extent = r->centroids.hi - r->centroids.lo, scale = {0, 0, 0, 0};
+    for (int a = 0; a < 3; a++)
+        scale[a] = extent[a] > 0.0f ? (float)slots / extent[a] : 0.0f; /* 0: one slot takes all */
+    for (int set = 0; set < sets; set++)
+        for (int a = 0; a < 3; a++)
+            for (int k = 0; k < slots; k++)
+                bins[set][a][k] = (struct bin){float_box_empty(), 0};
+    for (uint32_t i = r->begin; i < r->end; i++) {
+        const struct float_box *p = &bd->prims[i];
+        int4 k = bins_of(centroid_of(p), r->centroids.lo, scale, slots);
+        struct bin (*set)[BVH_BINS] = bins[sets == 1 ? 0 : i % FAST_BVH_BIN_SETS]; /* a constant %: a mask */
+        for (int a = 0; a < 3; a++) {
+            struct bin *slot = &set[a][k[a]];
+            slot->count++;
+            float_box_grow(&slot->box, p->lo, p->hi);
+        }
+    }
+    for (int set = 1; set < sets; set++)
+        for (int a = 0; a < 3; a++)
+            for (int k = 0; k < slots; k++) {
+                bins[0][a][k].count += bins[set][a][k].count;
+                float_box_grow(&bins[0][a][k].box, bins[set][a][k].box.lo, bins[set][a][k].box.hi);
+            }
+
+    /* For each axis, sweep from the right to get the area and count right of every plane, then from the
+     * left to price each plane. Cost: the sum of area * count over both sides. */
+    float best_cost = INFINITY;
+    int best_axis = -1, best_plane = 0;
+    for (int a = 0; a < 3; a++) {
+        if (scale[a] == 0.0f)
+            continue; /* all centroids in one plane: this axis cannot separate them */
+        /* right_cost[k]: half area times count of everything right of the plane between slots k - 1
+         * and k (infinite while nothing is: such a plane is never chosen). Empty slots change nothing,
+         * so they are skipped; small nodes leave most slots empty. */
+        float right_cost[BVH_BINS];
+        struct float_box side = float_box_empty();
+        uint32_t count = 0;
+        float cost = INFINITY;
+        for (int k = slots - 1; k > 0; k--) {
+            if (bins[0][a][k].count > 0) {
+                float_box_grow(&side, bins[0][a][k].box.lo, bins[0][a][k].box.hi);
+                count += bins[0][a][k].count;
+                cost = float_box_half_area(&side) * (float)count;
+            }
+            right_cost[k] = cost;
+        }
+        side = float_box_empty();
+        count = 0;
+        for (int k = 1; k < slots; k++) {
+            if (bins[0][a][k - 1].count == 0)
+                continue; /* the same split as the plane before */
+            float_box_grow(&side, bins[0][a][k - 1].box.lo, bins[0][a][k - 1].box.hi);
+            count += bins[0][a][k - 1].count;
+            cost = float_box_half_area(&side) * (float)count + right_cost[k];
+            if (cost < best_cost) {
+                best_cost = cost;
+                best_axis = a;
+                best_plane = k;
+            }
+        }
+    }
+    if (best_axis < 0)
+        return false;
+
+    double area = aabb_surface_area(float_box_widened(&r->box));
+    double split_cost = area > 0.0 ? BVH_COST_TRAVERSAL + BVH_COST_TRIANGLE * 2.0 * best_cost / area : INFINITY;
+    if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_TRIANGLE * n <= split_cost)
+        return false;
+
+    /* Partition, gathering each side's centroid box on the way; the boxes are the unions of the slots'. */
+    *left = (struct build_range){r->begin, r->begin, float_box_empty(), float_box_empty()};
+    *right = (struct build_range){r->end, r->end, float_box_empty(), float_box_empty()};
+    uint32_t i = r->begin, j = r->end; /* [begin,i) go left, [j,end) go right */
+    while (i < j) {
+        float4 c = centroid_of(&bd->prims[i]);
+        if (bins_of(c, r->centroids.lo, scale, slots)[best_axis] < best_plane) {
+            float_box_grow(&left->centroids, c, c);
+            i++;
+        } else {
+            float_box_grow(&right->centroids, c, c);
+            swap_prims(bd, i, --j);
+        }
+    }
+    left->end = i;
+    right->begin = i;
+    for (int k = 0; k < slots; k++) {
+        struct build_range *side = k < best_plane ? left : right;
+        float_box_grow(&side->box, bins[0][best_axis][k].box.lo, bins[0][best_axis][k].box.hi);
+    }
+    return true;
+}
+
+/* Splits r, at depth `depth` of the binary tree the splits make, into *left and *right by the SAH, or
+ * halves it when the SAH cannot choose and r is too big for a leaf. Returns false when r is a leaf. */
+static bool split(struct builder *bd, const struct build_range *r, size_t depth, struct build_range *left,
+                  struct build_range *right) {
+    uint32_t n = r->end - r->begin;
+    if (n <= 1)
+        return false;
+    if (depth < BVH_MAX_DEPTH && split_sah(bd, r, left, right))
+        return true;
+    if (n <= BVH_MAX_LEAF_SIZE)
+        return false;
+    halve(bd, r, left, right); /* too deep for the heuristic, or every centroid at one point */
+    return true;
+}
+
+/* A child of a node being made: its prims, its depth in the binary tree, and whether it is a leaf. */
+struct slot {
+    struct build_range range;
+    size_t depth;
+    bool leaf;
+};
+
+/* Makes the 4-wide node whose binary split has given left and right (at binary depth `depth`, 4-wide
+ * depth `wide_depth`) and everything below it; returns its index. As in fast_bvh_collapse, the child
+ * with the largest surface area that splits is replaced by its halves while there is room; a child that
+ * does not split is a leaf. */
+static uint32_t build_node(struct builder *bd, const struct build_range *left, const struct build_range *right,
+                           size_t depth, size_t wide_depth) {
+    struct slot slots[FAST_BVH_WIDTH] = {{*left, depth + 1, false}, {*right, depth + 1, false}};
+    int used = 2;
+    while (used < FAST_BVH_WIDTH) {
+        int widest = -1;
+        double widest_area = -1.0;
+        for (int k = 0; k < used; k++) {
+            double area = aabb_surface_area(float_box_widened(&slots[k].range.box));
+            if (!slots[k].leaf && area > widest_area) {
+                widest = k;
+                widest_area = area;
+            }
+        }
+        if (widest < 0)
+            break; /* every child is a leaf */
+        struct slot open = slots[widest];
+        struct build_range halves[2];
+        if (!split(bd, &open.range, open.depth, &halves[0], &halves[1])) {
+            slots[widest].leaf = true;
+            continue;
+        }
+        slots[widest] = (struct slot){halves[0], open.depth + 1, false};
+        slots[used++] = (struct slot){halves[1], open.depth + 1, false};
+    }
+    uint32_t out = (uint32_t)bd->shape.node_count++;
+    for (int k = 0; k < FAST_BVH_WIDTH; k++) {
+        if (k >= used) {
+            set_slot(&bd->nodes[out], k, aabb_empty(), FAST_BVH_NO_CHILD, 0);
+            continue;
+        }
+        const struct slot *s = &slots[k];
+        struct aabb box = float_box_widened(&s->range.box);
+        struct build_range halves[2];
+        uint32_t child = s->range.begin, count = s->range.end - s->range.begin;
+        if (!s->leaf && split(bd, &s->range, s->depth, &halves[0], &halves[1])) {
+            count = 0;
+            count_child(&bd->shape, box, 0, wide_depth + 1);
+            child = build_node(bd, &halves[0], &halves[1], s->depth, wide_depth + 1);
+        } else {
+            count_child(&bd->shape, box, count, wide_depth + 1);
+        }
+        set_slot(&bd->nodes[out], k, box, child, count);
+    }
+    return out;
+}
+
+/* Rung 5's build of b (its triangle_count set) over the faces of m, by the SAH: fills b's faces,
+ * root, nodes and info. Returns false when memory runs out. */
+static bool build_in_float(struct fast_bvh *b, const struct mesh *m) {
+    size_t n = m->face_count;
+    size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
+    struct float_box *prims = big_alloc((n ? n : 1) * sizeof *prims, true);
+    b->nodes = big_alloc(most_nodes * sizeof *b->nodes, true);
+    b->faces = big_alloc((n ? n : 1) * sizeof *b->faces, true);
+    if (b->nodes == NULL || b->faces == NULL || prims == NULL) {
+        free(prims);
+        return false;
+    }
+    /* Tree faces first (their prims: padded boxes, rounded outward), slivers at the end of faces[]. */
+    double pad = triangle_box_pad(m);
+    size_t tree = 0, slivers = 0;
+    for (size_t f = 0; f < n; f++) {
+        struct aabb box;
+        if (!bvh_face_box(m, f, pad, &box)) {
+            b->faces[n - ++slivers] = (uint32_t)f;
+            continue;
+        }
+        box = rounded_to_float(box);
+        prims[tree] = (struct float_box){{(float)box.min.x, (float)box.min.y, (float)box.min.z, 0.0f},
+                                         {(float)box.max.x, (float)box.max.y, (float)box.max.z, 0.0f}};
+        b->faces[tree++] = (uint32_t)f;
+    }
+    b->tree_count = tree;
+
+    struct builder bd = {prims, b->faces, b->nodes, {0.0, 0, 0, 0, 0.0}};
+    struct build_range root = {0, (uint32_t)tree, float_box_empty(), float_box_empty()}, halves[2];
+    range_bounds(&bd, &root);
+    b->root_box = float_box_widened(&root.box);
+    bd.shape.root_area = aabb_surface_area(b->root_box);
+    if (tree > 0 && split(&bd, &root, 0, &halves[0], &halves[1])) {
+        count_child(&bd.shape, b->root_box, 0, 0);
+        b->root_child = build_node(&bd, &halves[0], &halves[1], 0, 0);
+    } else if (tree > 0) {
+        count_child(&bd.shape, b->root_box, (uint32_t)tree, 0); /* the whole tree is one leaf */
+        b->root_count = (uint32_t)tree;
+    }
+    free(prims);
+    b->node_count = bd.shape.node_count;
+    b->info = (struct bvh_info){bd.shape.node_count + bd.shape.leaves, bd.shape.leaves, bd.shape.max_depth, 0.0,
+                                bd.shape.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
+    return true;
+}
+
+struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum fast_bvh_rung rung) {
+    if (m->face_count > BVH_MAX_FACES || rung < FAST_BVH_RUNG_FIRST || rung > FAST_BVH_RUNG_TOP)
+        return NULL;
+    if (rung < FAST_BVH_RUNG_BUILD || split == BVH_SPLIT_MEDIAN) {
+        struct bvh *binary = bvh_build(m, split);
+        struct fast_bvh *b = binary != NULL ? fast_bvh_collapse(binary, rung) : NULL;
+        bvh_free(binary);
+        return b;
+    }
+    double start = clock_seconds();
+    struct fast_bvh *b = calloc(1, sizeof *b);
+    if (b == NULL)
+        return NULL;
+    b->rung = rung;
+    b->triangle_count = m->face_count;
+    if (!build_in_float(b, m)) {
+        fast_bvh_free(b);
+        return NULL;
+    }
+    /* The triangles in leaf order, as the intersection test wants them; allocated only now that the
+     * build's boxes are freed, so that the peak memory holds one or the other. */
+    b->triangles = big_alloc((b->triangle_count ? b->triangle_count : 1) * sizeof *b->triangles, true);
+    if (b->triangles == NULL) {
+        fast_bvh_free(b);
+        return NULL;
+    }
+    bvh_copy_triangles(m, b->faces, b->triangle_count, b->triangles);
+    b->info.build_ms = 1e3 * (clock_seconds() - start);
+    return b;
+}

@@ -1,0 +1,23 @@
+/* fast_bvh_build.h: building chapter 11's 4-wide hierarchy (fast_bvh.h), by collapsing chapter 10's
+ * binary tree (rungs 2 to 4) or in float, straight into the 4-wide layout (rung 5) (chapter 11). */
+#ifndef WHITTED_FAST_BVH_BUILD_H
+#define WHITTED_FAST_BVH_BUILD_H
+
+#include "bvh.h"
+#include "fast_bvh.h"
+#include "mesh.h"
+
+/* Builds a hierarchy over the faces of m with the given split rule, at the given rung (from
+ * FAST_BVH_RUNG_FIRST to FAST_BVH_RUNG_TOP; others give NULL): chapter 10's bvh_build collapsed by
+ * fast_bvh_collapse on rungs 2 to 4; on rung 5 the float build by the SAH (the median split, quick
+ * already, is built as on rung 4). m is only read, and not kept: it may be changed or freed
+ * afterwards. A mesh without faces gives a hierarchy that nothing hits. Returns NULL when memory runs
+ * out. Free the result with fast_bvh_free. */
+struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum fast_bvh_rung rung);
+
+/* Makes the 4-wide hierarchy of chapter 10's binary one, to be walked at `rung` (2 to 4), and takes
+ * binary's triangles and face numbers over (binary keeps its nodes, and is still to be freed with
+ * bvh_free). Returns NULL, taking nothing, when memory runs out. */
+struct fast_bvh *fast_bvh_collapse(struct bvh *binary, enum fast_bvh_rung rung);
+
+#endif
