@@ -252,7 +252,7 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
     struct render_job job = {.camera = &cam, .trace = trace, .world = world, .threads = o->threads,
                              .progress = !o->quiet && isatty(STDERR_FILENO),
                              .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = sampler,
-                             .antialias = &s->antialias};
+                             .antialias = &s->antialias, .lens = &s->lens};
     double started = clock_seconds();
     render_image(&job, &img, &run->total);
     run->render_seconds = clock_seconds() - started;

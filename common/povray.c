@@ -46,7 +46,9 @@ static void write_camera(FILE *out, const struct scene *s) {
     shape_write_vector(out, vec3_scale(right, 2.0 * half_width));
     fprintf(out, "\n  up ");
     shape_write_vector(out, vec3_scale(up, 2.0 * half_height));
-    fprintf(out, "\n}\n");
+    fprintf(out, "\n");
+    lens_write_pov(out, &s->lens); /* nothing for a pinhole */
+    fprintf(out, "}\n");
 }
 
 /* Chapter 1: the sky seen in direction d has colour 0.5 + 0.5 d. A sky_sphere pigment is evaluated at
@@ -74,6 +76,7 @@ static void write_lights(FILE *out, const struct scene *s, enum pov_lighting lig
         shape_write_vector(out, s->lights[k].position);
         fprintf(out, " color rgb ");
         shape_write_vector(out, s->lights[k].colour);
+        area_light_write_pov(out, &s->lights[k].area); /* nothing for a point light */
         fprintf(out, " }\n");
     }
 }

@@ -14,6 +14,7 @@
 #include "camera.h"
 #include "heatmap.h"
 #include "image.h"
+#include "lens.h"
 #include "stats.h"
 
 /* What a chapter computes: the colour seen along primary ray r in `world` (the chapter's scene and
@@ -44,6 +45,7 @@ struct render_job {
     struct image *heatmap; /* optional (NULL): the work each pixel cost, drawn by heatmap_colour */
     const struct render_sampler *sampler; /* optional (NULL): one ray through each pixel centre */
     const struct antialias *antialias;    /* the sampler's settings (the scene's antialias line) */
+    const struct lens *lens;              /* the camera's lens, for chapter 13's sampler */
 };
 
 /* Renders every pixel of `img` (and of job->heatmap), which must already have the camera's size, and

@@ -129,6 +129,18 @@ static bool require_keys(const struct parser *p, const char *directive, const st
     return true;
 }
 
+/* Copies the values of keys [first, first + count) of *kv into keys [0, count) of *out: the keys a
+ * line borrows from another module's table (a light's area keys, the camera's lens keys), as that
+ * module reads them. */
+static void key_values_slice(const struct key_values *kv, int first, int count, struct key_values *out) {
+    memset(out, 0, sizeof *out);
+    for (int k = 0; k < count; k++) {
+        out->present[k] = kv->present[first + k];
+        memcpy(out->number[k], kv->number[first + k], sizeof out->number[k]);
+        out->word[k] = kv->word[first + k];
+    }
+}
+
 /* ---- growing arrays ---------------------------------------------------------------------------- */
 
 /* Makes room for one more element of `size` bytes in *items (holding *count), doubling the capacity
@@ -167,13 +179,14 @@ static bool material_reference(const struct parser *p, const struct scene *s,
 }
 
 static bool parse_camera(const struct parser *p, struct scene *s, char **tok, int n, bool *seen) {
-    enum { EYE, TARGET, UP, FOV };
-    static const struct key_spec specs[] = {{"eye", 3}, {"target", 3}, {"up", 3}, {"fov", 1}};
+    enum { EYE, TARGET, UP, FOV, LENS }; /* then the lens keys (lens.h) */
+    struct key_spec specs[LENS + LENS_KEY_COUNT] = {{"eye", 3}, {"target", 3}, {"up", 3}, {"fov", 1}};
+    memcpy(specs + LENS, lens_keys, sizeof lens_keys);
     static const int required[] = {EYE, TARGET, FOV, -1};
-    struct key_values kv;
+    struct key_values kv, lens_kv;
     if (*seen)
         return fail(p, "a second camera (a scene has one)");
-    if (!parse_keys(p, "camera", tok, n, specs, 4, &kv) ||
+    if (!parse_keys(p, "camera", tok, n, specs, LENS + LENS_KEY_COUNT, &kv) ||
         !require_keys(p, "camera", specs, &kv, required))
         return false;
     s->eye = key_vec3(&kv, EYE);
@@ -184,6 +197,9 @@ static bool parse_camera(const struct parser *p, struct scene *s, char **tok, in
     struct camera probe;
     char why[256];
     if (!camera_init(&probe, s->eye, s->target, s->up, s->fov, 1, 1, why, sizeof why))
+        return fail(p, "%s", why);
+    key_values_slice(&kv, LENS, LENS_KEY_COUNT, &lens_kv);
+    if (!lens_make(&lens_kv, s->eye, &s->lens, why, sizeof why))
         return fail(p, "%s", why);
     *seen = true;
     return true;
@@ -248,17 +264,25 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
 }
 
 static bool parse_light(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { POSITION, COLOUR };
-    static const struct key_spec specs[] = {{"position", 3}, {"colour", 3}};
+    enum { POSITION, COLOUR, AREA }; /* then the area keys (area_light.h) */
+    struct key_spec specs[AREA + AREA_LIGHT_KEY_COUNT] = {{"position", 3}, {"colour", 3}};
+    memcpy(specs + AREA, area_light_keys, sizeof area_light_keys);
     static const int required[] = {POSITION, -1};
-    struct key_values kv;
-    if (!parse_keys(p, "light", tok, n, specs, 2, &kv) || !require_keys(p, "light", specs, &kv, required))
+    struct key_values kv, area_kv;
+    char why[256];
+    if (!parse_keys(p, "light", tok, n, specs, AREA + AREA_LIGHT_KEY_COUNT, &kv) ||
+        !require_keys(p, "light", specs, &kv, required))
         return false;
+    key_values_slice(&kv, AREA, AREA_LIGHT_KEY_COUNT, &area_kv);
+    struct area_light area;
+    if (!area_light_make(&area_kv, &area, why, sizeof why))
+        return fail(p, "%s", why);
     struct light *light = grow(&s->lights, &s->light_count, sizeof *light);
     if (light == NULL)
         return fail(p, "out of memory");
     light->position = key_vec3(&kv, POSITION);
     light->colour = kv.present[COLOUR] ? key_vec3(&kv, COLOUR) : vec3_make(1, 1, 1);
+    light->area = area;
     return true;
 }
 
@@ -694,6 +718,22 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         size_t used = strlen(what);
         snprintf(what + used, sizeof what - used, "%sthe antialias line", used == 0 ? "" : ", ");
         s->antialias = (struct antialias){0};
+    }
+    if (chapter < LENS_CHAPTER && lens_is_open(&s->lens)) {
+        size_t used = strlen(what);
+        snprintf(what + used, sizeof what - used, "%sthe camera's lens", used == 0 ? "" : ", ");
+        s->lens.aperture = 0.0;
+    }
+    size_t areas = 0;
+    for (size_t k = 0; chapter < AREA_LIGHT_CHAPTER && k < s->light_count; k++)
+        if (area_light_is_area(&s->lights[k].area)) {
+            s->lights[k].area = (struct area_light){.adaptive = AREA_LIGHT_NOT_ADAPTIVE};
+            areas++;
+        }
+    if (areas > 0) {
+        size_t used = strlen(what);
+        snprintf(what + used, sizeof what - used, "%sthe area of %zu light%s", used == 0 ? "" : ", ", areas,
+                 areas == 1 ? "" : "s");
     }
     if (chapter < TEXTURE_CHAPTER && s->pigment_count > 0) {
         note_count(what, sizeof what, s->pigment_count, "pigment", "pigments");

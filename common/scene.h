@@ -13,6 +13,8 @@
 #include <stdio.h>
 
 #include "antialias.h"
+#include "area_light.h"
+#include "lens.h"
 #include "mesh.h"
 #include "pigment.h"
 #include "shape.h"
@@ -34,8 +36,9 @@ struct material {
 };
 
 struct light {
-    vec3 position;
-    vec3 colour; /* intensity per channel; no fall-off with distance */
+    vec3 position; /* of the point light, or of an area light's centre */
+    vec3 colour;   /* intensity per channel; no fall-off with distance */
+    struct area_light area; /* a point light unless area_light_is_area (chapter 13) */
 };
 
 /* A `mesh` directive: which file, how to place it, and (once loaded) its triangles in world space. */
@@ -83,6 +86,7 @@ struct scene {
     char *path; /* the file it was read from; owned */
     vec3 eye, target, up;
     double fov;           /* vertical field of view, degrees */
+    struct lens lens;     /* the camera's lens (chapter 13); a pinhole without its keys */
     int width, height;    /* image size in pixels */
     vec3 background;      /* colour of rays that hit nothing */
     vec3 ambient_light;   /* global ambient light (POV-Ray ambient_light), default 1 1 1 */
@@ -131,10 +135,11 @@ void scene_free(struct scene *s);
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 
 /* Removes the shapes of every kind the program does not draw (a list without its kind; the meshes go
- * with the triangles), before chapter 12 the antialias line and before chapter 14 the pigments (every
- * material is then its plain colour), so that chapter `chapter` can read any scene file and draw what
- * it knows. If something was removed, prints one line to `note` (when not NULL) saying what was
- * ignored, e.g.
+ * with the triangles), before chapter 12 the antialias line, before chapter 13 the area of area lights
+ * (each becomes a point light at its centre) and the camera's lens (a pinhole again), and before chapter
+ * 14 the pigments (every material is then its plain colour), so that chapter `chapter` can read any
+ * scene file and draw what it knows. If something was removed, prints one line to `note` (when not
+ * NULL) saying what was ignored, e.g.
  * "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */
 void scene_drop_unsupported(struct scene *s, int chapter, FILE *note);
 

@@ -3,10 +3,9 @@
 
 #include "stats.h"
 
-/* The shadow ray from point towards light, and the window of t in which a blocker counts. */
-static ray shadow_ray(const struct world *w, vec3 point, const struct light *light, double *t_min,
-                      double *t_max) {
-    vec3 to_light = vec3_sub(light->position, point);
+/* The shadow ray from point towards a light at `target`, and the window of t in which a blocker counts. */
+static ray shadow_ray(const struct world *w, vec3 point, vec3 target, double *t_min, double *t_max) {
+    vec3 to_light = vec3_sub(target, point);
     double distance = vec3_length(to_light);
     double margin = w->scene->shadow_offset ? SHADOW_T_MIN : 0.0;
     *t_min = margin;
@@ -27,7 +26,7 @@ static bool stop_at_first(void *context, double t, int material) {
 vec3 shadow_opaque(const void *world, vec3 point, const struct light *light) {
     const struct world *w = world;
     double t_min, t_max;
-    ray r = shadow_ray(w, point, light, &t_min, &t_max);
+    ray r = shadow_ray(w, point, light->position, &t_min, &t_max);
     bool blocked = false;
     world_for_each_crossing(w, &r, t_min, t_max, stop_at_first, &blocked);
     return blocked ? vec3_make(0, 0, 0) : vec3_make(1, 1, 1);
@@ -49,9 +48,13 @@ static bool filter_through(void *context, double t, int material) {
 }
 
 vec3 shadow_filtered(const void *world, vec3 point, const struct light *light) {
+    return shadow_filtered_to(world, point, light->position);
+}
+
+vec3 shadow_filtered_to(const void *world, vec3 point, vec3 target) {
     const struct world *w = world;
     double t_min, t_max;
-    ray r = shadow_ray(w, point, light, &t_min, &t_max);
+    ray r = shadow_ray(w, point, target, &t_min, &t_max);
     struct filter_state state = {w->scene, vec3_make(1, 1, 1)};
     world_for_each_crossing(w, &r, t_min, t_max, filter_through, &state);
     return state.passed;

@@ -20,4 +20,7 @@ vec3 shadow_opaque(const void *world, vec3 point, const struct light *light);
  * crossed twice, transmit squared (chapter 8, as POV-Ray does). Counts one shadow ray. */
 vec3 shadow_filtered(const void *world, vec3 point, const struct light *light);
 
+/* shadow_filtered towards a point light at `target` (one of an area light's points, chapter 13). */
+vec3 shadow_filtered_to(const void *world, vec3 point, vec3 target);
+
 #endif

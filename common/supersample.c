@@ -221,11 +221,11 @@ static vec3 camera_colour_at(const void *context, double x, double y) {
     return job->trace(job->world, &r);
 }
 
-static void render_block(const struct render_job *job, struct image *img, int left, int top, int right, int bottom) {
+void supersample_render_view(const struct render_job *job, const struct sample_view *view, struct image *img, int left,
+                             int top, int right, int bottom) {
     vec3 colours[ANTIALIAS_BLOCK * ANTIALIAS_BLOCK];
     int rays[ANTIALIAS_BLOCK * ANTIALIAS_BLOCK];
-    struct sample_view view = {camera_colour_at, job};
-    supersample_block(job->antialias, &view, left, top, right, bottom, colours, rays);
+    supersample_block(job->antialias, view, left, top, right, bottom, colours, rays);
     int w = right - left;
     for (int j = top; j < bottom; j++)
         for (int i = left; i < right; i++) {
@@ -237,6 +237,12 @@ static void render_block(const struct render_job *job, struct image *img, int le
                 stats_thread.camera_rays_max = (uint64_t)rays[k];
         }
     stats_thread.pixels += (uint64_t)w * (uint64_t)(bottom - top);
+}
+
+/* The job's pixels through the camera. */
+static void render_block(const struct render_job *job, struct image *img, int left, int top, int right, int bottom) {
+    struct sample_view view = {camera_colour_at, job};
+    supersample_render_view(job, &view, img, left, top, right, bottom);
 }
 
 const struct render_sampler supersample_sampler = {render_block, &supersample_ray_scale};

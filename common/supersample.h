@@ -55,6 +55,13 @@ bool supersample_differ(vec3 a, vec3 b, double threshold);
 uint64_t supersample_block(const struct antialias *a, const struct sample_view *view, int left, int top, int right,
                            int bottom, vec3 *colours, int *rays);
 
+/* Renders pixels [left, right) x [top, bottom) of img (one block, as supersample_block takes) through
+ * `view` by the job's antialias settings, with the heat-map and counters of supersample_sampler: its
+ * block function with another view than the camera's (chapter 13's lens). view->colour_at counts its
+ * own rays in stats_thread.primary_rays. */
+void supersample_render_view(const struct render_job *job, const struct sample_view *view, struct image *img, int left,
+                             int top, int right, int bottom);
+
 /* The renderer's way of sampling (render.h) with the scene's antialias line; its heat-map shows how
  * many camera rays each pixel took, on supersample_ray_scale. */
 extern const struct render_sampler supersample_sampler;

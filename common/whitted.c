@@ -31,6 +31,7 @@ bool whitted_refract(vec3 direction, vec3 normal, double eta, vec3 *out) {
 /* What every ray of one camera ray's tree shares. */
 struct tree {
     const struct world *w;
+    phong_shadow_fn shadow; /* each light's shadow: shadow_filtered, or chapter 13's soft shadows */
     int budget; /* secondary rays this tree may still spawn (RAY_TREE_BUDGET) */
 };
 
@@ -76,7 +77,7 @@ static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level,
             m = s->paint(s, &h, point, &painted);
         vec3 facing = hit_facing_normal(&h, r.direction);
         struct phong_surface at = {point, facing, r.direction, m, 1.0 - m->filter - m->transmit};
-        vec3 colour = phong_shade(s, &at, shadow_filtered, t->w);
+        vec3 colour = phong_shade(s, &at, t->shadow, t->w);
 
         /* Light through the surface: colour * filter + transmit per channel, refracted only when its
          * grey value passes adc_bailout; the new ray's weight is this ray's times its largest channel. */
@@ -133,6 +134,10 @@ static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level,
 }
 
 vec3 whitted_trace(const void *world, const ray *r) {
-    struct tree t = {world, RAY_TREE_BUDGET};
+    return whitted_trace_shadowed(world, r, shadow_filtered);
+}
+
+vec3 whitted_trace_shadowed(const void *world, const ray *r, phong_shadow_fn shadow) {
+    struct tree t = {world, shadow, RAY_TREE_BUDGET};
     return trace(&t, *r, interior_at_point(world, r->origin), 1, 1.0);
 }

@@ -18,6 +18,7 @@
 
 #include <stdbool.h>
 
+#include "phong.h"
 #include "world.h"
 
 /* Returns the refracted direction of unit D through a surface with unit normal N facing D, going from
@@ -28,5 +29,9 @@ bool whitted_refract(vec3 direction, vec3 normal, double eta, vec3 *out);
 /* Returns the colour seen along ray r in world w (a struct world), r being a camera ray (level 1).
  * Matches render_trace_fn. */
 vec3 whitted_trace(const void *world, const ray *r);
+
+/* whitted_trace with each light's shadow factor given by `shadow` instead of shadow_filtered (chapter
+ * 13 passes its soft shadows of area lights). */
+vec3 whitted_trace_shadowed(const void *world, const ray *r, phong_shadow_fn shadow);
 
 #endif

@@ -24,16 +24,11 @@
 /* Parses SCENE_HEAD followed by `line`; returns whether it parsed, the scene in *s (free it) and the
  * message in err. */
 static bool parse_line(const char *line, struct scene *s, char *err, size_t err_size) {
-    char text[512];
-    snprintf(text, sizeof text, SCENE_HEAD "%s\n", line);
-    return scene_parse("aa.scene", text, NULL, s, err, err_size);
+    return parse_scene_lines("aa.scene", SCENE_HEAD, line, NULL, s, err, err_size);
 }
 
 static void expect_refused(const char *line, const char *message) {
-    struct scene s;
-    char err[512] = "";
-    cr_expect(!parse_line(line, &s, err, sizeof err), "'%s' was accepted", line);
-    cr_expect_str_eq(err, message, "for '%s'", line);
+    expect_scene_refused("aa.scene", SCENE_HEAD, line, NULL, message);
 }
 
 Test(antialias_line, keys_are_read_and_defaults_are_povrays) {
@@ -441,21 +436,9 @@ Test(antialias, the_committed_plots_are_what_their_csv_file_draws, .timeout = 12
 /* Renders chapter 12 on its scene with the antialias line replaced by `line`, and its twin with POV-Ray
  * as the twin says; returns their difference. */
 static struct image_difference against_povray(const char *tag, const char *line) {
-    char variant[256], ours[256], theirs[256], what[128];
-    snprintf(variant, sizeof variant, "scenes/12-antialias.scene.%s.variant", tag);
-    snprintf(ours, sizeof ours, TEST_OUT "/aa-%s-ours.png", tag);
-    snprintf(theirs, sizeof theirs, TEST_OUT "/aa-%s-povray.png", tag);
-    const char *olds[] = {"antialias method adaptive samples 3 threshold 0.3"}, *news[] = {line};
-    write_scene_variant(chapter_scene(12), variant, olds, news, 1, NULL);
-    int status = render_chapter(12, variant, ours, "");
-    bool rendered = render_povray(12, variant, theirs);
-    remove(variant);
-    cr_assert_eq(status, 0, "chapter 12 failed on '%s'", line);
-    cr_assert(rendered, "POV-Ray failed on the twin of '%s'", line);
-    struct image_difference d = compare_png(ours, theirs);
-    snprintf(what, sizeof what, "chapter 12 '%s' vs POV-Ray", line);
-    report_difference(what, &d);
-    return d;
+    char name[128];
+    snprintf(name, sizeof name, "aa-%s", tag);
+    return variant_against_povray(12, "antialias method adaptive samples 3 threshold 0.3", line, name);
 }
 
 /* The agreement the chapter promises: 99.99 % of pixels within one level. */

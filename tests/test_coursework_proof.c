@@ -104,7 +104,9 @@ static void write_answers(const char *path, const char *prefix) {
             "int bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max) {\n"
             "    return %1$s_bvh4_collapse(tree, root, out, max);\n}\n"
             "void supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {\n"
-            "    %1$s_supersample_rooks(i, j, n, seed, x, y);\n}\n",
+            "    %1$s_supersample_rooks(i, j, n, seed, x, y);\n}\n"
+            "void thin_lens_concentric(double u, double v, double *x, double *y) {\n"
+            "    %1$s_thin_lens_concentric(u, v, x, y);\n}\n",
             prefix);
     fclose(f);
 }

@@ -49,6 +49,7 @@ CHAPTER_IMAGE_TESTS(9, chapter_09_kdtree)
 CHAPTER_IMAGE_TESTS(10, chapter_10_bvh)
 CHAPTER_IMAGE_TESTS(11, chapter_11_fast)
 CHAPTER_IMAGE_TESTS(12, chapter_12_antialias)
+CHAPTER_IMAGE_TESTS(13, chapter_13_distributed)
 CHAPTER_IMAGE_TESTS(14, chapter_14_textures)
 
 /* ---- acceleration changes the work, never the picture ------------------------------------------ */

@@ -442,7 +442,7 @@ static struct material finish(vec3 colour, double ambient, double diffuse, doubl
 
 /* A light of `colour` 10 units from the origin in direction `towards`. */
 static struct light light_towards(vec3 towards, vec3 colour) {
-    return (struct light){vec3_scale(vec3_normalize(towards), 10.0), colour};
+    return (struct light){.position = vec3_scale(vec3_normalize(towards), 10.0), .colour = colour};
 }
 
 /* phong_shade at the origin (normal +z), seen along `direction`, with the given lights and ambient
@@ -623,7 +623,7 @@ Test(phong, trace_nearest_shades_the_nearest_hit) {
 /* ---- shadows (chapters 7 and 8) ---------------------------------------------------------------- */
 
 /* Every shadow test: the point at the origin, the light 10 units straight up. */
-static const struct light overhead = {{0, 10, 0}, {1, 1, 1}};
+static const struct light overhead = {.position = {0, 10, 0}, .colour = {1, 1, 1}};
 
 /* The shadow factor `fn` gives at the origin in the scene `lines` (printf-formatted). */
 __attribute__((format(printf, 2, 3))) static vec3 shadow_at_origin(phong_shadow_fn fn, const char *lines, ...) {
@@ -759,7 +759,7 @@ Test(shadow, each_call_is_one_shadow_ray_however_many_surfaces_it_crosses) {
     cr_assert_eq(stats_thread.shadow_rays - before, 1);
     assert_colour(shadow_opaque(&f.world, o, &overhead), grey(0), EXACT, "opaque");
     cr_assert_eq(stats_thread.shadow_rays - before, 2);
-    struct light low = {{0, 4.5, 0}, {1, 1, 1}}; /* between the spheres: 0.5^2 = 0.25 */
+    struct light low = {.position = {0, 4.5, 0}, .colour = {1, 1, 1}}; /* between the spheres: 0.5^2 = 0.25 */
     assert_colour(shadow_filtered(&f.world, o, &low), grey(0.25), SAME, "first sphere only");
     cr_assert_eq(stats_thread.shadow_rays - before, 3);
     release(&f);

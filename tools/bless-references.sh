@@ -27,3 +27,4 @@ for program in "$build"/chapter-[0-9][0-9]; do
 done
 # Scenes that teach something beside a chapter's own picture.
 bless "$build"/chapter-08 scenes/08-glass-of-water.scene 08-glass-of-water "chapter 8, glass of water"
+bless "$build"/chapter-13 scenes/13-focus.scene 13-focus "chapter 13, depth of field"

@@ -5,16 +5,17 @@
  * across each triangle (common/mesh_surface.c), and may carry texture coordinates for `map uv`. The
  * pigments are evaluated in common/texture.c and common/image_map.c and reach the shading through the
  * scene's paint hook, which hands chapter 8's tracer the material and the normal as they are at each
- * hit. Everything else is chapter 12's: the fast BVH, the same sampling. */
+ * hit. Everything else is chapter 13's: soft shadows, the lens, chapter 12's sampling, the fast BVH. */
 #include "accel_fast_bvh.h"
 #include "box.h"
 #include "cli.h"
 #include "fast_bvh.h"
 #include "mesh_surface.h"
 #include "plane.h"
+#include "soft_shadow.h"
 #include "sphere.h"
-#include "supersample.h"
 #include "texture.h"
+#include "thin_lens.h"
 #include "triangle.h"
 #include "whitted.h"
 
@@ -24,7 +25,7 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* Builds the world as chapter 12 does: the chosen structure, the BVH at chapter 11's top rung. */
+/* Builds the world as chapters 12 and 13 do: the chosen structure, the BVH at chapter 11's top rung. */
 static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
     struct accel_world *w = accel_world_create(s, &choice, err, err_size);
     if (w != NULL && choice.kind == ACCEL_BVH &&
@@ -34,6 +35,11 @@ static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) 
         return NULL;
     }
     return w;
+}
+
+/* Chapter 13's tracer: soft shadows from area lights (texture_paint reaches it through scene.paint). */
+static vec3 trace_soft(const void *world, const ray *r) {
+    return whitted_trace_shadowed(world, r, soft_shadow_filtered);
 }
 
 int main(int argc, char **argv) {
@@ -61,7 +67,7 @@ int main(int argc, char **argv) {
     struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
-    if (cli_render_sampled(&run, whitted_trace, &w->world, &supersample_sampler))
+    if (cli_render_sampled(&run, trace_soft, &w->world, &thin_lens_sampler))
         accel_report(w, &run.total, run.options.stats);
     accel_world_destroy(w);
     return cli_finish(&run);

@@ -46,17 +46,23 @@ const struct task check_tasks[] = {
     {"9.1", "the dissertation's split rule", "seed_plane in common/kdtree.c", ""},
     {"9.2", "the surface area heuristic", "sah_plane in common/kdtree.c", ""},
     {"9.3", "front-to-back traversal", "traverse in common/kdtree.c", ""},
-    {"9.P", "chapter 9's picture", "chapters/09-kdtree", "1.1 2.1 2.2 4.1 6.1 6.2 8.1 8.2 9.3"},
+    {"9.P", "chapter 9's picture", "chapters/09-kdtree", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 8.1 8.2 9.2 9.3"},
     {"10.1", "BVH build: the median split", "split_median in common/bvh.c", ""},
     {"10.2", "BVH build: the binned SAH", "split_sah in common/bvh.c", ""},
     {"10.3", "ordered BVH traversal", "traverse in common/bvh.c", "5.1 10.2"},
     {"10.P", "chapter 10's picture", "chapters/10-bvh", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 8.1 8.2 10.2 10.3"},
-    {"11.1", "two children's slab tests at once", "child_pair_hit in common/fast_bvh.c", "5.1 10.2"},
-    {"11.2", "the children hit, nearest first", "nearest_first in common/fast_bvh.c", "5.1 10.2"},
-    {"11.P", "chapter 11's picture", "chapters/11-fast", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 8.1 8.2 10.2 11.1 11.2"},
+    {"11.1", "two children's slab tests at once", "child_pair_hit in common/fast_bvh.c", "5.1"},
+    {"11.2", "the children hit, nearest first", "nearest_first in common/fast_bvh.c", "5.1 11.1"},
+    {"11.P", "chapter 11's picture", "chapters/11-fast", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 8.1 8.2 11.1 11.2"},
     {"12.1", "the box filter over a regular grid", "supersample_grid in common/supersample.c", ""},
     {"12.2", "POV-Ray's colour difference test", "supersample_differ in common/supersample.c", ""},
     {"12.P", "chapter 12's picture", "chapters/12-antialias", "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.2 11.1 11.2 12.1 12.2"},
+    {"13.1", "POV-Ray's area light: corners, quarters and the adaptive rule", "rectangle in common/soft_shadow.c",
+     "5.1 5.2"},
+    {"13.2", "the thin lens: a ray from a point of the lens through the focal plane", "thin_lens_ray in common/thin_lens.c",
+     ""},
+    {"13.P", "chapter 13's picture", "chapters/13-distributed",
+     "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.1 8.2 12.1 12.2 13.1"},
     {"14.1", "the checker pattern", "checker in common/texture.c", ""},
     {"14.2", "the interpolated normal", "mesh_surface_normal in common/mesh_surface.c", ""},
     {"14.P", "chapter 14's picture", "chapters/14-textures", "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.2 11.1 11.2 14.1 14.2"},
@@ -128,6 +134,12 @@ CHECK(check_differ_plain);
 CHECK(check_differ_gamma);
 CHECK(check_differ_channels);
 CHECK(check_picture_12);
+CHECK(check_area_open_sky);
+CHECK(check_area_weights);
+CHECK(check_area_adaptive);
+CHECK(check_lens_focus);
+CHECK(check_lens_spread);
+CHECK(check_picture_13);
 CHECK(check_checker_cubes);
 CHECK(check_checker_boundary);
 CHECK(check_normal_corners);
@@ -200,6 +212,12 @@ const struct check check_list[] = {
     {"12.2", "POV-Ray's gamma: a dark step counts more", check_differ_gamma},
     {"12.2", "the channels add up, negative ones count as 0", check_differ_channels},
     {"12.P", "the picture matches the reference", check_picture_12},
+    {"13.1", "open sky: every point traced, all the light", check_area_open_sky},
+    {"13.1", "one column of 3 hidden: POV-Ray's weights give 3/4", check_area_weights},
+    {"13.1", "adaptive 0: corners that agree, of light not of shares", check_area_adaptive},
+    {"13.2", "lens rays start on the lens and meet on the focal plane", check_lens_focus},
+    {"13.2", "the lens points spread around the eye; aperture 0 is a pinhole", check_lens_spread},
+    {"13.P", "the picture matches the reference", check_picture_13},
     {"14.1", "unit cubes alternate, negative coordinates too", check_checker_cubes},
     {"14.1", "a point a hair below a boundary: the cube above", check_checker_boundary},
     {"14.2", "at the corners and along an edge", check_normal_corners},
@@ -346,7 +364,7 @@ int main(int argc, char **argv) {
     else if (argc == 2 && has_tasks(atoi(argv[1])))
         chapter = atoi(argv[1]);
     else {
-        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..12, 14; make check-N runs it)\n", argv[0]);
+        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..14; make check-N runs it)\n", argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);

@@ -205,4 +205,5 @@ CHECK(check_picture_9) { return picture(9, why, why_size); }
 CHECK(check_picture_10) { return picture(10, why, why_size); }
 CHECK(check_picture_11) { return picture(11, why, why_size); }
 CHECK(check_picture_12) { return picture(12, why, why_size); }
+CHECK(check_picture_13) { return picture(13, why, why_size); }
 CHECK(check_picture_14) { return picture(14, why, why_size); }

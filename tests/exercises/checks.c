@@ -400,7 +400,7 @@ bool check_area_fraction(area_fraction_fn f, char *why, size_t why_size) {
         vec3 p = {x, 0, 0};
         double share = f(&w, p, corner, edge_u, edge_v, 4);
         double sixteenths = share * 16.0;
-        struct light centre = {vec3_make(0, 3, 0), vec3_make(1, 1, 1)};
+        struct light centre = {.position = vec3_make(0, 3, 0), .colour = vec3_make(1, 1, 1)};
         double hard = shadow_opaque(&w, p, &centre).x, one = f(&w, p, corner, edge_u, edge_v, 1);
         if (fabs(sixteenths - round(sixteenths)) > 1e-9)
             ok = fail(why, why_size, "at (%g, 0, 0) with a 4 x 4 grid the share must be a whole number of 16ths; got %g",
@@ -738,6 +738,62 @@ bool check_rooks(rooks_fn f, char *why, size_t why_size) {
         same = same && a[k] == x[k] && b[k] == y[k];
     if (same)
         return fail(why, why_size, "pixel (2, 3), n = 8: seeds 3 and 4 give the same points; the seed must change them");
+    return true;
+}
+
+/* ---- exercise 13.4: the concentric map ------------------------------------------------------------- */
+
+#define CONCENTRIC_SIDE 64 /* the square's grid of test points */
+
+bool check_concentric(concentric_fn f, char *why, size_t why_size) {
+    double x, y;
+    f(0.5, 0.5, &x, &y);
+    if (fabs(x) > 1e-12 || fabs(y) > 1e-12)
+        return fail(why, why_size, "(0.5, 0.5), the square's centre, went to (%g, %g), not the disc's centre", x, y);
+    /* The square's edge goes to the circle's, all the way round: its four sides in turn. */
+    for (int k = 0; k < 4 * CONCENTRIC_SIDE; k++) {
+        double t = (double)(k % CONCENTRIC_SIDE) / CONCENTRIC_SIDE;
+        static const double from[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, along[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+        int side = k / CONCENTRIC_SIDE;
+        double u = from[side][0] + t * along[side][0], v = from[side][1] + t * along[side][1];
+        f(u, v, &x, &y);
+        if (fabs(hypot(x, y) - 1) > 1e-9)
+            return fail(why, why_size, "(%g, %g) on the square's edge went to (%g, %g), %g from the centre; the "
+                        "square's edge must go to the circle's, radius 1", u, v, x, y, hypot(x, y));
+    }
+    /* Uniform: a grid of the square's cell centres puts a quarter of its points within radius 1/2 and a
+     * quarter in each quadrant of the disc, and neighbouring points stay neighbours. */
+    int inner = 0, quadrant[4] = {0}, wedge[8] = {0};
+    double jump = 0;
+    for (int j = 0; j < CONCENTRIC_SIDE; j++)
+        for (int i = 0; i < CONCENTRIC_SIDE; i++) {
+            double u = (i + 0.5) / CONCENTRIC_SIDE, v = (j + 0.5) / CONCENTRIC_SIDE, x2, y2;
+            f(u, v, &x, &y);
+            if (hypot(x, y) > 1 + 1e-12)
+                return fail(why, why_size, "(%g, %g) went to (%g, %g), outside the unit disc", u, v, x, y);
+            inner += hypot(x, y) < 0.5;
+            quadrant[(x < 0) + 2 * (y < 0)]++;
+            wedge[(int)floor((atan2(y, x) + M_PI / 8) / (M_PI / 4) + 8) % 8]++;
+            f(u + 1.0 / CONCENTRIC_SIDE * (i + 1 < CONCENTRIC_SIDE), v, &x2, &y2);
+            jump = fmax(jump, hypot(x2 - x, y2 - y));
+        }
+    int total = CONCENTRIC_SIDE * CONCENTRIC_SIDE;
+    if (fabs((double)inner / total - 0.25) > 0.01)
+        return fail(why, why_size, "%.1f %% of a uniform grid of the square went within radius 1/2 of the centre; a map "
+                    "that keeps areas puts 25 %% there (r = max(|a|, |b|), not its square or root)", 100.0 * inner / total);
+    for (int q = 0; q < 4; q++)
+        if (fabs((double)quadrant[q] / total - 0.25) > 0.01)
+            return fail(why, why_size, "quadrant %d of the disc got %.1f %% of a uniform grid of the square, not 25 %%",
+                        q, 100.0 * quadrant[q] / total);
+    for (int w = 0; w < 8; w++)
+        if (fabs((double)wedge[w] / total - 0.125) > 0.01)
+            return fail(why, why_size, "the wedge of 45 degrees around angle %d got %.1f %% of a uniform grid of the "
+                        "square, not 12.5 %%: pushing the square's points straight out to the circle crowds them "
+                        "towards the diagonals; the angle along each side must grow evenly", 45 * w,
+                        100.0 * wedge[w] / total);
+    if (jump > 0.1)
+        return fail(why, why_size, "neighbouring points of the square's grid went %g apart; the map must be "
+                    "continuous (check the angle of each of the four sides)", jump);
     return true;
 }
 

@@ -116,6 +116,16 @@ void supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y)
 typedef void (*rooks_fn)(int, int, int, uint32_t, double *, double *);
 bool check_rooks(rooks_fn f, char *why, size_t why_size);
 
+/* Exercise 13.4 (common/thin_lens.c): Shirley and Chiu's concentric map from the unit square to the
+ * unit disc, for spreading lens samples. Maps (u, v) in [0, 1] x [0, 1] to (x, y) with x^2 + y^2 <= 1:
+ * with a = 2u - 1 and b = 2v - 1, the square of half-side max(|a|, |b|) goes to the circle of that
+ * radius, each of its four sides to a quarter of the circle (where |a| > |b|: r = a, angle pi/4 * b / a;
+ * otherwise r = b, angle pi/2 - pi/4 * a / b; (0, 0) for the centre). Areas are kept: uniform points in
+ * the square give uniform points in the disc, and stratified ones stay stratified. */
+void thin_lens_concentric(double u, double v, double *x, double *y);
+typedef void (*concentric_fn)(double, double, double *, double *);
+bool check_concentric(concentric_fn f, char *why, size_t why_size);
+
 /* Exercise 14.4 (common/image_map.c): POV-Ray's cylindrical map (map_type 2), a picture wrapped once
  * round the y axis. Stores in *u the longitude of the point q seen from the y axis as a share of a turn,
  * in [0, 1): 0 towards +x, 1/4 towards +z, 1/2 towards -x; and in *v its height q.y as it is (the

@@ -252,7 +252,7 @@ static double area_fraction(const void *world, vec3 point, vec3 corner, vec3 edg
         for (int j = 0; j < n; j++) {
             double offset = centred ? 0.5 : 0.0;
             vec3 p = vec3_add_scaled(vec3_add_scaled(corner, edge_u, (i + offset) / n), edge_v, (j + offset) / n);
-            struct light sample = {p, vec3_make(1, 1, 1)};
+            struct light sample = {.position = p, .colour = vec3_make(1, 1, 1)};
             arrived += shadow_opaque(world, point, &sample).x > 0.0;
         }
     return (double)arrived / (n * n);
@@ -427,6 +427,33 @@ void solution_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, d
 
 void wrong_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {
     rooks(i, j, n, seed, x, y, false); /* never shuffled: every pixel's rooks on the diagonal */
+}
+
+/* The concentric map; the wrong one pushes each point of the square straight out from the centre onto
+ * the circle of its square (POV-Ray's circular area lights do that): shells keep their areas, but along
+ * each side the points crowd towards the diagonals. */
+void solution_thin_lens_concentric(double u, double v, double *x, double *y) {
+    double a = 2 * u - 1, b = 2 * v - 1, r, angle;
+    if (a == 0 && b == 0) {
+        *x = *y = 0;
+        return;
+    }
+    if (fabs(a) > fabs(b)) {
+        r = a;
+        angle = M_PI / 4 * (b / a);
+    } else {
+        r = b;
+        angle = M_PI / 2 - M_PI / 4 * (a / b);
+    }
+    *x = r * cos(angle);
+    *y = r * sin(angle);
+}
+
+void wrong_thin_lens_concentric(double u, double v, double *x, double *y) {
+    double a = 2 * u - 1, b = 2 * v - 1, length = hypot(a, b);
+    double scale = length > 0 ? fmax(fabs(a), fabs(b)) / length : 0;
+    *x = a * scale;
+    *y = b * scale;
 }
 
 /* The cylindrical map: the longitude by atan2, moved into [0, 1). */

@@ -27,6 +27,8 @@ int solution_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_n
 int wrong_bvh4_collapse(const struct bvh2_node *tree, int root, struct bvh4_node *out, int max);
 void solution_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y);
 void wrong_supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y);
+void solution_thin_lens_concentric(double u, double v, double *x, double *y);
+void wrong_thin_lens_concentric(double u, double v, double *x, double *y);
 bool solution_image_map_cylindrical(vec3 q, double *u, double *v);
 bool wrong_image_map_cylindrical(vec3 q, double *u, double *v);
 

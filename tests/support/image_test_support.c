@@ -19,8 +19,8 @@
 
 static const char *const scene_names[] = {
     NULL, "01-camera", "02-sphere", "03-triangle", "04-plane", "05-aabb",
-    "06-phong", "07-shadows", "08-recursion", "09-kdtree", "10-bvh", "11-fast", "12-antialias", NULL,
-    "14-textures",
+    "06-phong", "07-shadows", "08-recursion", "09-kdtree", "10-bvh", "11-fast", "12-antialias",
+    "13-distributed", "14-textures",
 };
 
 const char *chapter_scene(int n) {
@@ -201,4 +201,22 @@ const char *shifted_camera_line(const char *path, double pixels) {
 void report_difference(const char *what, const struct image_difference *d) {
     fprintf(stderr, "%s: max %d, mean %.4f, within 1: %.3f%%, within 2: %.3f%%\n", what, d->max, d->mean,
             100.0 * d->within_1, 100.0 * d->within_2);
+}
+
+struct image_difference variant_against_povray(int n, const char *old_line, const char *new_line, const char *name) {
+    char variant[512], ours[256], theirs[256], what[512];
+    snprintf(variant, sizeof variant, "%s.%s.variant", chapter_scene(n), name);
+    snprintf(ours, sizeof ours, TEST_OUT "/%s-ours.png", name);
+    snprintf(theirs, sizeof theirs, TEST_OUT "/%s-povray.png", name);
+    const char *olds[] = {old_line}, *news[] = {new_line};
+    write_scene_variant(chapter_scene(n), variant, olds, news, 1, NULL);
+    int status = render_chapter(n, variant, ours, "");
+    bool rendered = render_povray(n, variant, theirs);
+    remove(variant);
+    cr_assert_eq(status, 0, "chapter %d failed on '%s'", n, new_line);
+    cr_assert(rendered, "POV-Ray failed on the twin of '%s'", new_line);
+    struct image_difference d = compare_png(ours, theirs);
+    snprintf(what, sizeof what, "chapter %d '%s' vs POV-Ray", n, new_line);
+    report_difference(what, &d);
+    return d;
 }

@@ -17,7 +17,7 @@
 #define REGRESSION_MIN_WITHIN_1 0.9995 /* at most 1 pixel in 2000 more than 1 level off */
 #define REGRESSION_MAX_MEAN 0.01       /* levels, averaged over all channels of all pixels */
 
-/* Returns the scene file of chapter n (1..12), e.g. "scenes/02-sphere.scene". */
+/* Returns the scene file of chapter n (1..13), e.g. "scenes/02-sphere.scene". */
 const char *chapter_scene(int n);
 
 /* Returns the program of chapter n in the build under test, e.g. "build/chapter-02". */
@@ -61,6 +61,12 @@ void write_scene_variant(const char *from, const char *to, const char *const *ol
 /* Returns a camera line for the scene in `path` with eye and target moved right by `pixels` pixel
  * widths (measured at the target's distance). */
 const char *shifted_camera_line(const char *path, double pixels);
+
+/* Renders chapter n's own scene with the line `old_line` replaced by `new_line` (a variant scene file
+ * beside it, removed afterwards) by chapter n, to TEST_OUT/NAME-ours.png, and its twin by POV-Ray, to
+ * TEST_OUT/NAME-povray.png; reports and returns their difference. Fails the current test when either
+ * cannot render. */
+struct image_difference variant_against_povray(int n, const char *old_line, const char *new_line, const char *name);
 
 /* Prints one line "what: max M, mean X, within 1: P%, within 2: Q%" to stderr for the log. */
 void report_difference(const char *what, const struct image_difference *d);

@@ -10,6 +10,7 @@
 
 #include "box.h"
 #include "plane.h"
+#include "scene.h"
 #include "sphere.h"
 #include "triangle.h"
 
@@ -71,4 +72,23 @@ int run_logged(const char *command, const char *log) {
     int status = system(line);
     free(line);
     return status == -1 || !WIFEXITED(status) ? -1 : WEXITSTATUS(status);
+}
+
+bool parse_scene_lines(const char *name, const char *head, const char *lines, const struct shape_kind *const *kinds,
+                       struct scene *s, char *err, size_t err_size) {
+    char text[4096];
+    int length = snprintf(text, sizeof text, "%s%s\n", head, lines);
+    cr_assert(length > 0 && (size_t)length < sizeof text, "scene text too long");
+    return scene_parse(name, text, kinds, s, err, err_size);
+}
+
+void expect_scene_refused(const char *name, const char *head, const char *lines, const struct shape_kind *const *kinds,
+                          const char *message) {
+    struct scene s;
+    char err[512] = "";
+    bool parsed = parse_scene_lines(name, head, lines, kinds, &s, err, sizeof err);
+    cr_expect(!parsed, "'%s' was accepted", lines);
+    if (parsed)
+        scene_free(&s);
+    cr_expect_str_eq(err, message, "for '%s'", lines);
 }

@@ -1,11 +1,13 @@
 /* test_support.h: small helpers shared by the test files: reading a text file, running a command with
- * its output kept in a log. */
+ * its output kept in a log, parsing scene text that a test writes. */
 #ifndef WHITTED_TEST_SUPPORT_H
 #define WHITTED_TEST_SUPPORT_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 struct shape_kind;
+struct scene;
 
 /* Every kind of shape (sphere, triangle, plane, box), as chapters 5 to 11 draw them, ending with NULL:
  * the kinds the tests give the scene reader when they build a world. */
@@ -26,5 +28,16 @@ int run_capturing(const char *command, char *output, size_t size);
 /* Runs the shell command `command` with its standard output and error appended to the file `log`,
  * after a line "$ command". Returns its exit status, or -1 if it could not run or was killed. */
 int run_logged(const char *command, const char *log);
+
+/* Parses `head` followed by `lines` and a newline as the scene file `name`, with the kinds of shape
+ * `kinds` (as scene_parse takes them). Returns whether it parsed, the scene in *s (free it with
+ * scene_free) and the message in err. */
+bool parse_scene_lines(const char *name, const char *head, const char *lines, const struct shape_kind *const *kinds,
+                       struct scene *s, char *err, size_t err_size);
+
+/* Expects parse_scene_lines to refuse `lines` with exactly `message` (a failure of the current test
+ * otherwise, naming the lines). */
+void expect_scene_refused(const char *name, const char *head, const char *lines, const struct shape_kind *const *kinds,
+                          const char *message);
 
 #endif

@@ -19,5 +19,7 @@ void figure_recursion(FILE *out);  /* 08-recursion.svg: reflection, refraction, 
 void figure_kdtree(FILE *out);     /* 09-kdtree.svg: a kd-tree's cells in front-to-back order */
 void figure_bvh(FILE *out);        /* 10-bvh.svg: a BVH's overlapping boxes and the SAH's areas */
 void figure_antialias(FILE *out);  /* 12-antialias.svg: an edge over the pixel grid, and each method's rays */
+void figure_penumbra(FILE *out);   /* 13-penumbra.svg: an area light's umbra and penumbra, and the share seen */
+void figure_lens(FILE *out);       /* 13-lens.svg: the thin lens's rays, the focal plane, the circle of confusion */
 
 #endif

@@ -46,6 +46,7 @@ done <<'TABLE'
 10.4|the cost of a split|bvh_split_cost|check_split_cost|bvh_split_cost|common/bvh.c|docs/10-bvh.md
 11.4|four children per node|bvh4_collapse|check_collapse|bvh4_collapse|common/fast_bvh_build.c|docs/11-fast.md
 12.4|n rooks|supersample_rooks|check_rooks|supersample_rooks|common/supersample.c|docs/12-antialias.md
+13.4|the concentric map|thin_lens_concentric|check_concentric|thin_lens_concentric|common/thin_lens.c|docs/13-distributed.md
 14.4|the cylindrical map|image_map_cylindrical|check_cylindrical|image_map_cylindrical|common/image_map.c|docs/14-textures.md
 TABLE
 echo "exercises: $done done, $failing failing, $waiting not started"
