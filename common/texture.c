@@ -34,7 +34,13 @@ static vec3 unturn_z(vec3 p, double degrees) {
 
 vec3 texture_space(const struct pigment *p, vec3 point) {
     vec3 q = vec3_sub(point, p->translate);
-    q = unturn_x(unturn_y(unturn_z(q, p->rotate.z), p->rotate.y), p->rotate.x);
+    /* A turn by 0 is skipped: it changes nothing, and its sine and cosine cost more than the pattern. */
+    if (p->rotate.z != 0.0)
+        q = unturn_z(q, p->rotate.z);
+    if (p->rotate.y != 0.0)
+        q = unturn_y(q, p->rotate.y);
+    if (p->rotate.x != 0.0)
+        q = unturn_x(q, p->rotate.x);
     return (vec3){q.x / p->scale.x, q.y / p->scale.y, q.z / p->scale.z};
 }
 

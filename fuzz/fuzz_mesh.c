@@ -12,23 +12,42 @@ bool fuzz_mesh_is_ply(const uint8_t *data, size_t size) {
     return (size >= 4 && memcmp(data, "ply\n", 4) == 0) || (size >= 5 && memcmp(data, "ply\r\n", 5) == 0);
 }
 
-void fuzz_mesh_read(const uint8_t *data, size_t size, bool ply, const char *name) {
-    char *text = fuzz_copy_with_nul(data, size);
+/* Aborts unless every index of `faces` (count of them; NULL: none) is below `limit`. */
+static void check_corner_faces(const struct mesh_face *faces, size_t count, size_t limit, const char *what) {
+    for (size_t f = 0; faces != NULL && f < count; f++)
+        for (int c = 0; c < 3; c++)
+            if (faces[f].v[c] >= limit)
+                fuzz_abort("face %zu corner %d is %s %u of %zu", f, c, what, faces[f].v[c], limit);
+}
+
+/* One read, with the corners kept (chapter 14) or not (chapters 3 to 13). */
+static void read_once(const char *text, size_t size, bool ply, const char *name, bool corners) {
     char err[512] = "";
     struct mesh m = {0};
-    struct mesh_input in = {.path = name, .data = text, .size = size, .err = err, .err_size = sizeof err};
+    struct mesh_corners c = {0};
+    struct mesh_input in = {.path = name, .data = text, .size = size, .err = err, .err_size = sizeof err,
+                            .corners = corners ? &c : NULL};
     bool ok = ply ? mesh_read_ply(&in, &m) : mesh_read_obj(&in, &m);
     if (ok) {
         for (size_t k = 0; k < m.vertex_count; k++)
             if (!vec3_is_finite(m.vertices[k]))
                 fuzz_abort("vertex %zu of %zu is not finite", k, m.vertex_count);
         for (size_t f = 0; f < m.face_count; f++)
-            for (int c = 0; c < 3; c++)
-                if (m.faces[f].v[c] >= m.vertex_count)
-                    fuzz_abort("face %zu corner %d is vertex %u of %zu", f, c, m.faces[f].v[c], m.vertex_count);
+            for (int k = 0; k < 3; k++)
+                if (m.faces[f].v[k] >= m.vertex_count)
+                    fuzz_abort("face %zu corner %d is vertex %u of %zu", f, k, m.faces[f].v[k], m.vertex_count);
+        check_corner_faces(c.normal_faces, m.face_count, c.normal_count, "normal");
+        check_corner_faces(c.uv_faces, m.face_count, c.uv_count, "texture coordinate");
     } else if (!fuzz_message_names(err, name)) {
         fuzz_abort("refused with a message that does not start with '%s:': '%s'", name, err);
     }
     mesh_free(&m); /* on failure a reader may leave a half-built mesh, which mesh_load frees */
+    mesh_corners_free(&c);
+}
+
+void fuzz_mesh_read(const uint8_t *data, size_t size, bool ply, const char *name) {
+    char *text = fuzz_copy_with_nul(data, size);
+    read_once(text, size, ply, name, false);
+    read_once(text, size, ply, name, true);
     free(text);
 }

@@ -12,9 +12,11 @@
 bool fuzz_mesh_is_ply(const uint8_t *data, size_t size);
 
 /* Reads data[0..size) with the PLY reader (ply true) or the OBJ reader, from a copy followed by a NUL
- * byte, as mesh_load does after reading a file called `name`. Then checks mesh_load's promises and
- * aborts when one is broken: on success every face index is below the vertex count and every vertex is
- * finite; on failure the message starts with "name:". */
+ * byte, as mesh_load does after reading a file called `name`, and again keeping the corners' normals
+ * and texture coordinates as mesh_load_with_corners does (chapter 14). Then checks their promises and
+ * aborts when one is broken: on success every face index is below the vertex count, every corner's
+ * normal and texture index below theirs, and every vertex is finite; on failure the message starts
+ * with "name:". */
 void fuzz_mesh_read(const uint8_t *data, size_t size, bool ply, const char *name);
 
 #endif

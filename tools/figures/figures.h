@@ -21,5 +21,6 @@ void figure_bvh(FILE *out);        /* 10-bvh.svg: a BVH's overlapping boxes and 
 void figure_antialias(FILE *out);  /* 12-antialias.svg: an edge over the pixel grid, and each method's rays */
 void figure_penumbra(FILE *out);   /* 13-penumbra.svg: an area light's umbra and penumbra, and the share seen */
 void figure_lens(FILE *out);       /* 13-lens.svg: the thin lens's rays, the focal plane, the circle of confusion */
+void figure_textures(FILE *out);   /* 14-normals.svg: normals blended across a face, before and after renormalising */
 
 #endif
