@@ -166,9 +166,11 @@ $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/comm
 # The tests that take a minute or more run in make test-long, not make test: Criterion's "suite/test"
 # patterns (`run-tests --filter`). Those that build patched copies of the tree (the gallery's faults,
 # the coursework kit's student copy, the mutants), the results' quick run, the docs' commands run in a
-# copy of the repository, the no-root install, and the largest differential tests (thousands of
-# triangles, meshes beyond float range, whole pictures by every structure and rung). make test and
-# make test-long together run every test once; CI runs both (.ci/run).
+# copy of the repository, the no-root install, the largest differential tests (thousands of
+# triangles, meshes beyond float range, whole pictures by every structure and rung), and those that
+# take five seconds or more of their own: the damaged-mesh sweeps, the largest picture, linking every
+# chapter with the modules before it, make bench after make test, the results page's typed-over
+# number. make test and make test-long together run every test once; CI runs both (.ci/run).
 LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               coursework/the_grader_ends_every_run_with_a_scoreboard_of_every_task \
               coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_grades_* coursework_long/* \
@@ -179,7 +181,11 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               watertight/chapter_10_with_moller_trumbore_draws_the_leak \
               accel/*_soups_of_3000_triangles accel/*_soups_of_5000_triangles accel/*_outside_float_range \
               accel/*_corners_at_infinity_or_nan acceleration/every_structure_draws_the_brute_force_picture \
-              acceleration/every_rung_of_chapter_11_draws_the_brute_force_picture
+              acceleration/every_rung_of_chapter_11_draws_the_brute_force_picture \
+              mesh_fuzz/* io/a_large_picture_takes_a_few_bytes_per_pixel \
+              layering/no_chapter_links_with_the_previous_chapters_modules \
+              build/make_bench_after_make_test_links_bench_accel_with_embree \
+              results/a_number_of_the_text_typed_over_or_unknown_is_caught
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
