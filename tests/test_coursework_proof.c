@@ -106,7 +106,9 @@ static void write_answers(const char *path, const char *prefix) {
             "void supersample_rooks(int i, int j, int n, uint32_t seed, double *x, double *y) {\n"
             "    %1$s_supersample_rooks(i, j, n, seed, x, y);\n}\n"
             "void thin_lens_concentric(double u, double v, double *x, double *y) {\n"
-            "    %1$s_thin_lens_concentric(u, v, x, y);\n}\n",
+            "    %1$s_thin_lens_concentric(u, v, x, y);\n}\n"
+            "bool image_map_cylindrical(vec3 q, double *u, double *v) {\n"
+            "    return %1$s_image_map_cylindrical(q, u, v);\n}\n",
             prefix);
     fclose(f);
 }
