@@ -421,3 +421,57 @@ Test(mesh_surface, chapters_before_14_draw_meshes_flat_and_the_twin_says_so, .ti
 Test(povray_agreement, chapter_14_smooth_teapot_and_uv_mapped_card, .timeout = 120) {
     expect_agreement("smooth", SMOOTH_SCENE);
 }
+
+/* ---- the teapot's own (u, v): tools/models/teapot.c --uv ------------------------------------------- */
+
+#define TEAPOT_WELDED "scenes/models/teapot-5k.ply"
+#define TEAPOT_UV "scenes/models/teapot-5k-uv.ply"
+#define TEAPOT_UV_SCENE "tests/data/textures/teapot-uv.scene"
+#define TEAPOT_N 9 /* teapot-5k's subdivisions per patch side */
+
+Test(teapot_uv, has_the_welded_teapots_triangles_with_a_uv_and_a_normal_at_every_corner, .timeout = 60) {
+    struct mesh welded, m;
+    struct mesh_corners none, c;
+    char err[512] = "";
+    cr_assert(mesh_load_with_corners(TEAPOT_WELDED, &welded, &none, err, sizeof err), "%s", err);
+    cr_assert(mesh_load_with_corners(TEAPOT_UV, &m, &c, err, sizeof err), "%s", err);
+    cr_assert_eq(m.face_count, welded.face_count, "the same triangles");
+    cr_expect_gt(m.vertex_count, welded.vertex_count, "seam vertices are one per patch");
+    cr_assert_not_null(c.uv_faces, "no texture coordinates");
+    cr_assert_not_null(c.normal_faces, "no normals");
+    /* The welded teapot's normals, averaged as `smooth on` averages them: the file's must be the same at
+     * every corner, so the seams, where each patch has its own vertex, do not crease. */
+    struct mesh_corners averaged = {0};
+    cr_assert(mesh_surface_average_normals(&welded, &averaged));
+    size_t moved = 0, creased = 0, mirrored = 0, outside = 0;
+    for (size_t f = 0; f < m.face_count; f++) {
+        const uint32_t *v = m.faces[f].v, *w = welded.faces[f].v;
+        const struct mesh_uv *uv[3];
+        for (int k = 0; k < 3; k++) {
+            vec3 a = m.vertices[v[k]], b = welded.vertices[w[k]];
+            moved += a.x != b.x || a.y != b.y || a.z != b.z;
+            vec3 n = c.normals[c.normal_faces[f].v[k]], expected = averaged.normals[w[k]];
+            creased += vec3_length(vec3_sub(n, expected)) > 1e-6;
+            uv[k] = &c.uvs[c.uv_faces[f].v[k]];
+            outside += uv[k]->u < 0 || uv[k]->u > 1 || uv[k]->v < 0 || uv[k]->v > 1;
+        }
+        /* Counter-clockwise in (u, v) as in space seen from outside: a picture is not mirrored. A triangle
+         * spans one grid cell: two sides of 1/N. */
+        double du1 = uv[1]->u - uv[0]->u, dv1 = uv[1]->v - uv[0]->v, du2 = uv[2]->u - uv[0]->u,
+               dv2 = uv[2]->v - uv[0]->v;
+        double area = du1 * dv2 - dv1 * du2;
+        mirrored += !(fabs(area - 1.0 / (TEAPOT_N * TEAPOT_N)) < 1e-6);
+    }
+    cr_expect_eq(moved, 0, "%zu corners moved", moved);
+    cr_expect_eq(creased, 0, "%zu corners' normals differ from the welded average", creased);
+    cr_expect_eq(mirrored, 0, "%zu triangles are not one counter-clockwise half grid cell in (u, v)", mirrored);
+    cr_expect_eq(outside, 0);
+    mesh_corners_free(&averaged);
+    mesh_free(&welded);
+    mesh_free(&m);
+    mesh_corners_free(&c);
+}
+
+Test(povray_agreement, chapter_14_teapot_wearing_its_patches_uv, .timeout = 120) {
+    expect_agreement("teapot-uv", TEAPOT_UV_SCENE);
+}
