@@ -5,6 +5,8 @@
 #ifndef WHITTED_TEXTURE_H
 #define WHITTED_TEXTURE_H
 
+#include "box.h"
+#include "mesh.h"
 #include "scene.h"
 
 /* The colour of a pigment at one point: red, green, blue and the share of light it lets through
@@ -27,10 +29,24 @@ double texture_pattern_value(const struct pigment *p, vec3 q);
  * (texture_load_images). */
 struct texture_colour texture_pigment_at(const struct pigment *p, vec3 point);
 
+/* Returns the (u, v) that POV-Ray 3.7's uv_mapping gives the point `point` of box b on the face whose
+ * outward normal is `normal` (Box::UVCoord): the box unfolded into a cross on the unit square, each face
+ * a quarter wide and a third high, seen from outside without mirroring. With P = (point - min) /
+ * (max - min) in [0, 1]^3:
+ *
+ *     face   u              v                   the cross, v up:      +y
+ *     -x     Pz / 4         1/3 + Py / 3                         -x  +z  +x  -z
+ *     +z     1/4 + Px / 4   1/3 + Py / 3                              -y
+ *     +x     3/4 - Pz / 4   1/3 + Py / 3
+ *     -z     1 - Px / 4     1/3 + Py / 3        (the +y face above the +z face, the -y face below it)
+ *     +y     1/4 + Px / 4   1 - Pz / 3
+ *     -y     1/4 + Px / 4   Pz / 3 */
+struct mesh_uv texture_box_uv(const struct box *b, vec3 point, vec3 normal);
+
 /* The scene's paint hook (scene_paint_fn; set run.scene.paint = texture_paint). On a mesh with normals,
  * replaces h->normal by the blended normal at `point` (mesh_surface.h). For a material with a pigment,
- * fills *painted from it with the pigment's colour at `point` (or, for `map uv`, at the mesh's blended
- * texture coordinates (u, v, 0); (0, 0, 0) on a surface without them) and its transmit added to the
+ * fills *painted from it with the pigment's colour at `point` (or, for `map uv`, at (u, v, 0): a mesh's
+ * blended texture coordinates, a box's texture_box_uv; (0, 0, 0) on another surface) and its transmit added to the
  * material's (at most 1 - filter) and returns painted; otherwise returns the scene's material. */
 const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 point, struct material *painted);
 

@@ -475,3 +475,34 @@ Test(teapot_uv, has_the_welded_teapots_triangles_with_a_uv_and_a_normal_at_every
 Test(povray_agreement, chapter_14_teapot_wearing_its_patches_uv, .timeout = 120) {
     expect_agreement("teapot-uv", TEAPOT_UV_SCENE);
 }
+
+/* ---- uv mapping on a box: POV-Ray's cross ------------------------------------------------------------ */
+
+#define BOX_UV_SCENE "tests/data/textures/box-uv.scene"
+
+/* Expects texture_box_uv of the box (0, 0, 0)-(2, 3, 4) at `point` on the face with normal n. */
+static void expect_box_uv(vec3 point, vec3 n, double u, double v, const char *face) {
+    struct box b = {{0, 0, 0}, {2, 3, 4}, 0};
+    struct mesh_uv uv = texture_box_uv(&b, point, n);
+    cr_expect_float_eq(uv.u, u, 1e-12, "%s: u %g, expected %g", face, uv.u, u);
+    cr_expect_float_eq(uv.v, v, 1e-12, "%s: v %g, expected %g", face, uv.v, v);
+}
+
+Test(texture, box_uv_unfolds_the_six_faces_into_povrays_cross) {
+    /* The point (x, y, z) = (0.5, 1.5, 1) of the box scaled to [0, 1]: (0.25, 0.5, 0.25). */
+    expect_box_uv(vec3_make(0, 1.5, 1), vec3_make(-1, 0, 0), 0.25 / 4, 1.0 / 3 + 0.5 / 3, "-x");
+    expect_box_uv(vec3_make(2, 1.5, 1), vec3_make(1, 0, 0), 0.75 - 0.25 / 4, 1.0 / 3 + 0.5 / 3, "+x");
+    expect_box_uv(vec3_make(0.5, 1.5, 4), vec3_make(0, 0, 1), 0.25 + 0.25 / 4, 1.0 / 3 + 0.5 / 3, "+z");
+    expect_box_uv(vec3_make(0.5, 1.5, 0), vec3_make(0, 0, -1), 1 - 0.25 / 4, 1.0 / 3 + 0.5 / 3, "-z");
+    expect_box_uv(vec3_make(0.5, 3, 1), vec3_make(0, 1, 0), 0.25 + 0.25 / 4, 1 - 0.25 / 3, "+y");
+    expect_box_uv(vec3_make(0.5, 0, 1), vec3_make(0, -1, 0), 0.25 + 0.25 / 4, 0.25 / 3, "-y");
+    /* The cross folds up: the +z face's top edge is the +y face's bottom edge, and its sides run on
+     * into the side faces' edges at the same height. */
+    expect_box_uv(vec3_make(2, 3, 4), vec3_make(0, 0, 1), 0.5, 2.0 / 3, "+z, top right corner");
+    expect_box_uv(vec3_make(2, 3, 4), vec3_make(0, 1, 0), 0.5, 2.0 / 3, "+y, the same corner");
+    expect_box_uv(vec3_make(2, 3, 4), vec3_make(1, 0, 0), 0.5, 2.0 / 3, "+x, the same corner");
+}
+
+Test(povray_agreement, chapter_14_uv_mapping_on_boxes_seen_from_outside_and_inside, .timeout = 120) {
+    expect_agreement("box-uv", BOX_UV_SCENE);
+}
