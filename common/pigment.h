@@ -45,6 +45,7 @@ enum pigment_mapping {
 struct pigment_image {
     int width, height;
     float *texels; /* width * height * 4 floats (red, green, blue, alpha), top row first; owned */
+    bool opaque;   /* every alpha is 1: the file has no alpha channel, or every pixel's is at its largest */
 };
 
 struct pigment {

@@ -180,6 +180,21 @@ const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 
     return painted;
 }
 
+const struct material *texture_paint_shadow(const struct scene *s, struct hit *h, vec3 point,
+                                            struct material *painted) {
+    const struct material *m = &s->materials[h->material];
+    if (m->pigment >= 0) {
+        const struct pigment *p = &s->pigments[m->pigment];
+        if (p->pattern == PIGMENT_IMAGE_MAP && p->uv_mapping && !p->once && p->image.opaque) {
+            *painted = *m;
+            painted->filter = 0.0;
+            painted->transmit = 0.0;
+            return painted;
+        }
+    }
+    return texture_paint(s, h, point, painted);
+}
+
 bool texture_load_images(struct scene *s, char *err, size_t err_size) {
     for (size_t k = 0; k < s->pigment_count; k++) {
         struct pigment *p = &s->pigments[k];

@@ -50,6 +50,18 @@ struct mesh_uv texture_box_uv(const struct box *b, vec3 point, vec3 normal);
  * material's (at most 1 - filter) and returns painted; otherwise returns the scene's material. */
 const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 point, struct material *painted);
 
+/* The scene's shadow_paint hook (set run.scene.shadow_paint = texture_paint_shadow): the material a
+ * shadow ray crossing the hit *h at `point` is filtered by. texture_paint's, except for POV-Ray 3.7's
+ * test of what is opaque: a surface whose pigment is a `map uv` image map, not `wrap once`, of a
+ * picture whose every alpha is 1, casts a full shadow, whatever its material's filter and transmit
+ * (then *painted is the material with filter and transmit 0). POV-Ray decides before rendering whether
+ * an object can let light through to a shadow, from its pigment. The twin's `filter all` and `transmit
+ * all` mark an image map's own pigment as letting light through, but for uv_mapping the test looks at
+ * the pigment round it, which asks the picture alone: no alpha, not once, so opaque. The camera still
+ * sees through the surface. */
+const struct material *texture_paint_shadow(const struct scene *s, struct hit *h, vec3 point,
+                                            struct material *painted);
+
 /* Reads the image of every image_map pigment of s (image_map.h). Returns false at the first that
  * fails, with "scene:line: pigment 'name': what is wrong" in err. */
 bool texture_load_images(struct scene *s, char *err, size_t err_size);

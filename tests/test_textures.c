@@ -5,6 +5,7 @@
  * POV-Ray on procedural and image-mapped scenes. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stb_image_write.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -201,7 +202,7 @@ static struct pigment two_by_two(int interpolate, bool once) {
     p.mapping = PIGMENT_MAP_PLANAR;
     p.interpolate = interpolate;
     p.once = once;
-    p.image = (struct pigment_image){2, 2, texels};
+    p.image = (struct pigment_image){2, 2, texels, false};
     return p;
 }
 
@@ -247,6 +248,25 @@ Test(image_map, spherical_map_puts_longitude_0_at_x_and_the_north_at_the_top) {
     cr_expect(rgba[0] == 1 && rgba[1] == 0, "north of longitude 0: the top left pixel, red");
     image_map_lookup(&p, vec3_make(-1, -0.5, -0.01), rgba); /* u just under 1/2... past it */
     cr_expect(rgba[0] == 1 && rgba[1] == 1, "south, longitude just past 180: bottom right, white");
+}
+
+/* Reads a 2 x 1 PNG written with `channels` channels from `pixels`; returns image.opaque. */
+static bool read_opaque(const char *name, int channels, const uint8_t *pixels) {
+    char path[256], why[512] = "";
+    snprintf(path, sizeof path, TEST_OUT "/%s", name);
+    cr_assert(stbi_write_png(path, 2, 1, channels, pixels, 2 * channels), "cannot write %s", path);
+    struct pigment_image image;
+    cr_assert(image_map_read(path, &image, why, sizeof why), "%s", why);
+    free(image.texels);
+    return image.opaque;
+}
+
+Test(image_map, a_picture_is_opaque_when_every_alpha_is_the_largest) {
+    static const uint8_t rgb[6] = {10, 20, 30, 40, 50, 60}, full[8] = {10, 20, 30, 255, 40, 50, 60, 255},
+                         one_less[8] = {10, 20, 30, 255, 40, 50, 60, 254};
+    cr_expect(read_opaque("opaque-rgb.png", 3, rgb), "no alpha channel");
+    cr_expect(read_opaque("opaque-rgba.png", 4, full), "alpha everywhere 255");
+    cr_expect(!read_opaque("see-through.png", 4, one_less), "one alpha of 254");
 }
 
 Test(image_map, missing_and_broken_images_name_the_pigment_line, .timeout = 60) {
@@ -505,4 +525,42 @@ Test(texture, box_uv_unfolds_the_six_faces_into_povrays_cross) {
 
 Test(povray_agreement, chapter_14_uv_mapping_on_boxes_seen_from_outside_and_inside, .timeout = 120) {
     expect_agreement("box-uv", BOX_UV_SCENE);
+}
+
+/* ---- shadows through patterned glass --------------------------------------------------------------- */
+
+#define SHADOWS_SCENE "tests/data/textures/shadows.scene"
+
+Test(texture, a_shadow_ray_through_glass_takes_the_pigment_but_povrays_opaque_uv_pictures_block_it) {
+    struct scene s;
+    char err[512] = "";
+    cr_assert(parse_lines("pigment c checker colour 1 0 0 colour2 0 0 1\n"
+                          "pigment u image_map file a.png map uv\n"
+                          "material glass pigment c filter 0.8 transmit 0.1\n"
+                          "material tiles pigment u filter 0.6 transmit 0.3",
+                          &s, err, sizeof err),
+              "%s", err);
+    static float white[4] = {1, 1, 1, 1};
+    s.pigments[1].image = (struct pigment_image){1, 1, white, true};
+    struct material painted;
+    struct hit h = {1, {0, 1, 0}, 1, -1, -1};
+    const struct material *m = texture_paint_shadow(&s, &h, vec3_make(1.5, 0.5, 0.5), &painted);
+    cr_expect(m->colour.x == 0 && m->colour.z == 1, "the checker's colour2 where the ray crosses");
+    cr_expect(m->filter == 0.8 && m->transmit == 0.1, "the material's filter and transmit");
+    h.material = 2;
+    m = texture_paint_shadow(&s, &h, vec3_make(0.5, 0.5, 0), &painted);
+    cr_expect(m->filter == 0 && m->transmit == 0, "map uv, repeated, no alpha: opaque, as POV-Ray takes it");
+    s.pigments[1].once = true;
+    m = texture_paint_shadow(&s, &h, vec3_make(0.5, 0.5, 0), &painted);
+    cr_expect(m->filter == 0.6 && m->transmit == 0.3, "wrap once: the light goes through");
+    s.pigments[1].once = false;
+    s.pigments[1].uv_mapping = false;
+    m = texture_paint_shadow(&s, &h, vec3_make(0.5, 0.5, 0), &painted);
+    cr_expect(m->filter == 0.6 && m->transmit == 0.3, "a planar map: the light goes through");
+    s.pigments[1].image = (struct pigment_image){0};
+    scene_free(&s);
+}
+
+Test(povray_agreement, chapter_14_shadows_through_patterned_glass, .timeout = 120) {
+    expect_agreement("shadows", SHADOWS_SCENE);
 }
