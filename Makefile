@@ -68,7 +68,7 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 
 # The models the chapters' scenes name: the bunny is committed, the teapots are generated
 # (tools/models/models.mk, included below).
-SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
+SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply scenes/models/teapot-5k-uv.ply
 # The pictures chapter 14's scenes wrap over surfaces: drawn by tools/textures/draw_textures.c, never
 # downloaded.
 SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/textures/grid.jpg
