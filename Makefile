@@ -219,7 +219,7 @@ test: | deps
 ## make test-long      the tests make test leaves out (LONG_TESTS in the Makefile), ten minutes or more:
 ##                     the gallery's faults, the coursework kit, the mutants, make results QUICK=1, the
 ##                     docs' commands, the largest differential tests
-test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(MODELS_TEAPOT) | deps
+test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(BUILD)/inset $(MODELS_TEAPOT) | deps
 	$(RUN_TESTS) --filter '$(LONG_TESTS_PATTERN)'
 
 ## make test-sanitize  make test's suite built with AddressSanitizer and UndefinedBehaviorSanitizer,
