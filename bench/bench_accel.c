@@ -46,6 +46,7 @@
 #include "camera.h"
 #include "kdtree.h"
 #include "mesh.h"
+#include "mesh_load.h"
 #include "stats.h"
 #include "triangle.h"
 

@@ -27,6 +27,7 @@
 #include "fast_bvh_build.h"
 #include "kdtree.h"
 #include "mesh.h"
+#include "mesh_load.h"
 #include "stats.h"
 #include "triangle.h"
 

@@ -11,6 +11,7 @@
 
 #include "image_test_support.h"
 #include "mesh.h"
+#include "mesh_load.h"
 #include "test_support.h"
 
 #define BENCH_CSV_MODEL "scenes/models/bunny.ply"

@@ -101,13 +101,13 @@ Test(cli, the_counters_are_printed) {
 
 Test(cli, no_progress_line_when_stderr_is_not_a_terminal) {
     char command[512], output[8192];
-    snprintf(command, sizeof command, "%s -o " TEST_OUT "/quiet-progress.png", chapter_program(3));
+    snprintf(command, sizeof command, "%s --width 64 --height 48 -o " TEST_OUT "/quiet-progress.png", chapter_program(3));
     cr_assert_eq(run_capturing(command, output, sizeof output), 0);
     cr_assert_null(strstr(output, "rendering:"), "a progress line went to a pipe:\n%s", output);
 }
 
 Test(cli, stats_adds_the_structure_and_the_predicted_cost) {
-    expect_chapter_run(9, "--stats -o " TEST_OUT "/stats.png", 0, "predicted by the SAH:");
+    expect_chapter_run(9, "--stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0, "predicted by the SAH:");
     expect_chapter_run(10, "--accel bvh --split seed --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
                "acceleration: BVH (median split) over 353546 triangles");
     expect_chapter_run(11, "--rung simd --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,

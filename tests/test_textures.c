@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "image_map.h"
+#include "mesh_load.h"
 #include "mesh_surface.h"
 #include "image_test_support.h"
 #include "scene.h"
