@@ -170,7 +170,8 @@ $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/comm
 # triangles, meshes beyond float range, whole pictures by every structure and rung), and those that
 # take four seconds or more of their own: the damaged-mesh sweeps, the largest picture, linking every
 # chapter with its own modules and with the modules before it, make bench after make test, make help
-# and make clean in a copy, the soups of 1000 triangles, chapter 10's picture by 1, 2 and 4 threads
+# and make clean in a copy, the soups of 30 to 1000 triangles (make test keeps those of 1 to 10, the
+# bunny, the sphere and the grids), chapter 10's picture by 1, 2 and 4 threads
 # (chapters 12 and 13 check their own in make test), the results page's staleness checks; and the
 # proofs that the picture checks catch a planted fault (a wrong index of refraction, an extra trace
 # level, a wrong grid or threshold, a hard shadow), while the checks themselves run in make test.
@@ -193,7 +194,8 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               layering/every_chapter_links_with_its_own_modules \
               build/make_bench_after_make_test_links_bench_accel_with_embree \
               build/help_and_clean_install_nothing_while_deps_installs \
-              accel/*_soups_of_1000_triangles acceleration/the_picture_is_the_same_for_1_2_and_4_threads \
+              accel/*_soups_of_30_to_300_triangles accel/*_soups_of_1000_triangles \
+              acceleration/the_picture_is_the_same_for_1_2_and_4_threads \
               results/a_number_of_the_text_typed_over_or_unknown_is_caught results/a_changed_number_in_a_csv_* \
               povray_agreement/chapter_11_fast_agrees_with_povray reference_image/catches_a_wrong_ior \
               povray_agreement/catches_one_extra_trace_level povray_agreement/chapter_12_checks_catch_* \
