@@ -37,6 +37,9 @@ enum fast_bvh_rung {
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
 #define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_COMPACT
+/* The rung the chapters walk unless told otherwise: the fastest. Rung 7 takes the least memory, but its
+ * frames are slower (docs/11-fast.md). */
+#define FAST_BVH_RUNG_DEFAULT FAST_BVH_RUNG_FLOAT
 
 /* Children per node. */
 #define FAST_BVH_WIDTH 4

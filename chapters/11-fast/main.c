@@ -18,7 +18,7 @@
 #include "whitted.h"
 
 static struct accel_choice choice = {ACCEL_BVH, true};
-static int rung = FAST_BVH_RUNG_FLOAT; /* the fastest rung (docs/11-fast.md) */
+static int rung = FAST_BVH_RUNG_DEFAULT;
 
 static int parse_option(const char *option, const char *value) {
     if (strcmp(option, "--rung") == 0) {
