@@ -1,5 +1,5 @@
 /* fast_bvh_build.c: building chapter 11's 4-wide hierarchy, by collapsing chapter 10's tree (rungs 2 to
- * 4) or in float, straight into the 4-wide layout (rung 5) (chapter 11).
+ * 4) or in float, straight into the 4-wide layout (rungs 5 to 7) (chapter 11).
  *
  * Rungs 2 to 4 change only how the tree is stored and walked (fast_bvh.c), so they take chapter 10's
  * tree as it is: bvh_build makes it, and fast_bvh_collapse gives each node four children instead of

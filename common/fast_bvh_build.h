@@ -1,5 +1,5 @@
 /* fast_bvh_build.h: building chapter 11's 4-wide hierarchy (fast_bvh.h), by collapsing chapter 10's
- * binary tree (rungs 2 to 4) or in float, straight into the 4-wide layout (rung 5) (chapter 11). */
+ * binary tree (rungs 2 to 4) or in float, straight into the 4-wide layout (rungs 5 to 7) (chapter 11). */
 #ifndef WHITTED_FAST_BVH_BUILD_H
 #define WHITTED_FAST_BVH_BUILD_H
 
