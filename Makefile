@@ -45,7 +45,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light lens pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -59,8 +59,9 @@ MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_build accel_fast_bvh
 MODULES_12 := $(MODULES_11) sample_hash supersample
 MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture
+MODULES_15 := $(MODULES_14) sampling emitter bsdf path_trace path_image
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures
+            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
@@ -74,7 +75,7 @@ SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/textures/grid.jpg
 
 .PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare gallery figures \
-        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14,chapter-$(n) check-$(n))
+        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
@@ -112,9 +113,9 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..14: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# chapter-N for N = 1..15: explicit rules (GNU make skips pattern rules for phony targets). Only the
 # models that the chapter's scene names are made first (mesh paths are relative to scenes/).
-## make chapter-N      build chapter N (1..14) and render its scene to out/chapter-NN.png
+## make chapter-N      build chapter N (1..15) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -125,7 +126,7 @@ chapter-$(1): | out
 	             scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call run_chapter_rule,$(n))))
 
 ## make chapters       build and render every written chapter
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
@@ -300,7 +301,7 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-## make check-N        grade chapter N's coursework tasks (1..14): each task, then a scoreboard
+## make check-N        grade chapter N's coursework tasks (1..15): each task, then a scoreboard
 define check_rule
 check-$(1): $(BUILD)/check | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -308,7 +309,7 @@ check-$(1): $(BUILD)/check | out
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models $(if $(filter 14,$(1)),$(SCENE_TEXTURES)) >/dev/null && \
 	    WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call check_rule,$(n))))
 
 ## make check          grade every chapter's coursework tasks
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out
