@@ -154,6 +154,8 @@ TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c tests/support/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
 # The picture comparison (and the box filter that averages a picture down, chapter 12): the tests', the grader's and build/compare's.
 IMAGE_COMPARE_OBJECT := $(BUILD)/tests/support/image_compare.o $(BUILD)/tests/support/box_filter.o
+# Chapter 15's statistical proofs: the tests' and the grader's (tests/support/path_proofs.c).
+PATH_PROOFS_OBJECT := $(BUILD)/tests/support/path_proofs.o
 
 # The tests and what they link: the modules, tests/support/, and the fuzzers' renderer check
 # (fuzz/fuzz.mk), which tests/test_fuzz_regressions.c runs on the saved inputs.
@@ -298,7 +300,7 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Itests/support -MMD -MP -c $< -o $@
 
-$(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(PATH_PROOFS_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 ## make check-N        grade chapter N's coursework tasks (1..15): each task, then a scoreboard
