@@ -188,7 +188,8 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               mesh_fuzz/* io/a_large_picture_takes_a_few_bytes_per_pixel \
               layering/no_chapter_links_with_the_previous_chapters_modules \
               build/make_bench_after_make_test_links_bench_accel_with_embree \
-              results/a_number_of_the_text_typed_over_or_unknown_is_caught
+              results/a_number_of_the_text_typed_over_or_unknown_is_caught \
+              reference_image/chapter_15_paths_matches_its_reference
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))

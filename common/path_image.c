@@ -25,11 +25,13 @@ static void render_paths(const struct render_job *job, struct image *img, int le
     for (int j = top; j < bottom; j++)
         for (int i = left; i < right; i++) {
             uint64_t cost_before = render_thread_cost();
-            vec3 c = path_pixel(picture->paths, i, j, NULL);
-            float *out = &picture->linear[3 * ((size_t)j * (size_t)picture->width + (size_t)i)];
-            out[0] = (float)c.x;
-            out[1] = (float)c.y;
-            out[2] = (float)c.z;
+            vec3 variance;
+            vec3 c = path_pixel(picture->paths, i, j, &variance);
+            size_t at = 3 * ((size_t)j * (size_t)picture->width + (size_t)i);
+            for (int k = 0; k < 3; k++)
+                picture->linear[at + k] = (float)vec3_axis(c, k);
+            for (int k = 0; picture->error != NULL && k < 3; k++)
+                picture->error[at + k] = (float)sqrt(vec3_axis(variance, k) / picture->paths->settings.samples);
             image_set(img, i, j, vec3_make(path_image_display(c.x), path_image_display(c.y), path_image_display(c.z)));
             if (job->heatmap != NULL) {
                 uint64_t cost = render_thread_cost() - cost_before;
@@ -39,6 +41,15 @@ static void render_paths(const struct render_job *job, struct image *img, int le
     stats_thread.pixels += (uint64_t)(right - left) * (uint64_t)(bottom - top);
     if ((uint64_t)picture->paths->settings.samples > stats_thread.camera_rays_max)
         stats_thread.camera_rays_max = (uint64_t)picture->paths->settings.samples;
+}
+
+double path_image_noise(const float *linear, const float *error, int width, int height) {
+    double values = 0, errors = 0;
+    for (size_t k = 0; k < 3 * (size_t)width * (size_t)height; k++) {
+        values += linear[k];
+        errors += error[k];
+    }
+    return values > 0 ? errors / values : 0.0;
 }
 
 const struct render_sampler path_sampler = {render_paths, &heatmap_cost_scale};

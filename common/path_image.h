@@ -20,6 +20,7 @@
 struct path_picture {
     const struct path_world *paths;
     float *linear; /* width * height * 3 floats, rows top first; owned by whoever made the picture */
+    float *error;  /* optional (NULL), the same size: each channel's standard error, sqrt(variance / samples) */
     int width;
 };
 
@@ -27,6 +28,10 @@ struct path_picture {
  * the mean of the scene's paths per pixel (path_pixel), stored linear in the frame and tone-mapped in the
  * PNG; its heat-map shows the work each pixel cost on chapter 1's scale. */
 extern const struct render_sampler path_sampler;
+
+/* Returns the noise of a picture rendered with errors: the mean standard error of its pixels' channels
+ * over the mean of their values (0 for a black picture). */
+double path_image_noise(const float *linear, const float *error, int width, int height);
 
 /* Returns the display value of one linear channel: clipped to [0, 1], then the sRGB curve. NaN gives 0. */
 double path_image_display(double linear);

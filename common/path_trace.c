@@ -47,11 +47,9 @@ static bool in_view(const struct world *w, vec3 from, vec3 to) {
     return !blocked;
 }
 
-/* Next-event estimation at a Lambertian point: the light of one point chosen on the emitters, times the
- * BRDF and the cosine, over its density, with its weight against scattering. */
 /* TASK 15.1: next-event estimation, and its weight against scattering */
-static vec3 direct_light(const struct path_world *pw, struct sample_stream *rng, vec3 point, vec3 normal,
-                         const struct bsdf *b) {
+vec3 path_direct_light(const struct path_world *pw, struct sample_stream *rng, vec3 point, vec3 normal,
+                       const struct bsdf *b) {
     double u_pick = sample_stream_next(rng), u1 = sample_stream_next(rng), u2 = sample_stream_next(rng);
     struct emitter_sample e;
     if (!emitter_sample(pw->emitters, u_pick, u1, u2, &e))
@@ -69,7 +67,8 @@ static vec3 direct_light(const struct path_world *pw, struct sample_stream *rng,
     return vec3_scale(vec3_mul(b->albedo, e.radiance), cos_here / M_PI / p_light * weight);
 }
 
-/* The radiance arriving along r (a camera ray, inside the objects of `inside`), by one path. */
+/* The radiance arriving along r (a camera ray, inside the objects of `inside`), by one path, drawing its
+ * numbers from rng in the order path_sample's contract gives (path_trace.h). */
 /* TASK 15.2: the path: emission, scattering, Russian roulette */
 static vec3 radiance(const struct path_world *pw, ray r, struct interior_list inside, struct sample_stream *rng) {
     const struct scene *s = pw->world->scene;
@@ -120,7 +119,7 @@ static vec3 radiance(const struct path_world *pw, ray r, struct interior_list in
             delta = true;
         } else {
             if (b.p_diffuse > 0.0 && set->strategy != PATH_SCATTER)
-                sum = vec3_add(sum, vec3_mul(throughput, direct_light(pw, rng, point, normal, &b)));
+                sum = vec3_add(sum, vec3_mul(throughput, path_direct_light(pw, rng, point, normal, &b)));
             double u_lobe = sample_stream_next(rng), u1 = sample_stream_next(rng), u2 = sample_stream_next(rng);
             if (b.p_diffuse == 0.0 && b.mirror == 0.0)
                 return sum; /* black: nothing scatters */

@@ -23,10 +23,12 @@
 
 #include <stdint.h>
 
+#include "bsdf.h"
 #include "camera.h"
 #include "emitter.h"
 #include "interior.h"
 #include "path_settings.h"
+#include "sampling.h"
 #include "world.h"
 
 /* Russian roulette never keeps a path with a higher probability than this, so every path ends. */
@@ -48,8 +50,23 @@ struct path_world {
 void path_world_init(struct path_world *pw, const struct world *world, const struct emitter_list *emitters,
                      const struct camera *camera, const struct path_settings *settings);
 
+/* Next-event estimation at `point` of a Lambertian surface b (its unit normal `normal` facing the path):
+ * draws three numbers from rng (which emitter, then the point on it: u_pick, u1, u2, as emitter_sample
+ * takes them), sends a shadow ray to the chosen point and returns the light it brings,
+ *     albedo / pi * Le * cos_here / p_light * weight
+ * with p_light = density * distance^2 / |cos there| the point's density per solid angle and weight the
+ * power heuristic against scattering (p_diffuse cos_here / pi) under PATH_MIS, else 1. Returns black when
+ * there are no emitters, the point is behind the surface or edge-on, or something is in the way. Counts
+ * its shadow ray in stats_thread.shadow_rays. */
+vec3 path_direct_light(const struct path_world *pw, struct sample_stream *rng, vec3 point, vec3 normal,
+                       const struct bsdf *b);
+
 /* Returns the radiance one path brings to the camera: sample `sample` of pixel (i, j), through a point of
- * the pixel drawn from its stream. Counts its rays in stats_thread. Safe on several threads at once. */
+ * the pixel drawn from its stream (sample_stream_start(i, j, sample, seed), then x and y in the pixel).
+ * At each surface the path draws, in this order: at glass one number (reflect when under Fresnel's
+ * share); elsewhere, path_direct_light's three when the surface is Lambertian and the strategy is not
+ * PATH_SCATTER, then three to scatter (the part, Lambertian or mirror, then the direction); from bounce
+ * `roulette` on, one more for Russian roulette. Counts its rays in stats_thread. Safe on several threads at once. */
 vec3 path_sample(const struct path_world *pw, int i, int j, uint32_t sample);
 
 /* Returns pixel (i, j)'s estimate, the mean of settings.samples paths (samples 0, 1, ...); when variance

@@ -215,7 +215,7 @@ static float *render_threads(int threads) {
     float *linear = calloc(32 * 32 * 3, sizeof *linear);
     struct image img;
     cr_assert(image_create(&img, 32, 32) && linear != NULL);
-    struct path_picture picture = {&t.paths, linear, 32};
+    struct path_picture picture = {&t.paths, linear, NULL, 32};
     struct render_job job = {.camera = &t.camera, .world = &picture, .threads = threads, .sampler = &path_sampler,
                              .antialias = &t.scene.antialias, .lens = &t.scene.lens};
     struct stats total = {0};

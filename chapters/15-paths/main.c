@@ -91,9 +91,10 @@ int main(int argc, char **argv) {
         return cli_fail(&run);
     }
     struct camera cam;
-    float *linear = NULL;
+    float *linear = NULL, *error = NULL;
     if (camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, run.err, sizeof run.err)) {
-        linear = calloc((size_t)s->width * (size_t)s->height * 3, sizeof *linear);
+        linear = calloc((size_t)s->width * (size_t)s->height * 6, sizeof *linear);
+        error = linear == NULL ? NULL : linear + (size_t)s->width * (size_t)s->height * 3;
         if (linear == NULL) {
             fprintf(stderr, "out of memory for a %d x %d frame of radiance\n", s->width, s->height);
             run.status = CLI_OUTPUT_FAILED;
@@ -102,7 +103,7 @@ int main(int argc, char **argv) {
     if (run.status == CLI_OK) {
         struct path_world paths;
         path_world_init(&paths, &w->world, &emitters, &cam, &s->paths);
-        struct path_picture picture = {&paths, linear, s->width};
+        struct path_picture picture = {&paths, linear, error, s->width};
         bool report = cli_render_sampled(&run, NULL, &picture, &path_sampler);
         if (run.status == CLI_OK && run.options.pov == NULL && hdr_path != NULL) {
             if (!path_image_write_hdr(linear, s->width, s->height, hdr_path, run.err, sizeof run.err)) {
@@ -113,8 +114,9 @@ int main(int argc, char **argv) {
             }
         }
         if (report && run.status == CLI_OK) {
-            printf("paths: %d a pixel (%s, seed %u), %.0f paths and %.0f rays a second\n", s->paths.samples,
-                   path_strategy_name(s->paths.strategy), (unsigned)s->paths.seed,
+            printf("paths: %d a pixel (%s, seed %u); noise: a pixel's standard error is %.1f%% of the mean; "
+                   "%.0f paths and %.0f rays a second\n", s->paths.samples, path_strategy_name(s->paths.strategy),
+                   (unsigned)s->paths.seed, 100 * path_image_noise(linear, error, s->width, s->height),
                    run.total.primary_rays / run.render_seconds,
                    (run.total.primary_rays + run.total.shadow_rays + run.total.reflected_rays +
                     run.total.refracted_rays) / run.render_seconds);
