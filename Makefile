@@ -17,7 +17,8 @@
 # the end.
 DEPS_NEEDS := build $(strip \
     $(if $(filter test test-long test-sanitize test-accel-long %run-tests %run-accel-long,$(MAKECMDGOALS)),test) \
-    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter results,$(MAKECMDGOALS)),results))
+    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter compare-cycles,$(MAKECMDGOALS)),cycles) \
+    $(if $(filter results,$(MAKECMDGOALS)),results))
 
 # stb from the system, or else unpacked into .deps/ by install-deps.sh on a machine without root
 # (linked statically from there, so the programs need nothing from .deps/ at run time). These are
@@ -74,7 +75,7 @@ SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
 # downloaded.
 SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/textures/grid.jpg
 
-.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare gallery figures \
+.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
         clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
@@ -273,6 +274,12 @@ endif
 ##                     (UPDATE_DOCS=1 also writes the table into docs/povray.md)
 compare: all $(BUILD)/compare | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
+
+## make compare-cycles  chapter 15 against Blender's Cycles (installs Debian's blender): two scenes,
+##                     block means within noise and means within 1 %, in out/cycles/ (UPDATE_DOCS=1
+##                     also writes the table into docs/15-paths.md); several minutes
+compare-cycles: $(BUILD)/chapter-15 | deps
+	UPDATE_DOCS=$(UPDATE_DOCS) tools/cycles/compare-cycles.sh $(BUILD)
 
 ## make references     re-render the reference images on purpose and say what changed
 references: all $(BUILD)/compare

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "heatmap.h"
 #include "outfile.h"
@@ -65,6 +66,25 @@ bool path_image_write_hdr(const float *linear, int width, int height, const char
         outfile_abandon(&out);
         snprintf(err, err_size, "%s: cannot write: HDR encoding failed", path);
         return false;
+    }
+    return outfile_commit(&out, err, err_size);
+}
+
+bool path_image_write_pfm(const float *linear, int width, int height, const char *path, char *err, size_t err_size) {
+    struct outfile out;
+    if (!outfile_open(&out, path, err, err_size))
+        return false;
+    char header[64];
+    int length = snprintf(header, sizeof header, "PF\n%d %d\n-1.0\n", width, height);
+    bool ok = outfile_write(&out, header, (size_t)length);
+    for (int j = height - 1; ok && j >= 0; j--) {
+        const float *row = &linear[3 * (size_t)j * (size_t)width];
+        for (size_t k = 0; ok && k < 3 * (size_t)width; k++) {
+            uint32_t bits;
+            memcpy(&bits, &row[k], sizeof bits);
+            uint8_t bytes[4] = {(uint8_t)bits, (uint8_t)(bits >> 8), (uint8_t)(bits >> 16), (uint8_t)(bits >> 24)};
+            ok = outfile_write(&out, bytes, sizeof bytes);
+        }
     }
     return outfile_commit(&out, err, err_size);
 }

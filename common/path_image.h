@@ -6,7 +6,10 @@
  *   clipped to [0, 1]      (the tone map: the identity up to 1, as Blender's Standard view transform)
  *   encoded by the sRGB curve: 12.92 v below 0.0031308, else 1.055 v^(1 / 2.4) - 0.055
  * and quantised as every chapter's picture is (image.h). The linear radiance itself goes to a Radiance
- * .hdr file (stb's stbi_write_hdr), for comparing with another renderer without the tone map between. */
+ * .hdr file (stb's stbi_write_hdr), for comparing with another renderer without the tone map between, or
+ * to a Portable Float Map (.pfm), which keeps every float whole: Radiance's format keeps 8 bits of each
+ * channel under a shared exponent and stb cuts the rest off, which makes a picture's mean up to half a
+ * percent low, too much for chapter 15's comparison with Cycles (docs/15-paths.md). */
 #ifndef WHITTED_PATH_IMAGE_H
 #define WHITTED_PATH_IMAGE_H
 
@@ -40,5 +43,9 @@ double path_image_display(double linear);
  * file renamed into place; "-" is standard output). Returns false with "path: reason" in err on
  * failure. */
 bool path_image_write_hdr(const float *linear, int width, int height, const char *path, char *err, size_t err_size);
+
+/* path_image_write_hdr for a Portable Float Map: "PF", the size, -1 (little-endian), then the rows from
+ * the bottom up, three 32-bit floats a pixel. */
+bool path_image_write_pfm(const float *linear, int width, int height, const char *path, char *err, size_t err_size);
 
 #endif

@@ -62,7 +62,8 @@ int main(int argc, char **argv) {
         .kinds = kinds,
         .lighting = POV_WHITTED,
         .parse_option = parse_option,
-        .options_help = "  --hdr FILE       also write the linear radiance as a Radiance .hdr file\n"
+        .options_help = "  --hdr FILE       also write the linear radiance: a Radiance .hdr file, or a Portable\n"
+                        "                   Float Map when FILE ends in .pfm (every float kept whole)\n"
                         "  --accel KIND     none, kdtree or bvh (default bvh: chapter 11's fast BVH)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule\n",
     };
@@ -106,7 +107,10 @@ int main(int argc, char **argv) {
         struct path_picture picture = {&paths, linear, error, s->width};
         bool report = cli_render_sampled(&run, NULL, &picture, &path_sampler);
         if (run.status == CLI_OK && run.options.pov == NULL && hdr_path != NULL) {
-            if (!path_image_write_hdr(linear, s->width, s->height, hdr_path, run.err, sizeof run.err)) {
+            size_t length = strlen(hdr_path);
+            bool pfm = length >= 4 && strcmp(hdr_path + length - 4, ".pfm") == 0;
+            if (!(pfm ? path_image_write_pfm : path_image_write_hdr)(linear, s->width, s->height, hdr_path, run.err,
+                                                                     sizeof run.err)) {
                 fprintf(stderr, "%s\n", run.err);
                 run.status = CLI_OUTPUT_FAILED;
             } else if (!run.options.quiet) {
