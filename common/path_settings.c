@@ -42,7 +42,7 @@ bool path_settings_make(const struct key_values *kv, struct path_settings *p, ch
     if (!whole_key(kv, KEY_SAMPLES, 1, PATH_MAX_SAMPLES, &samples, why, why_size) ||
         !whole_key(kv, KEY_SEED, 0, UINT32_MAX, &seed, why, why_size) ||
         !whole_key(kv, KEY_ROULETTE, 0, PATH_MAX_BOUNCES, &roulette, why, why_size) ||
-        !whole_key(kv, KEY_BOUNCES, 1, PATH_MAX_BOUNCES, &bounces, why, why_size))
+        !whole_key(kv, KEY_BOUNCES, 0, PATH_MAX_BOUNCES, &bounces, why, why_size))
         return false;
     p->samples = (int)samples;
     p->seed = (uint32_t)seed;

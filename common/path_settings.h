@@ -6,7 +6,8 @@
  * samples   paths per pixel (each through a random point of the pixel: a box filter of one pixel)
  * seed      chooses the random numbers; the same seed gives the same picture on any number of threads
  * roulette  the bounce from which Russian roulette may end a path (0: from the first)
- * bounces   the most bounces a path makes; a cap for safety, since roulette ends every path anyway
+ * bounces   the most bounces a path makes after the first surface (0: that surface's direct light only); a
+ *           cap for safety, since roulette ends every path anyway
  * strategy  how direct light is found: mis (next-event estimation and the scattered direction, weighed
  *           by the power heuristic), light (next-event estimation alone) or scatter (scattering alone)
  *
@@ -53,7 +54,7 @@ struct path_settings path_settings_default(void);
 /* Fills *p from the values read for path_keys (the parser's struct key_values); keys not given keep the
  * defaults. Returns false with the reason in why (without file and line: the parser adds them) for
  * samples not a whole number from 1 to PATH_MAX_SAMPLES, a seed not a whole number from 0 to 2^32 - 1,
- * roulette not a whole number from 0 to PATH_MAX_BOUNCES, bounces not one from 1 to PATH_MAX_BOUNCES, or
+ * roulette or bounces not a whole number from 0 to PATH_MAX_BOUNCES, or
  * an unknown strategy. */
 bool path_settings_make(const struct key_values *kv, struct path_settings *p, char *why, size_t why_size);
 

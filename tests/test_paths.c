@@ -49,7 +49,7 @@ Test(paths_line, keys_and_defaults_are_read) {
 
 Test(paths_line, bad_values_are_refused_with_file_and_line) {
     expect_refused("paths samples 0", "paths.scene:3: paths samples must be a whole number from 1 to 1048576, got 0");
-    expect_refused("paths bounces 2.5", "paths.scene:3: paths bounces must be a whole number from 1 to 4096, got 2.5");
+    expect_refused("paths bounces 2.5", "paths.scene:3: paths bounces must be a whole number from 0 to 4096, got 2.5");
     expect_refused("paths strategy both", "paths.scene:3: unknown paths strategy 'both' (mis, light or scatter)");
     expect_refused("paths samples 4\npaths samples 5", "paths.scene:4: a second paths line (a scene has one)");
     expect_refused("material lamp emission 1 -1 1",
