@@ -294,7 +294,7 @@ gallery: all $(BUILD)/compare
 # docs/figures/ (tests/test_figures.c checks that the committed ones are what it draws now).
 FIGURE_OBJECTS := $(patsubst tools/figures/%.c,$(BUILD)/tools/figures/%.o,$(wildcard tools/figures/*.c))
 
-$(BUILD)/figures: $(FIGURE_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/figures: $(FIGURE_OBJECTS) $(PATH_PROOFS_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 ## make figures        redraw the walkthroughs' figures, docs/figures/*.svg, from tools/figures/
