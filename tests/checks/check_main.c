@@ -151,10 +151,10 @@ CHECK(check_picture_14);
 CHECK(check_direct_overhead);
 CHECK(check_direct_tilted);
 CHECK(check_direct_blocked_or_behind);
+CHECK(check_pixels_uncorrelated);
 CHECK(check_furnace_scatter);
 CHECK(check_furnace_light);
 CHECK(check_furnace_mis);
-CHECK(check_pixels_uncorrelated);
 CHECK(check_strategies_agree);
 CHECK(check_picture_15);
 
@@ -238,10 +238,10 @@ const struct check check_list[] = {
     {"15.1", "a glowing ball straight above: 1/16 of its radiance", check_direct_overhead},
     {"15.1", "the surface tilted by 60 degrees: half of that", check_direct_tilted},
     {"15.1", "hidden by a triangle, or behind the surface: nothing", check_direct_blocked_or_behind},
+    {"15.2", "neighbouring pixels' noise is uncorrelated", check_pixels_uncorrelated},
     {"15.2", "the white furnace by scattering alone: Le / (1 - rho)", check_furnace_scatter},
     {"15.2", "the white furnace by light sampling alone", check_furnace_light},
     {"15.2", "the white furnace by MIS: no light counted twice", check_furnace_mis},
-    {"15.2", "neighbouring pixels' noise is uncorrelated", check_pixels_uncorrelated},
     {"15.2", "light, scattering and MIS converge to one picture", check_strategies_agree},
     {"15.P", "the picture matches the reference", check_picture_15},
 };

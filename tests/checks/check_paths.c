@@ -97,8 +97,10 @@ static bool furnace_holds(const char *strategy, const char *hint, char *why, siz
             return false;
         if (!path_proof_furnace_passes(&f, PATHS_ERRORS)) {
             snprintf(why, why_size, "inside a closed sphere that glows 0.5 and reflects %g (strategy %s) every pixel "
-                     "should converge to 0.5 / (1 - %g) = %.4f, but the picture's mean is %.4f (standard error %.4f): %s",
-                     rhos[k], strategy, rhos[k], f.expected, f.mean[1], f.error[1], hint);
+                     "should converge to 0.5 / (1 - %g) = %.4f, but the picture's mean is %.4f (standard error %.4f): %s%s",
+                     rhos[k], strategy, rhos[k], f.expected, f.mean[1], f.error[1], hint,
+                     f.error[1] == 0.0 ? " (every pixel came out the same: do all pixels draw the same random numbers?)"
+                                       : "");
             return false;
         }
     }
