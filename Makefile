@@ -48,7 +48,7 @@ CRITERION = $(shell pkg-config --cflags --libs criterion)
 # ---- what each chapter introduces ----------------------------------------------------------------
 MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
-MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj scene_meshes
+MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
 MODULES_04 := $(MODULES_03) plane
 MODULES_05 := $(MODULES_04) aabb box world
 MODULES_06 := $(MODULES_05) phong
@@ -70,7 +70,7 @@ chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 
 # The models the chapters' scenes name: the bunny is committed, the teapots are generated
 # (tools/models/models.mk, included below).
-SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply
+SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply scenes/models/teapot-5k-uv.ply
 # The pictures chapter 14's scenes wrap over surfaces: drawn by tools/textures/draw_textures.c, never
 # downloaded.
 SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/textures/grid.jpg
@@ -172,9 +172,16 @@ $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/comm
 # the coursework kit's student copy, the mutants), the results' quick run, the docs' commands run in a
 # copy of the repository, the no-root install, the largest differential tests (thousands of
 # triangles, meshes beyond float range, whole pictures by every structure and rung), and those that
-# take five seconds or more of their own: the damaged-mesh sweeps, the largest picture, linking every
-# chapter with the modules before it, make bench after make test, the results page's typed-over
-# number. make test and make test-long together run every test once; CI runs both (.ci/run).
+# take four seconds or more of their own: the damaged-mesh sweeps, the largest picture, linking every
+# chapter with its own modules and with the modules before it, make bench after make test, make help
+# and make clean in a copy, the soups of 30 to 1000 triangles (make test keeps those of 1 to 10, the
+# bunny, the sphere and the grids), chapter 10's picture by 1, 2 and 4 threads
+# (chapters 12 and 13 check their own in make test), the results page's staleness checks; and the
+# proofs that the picture checks catch a planted fault (a wrong index of refraction, an extra trace
+# level, a wrong grid or threshold, a hard shadow), while the checks themselves run in make test.
+# Chapter 11's agreement with POV-Ray is long too: its scene and its reference picture are chapter
+# 10's, whose agreement make test checks, and make test holds chapter 11's picture to that reference.
+# make test and make test-long together run every test once; CI runs both (.ci/run).
 LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               coursework/the_grader_ends_every_run_with_a_scoreboard_of_every_task \
               coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_grades_* coursework_long/* \
@@ -188,24 +195,36 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               acceleration/every_rung_of_chapter_11_draws_the_brute_force_picture \
               mesh_fuzz/* io/a_large_picture_takes_a_few_bytes_per_pixel \
               layering/no_chapter_links_with_the_previous_chapters_modules \
+              layering/every_chapter_links_with_its_own_modules \
               build/make_bench_after_make_test_links_bench_accel_with_embree \
-              results/a_number_of_the_text_typed_over_or_unknown_is_caught \
+              build/help_and_clean_install_nothing_while_deps_installs \
+              accel/*_soups_of_30_to_300_triangles accel/*_soups_of_1000_triangles \
+              acceleration/the_picture_is_the_same_for_1_2_and_4_threads \
+              results/a_number_of_the_text_typed_over_or_unknown_is_caught results/a_changed_number_in_a_csv_* \
+              povray_agreement/chapter_11_fast_agrees_with_povray reference_image/catches_a_wrong_ior \
+              povray_agreement/catches_one_extra_trace_level povray_agreement/chapter_12_checks_catch_* \
+              povray_agreement/chapter_13_check_catches_a_hard_shadow \
               reference_image/chapter_15_paths_matches_its_reference
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
 LONG_TESTS_PATTERN := @($(subst $() ,|,$(strip $(LONG_TESTS))))
+# make test builds what it runs (every chapter, the test runner, the grader, the benchmark program
+# whose CSV its tests read) with a job per processor, unless make was already given -j: a fresh clone
+# compiles a hundred files before its first test.
+PARALLEL_BUILD := $(if $(filter -j%,$(MAKEFLAGS)),,-j$(shell nproc 2>/dev/null || echo 2))
 RUN_TESTS := LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
 
 ## make test           the quick suite, about a minute: unit tests, reference images, agreement with
 ##                     POV-Ray, the docs' code and outputs (installs what it needs first)
-test: all $(BUILD)/run-tests $(BUILD)/check $(BUILD)/bench_accel | deps
+test: | deps
+	$(MAKE) --no-print-directory $(PARALLEL_BUILD) all $(BUILD)/run-tests $(BUILD)/check $(BUILD)/bench_accel
 	$(RUN_TESTS) --filter '$(TEST_FILTER)'
 
 ## make test-long      the tests make test leaves out (LONG_TESTS in the Makefile), ten minutes or more:
 ##                     the gallery's faults, the coursework kit, the mutants, make results QUICK=1, the
 ##                     docs' commands, the largest differential tests
-test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(MODELS_TEAPOT) | deps
+test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(BUILD)/inset $(MODELS_TEAPOT) | deps
 	$(RUN_TESTS) --filter '$(LONG_TESTS_PATTERN)'
 
 ## make test-sanitize  make test's suite built with AddressSanitizer and UndefinedBehaviorSanitizer,

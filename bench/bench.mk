@@ -19,7 +19,7 @@
 # machine without Embree, make bench, which installs Embree, links the Embree one (tests/test_build.c).
 
 BENCH_MODELS := scenes/models/teapot-346k.ply scenes/models/bunny.ply
-BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_build kdtree kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj infile camera
+BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_build kdtree kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj mesh_load infile camera
 # Embree's header, when it is installed (`make BENCH_EMBREE= ...` builds the plain variant anyway).
 BENCH_EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
 BENCH_VARIANT := $(if $(BENCH_EMBREE),embree,plain)
@@ -80,7 +80,7 @@ bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_
 	echo "peak memory on $(BENCH_MEMORY_SCENE) ($$triangles triangles, 64x48, 1 thread):"; \
 	$(BUILD)/peak_rss $$triangles "chapter 10, BVH-SAH" $(BUILD)/chapter-10 $(BENCH_MEMORY_SCENE) --threads 1 --quiet \
 	    -o $(BENCH_MEMORY_DIR)/memory.png && \
-	for rung in 1 2 3 4 5; do \
+	for rung in 1 2 3 4 5 6; do \
 	    $(BUILD)/peak_rss $$triangles "chapter 11, rung $$rung" $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE) --threads 1 \
 	        --quiet --rung $$rung -o $(BENCH_MEMORY_DIR)/memory.png || exit 1; \
 	done; \

@@ -46,6 +46,7 @@
 #include "camera.h"
 #include "kdtree.h"
 #include "mesh.h"
+#include "mesh_load.h"
 #include "stats.h"
 #include "triangle.h"
 
@@ -202,6 +203,7 @@ static const struct accel accels[] = {
     {"rung 3 simd", "rung-3", FAST_BVH, FAST_BVH_RUNG_SIMD, 5},
     {"rung 4 prefetch", "rung-4", FAST_BVH, FAST_BVH_RUNG_PREFETCH, 6},
     {"rung 5 build", "rung-5", FAST_BVH, FAST_BVH_RUNG_BUILD, 7},
+    {"rung 6 float", "rung-6", FAST_BVH, FAST_BVH_RUNG_FLOAT, 8},
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
 #define ACCEL_NAIVE 0

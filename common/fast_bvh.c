@@ -10,6 +10,9 @@
  *  - FAST_BVH_RUNG_PREFETCH: every child put aside on the stack is fetched while the ray goes on
  *    (prefetch_child).
  *  - FAST_BVH_RUNG_BUILD: only the build changes (fast_bvh_build.c); the walk is rung 4's.
+ *  - FAST_BVH_RUNG_FLOAT: all four children's slab tests in one float instruction (child_quad_hit),
+ *    made conservative by a bound on their rounding (float_setup_make says how); a ray the bound
+ *    cannot cover takes rung 5's test instead.
  * The traversal is one function specialised at compile time for each query and rung.
  *
  * Layout, chosen for speed. A binary tree is collapsed into a 4-wide one (each node takes its widest
@@ -37,6 +40,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "float4.h"
 #include "stats.h"
 #include "triangle.h"
 
@@ -168,6 +172,17 @@ static inline double2 float_pair(const float *p) {
 #endif
 }
 
+/* The four floats of e widened to doubles, two by two: lanes 0 and 1 in pair[0], 2 and 3 in pair[1]. */
+static inline void float4_widened(float4 e, double2 pair[2]) {
+#if defined(__SSE2__)
+    pair[0] = _mm_cvtps_pd(e);
+    pair[1] = _mm_cvtps_pd(_mm_movehl_ps(e, e));
+#else
+    pair[0] = (double2){e[0], e[1]};
+    pair[1] = (double2){e[2], e[3]};
+#endif
+}
+
 /* ==== traversal =============================================================================== */
 
 /* What every box test of one ray shares: computed once per ray. */
@@ -220,6 +235,110 @@ static inline unsigned child_pair_hit(const struct fast_bvh_node *n, int h, cons
     }
     *entry = enter;
     return lanes_true(enter <= leave);
+}
+
+/* ---- rung 6: four boxes in float --------------------------------------------------------------
+ * Rung 6 computes each slab distance t = (bound - origin) / direction in float, four children per
+ * instruction, from the origin rounded to the nearest float o' and 1/direction rounded to float. It
+ * must never miss a box the exact slab test (real numbers, the ray's own double origin) would enter
+ * in the window [t_min, t_max]: the triangles behind it might hold the brute-force loop's answer. Two
+ * things move a computed t away from the exact one (docs/11-fast.md writes the argument out):
+ *  - rounding, relative to t: one rounding of the difference, two of 1/direction (to double, then to
+ *    float) and one of the product, at most gamma(4) = 4u / (1 - 4u) of |t| with u = 2^-24, as in Ize,
+ *    "Robust BVH Ray Traversal" (JCGT 2013);
+ *  - the origin's rounding, a shift of the whole ray by o - o', at most s = |o - o'| / |direction| on
+ *    the t axis, the same for every box, computed per ray (the slack).
+ * So every computed distance lies within gamma(4) |t| + s of the exact one, and a box the exact test
+ * enters at N <= F (0 <= t_min <= N) is entered by the computed test with enter <= (1 + gamma(4)) N + s
+ * and leave >= (1 - gamma(4)) F - s. The test asks enter <= (leave + s) * FAST_BVH_FLOAT_SCALE + 2 s,
+ * which holds then, its own three roundings included. The argument needs t_min >= 0, no overflow and
+ * no loss of relative precision to tiny numbers: hence FAST_BVH_FLOAT_RANGE (fast_bvh.h). */
+
+/* 1 + 8 FLT_EPSILON = 1 + 16u: at least (1 + gamma(4)) / ((1 - gamma(4)) (1 - u)^3) ~ 1 + 11u, the
+ * relative rounding of enter and leave and of the test's own three steps. */
+#define FAST_BVH_FLOAT_SCALE (1.0f + 8.0f * FLT_EPSILON)
+/* The slack is taken as twice |o - o'| |1 / direction|, computed in double: the factor 2 covers the
+ * (1 + gamma(4)) by which rounding can stretch the shift, and the rounding of the slack itself. */
+#define FAST_BVH_FLOAT_SLACK_FACTOR 2.0
+
+/* A float at least x and one at most x, for 0 <= x <= FAST_BVH_FLOAT_RANGE: the nearest float is within
+ * a factor 1 +- 2^-24 of x in the normal range, so x stretched or shrunk by 2^-22 first rounds to the
+ * safe side; below the normal range, FLT_MIN and 0 are (and above float's range, infinity is). Cheaper than float_above and float_below,
+ * which rung 6 would call several times per ray. */
+#define FAST_BVH_FLOAT_STRETCH 0x1p-22
+
+static inline float float_at_least(double x) {
+    return x < FLT_MIN ? FLT_MIN : (float)(x * (1.0 + FAST_BVH_FLOAT_STRETCH));
+}
+
+static inline float float_at_most(double x) { return x < FLT_MIN ? 0.0f : (float)(x * (1.0 - FAST_BVH_FLOAT_STRETCH)); }
+
+/* What rung 6's box tests of one ray share: the origin rounded to float and 1 / direction in float,
+ * each in all four lanes, and the slack s (twice it in slack2). */
+struct float_setup {
+    float4 origin[3], inverse[3];
+    float slack, slack2;
+};
+
+/* The far end of the window that rung 6's test compares an entry distance with, for a computed leave
+ * distance: (leave + s) * FAST_BVH_FLOAT_SCALE + 2 s, for four leave distances at once or one. */
+static inline float4 float_reach4(const struct float_setup *f, float4 leave) {
+    return (leave + f->slack) * FAST_BVH_FLOAT_SCALE + f->slack2;
+}
+
+static inline float float_reach(const struct float_setup *f, float leave) {
+    return (leave + f->slack) * FAST_BVH_FLOAT_SCALE + f->slack2;
+}
+
+/* Makes *f for ray r in tree b with the window starting at t_min; returns false,
+ * when the bound above does not cover this ray (t_min < 0, or the origin, b's box or 1 / direction
+ * outside FAST_BVH_FLOAT_RANGE, or t_min beyond it): the ray then takes rung 5's test. A zero direction component has an
+ * infinite 1 / direction, exact in float too; it is covered when the origin's component is a float,
+ * and the slab of that axis is then decided as exactly as in double. */
+static inline bool float_setup_make(const struct fast_bvh *b, const ray *r, double t_min, struct float_setup *f) {
+    if (!b->float_range || !(t_min >= 0.0 && t_min <= FAST_BVH_FLOAT_RANGE))
+        return false;
+    double slack = 0.0;
+    for (int a = 0; a < 3; a++) {
+        double origin = vec3_axis(r->origin, a), direction = vec3_axis(r->direction, a);
+        double inverse = 1.0 / direction; /* as aabb_inverse_direction has it */
+        if (!(fabs(origin) <= FAST_BVH_FLOAT_RANGE))
+            return false;
+        float rounded = (float)origin;
+        double shift = fabs(origin - (double)rounded); /* exact: both are doubles within a float step */
+        if (direction == 0.0) {
+            if (shift != 0.0)
+                return false; /* the slab of this axis would be decided at o', not at o */
+        } else if (!(fabs(inverse) >= 1.0 / FAST_BVH_FLOAT_RANGE && fabs(inverse) <= FAST_BVH_FLOAT_RANGE)) {
+            return false;
+        } else {
+            double axis_slack = FAST_BVH_FLOAT_SLACK_FACTOR * shift * fabs(inverse);
+            slack = axis_slack > slack ? axis_slack : slack;
+        }
+        float inverse_f = (float)inverse;
+        f->origin[a] = (float4){rounded, rounded, rounded, rounded};
+        f->inverse[a] = (float4){inverse_f, inverse_f, inverse_f, inverse_f};
+    }
+    f->slack = float_at_least(slack); /* at least FLT_MIN: the floor for a product that underflows */
+    f->slack2 = 2.0f * f->slack;
+    return true;
+}
+
+/* The slab test on all four children of n at once, in float (lane k for child k), for entry distances
+ * from t_near and exit distances up to t_far. Returns a 4-bit mask that holds every child the exact
+ * test would find in the window (and maybe a few grazed ones besides), and the computed entry
+ * distances in *entry. */
+static inline unsigned child_quad_hit(const struct fast_bvh_node *n, const struct ray_setup *s,
+                                      const struct float_setup *f, float t_near, float t_far, float4 *entry) {
+    float4 enter = {t_near, t_near, t_near, t_near}, leave = {t_far, t_far, t_far, t_far};
+    for (int a = 0; a < 3; a++) {
+        float4 t0 = (load4(n->bounds[a][s->near[a]]) - f->origin[a]) * f->inverse[a];
+        float4 t1 = (load4(n->bounds[a][1 - s->near[a]]) - f->origin[a]) * f->inverse[a];
+        enter = max4(t0, enter);
+        leave = min4(t1, leave);
+    }
+    *entry = enter;
+    return lanes4_true(enter <= float_reach4(f, leave));
 }
 
 /* The three questions one traversal answers; the code is specialised for each at compile time. */
@@ -315,7 +434,7 @@ struct stack_entry {
  * q->found. */
 static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh *b, const ray *r, double t_min,
                                                            double t_max, enum query kind, bool simd, bool prefetch,
-                                                           struct query_state *q) {
+                                                           const struct float_setup *f, struct query_state *q) {
     q->found = false;
     q->t = t_max;
     /* The box tests' window: infinite ends replaced by the largest finite doubles, so that a ray
@@ -332,13 +451,21 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
     uint32_t child = b->root_child, count = b->root_count;
     double root_entry;
     running = running && b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, s.inverse, box_min, box_max, &root_entry);
+    /* Rung 6: the window in float, rounded outward, and the limit a put-aside entry must be within. */
+    bool in_float = f != NULL;
+    float float_min = in_float ? float_at_most(box_min) : 0.0f, float_max = in_float ? float_at_least(box_max) : 0.0f;
+    double limit = in_float ? float_reach(f, float_max) : box_max, limit_for = box_max;
     while (running) {
         visits++;
         if (count == 0) {
             const struct fast_bvh_node *n = &b->nodes[child];
             double2 entry[2];
             unsigned hit = 0;
-            if (simd) {
+            if (in_float) {
+                float4 enter;
+                hit = child_quad_hit(n, &s, f, float_min, float_max, &enter);
+                float4_widened(enter, entry);
+            } else if (simd) {
                 hit = child_pair_hit(n, 0, &s, box_min, box_max, &entry[0]) |
                       child_pair_hit(n, 1, &s, box_min, box_max, &entry[1]) << 2;
             } else {
@@ -378,13 +505,18 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
             }
         } else if (!test_triangles(b, &s.triangle, child, count, t_min, t_max, kind, q, &box_max, &tests)) {
             break;
+        } else if (kind == QUERY_CLOSEST && box_max < limit_for) { /* a nearer hit: narrow the window */
+            float_max = in_float ? float_at_least(box_max) : 0.0f;
+            limit = in_float ? float_reach(f, float_max) : box_max;
+            limit_for = box_max;
         }
         /* Next: the most recently put aside subtree that can still hold something at or before box_max
-         * (at: a lower face at the same t would win the tie). */
+         * (at: a lower face at the same t would win the tie); on rung 6, whose entries are computed in
+         * float, within the same reach as its box test. */
         running = false;
         while (top > 0) {
             const struct stack_entry *e = &stack[--top];
-            if (e->entry <= box_max) {
+            if (e->entry <= limit) {
                 child = e->child;
                 count = e->count;
                 running = true;
@@ -400,16 +532,22 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
 
 /* traverse for query `kind`, specialised for b's rung (a constant in each branch, so each rung gets
  * its own copy of the loop, without the tests of the others). Rung 5 changes only the build, and is
- * walked as rung 4. */
+ * walked as rung 4; rung 6 walks rung 5's tree with its float test. */
 static inline __attribute__((always_inline)) bool traverse_rung(const struct fast_bvh *b, const ray *r, double t_min,
                                                                 double t_max, enum query kind, struct query_state *q) {
+    struct float_setup f;
     switch (b->rung) {
     case FAST_BVH_RUNG_WIDE:
-        return traverse(b, r, t_min, t_max, kind, false, false, q);
+        return traverse(b, r, t_min, t_max, kind, false, false, NULL, q);
     case FAST_BVH_RUNG_SIMD:
-        return traverse(b, r, t_min, t_max, kind, true, false, q);
-    default:
-        return traverse(b, r, t_min, t_max, kind, true, true, q);
+        return traverse(b, r, t_min, t_max, kind, true, false, NULL, q);
+    case FAST_BVH_RUNG_PREFETCH:
+    case FAST_BVH_RUNG_BUILD:
+        return traverse(b, r, t_min, t_max, kind, true, true, NULL, q);
+    default: /* rung 6, when its bound covers the ray; else rung 5's walk */
+        if (float_setup_make(b, r, t_min, &f))
+            return traverse(b, r, t_min, t_max, kind, true, true, &f, q);
+        return traverse(b, r, t_min, t_max, kind, true, true, NULL, q);
     }
 }
 
@@ -437,7 +575,7 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
 
 /* ==== the rungs' names ======================================================================== */
 
-static const char *const rung_names[] = {NULL, "plain", "wide", "simd", "prefetch", "build"};
+static const char *const rung_names[] = {NULL, "plain", "wide", "simd", "prefetch", "build", "float"};
 
 int fast_bvh_rung_from_name(const char *name) {
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++)

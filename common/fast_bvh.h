@@ -30,12 +30,20 @@ enum fast_bvh_rung {
     FAST_BVH_RUNG_PREFETCH = 4, /* the children put aside are fetched from memory while the ray goes on */
     FAST_BVH_RUNG_BUILD = 5,    /* the SAH build in float, straight into the 4-wide layout: slots filled
                                    four ways at once, big pages for big arrays */
+    FAST_BVH_RUNG_FLOAT = 6,    /* all four children's slab tests in one float instruction (SSE), made
+                                   conservative by a bound on their rounding; triangles still in double */
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
-#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_BUILD
+#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_FLOAT
 
 /* Children per node. */
 #define FAST_BVH_WIDTH 4
+
+/* Rung 6 tests boxes in float only where its bound on the rounding holds (fast_bvh.c): origins and box
+ * bounds no larger than this, and 1 / direction between its inverse and it, in magnitude. Then no float
+ * step of the test can overflow (2^61 * 2^60 < FLT_MAX) or leave the normal range but by an underflow of
+ * the product, which the test's slack covers. A ray or a tree outside it takes rung 5's test in double. */
+#define FAST_BVH_FLOAT_RANGE 0x1p60
 
 /* An unused child slot. */
 #define FAST_BVH_NO_CHILD UINT32_MAX
@@ -55,6 +63,8 @@ struct fast_bvh {
     struct fast_bvh_node *nodes;     /* node_count entries, 64-byte aligned */
     size_t node_count;
     struct aabb root_box;            /* the box around every triangle in the tree */
+    bool float_range;                /* every bound of root_box within FAST_BVH_FLOAT_RANGE (fast_bvh.c) of 0:
+                                        rung 6 may test its boxes in float */
     uint32_t root_child, root_count; /* the root, as a child is referred to in a node */
     struct bvh_triangle *triangles;  /* triangle_count entries: tree_count in leaf order, then the slivers */
     uint32_t *faces;                 /* faces[k] = index into the mesh's faces of triangles[k] */
@@ -89,8 +99,8 @@ void fast_bvh_get_info(const struct fast_bvh *b, struct bvh_info *info);
  * why (why_size bytes). For tests: it walks the whole tree. */
 bool fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why, size_t why_size);
 
-/* The rung called `name` ("plain", "wide", "simd", "prefetch", "build") or written as its number
- * ("1" to "5"); 0 when there is none. */
+/* The rung called `name` ("plain", "wide", "simd", "prefetch", "build", "float") or written as its
+ * number ("1" to "6"); 0 when there is none. */
 int fast_bvh_rung_from_name(const char *name);
 
 /* The name of rung r, for reports ("plain", ...); "?" for a number that is not a rung. */

@@ -28,12 +28,9 @@
 #include <math.h>
 #include <stdlib.h>
 
-#if defined(__SSE__)
-#include <xmmintrin.h>
-#endif
-
 #include "big_alloc.h"
 #include "clock.h"
+#include "float4.h"
 #include "triangle.h"
 
 /* Nodes of at least FAST_BVH_MANY_SETS_FROM triangles are binned into FAST_BVH_BIN_SETS sets of slots,
@@ -44,23 +41,6 @@
  * saves. */
 #define FAST_BVH_BIN_SETS 4
 #define FAST_BVH_MANY_SETS_FROM 256
-
-/* The largest float <= x and the smallest float >= x: a float box built from these holds the double
- * box exactly. A NaN (from a corner at infinity) gives the infinity on the safe side, so that no NaN
- * reaches a box. */
-static float float_below(double x) {
-    if (isnan(x))
-        return -INFINITY; /* a corner beyond double's range: a box open on that side holds it */
-    float f = (float)x;
-    return (double)f > x ? nextafterf(f, -INFINITY) : f;
-}
-
-static float float_above(double x) {
-    if (isnan(x))
-        return INFINITY;
-    float f = (float)x;
-    return (double)f < x ? nextafterf(f, INFINITY) : f;
-}
 
 /* Returns box rounded outward to the nearest floats (widened back to double, exactly). */
 static struct aabb rounded_to_float(struct aabb box) {
@@ -179,30 +159,6 @@ struct fast_bvh *fast_bvh_collapse(struct bvh *binary, enum fast_bvh_rung rung) 
 }
 
 /* ==== rung 5: the float build ================================================================== */
-
-/* GCC's vector extension: four floats processed by one instruction (SSE on x86-64). */
-typedef float float4 __attribute__((vector_size(16)));
-typedef int32_t int4 __attribute__((vector_size(16)));
-
-/* Lane by lane, a < b ? a : b and a > b ? a : b (a NaN in a gives b). SSE has each as one instruction;
- * elsewhere a compare and a select. */
-static inline float4 min4(float4 a, float4 b) {
-#if defined(__SSE__)
-    return _mm_min_ps(a, b);
-#else
-    int4 pick_a = a < b;
-    return (float4)(((int4)a & pick_a) | ((int4)b & ~pick_a));
-#endif
-}
-
-static inline float4 max4(float4 a, float4 b) {
-#if defined(__SSE__)
-    return _mm_max_ps(a, b);
-#else
-    int4 pick_a = a > b;
-    return (float4)(((int4)a & pick_a) | ((int4)b & ~pick_a));
-#endif
-}
 
 /* Chapter 5's box in float, four lanes at a time: x, y, z and an unused lane, 0 in both corners. The
  * bounds are rounded outward from the double box they stand for. */
@@ -513,6 +469,14 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m) {
     return true;
 }
 
+/* Whether every bound of box is within FAST_BVH_FLOAT_RANGE of 0 (an empty box is not). */
+static bool in_float_range(struct aabb box) {
+    for (int a = 0; a < 3; a++)
+        if (!(fabs(vec3_axis(box.min, a)) <= FAST_BVH_FLOAT_RANGE && fabs(vec3_axis(box.max, a)) <= FAST_BVH_FLOAT_RANGE))
+            return false;
+    return true;
+}
+
 struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum fast_bvh_rung rung) {
     if (m->face_count > BVH_MAX_FACES || rung < FAST_BVH_RUNG_FIRST || rung > FAST_BVH_RUNG_TOP)
         return NULL;
@@ -520,6 +484,8 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         struct bvh *binary = bvh_build(m, split);
         struct fast_bvh *b = binary != NULL ? fast_bvh_collapse(binary, rung) : NULL;
         bvh_free(binary);
+        if (b != NULL)
+            b->float_range = in_float_range(b->root_box);
         return b;
     }
     double start = clock_seconds();
@@ -540,6 +506,7 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         return NULL;
     }
     bvh_copy_triangles(m, b->faces, b->triangle_count, b->triangles);
+    b->float_range = in_float_range(b->root_box);
     b->info.build_ms = 1e3 * (clock_seconds() - start);
     return b;
 }

@@ -97,10 +97,13 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
     }
     double gamma = image_map_png_gamma(bytes, size);
     float largest = sixteen ? 65535.0f : 255.0f;
+    image->opaque = true;
     for (size_t k = 0; k < count; k++) {
         float value = (sixteen ? ((const uint16_t *)pixels)[k] : ((const uint8_t *)pixels)[k]) / largest;
         if (k % 4 != 3) /* red, green, blue are encoded light; alpha is a share */
             value = gamma > 0.0 ? powf(value, (float)(1.0 / gamma)) : image_map_decode_srgb(value);
+        else if (value < 1.0f)
+            image->opaque = false;
         image->texels[k] = value;
     }
     stbi_image_free(pixels);

@@ -29,7 +29,8 @@ float image_map_decode_srgb(float encoded);
  * encoding gamma (e.g. 0.45455). Not a PNG: 0. */
 double image_map_png_gamma(const uint8_t *bytes, size_t size);
 
-/* Reads the image file at `path` into *image as linear red, green, blue and alpha. Returns false with
+/* Reads the image file at `path` into *image as linear red, green, blue and alpha, and notes whether
+ * every alpha is 1 (image->opaque: POV-Ray's test for an image that lets no light through). Returns false with
  * the reason in why ("path: cannot open: ...", "path: not a PNG or JPEG image (...)", "path: 70000 x
  * 70000 pixels is too large (at most ...)") and *image empty. */
 bool image_map_read(const char *path, struct pigment_image *image, char *why, size_t why_size);

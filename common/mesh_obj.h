@@ -1,5 +1,5 @@
-/* mesh_obj.h: the Wavefront OBJ reader (chapter 3), which mesh_load (mesh.c) calls for a file that is
- * not PLY. Not for other modules: load meshes with mesh_load (mesh.h). */
+/* mesh_obj.h: the Wavefront OBJ reader (chapter 3), which mesh_load (mesh_load.c) calls for a file that is
+ * not PLY. Not for other modules: load meshes with mesh_load (mesh_load.h). */
 #ifndef WHITTED_MESH_OBJ_H
 #define WHITTED_MESH_OBJ_H
 

@@ -1,5 +1,5 @@
-/* mesh_ply.h: the PLY reader (chapter 3), which mesh_load (mesh.c) calls for a file whose first line is
- * "ply". Not for other modules: load meshes with mesh_load (mesh.h). */
+/* mesh_ply.h: the PLY reader (chapter 3), which mesh_load (mesh_load.c) calls for a file whose first line is
+ * "ply". Not for other modules: load meshes with mesh_load (mesh_load.h). */
 #ifndef WHITTED_MESH_PLY_H
 #define WHITTED_MESH_PLY_H
 

@@ -1,7 +1,7 @@
 /* mesh_read.h: what the mesh readers share (chapter 3): the file in memory, messages, lines and words,
  * numbers, growing arrays. For mesh.c and the readers (mesh_ply.c, mesh_obj.c), not for other modules.
  *
- * mesh_load (mesh.c) reads the whole file into memory, followed by a NUL byte, and hands it to one
+ * mesh_load (mesh_load.c) reads the whole file into memory, followed by a NUL byte, and hands it to one
  * reader. The readers parse from that buffer with the functions below, grow the mesh with
  * mesh_reserve and mesh_add_triangle, and report problems with mesh_fail_*. On failure they may leave
  * a half-built mesh: mesh_load frees it, and it also refuses a successful read that found no faces.

@@ -6,7 +6,7 @@
  *   pigment wall brick colour 0.8 0.8 0.8 colour2 0.6 0.2 0.1 brick_size 1 0.5 0.5 mortar 0.05
  *   pigment fan radial colour 1 1 0 colour2 0 0 1 rotate 0 0 90
  *   pigment earth image_map file earth.png map spherical interpolate 2 wrap repeat
- *   pigment skin image_map file grid.png map uv      (by a mesh's texture coordinates: POV-Ray's uv_mapping)
+ *   pigment skin image_map file grid.png map uv      (a mesh's corners' (u, v), a box's cross: uv_mapping)
  *   material floor pigment floor diffuse 0.8
  *
  * Like the antialias line (antialias.h), a pigment is plain data read with every scene, so that any
@@ -45,6 +45,7 @@ enum pigment_mapping {
 struct pigment_image {
     int width, height;
     float *texels; /* width * height * 4 floats (red, green, blue, alpha), top row first; owned */
+    bool opaque;   /* every alpha is 1: the file has no alpha channel, or every pixel's is at its largest */
 };
 
 struct pigment {
@@ -58,7 +59,7 @@ struct pigment {
     /* image_map only: */
     char *file;                 /* the image's path, resolved relative to the scene file; owned */
     enum pigment_mapping mapping;
-    bool uv_mapping;            /* `map uv`: at a mesh's texture coordinates (u, v, 0), planar from there */
+    bool uv_mapping;            /* `map uv`: at the surface's (u, v, 0) (mesh corners, box cross), then planar */
     int interpolate;            /* 0: the nearest pixel; 2: bilinear (POV-Ray's interpolate 0 and 2) */
     bool once;                  /* true: one copy, transparent outside it; false: repeated */
     struct pigment_image image; /* empty until chapter 14 reads it (texture_load_images) */

@@ -104,6 +104,8 @@ struct scene {
     struct scene_mesh *meshes;  size_t mesh_count;
     struct pigment *pigments;   size_t pigment_count; /* the pigment lines (chapter 14 draws them) */
     scene_paint_fn paint;       /* set by chapter 14 (texture.h); NULL: plain materials, flat triangles */
+    scene_paint_fn shadow_paint; /* chapter 14: the same for a surface a shadow ray crosses (shadow.c);
+                                  * NULL: a shadow is filtered by the material's plain colour */
     /* The shapes, one list per kind: the kinds of scene_syntaxes[] in that order, then the other kinds
      * the program draws, in the order it lists them. A list may be empty. */
     struct shape_list shapes[SCENE_KIND_MAX];

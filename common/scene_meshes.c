@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "mesh_load.h"
 #include "triangle.h"
 
 /* The accelerating structures of chapters 5, 9 and 10 keep boxes in float and the SAH multiplies two

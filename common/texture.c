@@ -8,6 +8,7 @@
 #include "hit.h"
 #include "image_map.h"
 #include "mesh_surface.h"
+#include "world.h"
 
 /* POV-Ray's EPSILON: added before the checker's floors and to the brick's mortar, so that a point on a
  * boundary (a floor at y = 0) is counted on the upper side. */
@@ -128,6 +129,31 @@ struct texture_colour texture_pigment_at(const struct pigment *p, vec3 point) {
     return (struct texture_colour){vec3_add_scaled(p->colour[0], vec3_sub(p->colour[1], p->colour[0]), value), 0.0};
 }
 
+struct mesh_uv texture_box_uv(const struct box *b, vec3 point, vec3 normal) {
+    vec3 size = vec3_sub(b->max, b->min), q = vec3_sub(point, b->min);
+    double x = q.x / size.x, y = q.y / size.y, z = q.z / size.z;
+    double ax = fabs(normal.x), ay = fabs(normal.y), az = fabs(normal.z);
+    if (ax >= ay && ax >= az) /* the side faces: a band a third high, round from -x */
+        return normal.x < 0.0 ? (struct mesh_uv){z / 4.0, 1.0 / 3.0 + y / 3.0}
+                              : (struct mesh_uv){3.0 / 4.0 - z / 4.0, 1.0 / 3.0 + y / 3.0};
+    if (az >= ay)
+        return normal.z < 0.0 ? (struct mesh_uv){1.0 - x / 4.0, 1.0 / 3.0 + y / 3.0}
+                              : (struct mesh_uv){1.0 / 4.0 + x / 4.0, 1.0 / 3.0 + y / 3.0};
+    return normal.y < 0.0 ? (struct mesh_uv){1.0 / 4.0 + x / 4.0, z / 3.0}
+                          : (struct mesh_uv){1.0 / 4.0 + x / 4.0, 1.0 - z / 3.0};
+}
+
+/* Returns the box the hit *h is on, or NULL when it is on another shape. */
+static const struct box *find_box(const struct scene *s, const struct hit *h) {
+    for (size_t k = 0; k < s->kind_count; k++) {
+        const struct shape_list *list = &s->shapes[k];
+        int index = h->object - world_object_number(s, list, 0);
+        if (list->syntax == &box_syntax && index >= 0 && (size_t)index < list->count)
+            return &((const struct box *)list->items)[index];
+    }
+    return NULL;
+}
+
 const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 point, struct material *painted) {
     const struct scene_mesh *mesh = mesh_surface_find(s, h);
     size_t face = mesh != NULL ? (size_t)h->face : 0;
@@ -138,10 +164,13 @@ const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 
     if (m->pigment < 0)
         return m;
     const struct pigment *p = &s->pigments[m->pigment];
-    if (p->uv_mapping) { /* the picture by the mesh's texture coordinates: (u, v, 0) stands for the point */
+    if (p->uv_mapping) { /* the picture by the surface's own (u, v): (u, v, 0) stands for the point */
         struct mesh_uv uv = {0, 0};
+        const struct box *b = mesh == NULL ? find_box(s, h) : NULL;
         if (mesh != NULL)
             mesh_surface_uv(mesh, face, point, &uv);
+        else if (b != NULL)
+            uv = texture_box_uv(b, point, h->normal);
         point = vec3_make(uv.u, uv.v, 0);
     }
     struct texture_colour c = texture_pigment_at(p, point);
@@ -149,6 +178,21 @@ const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 
     painted->colour = c.colour;
     painted->transmit = fmin(m->transmit + c.transmit, 1.0 - m->filter);
     return painted;
+}
+
+const struct material *texture_paint_shadow(const struct scene *s, struct hit *h, vec3 point,
+                                            struct material *painted) {
+    const struct material *m = &s->materials[h->material];
+    if (m->pigment >= 0) {
+        const struct pigment *p = &s->pigments[m->pigment];
+        if (p->pattern == PIGMENT_IMAGE_MAP && p->uv_mapping && !p->once && p->image.opaque) {
+            *painted = *m;
+            painted->filter = 0.0;
+            painted->transmit = 0.0;
+            return painted;
+        }
+    }
+    return texture_paint(s, h, point, painted);
 }
 
 bool texture_load_images(struct scene *s, char *err, size_t err_size) {

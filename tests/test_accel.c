@@ -3,9 +3,9 @@
  *
  * Every ray is first traced by brute force: triangle_intersect on every face, which gives each face's
  * t. The answer for any window t_min < t < t_max follows from those: the nearest hit (the lowest face
- * among equal t), whether anything is hit, and the set of faces hit. All nine structures (chapter 10's
+ * among equal t), whether anything is hit, and the set of faces hit. All ten structures (chapter 10's
  * BVH with the median and the SAH split, kd-tree with the dissertation's rule and the SAH, chapter 11's
- * fast BVH at rungs 2 to 5 by the SAH and at the top rung by the median) must then give exactly that
+ * fast BVH at rungs 2 to 6 by the SAH and at the top rung by the median) must then give exactly that
  * answer: the same t to the last bit, the same face, the same set, each face reported once.
  *
  * The rays are chosen to hurt: random ones, rays aimed at faces, vertices and shared edges, rays along
@@ -27,6 +27,7 @@
 #include "fast_bvh_build.h"
 #include "kdtree.h"
 #include "mesh.h"
+#include "mesh_load.h"
 #include "stats.h"
 #include "triangle.h"
 
@@ -288,13 +289,16 @@ static void kd_for_each_hit_of(const void *s, const ray *r, double t_min, double
 }
 static void kd_free_of(void *s) { kdtree_free(s); }
 
-#define ACCEL_COUNT 9
+/* Chapters 9 and 10's four, chapter 11's rungs by the SAH, and its top rung by the median. */
+#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 1)
 
 /* Builds chapter 11's fast BVH over m at `rung` by `split`, checks its invariants and puts it in *out. */
 static void build_fast(const struct mesh *m, const char *mesh_name, enum bvh_split split, int rung, struct accel *out) {
     static const char *const names[2][FAST_BVH_RUNG_TOP + 1] = {
-        {"", "", "fast BVH median rung 2", "fast BVH median rung 3", "fast BVH median rung 4", "fast BVH median rung 5"},
-        {"", "", "fast BVH SAH rung 2", "fast BVH SAH rung 3", "fast BVH SAH rung 4", "fast BVH SAH rung 5"}};
+        {"", "", "fast BVH median rung 2", "fast BVH median rung 3", "fast BVH median rung 4", "fast BVH median rung 5",
+         "fast BVH median rung 6"},
+        {"", "", "fast BVH SAH rung 2", "fast BVH SAH rung 3", "fast BVH SAH rung 4", "fast BVH SAH rung 5",
+         "fast BVH SAH rung 6"}};
     char why[256];
     const char *name = names[split == BVH_SPLIT_SAH][rung];
     struct fast_bvh *b = fast_bvh_build(m, split, (enum fast_bvh_rung)rung);
@@ -303,7 +307,7 @@ static void build_fast(const struct mesh *m, const char *mesh_name, enum bvh_spl
     *out = (struct accel){name, b, fast_closest_of, fast_occluded_of, fast_for_each_hit_of, fast_free_of};
 }
 
-/* Builds all nine structures over m and checks each one's invariants. */
+/* Builds all ten structures over m and checks each one's invariants. */
 static void build_all(const struct mesh *m, const char *mesh_name, struct accel out[ACCEL_COUNT]) {
     char why[256];
     struct bvh *bvh_median = bvh_build(m, BVH_SPLIT_MEDIAN), *bvh_sah = bvh_build(m, BVH_SPLIT_SAH);
@@ -685,7 +689,7 @@ static void check_mesh(const char *name, struct mesh *m, uint64_t seed) {
     struct checker c;
     checker_init(&c, name, m);
     check_rays(&c, seed, rays_for(m));
-    cr_log_info("%s: %zu faces, %zu rays, %zu windows: all nine structures agree with brute force", name,
+    cr_log_info("%s: %zu faces, %zu rays, %zu windows: all ten structures agree with brute force", name,
                 m->face_count, rays_for(m), c.windows);
     checker_free(&c);
     mesh_free(m);
@@ -1056,16 +1060,39 @@ Test(accel, bvhs_build_and_match_brute_force_with_corners_at_infinity_or_nan, .t
     check_meshes_with_corners_at_infinity_or_nan(check_mesh, 1000);
 }
 
-/* Chapter 11's rungs: only 1 to 5, by number or name; anything else builds nothing. */
+/* Rung 6 tests boxes in float from the ray's origin rounded to float. Far from the origin, a float
+ * step is as large as a small mesh (at 1e4 it is 1e-3), a thousand times the pad of its boxes, and a
+ * slab test that ignored where the origin was rounded to would cut off hits there; rung 6 adds the
+ * shift to its slack (fast_bvh.c). Every structure must still match the brute-force loop. */
+Test(accel, rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mesh, .timeout = ACCEL_TEST_TIMEOUT) {
+    static const struct {
+        const char *name;
+        double scale;
+        vec3 shift;
+    } placed[] = {
+        {"soup of size 2e-3 at (1e4, -3e3, 700)", 1e-3, {1e4, -3e3, 700}},
+        {"soup of size 2e-2 at (5e3, 5e3, 5e3)", 1e-2, {5e3, 5e3, 5e3}},
+        {"soup of size 2e-5 at (-33, 12, 0.1)", 1e-5, {-33, 12, 0.1}},
+    };
+    for (size_t k = 0; k < sizeof placed / sizeof placed[0]; k++) {
+        struct mesh m = make_soup(2101 + k, 300);
+        transform_mesh(&m, placed[k].scale, placed[k].shift);
+        check_mesh(placed[k].name, &m, 51 + k);
+    }
+    struct mesh sphere = make_sphere(24, 48, vec3_make(4096.001, -2048.0003, 1024.00007), 3e-3);
+    check_mesh("sphere of radius 3e-3 at (4096, -2048, 1024)", &sphere, 57);
+}
+
+/* Chapter 11's rungs: only 1 to 6, by number or name; anything else builds nothing. */
 Test(accel, fast_bvh_rungs_are_named_and_checked) {
-    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build"};
+    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build", "float"};
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++) {
         char number[2] = {(char)('0' + r), '\0'};
         cr_expect_eq(fast_bvh_rung_from_name(names[r - 1]), r, "%s", names[r - 1]);
         cr_expect_eq(fast_bvh_rung_from_name(number), r, "%s", number);
         cr_expect_str_eq(fast_bvh_rung_name(r), names[r - 1]);
     }
-    cr_expect_eq(fast_bvh_rung_from_name("6"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name("7"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("0"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("fast"), 0);
     struct mesh m = make_soup(7, 20);

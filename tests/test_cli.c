@@ -42,8 +42,9 @@ Test(cli, a_wrong_accel_is_refused_with_the_choices) {
     expect_chapter_run(9, "--accel bvh", 2, "--accel needs one of: none kdtree; got 'bvh'");
     expect_chapter_run(10, "--split middle", 2, "--split needs 'sah' or 'seed' (the seed's rule), got 'middle'");
     expect_chapter_run(10, "--rung 2", 2, "unknown option '--rung'");
-    expect_chapter_run(11, "--rung 6", 2, "--rung needs 1 to 5 or one of: plain wide simd prefetch build; got '6'");
-    expect_chapter_run(11, "--rung fast", 2, "--rung needs 1 to 5 or one of: plain wide simd prefetch build; got 'fast'");
+    expect_chapter_run(11, "--rung 7", 2, "--rung needs 1 to 6 or one of: plain wide simd prefetch build float; got '7'");
+    expect_chapter_run(11, "--rung fast", 2,
+                       "--rung needs 1 to 6 or one of: plain wide simd prefetch build float; got 'fast'");
 }
 
 Test(cli, a_missing_scene_file_is_bad_input) {
@@ -100,13 +101,13 @@ Test(cli, the_counters_are_printed) {
 
 Test(cli, no_progress_line_when_stderr_is_not_a_terminal) {
     char command[512], output[8192];
-    snprintf(command, sizeof command, "%s -o " TEST_OUT "/quiet-progress.png", chapter_program(3));
+    snprintf(command, sizeof command, "%s --width 64 --height 48 -o " TEST_OUT "/quiet-progress.png", chapter_program(3));
     cr_assert_eq(run_capturing(command, output, sizeof output), 0);
     cr_assert_null(strstr(output, "rendering:"), "a progress line went to a pipe:\n%s", output);
 }
 
 Test(cli, stats_adds_the_structure_and_the_predicted_cost) {
-    expect_chapter_run(9, "--stats -o " TEST_OUT "/stats.png", 0, "predicted by the SAH:");
+    expect_chapter_run(9, "--stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0, "predicted by the SAH:");
     expect_chapter_run(10, "--accel bvh --split seed --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
                "acceleration: BVH (median split) over 353546 triangles");
     expect_chapter_run(11, "--rung simd --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,

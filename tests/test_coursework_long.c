@@ -70,8 +70,9 @@ static char *quoted_block(const char *intro) {
 }
 
 /* Makes a student copy of the repository with `tasks` blanked (options: "--answers") in a new folder
- * *dir (outside the repository, as make student requires), its log in *log (under out/test/), and seeds its build with this build's objects and generated models: older than
- * the blanked files, so that only those are compiled again. */
+ * *dir (outside the repository, as make student requires), its log in *log (under out/test/), and
+ * seeds its build with this build's objects, generated models and chapter 14's drawn pictures: older
+ * than the blanked files, so that only those are compiled again. */
 static void make_copy(char dir[static 64], char log[static 80], const char *tasks, const char *options) {
     snprintf(dir, 64, "/tmp/whitted-coursework-XXXXXX");
     cr_assert_not_null(mkdtemp(dir));
@@ -81,7 +82,8 @@ static void make_copy(char dir[static 64], char log[static 80], const char *task
                  "make student failed: see %s", log);
     cr_assert_eq(run(log, "mkdir -p %1$s/%2$s && cp -rp %2$s/common %2$s/chapters %2$s/tools %2$s/checks %2$s/tests "
                           "%1$s/%2$s/ && (cp -p build/teapot %1$s/build/ 2>/dev/null; cp -p scenes/models/teapot-*.ply "
-                          "%1$s/scenes/models/ 2>/dev/null; cp -rp %2$s/fuzz %1$s/%2$s/ 2>/dev/null; true)",
+                          "%1$s/scenes/models/ 2>/dev/null; cp -rp scenes/textures %1$s/scenes/ 2>/dev/null; "
+                          "cp -rp %2$s/fuzz %1$s/%2$s/ 2>/dev/null; true)",
                      dir, build()),
                  0, "cannot seed the copy's build: see %s", log);
 }

@@ -158,7 +158,7 @@ static struct page pages[] = {
     {"docs/05-aabb.md"},   {"docs/06-phong.md"},    {"docs/07-shadows.md"},  {"docs/08-recursion.md"},
     {"docs/09-kdtree.md"}, {"docs/povray.md"},      {"docs/scene-format.md"}, {"docs/gallery.md"},
     {"docs/seed.md"},      {"docs/10-bvh.md"},     {"docs/fuzzing.md"},     {"docs/11-fast.md"},
-    {"docs/12-antialias.md"},
+    {"docs/12-antialias.md"}, {"docs/13-distributed.md"}, {"docs/14-textures.md"},
 };
 
 ParameterizedTestParameters(doc_commands, every_command_runs_as_written) {
@@ -181,10 +181,11 @@ ParameterizedTest(struct page *page, doc_commands, every_command_runs_as_written
     snprintf(copy, sizeof copy,
              "cd %s && mkdir out scenes build && cd - >/dev/null && "
              "cp -rp --parents Makefile common chapters tools tests/support bench fuzz docs %s/ && cp -p scenes/*.scene %s/scenes/ && "
-             "cp -rp scenes/models %s/scenes/ && "
+             "cp -rp scenes/models scenes/textures %s/scenes/ && "
              "for b in build build/san; do [ -d $b/common ] || continue; mkdir -p %s/$b && "
-             "cp -rp $b/common $b/chapters $b/tools %s/$b/ && cp -p $b/chapter-* $b/compare %s/$b/; done >>%s 2>&1",
-             dir, dir, dir, dir, dir, dir, dir, log);
+             "cp -rp $b/common $b/chapters $b/tools %s/$b/ && cp -p $b/chapter-* $b/compare %s/$b/ && { [ ! -e $b/inset ] || cp -p $b/inset %s/$b/; }; "
+             "done >>%s 2>&1",
+             dir, dir, dir, dir, dir, dir, dir, dir, log);
     cr_assert_eq(system(copy), 0, "could not copy the repository (see %s)", log);
     int failed = 0;
     for (int k = 0; k < count; k++) {

@@ -17,6 +17,7 @@
 
 #include "../fuzz/render_check.h"
 #include "mesh.h"
+#include "mesh_load.h"
 #include "scene.h"
 #include "test_support.h"
 

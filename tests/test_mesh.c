@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "mesh.h"
+#include "mesh_load.h"
 
 #define DATA "tests/data/meshes/"
 #define SCRATCH "out/test/meshes/"

@@ -5,11 +5,13 @@
  * POV-Ray on procedural and image-mapped scenes. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stb_image_write.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "image_map.h"
+#include "mesh_load.h"
 #include "mesh_surface.h"
 #include "image_test_support.h"
 #include "scene.h"
@@ -201,7 +203,7 @@ static struct pigment two_by_two(int interpolate, bool once) {
     p.mapping = PIGMENT_MAP_PLANAR;
     p.interpolate = interpolate;
     p.once = once;
-    p.image = (struct pigment_image){2, 2, texels};
+    p.image = (struct pigment_image){2, 2, texels, false};
     return p;
 }
 
@@ -247,6 +249,25 @@ Test(image_map, spherical_map_puts_longitude_0_at_x_and_the_north_at_the_top) {
     cr_expect(rgba[0] == 1 && rgba[1] == 0, "north of longitude 0: the top left pixel, red");
     image_map_lookup(&p, vec3_make(-1, -0.5, -0.01), rgba); /* u just under 1/2... past it */
     cr_expect(rgba[0] == 1 && rgba[1] == 1, "south, longitude just past 180: bottom right, white");
+}
+
+/* Reads a 2 x 1 PNG written with `channels` channels from `pixels`; returns image.opaque. */
+static bool read_opaque(const char *name, int channels, const uint8_t *pixels) {
+    char path[256], why[512] = "";
+    snprintf(path, sizeof path, TEST_OUT "/%s", name);
+    cr_assert(stbi_write_png(path, 2, 1, channels, pixels, 2 * channels), "cannot write %s", path);
+    struct pigment_image image;
+    cr_assert(image_map_read(path, &image, why, sizeof why), "%s", why);
+    free(image.texels);
+    return image.opaque;
+}
+
+Test(image_map, a_picture_is_opaque_when_every_alpha_is_the_largest) {
+    static const uint8_t rgb[6] = {10, 20, 30, 40, 50, 60}, full[8] = {10, 20, 30, 255, 40, 50, 60, 255},
+                         one_less[8] = {10, 20, 30, 255, 40, 50, 60, 254};
+    cr_expect(read_opaque("opaque-rgb.png", 3, rgb), "no alpha channel");
+    cr_expect(read_opaque("opaque-rgba.png", 4, full), "alpha everywhere 255");
+    cr_expect(!read_opaque("see-through.png", 4, one_less), "one alpha of 254");
 }
 
 Test(image_map, missing_and_broken_images_name_the_pigment_line, .timeout = 60) {
@@ -420,4 +441,127 @@ Test(mesh_surface, chapters_before_14_draw_meshes_flat_and_the_twin_says_so, .ti
 
 Test(povray_agreement, chapter_14_smooth_teapot_and_uv_mapped_card, .timeout = 120) {
     expect_agreement("smooth", SMOOTH_SCENE);
+}
+
+/* ---- the teapot's own (u, v): tools/models/teapot.c --uv ------------------------------------------- */
+
+#define TEAPOT_WELDED "scenes/models/teapot-5k.ply"
+#define TEAPOT_UV "scenes/models/teapot-5k-uv.ply"
+#define TEAPOT_UV_SCENE "tests/data/textures/teapot-uv.scene"
+#define TEAPOT_N 9 /* teapot-5k's subdivisions per patch side */
+
+Test(teapot_uv, has_the_welded_teapots_triangles_with_a_uv_and_a_normal_at_every_corner, .timeout = 60) {
+    struct mesh welded, m;
+    struct mesh_corners none, c;
+    char err[512] = "";
+    cr_assert(mesh_load_with_corners(TEAPOT_WELDED, &welded, &none, err, sizeof err), "%s", err);
+    cr_assert(mesh_load_with_corners(TEAPOT_UV, &m, &c, err, sizeof err), "%s", err);
+    cr_assert_eq(m.face_count, welded.face_count, "the same triangles");
+    cr_expect_gt(m.vertex_count, welded.vertex_count, "seam vertices are one per patch");
+    cr_assert_not_null(c.uv_faces, "no texture coordinates");
+    cr_assert_not_null(c.normal_faces, "no normals");
+    /* The welded teapot's normals, averaged as `smooth on` averages them: the file's must be the same at
+     * every corner, so the seams, where each patch has its own vertex, do not crease. */
+    struct mesh_corners averaged = {0};
+    cr_assert(mesh_surface_average_normals(&welded, &averaged));
+    size_t moved = 0, creased = 0, mirrored = 0, outside = 0;
+    for (size_t f = 0; f < m.face_count; f++) {
+        const uint32_t *v = m.faces[f].v, *w = welded.faces[f].v;
+        const struct mesh_uv *uv[3];
+        for (int k = 0; k < 3; k++) {
+            vec3 a = m.vertices[v[k]], b = welded.vertices[w[k]];
+            moved += a.x != b.x || a.y != b.y || a.z != b.z;
+            vec3 n = c.normals[c.normal_faces[f].v[k]], expected = averaged.normals[w[k]];
+            creased += vec3_length(vec3_sub(n, expected)) > 1e-6;
+            uv[k] = &c.uvs[c.uv_faces[f].v[k]];
+            outside += uv[k]->u < 0 || uv[k]->u > 1 || uv[k]->v < 0 || uv[k]->v > 1;
+        }
+        /* Counter-clockwise in (u, v) as in space seen from outside: a picture is not mirrored. A triangle
+         * spans one grid cell: two sides of 1/N. */
+        double du1 = uv[1]->u - uv[0]->u, dv1 = uv[1]->v - uv[0]->v, du2 = uv[2]->u - uv[0]->u,
+               dv2 = uv[2]->v - uv[0]->v;
+        double area = du1 * dv2 - dv1 * du2;
+        mirrored += !(fabs(area - 1.0 / (TEAPOT_N * TEAPOT_N)) < 1e-6);
+    }
+    cr_expect_eq(moved, 0, "%zu corners moved", moved);
+    cr_expect_eq(creased, 0, "%zu corners' normals differ from the welded average", creased);
+    cr_expect_eq(mirrored, 0, "%zu triangles are not one counter-clockwise half grid cell in (u, v)", mirrored);
+    cr_expect_eq(outside, 0);
+    mesh_corners_free(&averaged);
+    mesh_free(&welded);
+    mesh_free(&m);
+    mesh_corners_free(&c);
+}
+
+Test(povray_agreement, chapter_14_teapot_wearing_its_patches_uv, .timeout = 120) {
+    expect_agreement("teapot-uv", TEAPOT_UV_SCENE);
+}
+
+/* ---- uv mapping on a box: POV-Ray's cross ------------------------------------------------------------ */
+
+#define BOX_UV_SCENE "tests/data/textures/box-uv.scene"
+
+/* Expects texture_box_uv of the box (0, 0, 0)-(2, 3, 4) at `point` on the face with normal n. */
+static void expect_box_uv(vec3 point, vec3 n, double u, double v, const char *face) {
+    struct box b = {{0, 0, 0}, {2, 3, 4}, 0};
+    struct mesh_uv uv = texture_box_uv(&b, point, n);
+    cr_expect_float_eq(uv.u, u, 1e-12, "%s: u %g, expected %g", face, uv.u, u);
+    cr_expect_float_eq(uv.v, v, 1e-12, "%s: v %g, expected %g", face, uv.v, v);
+}
+
+Test(texture, box_uv_unfolds_the_six_faces_into_povrays_cross) {
+    /* The point (x, y, z) = (0.5, 1.5, 1) of the box scaled to [0, 1]: (0.25, 0.5, 0.25). */
+    expect_box_uv(vec3_make(0, 1.5, 1), vec3_make(-1, 0, 0), 0.25 / 4, 1.0 / 3 + 0.5 / 3, "-x");
+    expect_box_uv(vec3_make(2, 1.5, 1), vec3_make(1, 0, 0), 0.75 - 0.25 / 4, 1.0 / 3 + 0.5 / 3, "+x");
+    expect_box_uv(vec3_make(0.5, 1.5, 4), vec3_make(0, 0, 1), 0.25 + 0.25 / 4, 1.0 / 3 + 0.5 / 3, "+z");
+    expect_box_uv(vec3_make(0.5, 1.5, 0), vec3_make(0, 0, -1), 1 - 0.25 / 4, 1.0 / 3 + 0.5 / 3, "-z");
+    expect_box_uv(vec3_make(0.5, 3, 1), vec3_make(0, 1, 0), 0.25 + 0.25 / 4, 1 - 0.25 / 3, "+y");
+    expect_box_uv(vec3_make(0.5, 0, 1), vec3_make(0, -1, 0), 0.25 + 0.25 / 4, 0.25 / 3, "-y");
+    /* The cross folds up: the +z face's top edge is the +y face's bottom edge, and its sides run on
+     * into the side faces' edges at the same height. */
+    expect_box_uv(vec3_make(2, 3, 4), vec3_make(0, 0, 1), 0.5, 2.0 / 3, "+z, top right corner");
+    expect_box_uv(vec3_make(2, 3, 4), vec3_make(0, 1, 0), 0.5, 2.0 / 3, "+y, the same corner");
+    expect_box_uv(vec3_make(2, 3, 4), vec3_make(1, 0, 0), 0.5, 2.0 / 3, "+x, the same corner");
+}
+
+Test(povray_agreement, chapter_14_uv_mapping_on_boxes_seen_from_outside_and_inside, .timeout = 120) {
+    expect_agreement("box-uv", BOX_UV_SCENE);
+}
+
+/* ---- shadows through patterned glass --------------------------------------------------------------- */
+
+#define SHADOWS_SCENE "tests/data/textures/shadows.scene"
+
+Test(texture, a_shadow_ray_through_glass_takes_the_pigment_but_povrays_opaque_uv_pictures_block_it) {
+    struct scene s;
+    char err[512] = "";
+    cr_assert(parse_lines("pigment c checker colour 1 0 0 colour2 0 0 1\n"
+                          "pigment u image_map file a.png map uv\n"
+                          "material glass pigment c filter 0.8 transmit 0.1\n"
+                          "material tiles pigment u filter 0.6 transmit 0.3",
+                          &s, err, sizeof err),
+              "%s", err);
+    static float white[4] = {1, 1, 1, 1};
+    s.pigments[1].image = (struct pigment_image){1, 1, white, true};
+    struct material painted;
+    struct hit h = {1, {0, 1, 0}, 1, -1, -1};
+    const struct material *m = texture_paint_shadow(&s, &h, vec3_make(1.5, 0.5, 0.5), &painted);
+    cr_expect(m->colour.x == 0 && m->colour.z == 1, "the checker's colour2 where the ray crosses");
+    cr_expect(m->filter == 0.8 && m->transmit == 0.1, "the material's filter and transmit");
+    h.material = 2;
+    m = texture_paint_shadow(&s, &h, vec3_make(0.5, 0.5, 0), &painted);
+    cr_expect(m->filter == 0 && m->transmit == 0, "map uv, repeated, no alpha: opaque, as POV-Ray takes it");
+    s.pigments[1].once = true;
+    m = texture_paint_shadow(&s, &h, vec3_make(0.5, 0.5, 0), &painted);
+    cr_expect(m->filter == 0.6 && m->transmit == 0.3, "wrap once: the light goes through");
+    s.pigments[1].once = false;
+    s.pigments[1].uv_mapping = false;
+    m = texture_paint_shadow(&s, &h, vec3_make(0.5, 0.5, 0), &painted);
+    cr_expect(m->filter == 0.6 && m->transmit == 0.3, "a planar map: the light goes through");
+    s.pigments[1].image = (struct pigment_image){0};
+    scene_free(&s);
+}
+
+Test(povray_agreement, chapter_14_shadows_through_patterned_glass, .timeout = 120) {
+    expect_agreement("shadows", SHADOWS_SCENE);
 }

@@ -2,7 +2,7 @@
  * walked for speed, one optimisation (a rung) at a time.
  *
  * The fast hierarchy is in common/fast_bvh.c and is plugged into the world by common/accel_fast_bvh.c.
- * --rung N (1 to 5) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 5 (the
+ * --rung N (1 to 6) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 5 (the
  * default) everything. The picture is chapter 10's on every rung; only the time changes. */
 #include <stdio.h>
 #include <string.h>
@@ -24,7 +24,7 @@ static int parse_option(const char *option, const char *value) {
         rung = value != NULL ? fast_bvh_rung_from_name(value) : 0;
         if (rung != 0)
             return 2;
-        fprintf(stderr, "--rung needs 1 to 5 or one of: plain wide simd prefetch build; got '%s'\n",
+        fprintf(stderr, "--rung needs 1 to 6 or one of: plain wide simd prefetch build float; got '%s'\n",
                 value != NULL ? value : "");
         return -1;
     }
@@ -54,7 +54,8 @@ int main(int argc, char **argv) {
         .lighting = POV_WHITTED,
         .parse_option = parse_option,
         .options_help = "  --rung R         how much of the speed-up to use: 1 plain (chapter 10's BVH),\n"
-                        "                   2 wide, 3 simd, 4 prefetch, 5 build (the default); a number or a name\n"
+                        "                   2 wide, 3 simd, 4 prefetch, 5 build, 6 float (the default); a number\n"
+                        "                   or a name\n"
                         "  --accel KIND     none, kdtree or bvh (default bvh: the fast BVH at the chosen rung)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
                         "                   kd-tree: the axis holding most objects)\n",

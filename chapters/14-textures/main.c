@@ -60,6 +60,7 @@ int main(int argc, char **argv) {
     /* What chapter 14 adds: the image maps read, the meshes' normals and texture coordinates kept (and
      * averaged where a mesh is to be smooth without them), and every hit painted by texture_paint. */
     run.scene.paint = texture_paint;
+    run.scene.shadow_paint = texture_paint_shadow; /* shadows through patterned glass take its pattern */
     if (!texture_load_images(&run.scene, run.err, sizeof run.err) ||
         !scene_load_meshes(&run.scene, run.err, sizeof run.err) ||
         !mesh_surface_prepare(&run.scene, run.err, sizeof run.err))

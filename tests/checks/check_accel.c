@@ -605,18 +605,20 @@ static bool fast_case(struct mesh (*mesh)(void), enum fast_bvh_rung rung,
     return ok;
 }
 
-CHECK(check_fast_layers) { return fast_case(layers, FAST_BVH_RUNG_TOP, layered_rays, why, why_size); }
+/* At rung 5, the top rung whose every ray tests boxes with child_pair_hit (rung 6 tests them in float,
+ * child_quad_hit, and falls back on child_pair_hit only for rays its bound does not cover). */
+CHECK(check_fast_layers) { return fast_case(layers, FAST_BVH_RUNG_BUILD, layered_rays, why, why_size); }
 
-CHECK(check_fast_crossing) { return fast_case(crossed_layers, FAST_BVH_RUNG_TOP, crossing_rays, why, why_size); }
+CHECK(check_fast_crossing) { return fast_case(crossed_layers, FAST_BVH_RUNG_BUILD, crossing_rays, why, why_size); }
 
 /* ---- 11.2 the children hit, nearest first ------------------------------------------------------- */
 
 CHECK(check_fast_near_first) {
     struct mesh m = row(2); /* the triangles stacked at z = 0, 1, ..., 63 over the same square */
-    /* At the top rung, the one chapter 11's program runs: its float build uses no task of chapter 10, and
-     * its walk tests the children's boxes with child_pair_hit (task 11.1, which this check needs). */
+    /* At rung 5: its float build uses no task of chapter 10, and its walk tests the children's boxes with
+     * child_pair_hit (task 11.1, which this check needs; rung 6 tests most of them in float). */
     check_calling("fast_bvh_build", "%d triangles stacked at z = 0 .. %d, rung 5", ROW_TRIANGLES, ROW_TRIANGLES - 1);
-    struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_TOP);
+    struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_BUILD);
     mesh_free(&m);
     if (b == NULL) {
         snprintf(why, why_size, "fast_bvh_build returned NULL");

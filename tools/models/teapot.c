@@ -2,6 +2,7 @@
  *
  *   teapot N OUTPUT.ply               N subdivisions per patch side
  *   teapot --triangles T OUTPUT.ply   the smallest N giving at least T triangles
+ *   teapot --uv ...                   the same triangles, each corner with its patch's (u, v) and a normal
  *
  * The surface is Martin Newell's 1975 teapot (University of Utah): 32 bicubic Bezier patches over
  * 306 control points, as the data set has been published since (rim 4, body 8, handle 4, spout 4,
@@ -20,6 +21,17 @@
  * the two patches along a shared edge compute bit-identical points and the weld joins them.
  * Every triangle is counter-clockwise seen from outside the teapot. The mesh is open only where the
  * data is: the rim's inner edge, the lid's outer edge, both ends of the handle and of the spout.
+ *
+ * With --uv the file also gives each vertex the (u, v) = (i/N, j/N) of its patch, the natural texture
+ * coordinates of a Bezier patch (chapter 14's uv mapping: one copy of a picture on each patch, u along
+ * a row of control points and v across them, so that u, v and the outward normal are right-handed and
+ * a picture is not mirrored seen from outside). A point on a seam between two patches has a different
+ * (u, v) in each, so there each patch keeps its own vertex: the vertices are welded within a patch only
+ * (one per grid point that a triangle uses). The triangles are exactly those of the welded mesh, in the
+ * same order with the same corner positions; only the vertex list differs. So that the surface stays
+ * smooth across the seams, every vertex also carries a normal, nx ny nz: the area-weighted average of
+ * the normals of the faces round its position in the welded mesh (the rule mesh_surface_average_normals
+ * applies to a file without normals), the same for every copy of a seam vertex.
  *
  * Build: gcc -std=c11 -D_DEFAULT_SOURCE -Wall -Wextra -Werror -O2 tools/models/teapot.c -o build/teapot -lm */
 #include <errno.h>
@@ -235,6 +247,7 @@ struct mesh {
     size_t nv, cap_v;
     int32_t (*f)[3];
     size_t nf, cap_f;
+    uint32_t (*grid_corner)[3]; /* each face's corners as grid points, patch * (N+1)^2 + j * (N+1) + i */
     int32_t *slots; /* open-addressing hash of vertex indices, -1 for empty */
     size_t nslots;  /* a power of two */
 };
@@ -277,6 +290,7 @@ static void mesh_init(struct mesh *m, size_t expected_vertices) {
 static void mesh_free(struct mesh *m) {
     free(m->v);
     free(m->f);
+    free(m->grid_corner);
     free(m->slots);
     memset(m, 0, sizeof *m);
 }
@@ -313,8 +327,8 @@ static int32_t mesh_vertex(struct mesh *m, const float p[3]) {
     return (int32_t)(m->nv - 1);
 }
 
-/* Adds the triangle a, b, c unless its area is zero. */
-static void mesh_triangle(struct mesh *m, int32_t a, int32_t b, int32_t c) {
+/* Adds the triangle a, b, c unless its area is zero; its corners are the grid points ga, gb, gc. */
+static void mesh_triangle(struct mesh *m, int32_t a, int32_t b, int32_t c, uint32_t ga, uint32_t gb, uint32_t gc) {
     if (a == b || b == c || c == a) return;
     double e1[3], e2[3];
     for (int d = 0; d < 3; d++) {
@@ -328,8 +342,10 @@ static void mesh_triangle(struct mesh *m, int32_t a, int32_t b, int32_t c) {
     if (m->nf == m->cap_f) {
         m->cap_f = m->cap_f ? 2 * m->cap_f : 4096;
         m->f = xrealloc(m->f, m->cap_f * sizeof *m->f);
+        m->grid_corner = xrealloc(m->grid_corner, m->cap_f * sizeof *m->grid_corner);
     }
     m->f[m->nf][0] = a, m->f[m->nf][1] = b, m->f[m->nf][2] = c;
+    m->grid_corner[m->nf][0] = ga, m->grid_corner[m->nf][1] = gb, m->grid_corner[m->nf][2] = gc;
     m->nf++;
 }
 
@@ -350,14 +366,14 @@ static void tessellate(int n, struct mesh *m) {
         }
         for (int j = 0; j < n; j++) {
             for (int i = 0; i < n; i++) {
-                int32_t a = grid[(size_t)j * side + (size_t)i];
-                int32_t b = grid[(size_t)j * side + (size_t)i + 1];
-                int32_t c = grid[(size_t)(j + 1) * side + (size_t)i + 1];
-                int32_t d = grid[(size_t)(j + 1) * side + (size_t)i];
+                size_t ga = (size_t)j * side + (size_t)i, gb = ga + 1, gc = gb + side, gd = ga + side;
+                uint32_t first = (uint32_t)((size_t)p * side * side); /* the patch's first grid point */
                 /* Newell's patches have du x dv pointing out of the teapot, so a, b, c and
                  * a, c, d are counter-clockwise seen from outside. */
-                mesh_triangle(m, a, b, c);
-                mesh_triangle(m, a, c, d);
+                mesh_triangle(m, grid[ga], grid[gb], grid[gc], first + (uint32_t)ga, first + (uint32_t)gb,
+                              first + (uint32_t)gc);
+                mesh_triangle(m, grid[ga], grid[gc], grid[gd], first + (uint32_t)ga, first + (uint32_t)gc,
+                              first + (uint32_t)gd);
             }
         }
     }
@@ -373,36 +389,94 @@ static void put_u32le(unsigned char *b, uint32_t x) {
     b[3] = (unsigned char)((x >> 24) & 0xffu);
 }
 
-static int write_ply(const char *path, const struct mesh *m, int n) {
+/* The normal at each welded vertex of m: the sum of its faces' (b - a) x (c - a), twice their areas along
+ * their normals, made unit length (zero where they cancel). Returns a malloc'd array of m->nv. */
+static float (*average_normals(const struct mesh *m))[3] {
+    double(*sum)[3] = xrealloc(NULL, (m->nv ? m->nv : 1) * sizeof *sum);
+    memset(sum, 0, (m->nv ? m->nv : 1) * sizeof *sum);
+    for (size_t k = 0; k < m->nf; k++) {
+        const float *a = m->v[m->f[k][0]], *b = m->v[m->f[k][1]], *c = m->v[m->f[k][2]];
+        double e1[3], e2[3];
+        for (int d = 0; d < 3; d++) {
+            e1[d] = (double)b[d] - (double)a[d];
+            e2[d] = (double)c[d] - (double)a[d];
+        }
+        double area[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        for (int corner = 0; corner < 3; corner++)
+            for (int d = 0; d < 3; d++) sum[m->f[k][corner]][d] += area[d];
+    }
+    float(*normals)[3] = xrealloc(NULL, (m->nv ? m->nv : 1) * sizeof *normals);
+    for (size_t k = 0; k < m->nv; k++) {
+        double length = sqrt(sum[k][0] * sum[k][0] + sum[k][1] * sum[k][1] + sum[k][2] * sum[k][2]);
+        for (int d = 0; d < 3; d++) normals[k][d] = length > 0.0 ? (float)(sum[k][d] / length) : 0.0f;
+    }
+    free(sum);
+    return normals;
+}
+
+/* The vertices of the --uv file: one per grid point that a face uses, numbered in grid order. Fills
+ * welded[g] with the welded vertex at grid point g and number[g] with its new index (both -1 if no face
+ * uses g), and returns how many there are. */
+static size_t number_grid_points(const struct mesh *m, int n, int32_t *welded, int32_t *number) {
+    size_t side = (size_t)n + 1, points = PATCH_COUNT * side * side, count = 0;
+    for (size_t g = 0; g < points; g++) welded[g] = -1;
+    for (size_t k = 0; k < m->nf; k++)
+        for (int corner = 0; corner < 3; corner++) welded[m->grid_corner[k][corner]] = m->f[k][corner];
+    for (size_t g = 0; g < points; g++) number[g] = welded[g] < 0 ? -1 : (int32_t)count++;
+    return count;
+}
+
+/* Writes m as a binary PLY of `vertices` vertices. Without welded (NULL), its welded vertices; with it,
+ * the grid points of number_grid_points (welded and number are its), with normal and (u, v). */
+static int write_ply(const char *path, const struct mesh *m, int n, const int32_t *welded, const int32_t *number,
+                     size_t vertices) {
     FILE *out = fopen(path, "wb");
     if (!out) {
         fprintf(stderr, "teapot: cannot write %s: %s\n", path, strerror(errno));
         return 0;
     }
+    int uv = welded != NULL;
+    size_t side = (size_t)n + 1;
     fprintf(out,
             "ply\n"
             "format binary_little_endian 1.0\n"
             "comment Utah teapot: Martin Newell's 1975 Bezier patch data (University of Utah), "
             "32 bicubic patches, 306 control points; public domain\n"
             "comment tessellated by tools/models/teapot.c: %d x %d grid cells per patch, 2 triangles per "
-            "cell, zero-area triangles dropped, equal vertices welded\n"
-            "comment y is up: each data point (x, y, z) written as (x, z, -y)\n"
-            "element vertex %zu\n"
-            "property float x\n"
-            "property float y\n"
-            "property float z\n"
-            "element face %zu\n"
-            "property list uchar int vertex_indices\n"
-            "end_header\n",
-            n, n, m->nv, m->nf);
-    unsigned char buf[13];
-    for (size_t k = 0; k < m->nv; k++) {
-        for (int c = 0; c < 3; c++) put_u32le(buf + 4 * c, float_bits(m->v[k][c]));
-        fwrite(buf, 1, 12, out);
+            "cell, zero-area triangles dropped, equal vertices welded%s\n"
+            "comment y is up: each data point (x, y, z) written as (x, z, -y)\n",
+            n, n, uv ? " within each patch" : "");
+    if (uv)
+        fprintf(out, "comment u v: the patch's own parameters; nx ny nz: the faces' normals averaged across "
+                     "patches\n");
+    fprintf(out, "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n", vertices);
+    if (uv)
+        fprintf(out, "property float nx\nproperty float ny\nproperty float nz\nproperty float u\nproperty float v\n");
+    fprintf(out, "element face %zu\nproperty list uchar int vertex_indices\nend_header\n", m->nf);
+    unsigned char buf[32];
+    if (uv) {
+        float(*normals)[3] = average_normals(m);
+        size_t points = PATCH_COUNT * side * side;
+        for (size_t g = 0; g < points; g++) {
+            if (number[g] < 0) continue;
+            size_t i = g % side, j = (g / side) % side; /* the grid point (i, j) of its patch */
+            const float *at = m->v[welded[g]], *normal = normals[welded[g]];
+            float values[8] = {at[0], at[1], at[2], normal[0], normal[1], normal[2], (float)((double)i / n),
+                               (float)((double)j / n)};
+            for (int c = 0; c < 8; c++) put_u32le(buf + 4 * c, float_bits(values[c]));
+            fwrite(buf, 1, 32, out);
+        }
+        free(normals);
+    } else {
+        for (size_t k = 0; k < m->nv; k++) {
+            for (int c = 0; c < 3; c++) put_u32le(buf + 4 * c, float_bits(m->v[k][c]));
+            fwrite(buf, 1, 12, out);
+        }
     }
     for (size_t k = 0; k < m->nf; k++) {
         buf[0] = 3;
-        for (int c = 0; c < 3; c++) put_u32le(buf + 1 + 4 * c, (uint32_t)m->f[k][c]);
+        for (int c = 0; c < 3; c++)
+            put_u32le(buf + 1 + 4 * c, (uint32_t)(uv ? number[m->grid_corner[k][c]] : m->f[k][c]));
         fwrite(buf, 1, 13, out);
     }
     if (ferror(out) | fclose(out)) {
@@ -416,8 +490,9 @@ static int write_ply(const char *path, const struct mesh *m, int n) {
 
 static _Noreturn void usage(void) {
     fprintf(stderr,
-            "usage: teapot N OUTPUT.ply               N subdivisions per patch side (1..%d)\n"
-            "       teapot --triangles T OUTPUT.ply   the smallest N giving at least T triangles\n",
+            "usage: teapot [--uv] N OUTPUT.ply               N subdivisions per patch side (1..%d)\n"
+            "       teapot [--uv] --triangles T OUTPUT.ply   the smallest N giving at least T triangles\n"
+            "       --uv: each corner with its patch's (u, v) and the averaged normal\n",
             MAX_N);
     exit(2);
 }
@@ -434,6 +509,11 @@ int main(int argc, char **argv) {
     struct mesh m;
     int n;
     const char *path;
+    int uv = argc > 1 && strcmp(argv[1], "--uv") == 0;
+    if (uv) { /* the rest as without it */
+        argc--;
+        argv++;
+    }
     if (argc == 3) {
         long x = parse_positive(argv[1], MAX_N);
         if (x < 0) usage();
@@ -460,8 +540,14 @@ int main(int argc, char **argv) {
     } else {
         usage();
     }
-    int ok = write_ply(path, &m, n);
-    if (ok) printf("teapot: wrote %s: N = %d, %zu vertices, %zu triangles\n", path, n, m.nv, m.nf);
+    size_t side = (size_t)n + 1;
+    int32_t *welded = uv ? xrealloc(NULL, PATCH_COUNT * side * side * sizeof *welded) : NULL;
+    int32_t *number = uv ? xrealloc(NULL, PATCH_COUNT * side * side * sizeof *number) : NULL;
+    size_t vertices = uv ? number_grid_points(&m, n, welded, number) : m.nv;
+    int ok = write_ply(path, &m, n, uv ? welded : NULL, number, vertices);
+    if (ok) printf("teapot: wrote %s: N = %d, %zu vertices, %zu triangles\n", path, n, vertices, m.nf);
+    free(welded);
+    free(number);
     mesh_free(&m);
     return ok ? 0 : 1;
 }
