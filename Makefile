@@ -17,7 +17,8 @@
 # the end.
 DEPS_NEEDS := build $(strip \
     $(if $(filter test test-long test-sanitize test-accel-long %run-tests %run-accel-long,$(MAKECMDGOALS)),test) \
-    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter results,$(MAKECMDGOALS)),results))
+    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter compare-cycles,$(MAKECMDGOALS)),cycles) \
+    $(if $(filter results,$(MAKECMDGOALS)),results))
 
 # stb from the system, or else unpacked into .deps/ by install-deps.sh on a machine without root
 # (linked statically from there, so the programs need nothing from .deps/ at run time). These are
@@ -45,7 +46,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light lens pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
+MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -59,8 +60,9 @@ MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_build accel_fast_bvh
 MODULES_12 := $(MODULES_11) sample_hash supersample
 MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture
+MODULES_15 := $(MODULES_14) sampling emitter bsdf path_trace path_image
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures
+            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
@@ -73,8 +75,8 @@ SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply scenes
 # downloaded.
 SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/textures/grid.jpg
 
-.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare gallery figures \
-        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14,chapter-$(n) check-$(n))
+.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
+        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
@@ -112,9 +114,9 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..14: explicit rules (GNU make skips pattern rules for phony targets). Only the
+# chapter-N for N = 1..15: explicit rules (GNU make skips pattern rules for phony targets). Only the
 # models that the chapter's scene names are made first (mesh paths are relative to scenes/).
-## make chapter-N      build chapter N (1..14) and render its scene to out/chapter-NN.png
+## make chapter-N      build chapter N (1..15) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -125,7 +127,7 @@ chapter-$(1): | out
 	             scenes/$$$$n-*.scene); \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call run_chapter_rule,$(n))))
 
 ## make chapters       build and render every written chapter
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
@@ -153,6 +155,8 @@ TEST_SOURCES := $(wildcard tests/*.c tests/exercises/*.c tests/support/*.c)
 TEST_OBJECTS := $(patsubst tests/%.c,$(BUILD)/tests/%.o,$(TEST_SOURCES))
 # The picture comparison (and the box filter that averages a picture down, chapter 12): the tests', the grader's and build/compare's.
 IMAGE_COMPARE_OBJECT := $(BUILD)/tests/support/image_compare.o $(BUILD)/tests/support/box_filter.o
+# Chapter 15's statistical proofs: the tests' and the grader's (tests/support/path_proofs.c).
+PATH_PROOFS_OBJECT := $(BUILD)/tests/support/path_proofs.o
 
 # The tests and what they link: the modules, tests/support/, and the fuzzers' renderer check
 # (fuzz/fuzz.mk), which tests/test_fuzz_regressions.c runs on the saved inputs.
@@ -199,7 +203,8 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               results/a_number_of_the_text_typed_over_or_unknown_is_caught results/a_changed_number_in_a_csv_* \
               povray_agreement/chapter_11_fast_agrees_with_povray reference_image/catches_a_wrong_ior \
               povray_agreement/catches_one_extra_trace_level povray_agreement/chapter_12_checks_catch_* \
-              povray_agreement/chapter_13_check_catches_a_hard_shadow
+              povray_agreement/chapter_13_check_catches_a_hard_shadow \
+              reference_image/chapter_15_paths_matches_its_reference
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
@@ -289,6 +294,12 @@ endif
 compare: all $(BUILD)/compare | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
 
+## make compare-cycles  chapter 15 against Blender's Cycles (installs Debian's blender): two scenes,
+##                     block means within noise and means within 1 %, in out/cycles/ (UPDATE_DOCS=1
+##                     also writes the table into docs/15-paths.md); several minutes
+compare-cycles: $(BUILD)/chapter-15 | deps
+	UPDATE_DOCS=$(UPDATE_DOCS) tools/cycles/compare-cycles.sh $(BUILD)
+
 ## make references     re-render the reference images on purpose and say what changed
 references: all $(BUILD)/compare
 	tools/bless-references.sh $(BUILD)
@@ -302,7 +313,7 @@ gallery: all $(BUILD)/compare
 # docs/figures/ (tests/test_figures.c checks that the committed ones are what it draws now).
 FIGURE_OBJECTS := $(patsubst tools/figures/%.c,$(BUILD)/tools/figures/%.o,$(wildcard tools/figures/*.c))
 
-$(BUILD)/figures: $(FIGURE_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/figures: $(FIGURE_OBJECTS) $(PATH_PROOFS_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 ## make figures        redraw the walkthroughs' figures, docs/figures/*.svg, from tools/figures/
@@ -316,10 +327,10 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Itests/support -MMD -MP -c $< -o $@
 
-$(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
+$(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(PATH_PROOFS_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-## make check-N        grade chapter N's coursework tasks (1..14): each task, then a scoreboard
+## make check-N        grade chapter N's coursework tasks (1..15): each task, then a scoreboard
 define check_rule
 check-$(1): $(BUILD)/check | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -327,7 +338,7 @@ check-$(1): $(BUILD)/check | out
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models $(if $(filter 14,$(1)),$(SCENE_TEXTURES)) >/dev/null && \
 	    WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call check_rule,$(n))))
 
 ## make check          grade every chapter's coursework tasks
 check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out

@@ -218,10 +218,10 @@ static bool parse_triple(const struct parser *p, const char *directive, char **t
 }
 
 static bool parse_material(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { COLOUR, AMBIENT, DIFFUSE, PHONG, PHONG_SIZE, REFLECTION, FILTER, TRANSMIT, IOR, PIGMENT };
+    enum { COLOUR, AMBIENT, DIFFUSE, PHONG, PHONG_SIZE, REFLECTION, FILTER, TRANSMIT, IOR, PIGMENT, EMISSION };
     static const struct key_spec specs[] = {
         {"colour", 3}, {"ambient", 1}, {"diffuse", 1},  {"phong", 1}, {"phong_size", 1},
-        {"reflection", 1}, {"filter", 1}, {"transmit", 1}, {"ior", 1}, {"pigment", 0}};
+        {"reflection", 1}, {"filter", 1}, {"transmit", 1}, {"ior", 1}, {"pigment", 0}, {"emission", 3}};
     struct key_values kv;
     if (n < 1)
         return fail(p, "material needs a name");
@@ -229,7 +229,7 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
         return fail(p, "material name longer than %d characters", SCENE_NAME_MAX - 1);
     if (name_index_find(p->materials, tok[0]) >= 0)
         return fail(p, "material '%s' is already defined", tok[0]);
-    if (!parse_keys(p, "material", tok + 1, n - 1, specs, 10, &kv))
+    if (!parse_keys(p, "material", tok + 1, n - 1, specs, EMISSION + 1, &kv))
         return false;
     struct material m = s->materials[0]; /* unspecified keys keep the defaults */
     snprintf(m.name, sizeof m.name, "%s", tok[0]);
@@ -250,6 +250,10 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
             return fail(p, "material '%s': %s must not be negative", m.name, specs[k].name);
     if (m.colour.x < 0.0 || m.colour.y < 0.0 || m.colour.z < 0.0)
         return fail(p, "material '%s': colour must not be negative", m.name);
+    if (kv.present[EMISSION])
+        m.emission = key_vec3(&kv, EMISSION);
+    if (!(m.emission.x >= 0.0 && m.emission.y >= 0.0 && m.emission.z >= 0.0) || !vec3_is_finite(m.emission))
+        return fail(p, "material '%s': emission must be finite and not negative", m.name);
     if (m.filter + m.transmit > 1.0)
         return fail(p, "material '%s': filter + transmit must not exceed 1", m.name);
     if (!(m.phong_size > 0.0))
@@ -412,6 +416,20 @@ static bool parse_antialias(const struct parser *p, struct scene *s, char **tok,
     return true;
 }
 
+/* The paths line (path_settings.h): a scene has at most one. */
+static bool parse_paths(const struct parser *p, struct scene *s, char **tok, int n) {
+    struct key_values kv;
+    char why[256];
+    if (s->paths.line != 0)
+        return fail(p, "a second paths line (a scene has one)");
+    if (!parse_keys(p, "paths", tok, n, path_keys, PATH_KEY_COUNT, &kv))
+        return false;
+    if (!path_settings_make(&kv, &s->paths, why, sizeof why))
+        return fail(p, "%s", why);
+    s->paths.line = p->line;
+    return true;
+}
+
 /* ---- the kinds of shape ------------------------------------------------------------------------ */
 
 const struct shape_syntax *const scene_syntaxes[] = {&sphere_syntax, &triangle_syntax, &plane_syntax, &box_syntax,
@@ -528,6 +546,8 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
         return parse_mesh(p, s, args, count);
     if (strcmp(directive, "antialias") == 0)
         return parse_antialias(p, s, args, count);
+    if (strcmp(directive, "paths") == 0)
+        return parse_paths(p, s, args, count);
     for (size_t k = 0; k < s->kind_count; k++)
         if (strcmp(directive, s->shapes[k].syntax->keyword) == 0)
             return parse_shape(p, s, &s->shapes[k], args, count);
@@ -549,6 +569,7 @@ static bool scene_defaults(struct scene *s, const char *name) {
     s->max_depth = DEFAULT_MAX_DEPTH;
     s->adc_bailout = DEFAULT_ADC_BAILOUT;
     s->shadow_offset = true;
+    s->paths = path_settings_default();
     return true;
 }
 
@@ -740,6 +761,22 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         drop_pigments(s);
         for (size_t k = 0; k < s->material_count; k++)
             s->materials[k].pigment = -1;
+    }
+    size_t emitting = 0;
+    for (size_t k = 0; chapter < PATH_CHAPTER && k < s->material_count; k++)
+        if (s->materials[k].emission.x > 0.0 || s->materials[k].emission.y > 0.0 || s->materials[k].emission.z > 0.0) {
+            s->materials[k].emission = vec3_make(0, 0, 0);
+            emitting++;
+        }
+    if (emitting > 0) {
+        size_t used = strlen(what);
+        snprintf(what + used, sizeof what - used, "%sthe emission of %zu material%s", used == 0 ? "" : ", ", emitting,
+                 emitting == 1 ? "" : "s");
+    }
+    if (chapter < PATH_CHAPTER && s->paths.line != 0) {
+        size_t used = strlen(what);
+        snprintf(what + used, sizeof what - used, "%sthe paths line", used == 0 ? "" : ", ");
+        s->paths = path_settings_default();
     }
     if (what[0] != '\0' && note != NULL) {
         char path[4 * 1024];

@@ -16,6 +16,7 @@
 #include "area_light.h"
 #include "lens.h"
 #include "mesh.h"
+#include "path_settings.h"
 #include "pigment.h"
 #include "shape.h"
 
@@ -33,6 +34,7 @@ struct material {
     double transmit;    /* share of light passing through untinted (pigment transmit) */
     double ior;         /* index of refraction of the inside (interior ior) */
     int pigment;        /* index into scene.pigments, or -1: the plain colour (chapter 14; pigment.h) */
+    vec3 emission;      /* radiance the surface gives off, from both faces (chapter 15; 0 0 0: none) */
 };
 
 struct light {
@@ -95,6 +97,7 @@ struct scene {
     bool shadow_offset;   /* false: shadow rays accept hits from t > 0 (chapter 7's acne demo) */
     double adc_bailout;   /* secondary rays weighing less are not traced (POV-Ray's adc_bailout), 0..1 */
     struct antialias antialias; /* camera rays per pixel (chapter 12); method NONE without the line */
+    struct path_settings paths; /* how chapter 15 traces paths; the defaults without the line */
 
     struct material *materials; size_t material_count; /* materials[0] is "default" */
     struct light *lights;       size_t light_count;
@@ -139,7 +142,8 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
 /* Removes the shapes of every kind the program does not draw (a list without its kind; the meshes go
  * with the triangles), before chapter 12 the antialias line, before chapter 13 the area of area lights
  * (each becomes a point light at its centre) and the camera's lens (a pinhole again), and before chapter
- * 14 the pigments (every material is then its plain colour), so that chapter `chapter` can read any
+ * 14 the pigments (every material is then its plain colour), before chapter 15 the paths line and the
+ * materials' emission, so that chapter `chapter` can read any
  * scene file and draw what it knows. If something was removed, prints one line to `note` (when not
  * NULL) saying what was ignored, e.g.
  * "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */

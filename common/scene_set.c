@@ -127,7 +127,9 @@ static char *rewrite_line(char **words, int count, int fixed, const char *key, c
 
 /* Directives with keys that a scene may leave out altogether (their defaults hold): --set on one of
  * their keys adds the line when the scene has none. */
-static bool is_optional_line(const char *directive) { return strcmp(directive, "antialias") == 0; }
+static bool is_optional_line(const char *directive) {
+    return strcmp(directive, "antialias") == 0 || strcmp(directive, "paths") == 0;
+}
 
 /* Directives whose values are positional (no keys). */
 static bool is_positional(const char *directive) {

@@ -108,7 +108,10 @@ static void write_answers(const char *path, const char *prefix) {
             "void thin_lens_concentric(double u, double v, double *x, double *y) {\n"
             "    %1$s_thin_lens_concentric(u, v, x, y);\n}\n"
             "bool image_map_cylindrical(vec3 q, double *u, double *v) {\n"
-            "    return %1$s_image_map_cylindrical(q, u, v);\n}\n",
+            "    return %1$s_image_map_cylindrical(q, u, v);\n}\n"
+            "bool sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,\n"
+            "                          double *density) {\n"
+            "    return %1$s_sampling_sphere_cone(centre, radius, point, u1, u2, direction, density);\n}\n",
             prefix);
     fclose(f);
 }

@@ -52,6 +52,12 @@ CHAPTER_IMAGE_TESTS(12, chapter_12_antialias)
 CHAPTER_IMAGE_TESTS(13, chapter_13_distributed)
 CHAPTER_IMAGE_TESTS(14, chapter_14_textures)
 
+/* Chapter 15 solves the rendering equation, which POV-Ray does not: its independent renderer is Blender's
+ * Cycles (make compare-cycles, tools/cycles/). Its picture is the same on any machine and thread count
+ * (its random numbers are keyed by pixel, sample and seed), so it is held to its reference like the others;
+ * at 256 paths a pixel it takes some seconds, so this test is one of make test-long's. */
+Test(reference_image, chapter_15_paths_matches_its_reference, .timeout = 300) { check_reference(15); }
+
 /* ---- acceleration changes the work, never the picture ------------------------------------------ */
 
 /* Renders `scene` with chapter n and the extra options, and asserts the picture equals `expected`. */

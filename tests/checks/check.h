@@ -44,7 +44,7 @@ extern const struct check check_list[];
 extern const size_t check_count;
 
 /* The checks of each file, in check_list order (check_geometry.c, check_shading.c, check_accel.c,
- * check_antialias.c, check_distributed.c, check_textures.c, check_picture.c); defined with CHECK()
+ * check_antialias.c, check_distributed.c, check_textures.c, check_paths.c, check_picture.c); defined with CHECK()
  * below. */
 #define CHECK(fn) bool fn(char *why, size_t why_size)
 

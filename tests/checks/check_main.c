@@ -66,6 +66,9 @@ const struct task check_tasks[] = {
     {"14.1", "the checker pattern", "checker in common/texture.c", ""},
     {"14.2", "the interpolated normal", "mesh_surface_normal in common/mesh_surface.c", ""},
     {"14.P", "chapter 14's picture", "chapters/14-textures", "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.2 11.2 14.1 14.2"},
+    {"15.1", "next-event estimation, and its weight against scattering", "path_direct_light in common/path_trace.c", ""},
+    {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "15.1"},
+    {"15.P", "chapter 15's picture", "chapters/15-paths", "15.1 15.2"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -145,6 +148,15 @@ CHECK(check_checker_boundary);
 CHECK(check_normal_corners);
 CHECK(check_normal_unit);
 CHECK(check_picture_14);
+CHECK(check_direct_overhead);
+CHECK(check_direct_tilted);
+CHECK(check_direct_blocked_or_behind);
+CHECK(check_pixels_uncorrelated);
+CHECK(check_furnace_scatter);
+CHECK(check_furnace_light);
+CHECK(check_furnace_mis);
+CHECK(check_strategies_agree);
+CHECK(check_picture_15);
 
 const struct check check_list[] = {
     {"1.1", "the top-left pixel's ray", check_camera_top_left},
@@ -223,6 +235,15 @@ const struct check check_list[] = {
     {"14.2", "at the corners and along an edge", check_normal_corners},
     {"14.2", "in the middle: unit length again", check_normal_unit},
     {"14.P", "the picture matches the reference", check_picture_14},
+    {"15.1", "a glowing ball straight above: 1/16 of its radiance", check_direct_overhead},
+    {"15.1", "the surface tilted by 60 degrees: half of that", check_direct_tilted},
+    {"15.1", "hidden by a triangle, or behind the surface: nothing", check_direct_blocked_or_behind},
+    {"15.2", "neighbouring pixels' noise is uncorrelated", check_pixels_uncorrelated},
+    {"15.2", "the white furnace by scattering alone: Le / (1 - rho)", check_furnace_scatter},
+    {"15.2", "the white furnace by light sampling alone", check_furnace_light},
+    {"15.2", "the white furnace by MIS: no light counted twice", check_furnace_mis},
+    {"15.2", "light, scattering and MIS converge to one picture", check_strategies_agree},
+    {"15.P", "the picture matches the reference", check_picture_15},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
 
@@ -364,7 +385,7 @@ int main(int argc, char **argv) {
     else if (argc == 2 && has_tasks(atoi(argv[1])))
         chapter = atoi(argv[1]);
     else {
-        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..14; make check-N runs it)\n", argv[0]);
+        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..15; make check-N runs it)\n", argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);

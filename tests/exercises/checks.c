@@ -823,3 +823,41 @@ bool check_cylindrical(cylindrical_fn f, char *why, size_t why_size) {
         return fail(why, why_size, "(0, 2, 0) is on the y axis: return false there");
     return true;
 }
+
+/* ---- exercise 15.4: the cone of a ball of light --------------------------------------------------- */
+
+bool check_cone(cone_fn f, char *why, size_t why_size) {
+    vec3 centre = {1, 2, 3}, point = {1, 2 - 4, 3 + 3}; /* 5 away: sin(theta_max) = 0.6, cos = 0.8 */
+    double radius = 3, cos_max = 0.8, expected_density = 1.0 / (2.0 * M_PI * (1.0 - cos_max));
+    vec3 axis = vec3_normalize(vec3_sub(centre, point)), direction, sum = {0, 0, 0};
+    double density;
+    if (f(centre, radius, vec3_make(1, 2.5, 3), 0.5, 0.5, &direction, &density))
+        return fail(why, why_size, "a point inside the ball: return false");
+    enum { SIDE = 64 };
+    for (int a = 0; a < SIDE; a++)
+        for (int b = 0; b < SIDE; b++) {
+            double u1 = (a + 0.5) / SIDE, u2 = (b + 0.5) / SIDE;
+            if (!f(centre, radius, point, u1, u2, &direction, &density))
+                return fail(why, why_size, "u1 = %g, u2 = %g: returned false, but the point is 5 from the centre of a "
+                            "ball of radius 3", u1, u2);
+            if (!(fabs(vec3_length(direction) - 1.0) < 1e-9))
+                return fail(why, why_size, "u1 = %g, u2 = %g: the direction has length %.12g, not 1", u1, u2,
+                            vec3_length(direction));
+            if (!(vec3_dot(direction, axis) >= cos_max - 1e-9))
+                return fail(why, why_size, "u1 = %g, u2 = %g: the direction is %.4g degrees off the axis, outside the "
+                            "cone of half-angle %.4g", u1, u2, acos(fmin(1, vec3_dot(direction, axis))) * 180 / M_PI,
+                            acos(cos_max) * 180 / M_PI);
+            if (!(fabs(density - expected_density) < 1e-9 * expected_density))
+                return fail(why, why_size, "the density is %.9g, expected 1 / (2 pi (1 - cos theta_max)) = %.9g", density,
+                            expected_density);
+            sum = vec3_add(sum, direction);
+        }
+    /* Uniform over the cone's solid angle, cos theta is uniform in [cos theta_max, 1]: the directions'
+     * mean is the axis times (1 + cos theta_max) / 2, whatever way round the axis they turn. */
+    vec3 mean = vec3_scale(sum, 1.0 / (SIDE * SIDE)), expected = vec3_scale(axis, (1.0 + cos_max) / 2);
+    if (!(vec3_length(vec3_sub(mean, expected)) < 1e-3))
+        return fail(why, why_size, "over a 64 x 64 grid of (u1, u2) the mean direction is (%.4f, %.4f, %.4f), expected "
+                    "(%.4f, %.4f, %.4f): uniform over the solid angle makes cos theta uniform, not theta", mean.x,
+                    mean.y, mean.z, expected.x, expected.y, expected.z);
+    return true;
+}

@@ -135,4 +135,16 @@ bool image_map_cylindrical(vec3 q, double *u, double *v);
 typedef bool (*cylindrical_fn)(vec3, double *, double *);
 bool check_cylindrical(cylindrical_fn f, char *why, size_t why_size);
 
+/* Exercise 15.4 (common/sampling.c): a ball of light sampled by the cone it fills. Seen from `point`
+ * outside the ball of `radius` around `centre`, the ball fills the cone about the direction to its centre
+ * whose half-angle theta_max has sin(theta_max) = radius / distance. Stores in *direction a unit vector
+ * uniformly distributed over that cone's solid angle, made from two uniform numbers (cos theta uniform in
+ * [cos theta_max, 1] by u1, the angle about the axis 2 pi u2), and in *density its density per unit solid
+ * angle, 1 / (2 pi (1 - cos theta_max)). Returns false, storing nothing, when the point is inside the ball
+ * or on it. */
+bool sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,
+                          double *density);
+typedef bool (*cone_fn)(vec3, double, vec3, double, double, vec3 *, double *);
+bool check_cone(cone_fn f, char *why, size_t why_size);
+
 #endif

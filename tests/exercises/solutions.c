@@ -12,6 +12,7 @@
 #include <stdlib.h>
 
 #include "sample_hash.h"
+#include "sampling.h"
 #include "shadow.h"
 
 /* ---- 2.4: the disc, a kind of shape: what common/disc.h and common/disc.c hold in a model answer.
@@ -474,4 +475,33 @@ bool wrong_image_map_cylindrical(vec3 q, double *u, double *v) {
     *u = atan2(q.z, q.x) / (2.0 * M_PI); /* not moved into [0, 1): half the turn is negative */
     *v = q.y;
     return true;
+}
+
+/* The cone of a ball: cos theta uniform in [cos theta_max, 1], turned about the axis by 2 pi u2. With
+ * `uniform_angle` (the wrong answer) theta itself is uniform, which crowds the axis. */
+static bool cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction, double *density,
+                 bool uniform_angle) {
+    vec3 to_centre = vec3_sub(centre, point);
+    double distance = vec3_length(to_centre);
+    if (!(distance > radius))
+        return false;
+    double sin_max = radius / distance, cos_max = sqrt(1.0 - sin_max * sin_max);
+    double cos_theta = uniform_angle ? cos(u1 * acos(cos_max)) : 1.0 - u1 * (1.0 - cos_max);
+    double sin_theta = sqrt(fmax(0.0, 1.0 - cos_theta * cos_theta)), phi = 2.0 * M_PI * u2;
+    vec3 axis = vec3_scale(to_centre, 1.0 / distance), t, b;
+    sampling_basis(axis, &t, &b);
+    *direction = vec3_add_scaled(vec3_add_scaled(vec3_scale(axis, cos_theta), t, sin_theta * cos(phi)), b,
+                                 sin_theta * sin(phi));
+    *density = 1.0 / (2.0 * M_PI * (1.0 - cos_max));
+    return true;
+}
+
+bool solution_sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,
+                                   double *density) {
+    return cone(centre, radius, point, u1, u2, direction, density, false);
+}
+
+bool wrong_sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,
+                                double *density) {
+    return cone(centre, radius, point, u1, u2, direction, density, true);
 }

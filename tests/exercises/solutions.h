@@ -31,5 +31,9 @@ void solution_thin_lens_concentric(double u, double v, double *x, double *y);
 void wrong_thin_lens_concentric(double u, double v, double *x, double *y);
 bool solution_image_map_cylindrical(vec3 q, double *u, double *v);
 bool wrong_image_map_cylindrical(vec3 q, double *u, double *v);
+bool solution_sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,
+                                   double *density);
+bool wrong_sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,
+                                double *density);
 
 #endif

@@ -118,3 +118,4 @@ Test(exercise_checks, a_new_kind_is_one_more_line_in_a_chapters_list_of_kinds, .
 PROOF(rooks, check_rooks, solution_supersample_rooks, wrong_supersample_rooks)
 PROOF(concentric, check_concentric, solution_thin_lens_concentric, wrong_thin_lens_concentric)
 PROOF(cylindrical, check_cylindrical, solution_image_map_cylindrical, wrong_image_map_cylindrical)
+PROOF(cone, check_cone, solution_sampling_sphere_cone, wrong_sampling_sphere_cone)

@@ -2,12 +2,13 @@
 # install-deps.sh: makes sure the Debian packages a make target needs are there, installing only what
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
-#   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, results, bench, fuzz
+#   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, cycles, results, bench, fuzz
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
 #   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test and
 #            make test-long, whose tests check make results' committed plots and run its quick mode
 #   compare  build + POV-Ray: make compare
+#   cycles   build + Blender (blender), for its Cycles renderer: make compare-cycles (chapter 15)
 #   results  build + POV-Ray and gnuplot: make results (which adds bench for its Embree table)
 #   bench    build + Intel Embree 3 (libembree-dev): make bench
 #   fuzz     clang with its libFuzzer and sanitizer runtimes (clang; on systems where the runtimes are
@@ -43,7 +44,7 @@ want() { # want PACKAGE: add it to the list once
 }
 for need in "${needs[@]}"; do
     case $need in
-    build | test | compare | results | bench)
+    build | test | compare | cycles | results | bench)
         have_command gcc || want gcc
         have_command pkg-config || want pkg-config
         have_stb || want libstb-dev
@@ -58,6 +59,7 @@ for need in "${needs[@]}"; do
         have_command gnuplot || want gnuplot-nox
         ;;
     compare) have_command povray || want povray ;;
+    cycles) have_command blender || want blender ;;
     bench) [ -e /usr/include/embree3/rtcore.h ] || want libembree-dev ;;
     fuzz)
         if ! have_command clang; then
@@ -68,7 +70,7 @@ for need in "${needs[@]}"; do
         ;;
     build) ;;
     *)
-        echo "install-deps.sh: unknown need '$need' (build, test, compare, results, bench or fuzz)" >&2
+        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench or fuzz)" >&2
         exit 2
         ;;
     esac

@@ -22,5 +22,7 @@ void figure_antialias(FILE *out);  /* 12-antialias.svg: an edge over the pixel g
 void figure_penumbra(FILE *out);   /* 13-penumbra.svg: an area light's umbra and penumbra, and the share seen */
 void figure_lens(FILE *out);       /* 13-lens.svg: the thin lens's rays, the focal plane, the circle of confusion */
 void figure_textures(FILE *out);   /* 14-normals.svg: normals blended across a face, before and after renormalising */
+void figure_sampling(FILE *out);   /* 15-sampling.svg: uniform and cosine-weighted directions over the hemisphere */
+void figure_convergence(FILE *out); /* 15-convergence.svg: the path tracer's error against paths a pixel */
 
 #endif

@@ -1,0 +1,134 @@
+/* Chapter 15, path tracing: the rendering equation solved by Monte Carlo. Each pixel is the mean of the
+ * scene's paths per pixel (its paths line, common/path_settings.h): a path leaves the camera through a
+ * random point of the pixel and bounces through the scene, a cosine-weighted direction off a Lambertian
+ * surface, the mirror direction off a mirror, reflected or refracted by Fresnel's share at glass
+ * (common/bsdf.c); at each Lambertian point a shadow ray goes to a point chosen on the emitting surfaces
+ * (common/emitter.c), weighed against scattering by multiple importance sampling, and Russian roulette
+ * ends the path (common/path_trace.c). The picture is tone-mapped into the PNG and kept linear in an HDR
+ * file with --hdr (common/path_image.c). The world is chapter 11's fast BVH, the surfaces may be
+ * chapter 14's textures, and the random numbers chapter 12's counter-based hash: the picture is the same
+ * for any number of threads. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "accel_fast_bvh.h"
+#include "box.h"
+#include "cli.h"
+#include "emitter.h"
+#include "fast_bvh.h"
+#include "mesh_surface.h"
+#include "outfile.h"
+#include "path_image.h"
+#include "path_trace.h"
+#include "plane.h"
+#include "sphere.h"
+#include "texture.h"
+#include "triangle.h"
+
+static struct accel_choice choice = {ACCEL_BVH, true};
+static const char *hdr_path; /* --hdr FILE, or NULL */
+
+static int parse_option(const char *option, const char *value) {
+    if (strcmp(option, "--hdr") == 0) {
+        if (value == NULL || value[0] == '\0' || !outfile_name_fits(value)) {
+            fprintf(stderr, "--hdr needs a file name that fits in a path\n");
+            return -1;
+        }
+        hdr_path = value;
+        return 2;
+    }
+    return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
+}
+
+/* Builds the world as chapters 12 to 14 do: the chosen structure, the BVH at chapter 11's top rung. */
+static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
+    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
+    if (w != NULL && choice.kind == ACCEL_BVH &&
+        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_TOP, err,
+                                  err_size)) {
+        accel_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
+int main(int argc, char **argv) {
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
+    static const struct chapter chapter = {
+        .number = 15,
+        .title = "path tracing",
+        .default_scene = "scenes/15-paths.scene",
+        .kinds = kinds,
+        .lighting = POV_WHITTED,
+        .parse_option = parse_option,
+        .options_help = "  --hdr FILE       also write the linear radiance: a Radiance .hdr file, or a Portable\n"
+                        "                   Float Map when FILE ends in .pfm (every float kept whole)\n"
+                        "  --accel KIND     none, kdtree or bvh (default bvh: chapter 11's fast BVH)\n"
+                        "  --split RULE     sah (default) or seed: the seed's rule\n",
+    };
+    struct cli_run run;
+    if (!cli_start(&run, &chapter, argc, argv))
+        return cli_finish(&run);
+    struct scene *s = &run.scene;
+    s->paint = texture_paint;
+    if (!texture_load_images(s, run.err, sizeof run.err) || !scene_load_meshes(s, run.err, sizeof run.err) ||
+        !mesh_surface_prepare(s, run.err, sizeof run.err))
+        return cli_fail(&run);
+    /* What chapter 15 adds: the area lights made emitting rectangles before the world is built over
+     * them, the emitters gathered, and every pixel the mean of its paths. */
+    int point_lights = emitter_add_area_lights(s, run.err, sizeof run.err);
+    if (point_lights < 0)
+        return cli_fail(&run);
+    if (point_lights > 0 && !run.options.quiet)
+        fprintf(stderr, "%s: chapter 15 ignores %d point light%s (a point has no area to emit from)\n", s->path,
+                point_lights, point_lights == 1 ? "" : "s");
+    struct accel_world *w = prepare(s, run.err, sizeof run.err);
+    if (w == NULL)
+        return cli_fail(&run);
+    struct emitter_list emitters;
+    if (!emitter_list_build(&emitters, w, run.err, sizeof run.err)) {
+        accel_world_destroy(w);
+        return cli_fail(&run);
+    }
+    struct camera cam;
+    float *linear = NULL, *error = NULL;
+    if (camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, run.err, sizeof run.err)) {
+        linear = calloc((size_t)s->width * (size_t)s->height * 6, sizeof *linear);
+        error = linear == NULL ? NULL : linear + (size_t)s->width * (size_t)s->height * 3;
+        if (linear == NULL) {
+            fprintf(stderr, "out of memory for a %d x %d frame of radiance\n", s->width, s->height);
+            run.status = CLI_OUTPUT_FAILED;
+        }
+    } /* else cli_render_sampled reports the camera */
+    if (run.status == CLI_OK) {
+        struct path_world paths;
+        path_world_init(&paths, &w->world, &emitters, &cam, &s->paths);
+        struct path_picture picture = {&paths, linear, error, s->width};
+        bool report = cli_render_sampled(&run, NULL, &picture, &path_sampler);
+        if (run.status == CLI_OK && run.options.pov == NULL && hdr_path != NULL) {
+            size_t length = strlen(hdr_path);
+            bool pfm = length >= 4 && strcmp(hdr_path + length - 4, ".pfm") == 0;
+            if (!(pfm ? path_image_write_pfm : path_image_write_hdr)(linear, s->width, s->height, hdr_path, run.err,
+                                                                     sizeof run.err)) {
+                fprintf(stderr, "%s\n", run.err);
+                run.status = CLI_OUTPUT_FAILED;
+            } else if (!run.options.quiet) {
+                printf("linear radiance: %s\n", hdr_path);
+            }
+        }
+        if (report && run.status == CLI_OK) {
+            printf("paths: %d a pixel (%s, seed %u); noise: a pixel's standard error is %.1f%% of the mean; "
+                   "%.0f paths and %.0f rays a second\n", s->paths.samples, path_strategy_name(s->paths.strategy),
+                   (unsigned)s->paths.seed, 100 * path_image_noise(linear, error, s->width, s->height),
+                   run.total.primary_rays / run.render_seconds,
+                   (run.total.primary_rays + run.total.shadow_rays + run.total.reflected_rays +
+                    run.total.refracted_rays) / run.render_seconds);
+            accel_report(w, &run.total, run.options.stats);
+        }
+    }
+    free(linear);
+    emitter_list_free(&emitters);
+    accel_world_destroy(w);
+    return cli_finish(&run);
+}

@@ -1,0 +1,243 @@
+/* test_paths.c: chapter 15's path tracer: the paths line and emission read and refused, the emitters
+ * gathered, the sampling densities, Fresnel's reflectance, and the proofs that the estimator is right:
+ * the white furnace, error falling as 1 / sqrt(N), the three strategies agreeing with MIS the least
+ * noisy, uncorrelated pixels, and the same picture for any thread count. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bsdf.h"
+#include "emitter.h"
+#include "path_image.h"
+#include "path_proofs.h"
+#include "path_trace.h"
+#include "sampling.h"
+#include "scene.h"
+#include "scene_set.h"
+#include "test_support.h"
+
+#define SCENE_HEAD "camera eye 0 0 5 target 0 0 0 fov 40\nimage 16 12\n"
+
+/* ---- the scene's lines ---------------------------------------------------------------------------- */
+
+static bool parse_lines(const char *lines, struct scene *s, char *err, size_t err_size) {
+    return parse_scene_lines("paths.scene", SCENE_HEAD, lines, test_every_kind, s, err, err_size);
+}
+
+static void expect_refused(const char *line, const char *message) {
+    expect_scene_refused("paths.scene", SCENE_HEAD, line, test_every_kind, message);
+}
+
+Test(paths_line, keys_and_defaults_are_read) {
+    struct scene s;
+    char err[512] = "";
+    cr_assert(parse_lines("material lamp emission 4 2 1", &s, err, sizeof err), "%s", err);
+    cr_expect_eq(s.paths.samples, PATH_DEFAULT_SAMPLES);
+    cr_expect_eq(s.paths.strategy, PATH_MIS);
+    cr_expect_eq(s.paths.line, 0);
+    cr_expect(s.materials[1].emission.x == 4 && s.materials[1].emission.y == 2 && s.materials[1].emission.z == 1);
+    cr_expect(s.materials[0].emission.x == 0, "no emission by default");
+    scene_free(&s);
+    cr_assert(parse_lines("paths samples 9 seed 7 roulette 0 bounces 3 strategy scatter", &s, err, sizeof err), "%s", err);
+    cr_expect(s.paths.samples == 9 && s.paths.seed == 7 && s.paths.roulette == 0 && s.paths.bounces == 3);
+    cr_expect_eq(s.paths.strategy, PATH_SCATTER);
+    cr_expect_eq(s.paths.line, 3);
+    scene_free(&s);
+}
+
+Test(paths_line, bad_values_are_refused_with_file_and_line) {
+    expect_refused("paths samples 0", "paths.scene:3: paths samples must be a whole number from 1 to 1048576, got 0");
+    expect_refused("paths bounces 2.5", "paths.scene:3: paths bounces must be a whole number from 0 to 4096, got 2.5");
+    expect_refused("paths strategy both", "paths.scene:3: unknown paths strategy 'both' (mis, light or scatter)");
+    expect_refused("paths samples 4\npaths samples 5", "paths.scene:4: a second paths line (a scene has one)");
+    expect_refused("material lamp emission 1 -1 1",
+                   "paths.scene:3: material 'lamp': emission must be finite and not negative");
+}
+
+Test(paths_line, chapters_before_15_ignore_emission_and_the_paths_line_with_a_note) {
+    struct scene s;
+    char err[512] = "", note[512] = "";
+    cr_assert(parse_lines("paths samples 9\nmaterial lamp emission 4 2 1", &s, err, sizeof err), "%s", err);
+    FILE *out = fmemopen(note, sizeof note, "w");
+    scene_drop_unsupported(&s, 14, out);
+    fclose(out);
+    cr_expect_str_eq(note, "paths.scene: chapter 14 ignores the emission of 1 material, the paths line (not introduced yet)\n");
+    cr_expect(s.materials[1].emission.x == 0 && s.paths.samples == PATH_DEFAULT_SAMPLES);
+    scene_free(&s);
+}
+
+Test(paths_line, set_adds_the_line_when_the_scene_has_none) {
+    const char *sets[] = {"paths.samples=3"};
+    struct scene s;
+    char err[512] = "";
+    bool bad_option = false;
+    cr_assert(scene_load_changed("scenes/14-textures.scene", sets, 1, test_every_kind, &s, &bad_option, err, sizeof err),
+              "%s", err);
+    cr_expect_eq(s.paths.samples, 3);
+    scene_free(&s);
+}
+
+/* ---- densities ------------------------------------------------------------------------------------ */
+
+Test(sampling, the_cosine_hemisphere_has_the_moments_of_cos_over_pi) {
+    /* E[cos] = 2/3 and E[cos^2] = 1/2 under the density cos / pi; the directions are unit and above. */
+    vec3 n = vec3_normalize(vec3_make(0.3, -0.5, 0.8));
+    double sum = 0, sum2 = 0;
+    int count = 200000;
+    struct sample_stream rng = sample_stream_start(1, 2, 3, 4);
+    for (int k = 0; k < count; k++) {
+        vec3 d = sampling_cosine_hemisphere(n, sample_stream_next(&rng), sample_stream_next(&rng));
+        cr_assert(fabs(vec3_length(d) - 1.0) < 1e-12 && vec3_dot(d, n) >= 0.0);
+        sum += vec3_dot(d, n);
+        sum2 += vec3_dot(d, n) * vec3_dot(d, n);
+    }
+    /* standard deviations of cos: sqrt(1/2 - 4/9) = 0.236; of cos^2: sqrt(1/3 - 1/4) = 0.289 */
+    cr_expect(fabs(sum / count - 2.0 / 3.0) < 4 * 0.236 / sqrt(count), "E[cos] = %.5f", sum / count);
+    cr_expect(fabs(sum2 / count - 0.5) < 4 * 0.289 / sqrt(count), "E[cos^2] = %.5f", sum2 / count);
+}
+
+Test(sampling, points_on_a_triangle_are_uniform) {
+    /* Over the triangle (0,0,0), (1,0,0), (0,1,0) the mean point is the centroid (1/3, 1/3) and the
+     * share with x + y < 1/2 is 1/4 of the area. */
+    struct sample_stream rng = sample_stream_start(5, 6, 7, 8);
+    double sx = 0, sy = 0;
+    int inner = 0, count = 100000;
+    for (int k = 0; k < count; k++) {
+        vec3 p = sampling_triangle(vec3_make(0, 0, 0), vec3_make(1, 0, 0), vec3_make(0, 1, 0), sample_stream_next(&rng),
+                                   sample_stream_next(&rng));
+        cr_assert(p.x >= 0 && p.y >= 0 && p.x + p.y <= 1 + 1e-12);
+        sx += p.x;
+        sy += p.y;
+        inner += p.x + p.y < 0.5;
+    }
+    cr_expect(fabs(sx / count - 1.0 / 3) < 0.004 && fabs(sy / count - 1.0 / 3) < 0.004, "mean %g %g", sx / count, sy / count);
+    cr_expect(fabs((double)inner / count - 0.25) < 0.006, "share %g", (double)inner / count);
+}
+
+Test(sampling, fresnel_at_normal_incidence_and_total_internal_reflection) {
+    cr_expect(fabs(bsdf_fresnel(1.0, 1 / 1.5) - 0.04) < 1e-12, "((n1 - n2) / (n1 + n2))^2 = 0.04");
+    cr_expect(fabs(bsdf_fresnel(1.0, 1.5) - 0.04) < 1e-12, "the same leaving the glass");
+    cr_expect_eq(bsdf_fresnel(0.5, 1.5), 1.0, "60 degrees inside glass: past the critical angle of 41.8");
+    cr_expect(bsdf_fresnel(0.01, 1 / 1.5) > 0.9, "grazing: nearly all reflected");
+    cr_expect_eq(bsdf_fresnel(0.7, 1.0), 0.0, "the same index: nothing reflected");
+}
+
+/* ---- the emitters ---------------------------------------------------------------------------------- */
+
+Test(emitters, are_gathered_from_triangles_spheres_boxes_and_area_lights) {
+    struct path_setup t;
+    char err[512] = "";
+    cr_assert(path_setup_text(&t, "camera eye 0 0 5 target 0 0 0 fov 40\nimage 4 4\nmaterial lamp emission 2 2 2\n"
+                                  "triangle a 0 0 0 b 1 0 0 c 0 1 0 material lamp\nsphere centre 0 0 0 radius 1 material lamp\n"
+                                  "box min 0 0 0 max 1 2 3 material lamp\nsphere centre 5 0 0 radius 1\n"
+                                  "light position 0 4 0 colour 3 3 3 axis1 2 0 0 axis2 0 0 1 samples 2 2\n",
+                              err, sizeof err),
+              "%s", err);
+    /* 1 triangle, 2 of the area light, 12 of the box, 1 sphere */
+    cr_expect_eq(t.emitters.count, 16);
+    double expected = 0.5 * 2 + 2 * 3 + 22 * 2 + 4 * M_PI * 2; /* area times mean radiance */
+    cr_expect(fabs(t.emitters.total_power - expected) < 1e-9, "total power %g, expected %g", t.emitters.total_power,
+              expected);
+    cr_expect(fabs(emitter_density(&t.emitters, vec3_make(3, 3, 3)) - 3 / expected) < 1e-15);
+    path_setup_free(&t);
+}
+
+Test(emitters, an_emissive_plane_is_refused) {
+    struct path_setup t;
+    char err[512] = "";
+    cr_expect(!path_setup_text(&t, SCENE_HEAD "material sky emission 1 1 1\nplane normal 0 1 0 distance 0 material sky\n",
+                               err, sizeof err));
+    cr_expect_str_eq(err, "paths.scene: plane 1 has the emissive material 'sky': an infinite surface cannot be an "
+                          "emitter (give the emission to a box or triangles)");
+}
+
+/* ---- the proofs ------------------------------------------------------------------------------------ */
+
+/* Inside a closed sphere that emits Le and reflects a share rho of what reaches it, the radiance is the
+ * same everywhere and in every direction: L = Le + rho L, so L = Le / (1 - rho). */
+Test(furnace, every_strategy_converges_to_le_over_one_minus_rho) {
+    const double rhos[] = {0.0, 0.3, 0.6, 0.8};
+    const char *strategies[] = {"mis", "light", "scatter"};
+    for (int r = 0; r < 4; r++)
+        for (int k = 0; k < 3; k++) {
+            struct furnace_result f;
+            char err[512] = "";
+            cr_assert(path_proof_furnace(rhos[r], strategies[k], &f, err, sizeof err), "%s", err);
+            cr_expect(path_proof_furnace_passes(&f, 3.0),
+                      "rho %g, %s: image mean %.6f %.6f %.6f, Le / (1 - rho) = %.6f, standard error %.6f", rhos[r],
+                      strategies[k], f.mean[0], f.mean[1], f.mean[2], f.expected, f.error[0]);
+        }
+}
+
+Test(furnace, neighbouring_pixels_noise_is_uncorrelated) {
+    /* 240 pairs: the correlation of unrelated noise has a standard deviation of about 1 / sqrt(240) = 0.065;
+     * with every pixel drawing the same numbers the neighbours would move together (near 1). */
+    double correlation;
+    char err[512] = "";
+    cr_assert(path_proof_neighbour_correlation(&correlation, err, sizeof err), "%s", err);
+    cr_expect(fabs(correlation) < 0.25, "neighbours' correlation %.3f", correlation);
+}
+
+Test(convergence, the_error_falls_as_one_over_the_square_root_of_the_samples) {
+    double slope, rmse[5];
+    char err[512] = "";
+    cr_assert(path_proof_convergence("scenes/15-paths.scene", &slope, rmse, err, sizeof err), "%s", err);
+    cr_expect(fabs(slope + 0.5) <= 0.05, "slope of log RMSE against log N: %.3f (RMSE %.4f %.4f %.4f %.4f %.4f at 1 to 256)",
+              slope, rmse[0], rmse[1], rmse[2], rmse[3], rmse[4]);
+}
+
+Test(strategies, light_scatter_and_mis_converge_to_the_same_picture_and_mis_is_least_noisy) {
+    struct strategies_result r;
+    char err[512] = "";
+    cr_assert(path_proof_strategies(&r, err, sizeof err), "%s", err);
+    cr_expect(r.worst_z <= 4.0, "block means differ by %.1f combined standard errors: %s", r.worst_z, r.worst);
+    /* under the ball MIS is below scattering, under the panel below light sampling, and over the whole
+     * picture below both */
+    cr_expect(r.variance[0][0] < r.variance[2][0], "under the ball: MIS %.3g, scattering %.3g", r.variance[0][0],
+              r.variance[2][0]);
+    cr_expect(r.variance[0][1] < r.variance[1][1], "under the panel: MIS %.3g, light sampling %.3g", r.variance[0][1],
+              r.variance[1][1]);
+    double mis = r.variance[0][0] + r.variance[0][1], light = r.variance[1][0] + r.variance[1][1],
+           scatter = r.variance[2][0] + r.variance[2][1];
+    cr_expect(mis < light && mis < scatter, "whole picture: MIS %.3g, light %.3g, scattering %.3g", mis, light, scatter);
+}
+
+/* ---- threads -------------------------------------------------------------------------------------- */
+
+/* The linear frame of the Cornell box at 32 x 32 with 4 paths a pixel, rendered on `threads` threads. */
+static float *render_threads(int threads) {
+    struct path_setup t;
+    char err[512] = "";
+    const char *sets[] = {"image=32 32", "paths.samples=4"};
+    cr_assert(path_setup_file(&t, "scenes/15-paths.scene", sets, 2, err, sizeof err), "%s", err);
+    float *linear = calloc(32 * 32 * 3, sizeof *linear);
+    struct image img;
+    cr_assert(image_create(&img, 32, 32) && linear != NULL);
+    struct path_picture picture = {&t.paths, linear, NULL, 32};
+    struct render_job job = {.camera = &t.camera, .world = &picture, .threads = threads, .sampler = &path_sampler,
+                             .antialias = &t.scene.antialias, .lens = &t.scene.lens};
+    struct stats total = {0};
+    render_image(&job, &img, &total);
+    cr_expect_eq(total.primary_rays, 32 * 32 * 4, "one camera ray a path");
+    image_free(&img);
+    path_setup_free(&t);
+    return linear;
+}
+
+Test(paths_threads, one_and_two_threads_give_the_same_radiance_to_the_bit) {
+    float *one = render_threads(1), *two = render_threads(2);
+    cr_expect_eq(memcmp(one, two, 32 * 32 * 3 * sizeof *one), 0);
+    free(one);
+    free(two);
+}
+
+Test(path_image, the_tone_map_clips_and_applies_the_srgb_curve) {
+    cr_expect_eq(path_image_display(-1), 0.0);
+    cr_expect_eq(path_image_display(NAN), 0.0);
+    cr_expect(fabs(path_image_display(17) - 1.0) < 1e-15, "clipped at 1");
+    cr_expect(fabs(path_image_display(0.002) - 0.02584) < 1e-12, "the linear piece");
+    cr_expect(fabs(path_image_display(0.18) - 0.461356) < 1e-6, "18%% grey");
+    cr_expect(fabs(path_image_display(1.0) - 1.0) < 1e-12);
+}

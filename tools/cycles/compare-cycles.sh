@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# compare-cycles.sh BUILD: chapter 15's pictures against Blender's Cycles, an independent path tracer
+# (make compare-cycles; docs/15-paths.md, "Checked by another renderer").
+#
+# Two scenes: the Cornell box of scenes/15-paths.scene with its mirror and glass balls made white (Cycles'
+# glass and ours differ in ways this comparison does not need), at 128 x 128 and 2048 paths a pixel, with
+# Cycles finding the lamp by scattering only (render.py's `scatter`; docs/15-paths.md says why); and
+# scenes/15-daylight.scene as it is, at 160 x 120 and 512 paths a pixel, Cycles sampling its lights as it
+# does by default. Each renderer draws each scene twice, with seeds 1 and 2: ours into Portable Float
+# Maps, Cycles (tools/cycles/render.py, run headless by `blender -b`) into OpenEXR. tools/cycles/compare.py then measures every block's mean in
+# combined standard errors and the whole picture's mean; the table goes to out/cycles/table.md, the
+# pictures side by side (ours | Cycles) to out/cycles/NAME-side-by-side.png, and with UPDATE_DOCS=1 the
+# table into docs/15-paths.md between its cycles-table markers. Exits 1 when a scene disagrees.
+set -eu
+build=${1:-build}
+out=out/cycles
+threads=${CYCLES_THREADS:-2}
+block=16
+mkdir -p "$out"
+blender_run() { blender -b --factory-startup --python-exit-code 1 --python "$@"; }
+
+table=$out/table.md
+{
+    echo "| scene | blocks | worst \|z\| | blocks within 2 errors | mean z² | our mean | Cycles' mean | difference | verdict |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+} >"$table"
+status=0
+# compare_one NAME SCENE SAMPLES [scatter]: both renderers, both seeds, and the row of the table.
+compare_one() {
+    local name=$1 scene=$2 samples=$3 seed
+    shift 3
+    for seed in 1 2; do
+        "$build/chapter-15" "$scene" --quiet --threads "$threads" --set paths.samples="$samples" \
+            --set paths.seed="$seed" -o "$out/$name-ours-$seed.png" --hdr "$out/$name-ours-$seed.pfm"
+        blender_run tools/cycles/render.py -- "$scene" "$PWD/$out/$name-cycles-$seed.exr" "$samples" "$seed" \
+            "$threads" "$@" >"$out/$name-cycles-$seed.log" 2>&1 ||
+            { echo "compare-cycles.sh: Blender failed on $scene (see $out/$name-cycles-$seed.log)" >&2; exit 2; }
+    done
+    blender_run tools/cycles/compare.py -- "$name" "$block" "$out/$name-ours-1.pfm" "$out/$name-ours-2.pfm" \
+        "$out/$name-cycles-1.exr" "$out/$name-cycles-2.exr" "$PWD/$out/$name-side-by-side.png" 2>"$out/$name-compare.log" |
+        grep '^|' >>"$table" || status=1
+}
+
+# The Cornell box at 128 x 128 with white balls; the daylight scene at 160 x 120.
+sed -e 's/^image .*/image 128 128/' \
+    -e 's/^material mirror .*/material mirror colour 0.725 0.71 0.68 ambient 0 diffuse 1/' \
+    -e 's/^material glass .*/material glass  colour 0.725 0.71 0.68 ambient 0 diffuse 1/' \
+    scenes/15-paths.scene >"$out/cornell.scene"
+sed -e 's/^image .*/image 160 120/' scenes/15-daylight.scene >"$out/daylight.scene"
+compare_one cornell "$out/cornell.scene" 2048 scatter
+compare_one daylight "$out/daylight.scene" 512
+cat "$table"
+if [ "${UPDATE_DOCS:-}" = 1 ]; then
+    doc=docs/15-paths.md
+    awk -v table="$table" '/<!-- cycles-table -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
+                           /<!-- \/cycles-table -->/ { skip = 0 } !skip' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+fi
+exit $status
