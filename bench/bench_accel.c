@@ -204,6 +204,7 @@ static const struct accel accels[] = {
     {"rung 4 prefetch", "rung-4", FAST_BVH, FAST_BVH_RUNG_PREFETCH, 6},
     {"rung 5 build", "rung-5", FAST_BVH, FAST_BVH_RUNG_BUILD, 7},
     {"rung 6 float", "rung-6", FAST_BVH, FAST_BVH_RUNG_FLOAT, 8},
+    {"rung 7 compact", "rung-7", FAST_BVH, FAST_BVH_RUNG_COMPACT, 9},
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
 #define ACCEL_NAIVE 0

@@ -13,6 +13,9 @@
  *  - FAST_BVH_RUNG_FLOAT: all four children's slab tests in one float instruction (child_quad_hit),
  *    made conservative by a bound on their rounding (float_setup_make says how); a ray the bound
  *    cannot cover takes rung 5's test instead.
+ *  - FAST_BVH_RUNG_COMPACT: rung 6's tree and walk with compact leaves: a leaf's triangles are read
+ *    from the mesh by their face numbers (test_triangles), so the 72-byte copy of each triangle in
+ *    leaf order is not made; one more dependent load per triangle test.
  * The traversal is one function specialised at compile time for each query and rung.
  *
  * Layout, chosen for speed. A binary tree is collapsed into a 4-wide one (each node takes its widest
@@ -111,18 +114,31 @@ static bool check_subtree(struct check *c, uint32_t child, uint32_t count, const
 }
 
 bool fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why, size_t why_size) {
-    struct check c = {b, m, calloc(b->triangle_count + 1, 1), calloc(b->node_count + 1, 1), why, why_size};
-    bool ok = c.seen_triangle != NULL && c.seen_node != NULL;
+    if (b->mesh != NULL && b->mesh != m) {
+        snprintf(why, why_size, "compact leaves refer to another mesh than the one checked against");
+        return false;
+    }
+    /* Compact leaves (rung 7) are checked as the triangles they stand for, copied here from the mesh. */
+    struct fast_bvh compact = *b;
+    if (b->mesh != NULL) {
+        compact.triangles = malloc((b->triangle_count + 1) * sizeof *compact.triangles);
+        if (compact.triangles != NULL)
+            bvh_copy_triangles(m, b->faces, b->triangle_count, compact.triangles);
+    }
+    struct check c = {&compact, m, calloc(b->triangle_count + 1, 1), calloc(b->node_count + 1, 1), why, why_size};
+    bool ok = c.seen_triangle != NULL && c.seen_node != NULL && compact.triangles != NULL;
     if (!ok)
         snprintf(why, why_size, "out of memory");
     if (ok)
-        ok = bvh_check_triangles(m, b->triangles, b->faces, b->triangle_count, why, why_size);
+        ok = bvh_check_triangles(m, compact.triangles, b->faces, b->triangle_count, why, why_size);
     if (ok && b->tree_count > 0)
         ok = check_subtree(&c, b->root_child, b->root_count, &b->root_box, 0);
     if (ok)
         ok = bvh_check_faces(m, b->faces, b->triangle_count, b->tree_count, c.seen_triangle, why, why_size);
     free(c.seen_triangle);
     free(c.seen_node);
+    if (b->mesh != NULL)
+        free(compact.triangles);
     return ok;
 }
 
@@ -358,18 +374,28 @@ struct query_state {
 
 /* Tests triangles [first, first + count) for query q with triangle_crossing_prepared (triangle.h), the
  * arithmetic triangle_intersect uses, so t is bit-identical to the brute-force loop's; lowers *box_max
- * as nearer hits turn up. Returns false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's
- * visit said so). */
+ * as nearer hits turn up. With `compact` (rung 7) each triangle's corners are read from the mesh by its
+ * face number, the very doubles the brute-force loop reads; else from the copy in leaf order. Returns
+ * false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
 static inline __attribute__((always_inline)) bool test_triangles(const struct fast_bvh *b,
                                                                  const struct triangle_ray *r, uint32_t first,
                                                                  uint32_t count, double t_min, double t_max,
-                                                                 enum query kind, struct query_state *q,
+                                                                 enum query kind, bool compact, struct query_state *q,
                                                                  double *box_max, uint64_t *tests) {
     for (uint32_t k = first; k < first + count; k++) {
-        const struct bvh_triangle *tri = &b->triangles[k];
         double t, u, v;
+        bool crossed;
         (*tests)++;
-        if (!triangle_crossing_prepared(tri->a, tri->b, tri->c, r, &t, &u, &v) || !(t > t_min && t < t_max))
+        if (compact) {
+            const uint32_t *corner = b->mesh->faces[b->faces[k]].v;
+            const vec3 *vertices = b->mesh->vertices;
+            crossed = triangle_crossing_prepared(vertices[corner[0]], vertices[corner[1]], vertices[corner[2]], r, &t,
+                                                 &u, &v);
+        } else {
+            const struct bvh_triangle *tri = &b->triangles[k];
+            crossed = triangle_crossing_prepared(tri->a, tri->b, tri->c, r, &t, &u, &v);
+        }
+        if (!crossed || !(t > t_min && t < t_max))
             continue;
         uint32_t face = b->faces[k];
         if (kind == QUERY_ANY) {
@@ -394,10 +420,12 @@ static inline __attribute__((always_inline)) bool test_triangles(const struct fa
 
 /* Asks the memory system for a child the ray will visit later, so that it is in cache by then: a big
  * mesh's nodes and triangles do not fit in cache, and each visit otherwise waits for memory. */
-static inline void prefetch_child(const struct fast_bvh *b, uint32_t child, uint32_t count) {
+static inline void prefetch_child(const struct fast_bvh *b, uint32_t child, uint32_t count, bool compact) {
     if (count == 0) {
         __builtin_prefetch(&b->nodes[child]);
         __builtin_prefetch((const char *)&b->nodes[child] + 64);
+    } else if (compact) {
+        __builtin_prefetch(&b->mesh->faces[b->faces[child]]); /* the first face's corners' numbers */
     } else {
         __builtin_prefetch(&b->triangles[child]);
         __builtin_prefetch((const char *)&b->triangles[child] + 64);
@@ -434,7 +462,8 @@ struct stack_entry {
  * q->found. */
 static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh *b, const ray *r, double t_min,
                                                            double t_max, enum query kind, bool simd, bool prefetch,
-                                                           const struct float_setup *f, struct query_state *q) {
+                                                           const struct float_setup *f, bool compact,
+                                                           struct query_state *q) {
     q->found = false;
     q->t = t_max;
     /* The box tests' window: infinite ends replaced by the largest finite doubles, so that a ray
@@ -444,8 +473,8 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
     uint64_t visits = 0, boxes = 0, tests = 0;
     struct ray_setup s = ray_setup_make(r); /* once per query: the box tests' and the triangle test's setup */
     bool running = test_triangles(b, &s.triangle, (uint32_t)b->tree_count,
-                                  (uint32_t)(b->triangle_count - b->tree_count), t_min, t_max, kind, q, &box_max,
-                                  &tests);
+                                  (uint32_t)(b->triangle_count - b->tree_count), t_min, t_max, kind, compact, q,
+                                  &box_max, &tests);
     struct stack_entry stack[FAST_BVH_STACK_SIZE];
     int top = 0;
     uint32_t child = b->root_child, count = b->root_count;
@@ -497,13 +526,13 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
                     int k = order[i];
                     stack[top++] = (struct stack_entry){n->child[k], n->count[k], entry[k >> 1][k & 1]};
                     if (prefetch)
-                        prefetch_child(b, n->child[k], n->count[k]);
+                        prefetch_child(b, n->child[k], n->count[k], compact);
                 }
                 child = n->child[order[0]];
                 count = n->count[order[0]];
                 continue;
             }
-        } else if (!test_triangles(b, &s.triangle, child, count, t_min, t_max, kind, q, &box_max, &tests)) {
+        } else if (!test_triangles(b, &s.triangle, child, count, t_min, t_max, kind, compact, q, &box_max, &tests)) {
             break;
         } else if (kind == QUERY_CLOSEST && box_max < limit_for) { /* a nearer hit: narrow the window */
             float_max = in_float ? float_at_least(box_max) : 0.0f;
@@ -532,22 +561,27 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
 
 /* traverse for query `kind`, specialised for b's rung (a constant in each branch, so each rung gets
  * its own copy of the loop, without the tests of the others). Rung 5 changes only the build, and is
- * walked as rung 4; rung 6 walks rung 5's tree with its float test. */
+ * walked as rung 4; rung 6 walks rung 5's tree with its float test, and rung 7 the same over compact
+ * leaves. */
 static inline __attribute__((always_inline)) bool traverse_rung(const struct fast_bvh *b, const ray *r, double t_min,
                                                                 double t_max, enum query kind, struct query_state *q) {
     struct float_setup f;
     switch (b->rung) {
     case FAST_BVH_RUNG_WIDE:
-        return traverse(b, r, t_min, t_max, kind, false, false, NULL, q);
+        return traverse(b, r, t_min, t_max, kind, false, false, NULL, false, q);
     case FAST_BVH_RUNG_SIMD:
-        return traverse(b, r, t_min, t_max, kind, true, false, NULL, q);
+        return traverse(b, r, t_min, t_max, kind, true, false, NULL, false, q);
     case FAST_BVH_RUNG_PREFETCH:
     case FAST_BVH_RUNG_BUILD:
-        return traverse(b, r, t_min, t_max, kind, true, true, NULL, q);
-    default: /* rung 6, when its bound covers the ray; else rung 5's walk */
+        return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
+    case FAST_BVH_RUNG_FLOAT: /* when its bound covers the ray; else rung 5's walk */
         if (float_setup_make(b, r, t_min, &f))
-            return traverse(b, r, t_min, t_max, kind, true, true, &f, q);
-        return traverse(b, r, t_min, t_max, kind, true, true, NULL, q);
+            return traverse(b, r, t_min, t_max, kind, true, true, &f, false, q);
+        return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
+    default: /* rung 7: rung 6's walk over compact leaves */
+        if (float_setup_make(b, r, t_min, &f))
+            return traverse(b, r, t_min, t_max, kind, true, true, &f, true, q);
+        return traverse(b, r, t_min, t_max, kind, true, true, NULL, true, q);
     }
 }
 
@@ -575,7 +609,7 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
 
 /* ==== the rungs' names ======================================================================== */
 
-static const char *const rung_names[] = {NULL, "plain", "wide", "simd", "prefetch", "build", "float"};
+static const char *const rung_names[] = {NULL, "plain", "wide", "simd", "prefetch", "build", "float", "compact"};
 
 int fast_bvh_rung_from_name(const char *name) {
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++)

@@ -32,9 +32,14 @@ enum fast_bvh_rung {
                                    four ways at once, big pages for big arrays */
     FAST_BVH_RUNG_FLOAT = 6,    /* all four children's slab tests in one float instruction (SSE), made
                                    conservative by a bound on their rounding; triangles still in double */
+    FAST_BVH_RUNG_COMPACT = 7,  /* compact leaves: a leaf's triangles read from the mesh by face number,
+                                   not copied in leaf order (the mesh is kept, not copied) */
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
-#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_FLOAT
+#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_COMPACT
+/* The rung the chapters walk unless told otherwise: the fastest. Rung 7 takes the least memory, but its
+ * frames are slower (docs/11-fast.md). */
+#define FAST_BVH_RUNG_DEFAULT FAST_BVH_RUNG_FLOAT
 
 /* Children per node. */
 #define FAST_BVH_WIDTH 4
@@ -66,8 +71,11 @@ struct fast_bvh {
     bool float_range;                /* every bound of root_box within FAST_BVH_FLOAT_RANGE (fast_bvh.c) of 0:
                                         rung 6 may test its boxes in float */
     uint32_t root_child, root_count; /* the root, as a child is referred to in a node */
-    struct bvh_triangle *triangles;  /* triangle_count entries: tree_count in leaf order, then the slivers */
-    uint32_t *faces;                 /* faces[k] = index into the mesh's faces of triangles[k] */
+    struct bvh_triangle *triangles;  /* triangle_count entries: tree_count in leaf order, then the slivers;
+                                        NULL on rung 7, which reads them from mesh */
+    const struct mesh *mesh;         /* rung 7: the mesh built from, kept (not owned); else NULL */
+    uint32_t *faces;                 /* faces[k] = index into the mesh's faces of the k-th triangle in leaf
+                                        order (triangles[k]) */
     size_t triangle_count, tree_count;
     struct bvh_info info;            /* nodes counted in the 4-wide tree */
 };
@@ -99,8 +107,8 @@ void fast_bvh_get_info(const struct fast_bvh *b, struct bvh_info *info);
  * why (why_size bytes). For tests: it walks the whole tree. */
 bool fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why, size_t why_size);
 
-/* The rung called `name` ("plain", "wide", "simd", "prefetch", "build", "float") or written as its
- * number ("1" to "6"); 0 when there is none. */
+/* The rung called `name` ("plain", "wide", "simd", "prefetch", "build", "float", "compact") or written
+ * as its number ("1" to "7"); 0 when there is none. */
 int fast_bvh_rung_from_name(const char *name);
 
 /* The name of rung r, for reports ("plain", ...); "?" for a number that is not a rung. */

@@ -1,5 +1,5 @@
 /* fast_bvh_build.c: building chapter 11's 4-wide hierarchy, by collapsing chapter 10's tree (rungs 2 to
- * 4) or in float, straight into the 4-wide layout (rung 5) (chapter 11).
+ * 4) or in float, straight into the 4-wide layout (rungs 5 to 7) (chapter 11).
  *
  * Rungs 2 to 4 change only how the tree is stored and walked (fast_bvh.c), so they take chapter 10's
  * tree as it is: bvh_build makes it, and fast_bvh_collapse gives each node four children instead of
@@ -19,7 +19,12 @@
  *    less at the build's peak);
  *  - its big arrays on 2 MB pages (big_alloc).
  * Its tree is not chapter 10's node for node (float centroids, other slots), but as good by the SAH's
- * measure. Where the SAH finds no plane or the tree is deeper than BVH_MAX_DEPTH, chapter 10 halves a
+ * measure.
+ *
+ * Rung 7 (compact leaves) builds as rung 5, but keeps the build's boxes in 12 bytes instead of 32
+ * (struct packed_box: each bound a 16-bit step on a grid over the root's box, rounded outward), because
+ * they set the program's peak memory once the leaves no longer copy the triangles. Its tree is rung 5's
+ * but for boxes up to one grid step larger. Where the SAH finds no plane or the tree is deeper than BVH_MAX_DEPTH, chapter 10 halves a
  * node by its median; rung 5 halves it by count as its triangles lie (all centroids at one point give
  * the same halves), so that there is one quickselect, chapter 10's. The median rule itself is built as
  * on rungs 2 to 4: it is quick already. */
@@ -195,17 +200,109 @@ struct build_range {
     struct float_box box, centroids;
 };
 
+/* ---- rung 7: the build's boxes in 12 bytes ----
+ * A box's six bounds as steps of a grid: bound = base + q * step on each axis, computed in float
+ * (packed_value), q from 0 to FAST_BVH_PACKED_STEPS. base is the low corner of the root's box and the
+ * grid reaches past its high corner, so every bound of the tree is on it; a low bound is rounded down
+ * to the grid and a high one up (packed_below, packed_above), so that the packed box holds the float box
+ * it stands for. The step is no finer than float itself can tell apart near the root's box (2^-22 of
+ * its largest coordinate): then packed_value is off by less than half a step and the roundings take at
+ * most a step or two to settle. */
+#define FAST_BVH_PACKED_STEPS 65535
+#define FAST_BVH_PACKED_FINEST 0x1p-22f /* the finest step, relative to the largest coordinate */
+#define FAST_BVH_PACKED_WIDEN (1.0f + 0x1p-10f) /* how much a step too short for the grid is widened */
+
+struct packed_box {
+    uint16_t lo[3], hi[3];
+};
+
+/* The grid: base and step for each axis (lane 3 is 0 in both, the unused lane of struct float_box). */
+struct packed_grid {
+    float4 base, step;
+};
+
+static inline float packed_value(float base, float step, uint16_t q) { return base + (float)q * step; }
+
+/* The grid over the root's box *root; false when its bounds or the grid's extent are not finite in
+ * float (a mesh beyond float's range: the build then keeps its boxes in full). */
+static bool packed_grid_make(const struct float_box *root, struct packed_grid *g) {
+    g->base = (float4){0, 0, 0, 0};
+    g->step = (float4){0, 0, 0, 0};
+    float largest = 0.0f;
+    for (int a = 0; a < 3; a++) {
+        if (!(isfinite(root->lo[a]) && isfinite(root->hi[a])))
+            return false;
+        largest = fmaxf(largest, fmaxf(fabsf(root->lo[a]), fabsf(root->hi[a])));
+    }
+    for (int a = 0; a < 3; a++) {
+        float lo = root->lo[a], hi = root->hi[a];
+        float step = fmaxf(float_above(((double)hi - (double)lo) / FAST_BVH_PACKED_STEPS), largest * FAST_BVH_PACKED_FINEST);
+        while (isfinite(step) && packed_value(lo, step, FAST_BVH_PACKED_STEPS) < hi)
+            step = nextafterf(step * FAST_BVH_PACKED_WIDEN, INFINITY);
+        if (!isfinite(step) || !isfinite(packed_value(lo, step, FAST_BVH_PACKED_STEPS)))
+            return false;
+        g->base[a] = lo;
+        g->step[a] = step;
+    }
+    return true;
+}
+
+/* The highest grid step at or below x, and the lowest at or above it, for base <= x <= the grid's end. */
+static uint16_t packed_below(float x, float base, float step) {
+    double q = step > 0.0f ? floor(((double)x - base) / step) : 0.0;
+    uint16_t k = (uint16_t)(q < 0.0 ? 0.0 : q > FAST_BVH_PACKED_STEPS ? FAST_BVH_PACKED_STEPS : q);
+    while (k > 0 && packed_value(base, step, k) > x)
+        k--;
+    return k;
+}
+
+static uint16_t packed_above(float x, float base, float step) {
+    double q = step > 0.0f ? ceil(((double)x - base) / step) : 0.0;
+    uint16_t k = (uint16_t)(q < 0.0 ? 0.0 : q > FAST_BVH_PACKED_STEPS ? FAST_BVH_PACKED_STEPS : q);
+    while (k < FAST_BVH_PACKED_STEPS && packed_value(base, step, k) < x)
+        k++;
+    return k;
+}
+
+static struct packed_box packed_box_make(const struct float_box *box, const struct packed_grid *g) {
+    struct packed_box p;
+    for (int a = 0; a < 3; a++) {
+        p.lo[a] = packed_below(box->lo[a], g->base[a], g->step[a]);
+        p.hi[a] = packed_above(box->hi[a], g->base[a], g->step[a]);
+    }
+    return p;
+}
+
+/* The float box p stands for: packed_value on all four lanes at once, the same float steps. */
+static inline struct float_box packed_box_widened(const struct packed_box *p, const struct packed_grid *g) {
+    float4 lo = {p->lo[0], p->lo[1], p->lo[2], 0.0f}, hi = {p->hi[0], p->hi[1], p->hi[2], 0.0f};
+    return (struct float_box){g->base + lo * g->step, g->base + hi * g->step};
+}
+
 struct builder {
     struct float_box *prims;     /* one padded box per triangle; the splits reorder them into leaf order */
+    struct packed_box *packed;   /* rung 7: the same in 12 bytes, on the grid (prims is then NULL) */
+    struct packed_grid grid;
     uint32_t *faces;             /* the face number of each prim, reordered along with them */
     struct fast_bvh_node *nodes; /* the 4-wide tree */
     struct tree_shape shape;
 };
 
+/* Prim k's box. */
+static inline struct float_box prim_box(const struct builder *bd, uint32_t k) {
+    return bd->packed != NULL ? packed_box_widened(&bd->packed[k], &bd->grid) : bd->prims[k];
+}
+
 static inline void swap_prims(struct builder *bd, uint32_t i, uint32_t j) {
-    struct float_box box = bd->prims[i];
-    bd->prims[i] = bd->prims[j];
-    bd->prims[j] = box;
+    if (bd->packed != NULL) {
+        struct packed_box box = bd->packed[i];
+        bd->packed[i] = bd->packed[j];
+        bd->packed[j] = box;
+    } else {
+        struct float_box box = bd->prims[i];
+        bd->prims[i] = bd->prims[j];
+        bd->prims[j] = box;
+    }
     uint32_t face = bd->faces[i];
     bd->faces[i] = bd->faces[j];
     bd->faces[j] = face;
@@ -216,8 +313,9 @@ static void range_bounds(const struct builder *bd, struct build_range *r) {
     r->box = float_box_empty();
     r->centroids = float_box_empty();
     for (uint32_t k = r->begin; k < r->end; k++) {
-        float_box_grow(&r->box, bd->prims[k].lo, bd->prims[k].hi);
-        float4 c = centroid_of(&bd->prims[k]);
+        struct float_box p = prim_box(bd, k);
+        float_box_grow(&r->box, p.lo, p.hi);
+        float4 c = centroid_of(&p);
         float_box_grow(&r->centroids, c, c);
     }
 }
@@ -265,13 +363,13 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
             for (int k = 0; k < slots; k++)
                 bins[set][a][k] = (struct bin){float_box_empty(), 0};
     for (uint32_t i = r->begin; i < r->end; i++) {
-        const struct float_box *p = &bd->prims[i];
-        int4 k = bins_of(centroid_of(p), r->centroids.lo, scale, slots);
+        struct float_box p = prim_box(bd, i);
+        int4 k = bins_of(centroid_of(&p), r->centroids.lo, scale, slots);
         struct bin (*set)[BVH_BINS] = bins[sets == 1 ? 0 : i % FAST_BVH_BIN_SETS]; /* a constant %: a mask */
         for (int a = 0; a < 3; a++) {
             struct bin *slot = &set[a][k[a]];
             slot->count++;
-            float_box_grow(&slot->box, p->lo, p->hi);
+            float_box_grow(&slot->box, p.lo, p.hi);
         }
     }
     for (int set = 1; set < sets; set++)
@@ -331,7 +429,8 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
     *right = (struct build_range){r->end, r->end, float_box_empty(), float_box_empty()};
     uint32_t i = r->begin, j = r->end; /* [begin,i) go left, [j,end) go right */
     while (i < j) {
-        float4 c = centroid_of(&bd->prims[i]);
+        struct float_box p = prim_box(bd, i);
+        float4 c = centroid_of(&p);
         if (bins_of(c, r->centroids.lo, scale, slots)[best_axis] < best_plane) {
             float_box_grow(&left->centroids, c, c);
             i++;
@@ -422,35 +521,62 @@ static uint32_t build_node(struct builder *bd, const struct build_range *left, c
     return out;
 }
 
+/* The box of face f of m grown by pad (bvh_face_box) and rounded outward to float, in *box; false, leaving
+ * *box alone, for a sliver. */
+static bool face_float_box(const struct mesh *m, size_t f, double pad, struct float_box *box) {
+    struct aabb padded;
+    if (!bvh_face_box(m, f, pad, &padded))
+        return false;
+    padded = rounded_to_float(padded);
+    *box = (struct float_box){{(float)padded.min.x, (float)padded.min.y, (float)padded.min.z, 0.0f},
+                              {(float)padded.max.x, (float)padded.max.y, (float)padded.max.z, 0.0f}};
+    return true;
+}
+
 /* Rung 5's build of b (its triangle_count set) over the faces of m, by the SAH: fills b's faces,
- * root, nodes and info. Returns false when memory runs out. */
-static bool build_in_float(struct fast_bvh *b, const struct mesh *m) {
+ * root, nodes and info. With `packed` (rung 7), the build's boxes are kept in 12 bytes each where the
+ * mesh is within float's range (struct packed_box). Returns false when memory runs out. */
+static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed) {
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
-    struct float_box *prims = big_alloc((n ? n : 1) * sizeof *prims, true);
+    double pad = triangle_box_pad(m);
+    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, NULL, {0.0, 0, 0, 0, 0.0}};
+    struct float_box box;
+    if (packed) { /* a first pass for the root's box, which the grid spans */
+        struct float_box root = float_box_empty();
+        for (size_t f = 0; f < n; f++)
+            if (face_float_box(m, f, pad, &box))
+                float_box_grow(&root, box.lo, box.hi);
+        packed = packed_grid_make(&root, &bd.grid);
+    }
+    if (packed)
+        bd.packed = big_alloc((n ? n : 1) * sizeof *bd.packed, true);
+    else
+        bd.prims = big_alloc((n ? n : 1) * sizeof *bd.prims, true);
     b->nodes = big_alloc(most_nodes * sizeof *b->nodes, true);
     b->faces = big_alloc((n ? n : 1) * sizeof *b->faces, true);
-    if (b->nodes == NULL || b->faces == NULL || prims == NULL) {
-        free(prims);
+    if (b->nodes == NULL || b->faces == NULL || (bd.prims == NULL && bd.packed == NULL)) {
+        free(bd.prims);
+        free(bd.packed);
         return false;
     }
     /* Tree faces first (their prims: padded boxes, rounded outward), slivers at the end of faces[]. */
-    double pad = triangle_box_pad(m);
     size_t tree = 0, slivers = 0;
     for (size_t f = 0; f < n; f++) {
-        struct aabb box;
-        if (!bvh_face_box(m, f, pad, &box)) {
+        if (!face_float_box(m, f, pad, &box)) {
             b->faces[n - ++slivers] = (uint32_t)f;
             continue;
         }
-        box = rounded_to_float(box);
-        prims[tree] = (struct float_box){{(float)box.min.x, (float)box.min.y, (float)box.min.z, 0.0f},
-                                         {(float)box.max.x, (float)box.max.y, (float)box.max.z, 0.0f}};
+        if (packed)
+            bd.packed[tree] = packed_box_make(&box, &bd.grid);
+        else
+            bd.prims[tree] = box;
         b->faces[tree++] = (uint32_t)f;
     }
     b->tree_count = tree;
 
-    struct builder bd = {prims, b->faces, b->nodes, {0.0, 0, 0, 0, 0.0}};
+    bd.faces = b->faces;
+    bd.nodes = b->nodes;
     struct build_range root = {0, (uint32_t)tree, float_box_empty(), float_box_empty()}, halves[2];
     range_bounds(&bd, &root);
     b->root_box = float_box_widened(&root.box);
@@ -462,7 +588,8 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m) {
         count_child(&bd.shape, b->root_box, (uint32_t)tree, 0); /* the whole tree is one leaf */
         b->root_count = (uint32_t)tree;
     }
-    free(prims);
+    free(bd.prims);
+    free(bd.packed);
     b->node_count = bd.shape.node_count;
     b->info = (struct bvh_info){bd.shape.node_count + bd.shape.leaves, bd.shape.leaves, bd.shape.max_depth, 0.0,
                                 bd.shape.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
@@ -486,6 +613,11 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         bvh_free(binary);
         if (b != NULL)
             b->float_range = in_float_range(b->root_box);
+        if (b != NULL && rung == FAST_BVH_RUNG_COMPACT) { /* the median tree's leaves made compact */
+            free(b->triangles);
+            b->triangles = NULL;
+            b->mesh = m;
+        }
         return b;
     }
     double start = clock_seconds();
@@ -494,19 +626,25 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         return NULL;
     b->rung = rung;
     b->triangle_count = m->face_count;
-    if (!build_in_float(b, m)) {
+    if (!build_in_float(b, m, rung == FAST_BVH_RUNG_COMPACT)) {
         fast_bvh_free(b);
         return NULL;
     }
-    /* The triangles in leaf order, as the intersection test wants them; allocated only now that the
-     * build's boxes are freed, so that the peak memory holds one or the other. */
+    /* Rung 7's leaves read the triangles from m itself. Below it, the triangles in leaf order, as the
+     * intersection test wants them; allocated only now that the build's boxes are freed, so that the
+     * peak memory holds one or the other. */
+    b->float_range = in_float_range(b->root_box);
+    b->info.build_ms = 1e3 * (clock_seconds() - start);
+    if (rung == FAST_BVH_RUNG_COMPACT) {
+        b->mesh = m;
+        return b;
+    }
     b->triangles = big_alloc((b->triangle_count ? b->triangle_count : 1) * sizeof *b->triangles, true);
     if (b->triangles == NULL) {
         fast_bvh_free(b);
         return NULL;
     }
     bvh_copy_triangles(m, b->faces, b->triangle_count, b->triangles);
-    b->float_range = in_float_range(b->root_box);
     b->info.build_ms = 1e3 * (clock_seconds() - start);
     return b;
 }

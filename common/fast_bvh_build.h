@@ -1,5 +1,5 @@
 /* fast_bvh_build.h: building chapter 11's 4-wide hierarchy (fast_bvh.h), by collapsing chapter 10's
- * binary tree (rungs 2 to 4) or in float, straight into the 4-wide layout (rung 5) (chapter 11). */
+ * binary tree (rungs 2 to 4) or in float, straight into the 4-wide layout (rungs 5 to 7) (chapter 11). */
 #ifndef WHITTED_FAST_BVH_BUILD_H
 #define WHITTED_FAST_BVH_BUILD_H
 
@@ -9,9 +9,10 @@
 
 /* Builds a hierarchy over the faces of m with the given split rule, at the given rung (from
  * FAST_BVH_RUNG_FIRST to FAST_BVH_RUNG_TOP; others give NULL): chapter 10's bvh_build collapsed by
- * fast_bvh_collapse on rungs 2 to 4; on rung 5 the float build by the SAH (the median split, quick
- * already, is built as on rung 4). m is only read, and not kept: it may be changed or freed
- * afterwards. A mesh without faces gives a hierarchy that nothing hits. Returns NULL when memory runs
+ * fast_bvh_collapse on rungs 2 to 4; from rung 5 on the float build by the SAH (the median split, quick
+ * already, is built as on rung 4). Below rung 7, m is only read, and not kept: it may be changed or
+ * freed afterwards. On rung 7 (compact leaves) the hierarchy reads its triangles from m: m must stay
+ * as it is until the hierarchy is freed. A mesh without faces gives a hierarchy that nothing hits. Returns NULL when memory runs
  * out. Free the result with fast_bvh_free. */
 struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum fast_bvh_rung rung);
 

@@ -89,7 +89,7 @@ Test(acceleration, every_rung_of_chapter_11_draws_the_brute_force_picture, .time
     const char *scene = chapter_scene(9);
     const char *brute = TEST_OUT "/brute-force-09-for-11.png";
     cr_assert_eq(render_chapter(11, scene, brute, "--accel none"), 0);
-    static const char *const rungs[] = {"1", "2", "3", "4", "5", "6"};
+    static const char *const rungs[] = {"1", "2", "3", "4", "5", "6", "7"};
     for (size_t k = 0; k < sizeof rungs / sizeof rungs[0]; k++) {
         char extra[64], tag[32];
         snprintf(extra, sizeof extra, "--rung %s", rungs[k]);
@@ -97,6 +97,7 @@ Test(acceleration, every_rung_of_chapter_11_draws_the_brute_force_picture, .time
         check_identical(11, scene, extra, brute, tag);
     }
     check_identical(11, scene, "--rung float --split seed", brute, "rung-6-median");
+    check_identical(11, scene, "--rung compact --split seed", brute, "rung-7-median");
     check_identical(11, scene, "--rung plain --split seed", brute, "rung-1-median");
 }
 

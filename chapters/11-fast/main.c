@@ -2,8 +2,9 @@
  * walked for speed, one optimisation (a rung) at a time.
  *
  * The fast hierarchy is in common/fast_bvh.c and is plugged into the world by common/accel_fast_bvh.c.
- * --rung N (1 to 6) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 5 (the
- * default) everything. The picture is chapter 10's on every rung; only the time changes. */
+ * --rung N (1 to 7) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6 (the
+ * default) the fastest, 7 the smallest. The picture is chapter 10's on every rung; only the time and
+ * the memory change. */
 #include <stdio.h>
 #include <string.h>
 
@@ -17,24 +18,38 @@
 #include "whitted.h"
 
 static struct accel_choice choice = {ACCEL_BVH, true};
-static int rung = FAST_BVH_RUNG_TOP;
+static int rung = FAST_BVH_RUNG_DEFAULT;
 
 static int parse_option(const char *option, const char *value) {
     if (strcmp(option, "--rung") == 0) {
         rung = value != NULL ? fast_bvh_rung_from_name(value) : 0;
         if (rung != 0)
             return 2;
-        fprintf(stderr, "--rung needs 1 to 6 or one of: plain wide simd prefetch build float; got '%s'\n",
+        fprintf(stderr, "--rung needs 1 to 7 or one of: plain wide simd prefetch build float compact; got '%s'\n",
                 value != NULL ? value : "");
         return -1;
     }
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
+/* Rung 7: frees the scene's meshes once w has gathered their triangles, so that the program does not
+ * hold them twice. Afterwards the world reads only the gathered copy, except where a transparent
+ * mesh's inside is asked for (interior.c) and where the POV-Ray twin writes the meshes out (--pov):
+ * those meshes, or then all of them, are kept. */
+static void free_gathered_meshes(struct scene *s, bool writing_twin) {
+    for (size_t k = 0; k < s->mesh_count && !writing_twin; k++) {
+        const struct material *m = &s->materials[s->meshes[k].material];
+        if (!(m->filter > 0.0 || m->transmit > 0.0)) /* opaque, as interior.c tells */
+            mesh_free(&s->meshes[k].mesh);
+    }
+}
+
 /* Builds the world with the chosen structure over every triangle of the scene: chapter 9's, or the BVH
  * at the chosen rung. */
-static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
+static struct accel_world *prepare(struct scene *s, bool writing_twin, char *err, size_t err_size) {
     struct accel_world *w = accel_world_create(s, &choice, err, err_size);
+    if (w != NULL && choice.kind == ACCEL_BVH && rung == FAST_BVH_RUNG_COMPACT)
+        free_gathered_meshes(s, writing_twin);
     if (w != NULL && choice.kind == ACCEL_BVH &&
         !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, rung, err, err_size)) {
         accel_world_destroy(w);
@@ -54,8 +69,8 @@ int main(int argc, char **argv) {
         .lighting = POV_WHITTED,
         .parse_option = parse_option,
         .options_help = "  --rung R         how much of the speed-up to use: 1 plain (chapter 10's BVH),\n"
-                        "                   2 wide, 3 simd, 4 prefetch, 5 build, 6 float (the default); a number\n"
-                        "                   or a name\n"
+                        "                   2 wide, 3 simd, 4 prefetch, 5 build, 6 float (the default),\n"
+                        "                   7 compact (the least memory); a number or a name\n"
                         "  --accel KIND     none, kdtree or bvh (default bvh: the fast BVH at the chosen rung)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
                         "                   kd-tree: the axis holding most objects)\n",
@@ -65,7 +80,7 @@ int main(int argc, char **argv) {
         return cli_finish(&run);
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
+    struct accel_world *w = prepare(&run.scene, run.options.pov != NULL, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
     if (cli_render(&run, whitted_trace, &w->world))

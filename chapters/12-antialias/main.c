@@ -4,7 +4,7 @@
  * The scene's antialias line says how (common/antialias.h): a regular n x n grid, jittered samples,
  * or POV-Ray's two adaptive rules, which spend more rays only where neighbouring colours differ. The
  * sampling is in common/supersample.c, its random numbers in common/sample_hash.c. Everything else
- * is chapter 11's: the fast BVH at its top rung, the same shading, the same threads. --heatmap shows
+ * is chapter 11's: the fast BVH at its default rung, the same shading, the same threads. --heatmap shows
  * how many camera rays each pixel took. */
 #include "accel_fast_bvh.h"
 #include "box.h"
@@ -23,11 +23,11 @@ static int parse_option(const char *option, const char *value) {
 }
 
 /* Builds the world with the chosen structure over every triangle of the scene: chapter 9's, or the BVH
- * at chapter 11's top rung. */
+ * at chapter 11's default rung. */
 static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
     struct accel_world *w = accel_world_create(s, &choice, err, err_size);
     if (w != NULL && choice.kind == ACCEL_BVH &&
-        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_TOP, err,
+        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_DEFAULT, err,
                                   err_size)) {
         accel_world_destroy(w);
         return NULL;

@@ -25,11 +25,11 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* Builds the world as chapters 12 and 13 do: the chosen structure, the BVH at chapter 11's top rung. */
+/* Builds the world as chapters 12 and 13 do: the chosen structure, the BVH at chapter 11's default rung. */
 static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
     struct accel_world *w = accel_world_create(s, &choice, err, err_size);
     if (w != NULL && choice.kind == ACCEL_BVH &&
-        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_TOP, err,
+        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_DEFAULT, err,
                                   err_size)) {
         accel_world_destroy(w);
         return NULL;
