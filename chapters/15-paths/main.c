@@ -17,6 +17,7 @@
 #include "cli.h"
 #include "emitter.h"
 #include "fast_bvh.h"
+#include "lens.h"
 #include "mesh_surface.h"
 #include "outfile.h"
 #include "path_image.h"
@@ -83,6 +84,13 @@ int main(int argc, char **argv) {
     if (point_lights > 0 && !run.options.quiet)
         fprintf(stderr, "%s: chapter 15 ignores %d point light%s (a point has no area to emit from)\n", s->path,
                 point_lights, point_lights == 1 ? "" : "s");
+    /* Each path picks its own point of the pixel, so the antialias line has nothing to say; the lens is
+     * chapter 13's, which the paths do not sample. */
+    if ((s->antialias.line != 0 || lens_is_open(&s->lens)) && !run.options.quiet)
+        fprintf(stderr, "%s: chapter 15 ignores %s (each path samples the pixel itself, through a pinhole)\n", s->path,
+                s->antialias.line != 0 && lens_is_open(&s->lens) ? "the antialias line and the camera's lens"
+                : s->antialias.line != 0                         ? "the antialias line"
+                                                                 : "the camera's lens");
     struct accel_world *w = prepare(s, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
