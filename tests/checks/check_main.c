@@ -66,8 +66,8 @@ const struct task check_tasks[] = {
     {"14.1", "the checker pattern", "checker in common/texture.c", ""},
     {"14.2", "the interpolated normal", "mesh_surface_normal in common/mesh_surface.c", ""},
     {"14.P", "chapter 14's picture", "chapters/14-textures", "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.2 11.2 14.1 14.2"},
-    {"15.1", "next-event estimation, and its weight against scattering", "path_direct_light in common/path_trace.c", ""},
-    {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "15.1"},
+    {"15.1", "next-event estimation, and its weight against scattering", "path_direct_light in common/path_trace.c", "2.1"},
+    {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "2.2 15.1"},
     {"15.P", "chapter 15's picture", "chapters/15-paths", "2.1 2.2 5.1 6.1 8.1 11.2 15.1 15.2"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
