@@ -178,7 +178,9 @@ $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/comm
 # bunny, the sphere and the grids), chapter 10's picture by 1, 2 and 4 threads
 # (chapters 12 and 13 check their own in make test), the results page's staleness checks; and the
 # proofs that the picture checks catch a planted fault (a wrong index of refraction, an extra trace
-# level, a wrong grid or threshold, a hard shadow), while the checks themselves run in make test.
+# level, a wrong grid or threshold, a hard shadow), while the checks themselves run in make test; rung
+# 6 on meshes where a float step is the mesh's size (with the other float-range cases); chapter 12's
+# grids of 2 and 4 against POV-Ray (make test compares the grid of 3 and the other methods).
 # Chapter 11's agreement with POV-Ray is long too: its scene and its reference picture are chapter
 # 10's, whose agreement make test checks, and make test holds chapter 11's picture to that reference.
 # make test and make test-long together run every test once; CI runs both (.ci/run).
@@ -204,7 +206,9 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               povray_agreement/chapter_11_fast_agrees_with_povray reference_image/catches_a_wrong_ior \
               povray_agreement/catches_one_extra_trace_level povray_agreement/chapter_12_checks_catch_* \
               povray_agreement/chapter_13_check_catches_a_hard_shadow \
-              reference_image/chapter_15_paths_matches_its_reference
+              reference_image/chapter_15_paths_matches_its_reference \
+              accel/rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mesh \
+              povray_agreement/chapter_12_grid_of_2_and_of_4
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))

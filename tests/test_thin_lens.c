@@ -161,8 +161,8 @@ Test(thin_lens, rays_leave_the_lens_and_meet_on_the_focal_plane) {
 
 Test(thin_lens, the_picture_is_the_same_for_1_and_2_threads, .timeout = 120) {
     const char *one = TEST_OUT "/lens-1.png", *two = TEST_OUT "/lens-2.png";
-    cr_assert_eq(render_chapter(13, FOCUS_SCENE, one, "--threads 1"), 0);
-    cr_assert_eq(render_chapter(13, FOCUS_SCENE, two, "--threads 2"), 0);
+    cr_assert_eq(render_chapter(13, FOCUS_SCENE, one, "--width 160 --height 120 --threads 1"), 0);
+    cr_assert_eq(render_chapter(13, FOCUS_SCENE, two, "--width 160 --height 120 --threads 2"), 0);
     struct image_difference d = compare_png(one, two);
     cr_expect_eq(d.max, 0, "1 and 2 threads differ by up to %d levels", d.max);
 }

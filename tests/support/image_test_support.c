@@ -203,13 +203,20 @@ void report_difference(const char *what, const struct image_difference *d) {
             100.0 * d->within_1, 100.0 * d->within_2);
 }
 
-struct image_difference variant_against_povray(int n, const char *old_line, const char *new_line, const char *name) {
-    char variant[512], ours[256], theirs[256], what[512];
+struct image_difference variant_against_povray(int n, const char *old_line, const char *new_line, const char *name,
+                                              int divisor) {
+    char variant[512], ours[256], theirs[256], what[512], size[64], smaller[64];
     snprintf(variant, sizeof variant, "%s.%s.variant", chapter_scene(n), name);
     snprintf(ours, sizeof ours, TEST_OUT "/%s-ours.png", name);
     snprintf(theirs, sizeof theirs, TEST_OUT "/%s-povray.png", name);
-    const char *olds[] = {old_line}, *news[] = {new_line};
-    write_scene_variant(chapter_scene(n), variant, olds, news, 1, NULL);
+    struct scene s;
+    char err[512];
+    cr_assert(scene_load(chapter_scene(n), NULL, &s, err, sizeof err), "%s", err);
+    snprintf(size, sizeof size, "image %d %d", s.width, s.height);
+    snprintf(smaller, sizeof smaller, "image %d %d", s.width / divisor, s.height / divisor);
+    scene_free(&s);
+    const char *olds[] = {old_line, size}, *news[] = {new_line, smaller};
+    write_scene_variant(chapter_scene(n), variant, olds, news, divisor > 1 ? 2 : 1, NULL);
     int status = render_chapter(n, variant, ours, "");
     bool rendered = render_povray(n, variant, theirs);
     remove(variant);
@@ -219,4 +226,11 @@ struct image_difference variant_against_povray(int n, const char *old_line, cons
     snprintf(what, sizeof what, "chapter %d '%s' vs POV-Ray", n, new_line);
     report_difference(what, &d);
     return d;
+}
+
+void expect_variant_agrees_with_povray(int n, const char *old_line, const char *new_line, const char *name,
+                                       int divisor) {
+    struct image_difference d = variant_against_povray(n, old_line, new_line, name, divisor);
+    cr_expect_geq(d.within_1, VARIANT_AGREEMENT_MIN_WITHIN_1, "'%s': %.4f %% of pixels within 1 level of POV-Ray, max %d",
+                  new_line, 100 * d.within_1, d.max);
 }
