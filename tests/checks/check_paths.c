@@ -67,6 +67,11 @@ CHECK(check_direct_tilted) {
 }
 
 CHECK(check_direct_blocked_or_behind) {
+    /* Nothing is an answer only beside a point that does see the ball: without the triangle, facing up,
+     * the same point must get its 1/16 first (an empty body would pass the two cases below). */
+    if (!direct_is(vec3_make(0, 1, 0), 1.0 / 16, "before hiding it, the ball straight above a white point", why,
+                   why_size))
+        return false;
     double mean, error;
     if (!direct_mean("triangle a -5 1 -5 b 5 1 -5 c 0 1 5\n", vec3_make(0, 1, 0), &mean, &error, why, why_size))
         return false;
