@@ -133,7 +133,7 @@ static struct page pages[] = {
     {"docs/01-camera.md"}, {"docs/02-sphere.md"}, {"docs/03-triangle.md"}, {"docs/04-plane.md"},
     {"docs/05-aabb.md"},   {"docs/06-phong.md"},  {"docs/07-shadows.md"},  {"docs/08-recursion.md"},
     {"docs/09-kdtree.md"}, {"docs/10-bvh.md"}, {"docs/11-fast.md"}, {"docs/12-antialias.md"},
-    {"docs/13-distributed.md"}, {"docs/14-textures.md"},
+    {"docs/13-distributed.md"}, {"docs/14-textures.md"}, {"docs/15-paths.md"},
 };
 
 ParameterizedTestParameters(doc_outputs, quoted_output_is_what_the_program_prints) {
