@@ -137,6 +137,7 @@ include tools/models/models.mk
 include bench/bench.mk
 include fuzz/fuzz.mk
 include tools/results/results.mk
+include web/web.mk
 # The teapot generator is compiled too, so after the packages step (models.mk also works without this
 # Makefile, so it cannot name `deps` itself).
 $(MODELS_TEAPOT): | deps
