@@ -10,13 +10,15 @@
 const CHAPTERS = ["camera", "sphere", "triangle", "plane", "aabb", "phong", "shadows", "recursion", "kdtree",
                   "bvh", "fast", "antialias", "distributed", "textures", "paths"];
 const RUNGS = ["plain", "wide", "simd", "prefetch", "build", "float", "compact"];
-const COARSE = 4;        // while dragging, the picture is this many times smaller each way
+// While the camera moves, the picture is state.coarse times smaller each way: 4 to start with, then
+// whatever keeps one coarse picture near COARSE_MS of the program's time (between 2 and 16).
+const COARSE_MS = 30;
 const TYPING_PAUSE = 300; // ms without typing before the picture follows the editor
 
 const $ = id => document.getElementById(id);
 const state = {
     chapter: 8, scenes: [], worker: null, running: null, pending: null, nextId: 1, typing: 0,
-    picture: null, dragging: null,
+    picture: null, dragging: null, coarse: 4,
 };
 // What the browser test reads: every render's kind, times and status, the last full render.
 window.whitted = {renders: [], fullShown: 0, lastFull: null, loadedAt: performance.now()};
@@ -96,7 +98,7 @@ function commandArgs(text, coarse) {
         args.push("--rung", $("rung").value);
     let [w, h] = pictureSize(text);
     if (coarse)
-        [w, h] = [Math.max(1, Math.ceil(w / COARSE)), Math.max(1, Math.ceil(h / COARSE))];
+        [w, h] = [Math.max(1, Math.ceil(w / state.coarse)), Math.max(1, Math.ceil(h / state.coarse))];
     if (coarse || $("size").value)
         args.push("--width", String(w), "--height", String(h));
     if ($("heatmap").checked && !coarse)
@@ -144,7 +146,10 @@ async function finished(result) {
         return;
     state.running = null;
     const ms = performance.now() - job.started;
-    window.whitted.renders.push({coarse: job.coarse, ms, programMs: result.ms, status: result.status});
+    window.whitted.renders.push({coarse: job.coarse, ms, programMs: result.ms, status: result.status,
+                                 at: performance.now(), args: job.args});
+    if (job.coarse && result.status === 0)
+        state.coarse = Math.min(16, Math.max(2, state.coarse * Math.sqrt(result.ms / COARSE_MS)));
     await show(job, result, ms);
     if (state.pending) {
         const next = state.pending;
@@ -297,6 +302,7 @@ async function loadScene(name) {
     const response = await fetch(`scenes/${name}`);
     $("scene").value = await response.text();
     updateSceneLink();
+    render(true); // a quick first view, then the full picture
     render(false);
 }
 
