@@ -199,6 +199,30 @@ def drag(page, seconds):
     return len(coarse) / elapsed, mean, elapsed
 
 
+def measure_chapter_8(page, build, label, shown):
+    """On chapter 8's page, after `shown` full pictures: the full picture at 640 x 480 against the
+    native one and the time it takes (three renders, at depths 5, 3 and the scene's), then the frame
+    rate while the camera is dragged at the scene's size, ending at rest."""
+    page.set_control("size", "640x480")
+    page.wait_idle(shown + 1)
+    got = compare_with_native(page, build, 8, f"{label} at 640 x 480")
+    times = []
+    for depth in ("5", "3", ""):
+        n = page.full_shown()
+        page.set_control("max-depth", depth)
+        page.wait_idle(n + 1)
+        times.append(page.js("return window.whitted.renders[window.whitted.renders.length - 1].ms"))
+    native = run_native(build, 8, got["args"], got["text"], threads=1)[5]
+    print(f"{label} at 640 x 480 at rest: {sorted(times)[1] / 1000:.2f} s (median of 3; target 1 s); "
+          f"native, one thread: {native:.2f} s")
+    page.set_control("size", "")
+    page.wait_idle(page.full_shown())
+    fps, mean, elapsed = drag(page, 4)
+    print(f"{label} dragged for {elapsed:.1f} s: {fps:.1f} coarse frames a second (target 15), "
+          f"{mean:.0f} ms a frame from request to canvas")
+    page.wait_idle(page.full_shown() + 1)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--web", default="build/web")
@@ -242,48 +266,12 @@ def main():
         compare_with_native(page, o.build, 8, "chapter 8 heat-map")
         page.set_control("heatmap", False)
         page.wait_idle(n + 2)
-        page.set_control("size", "640x480")
-        page.wait_idle(n + 3)
-        got = compare_with_native(page, o.build, 8, "chapter 8 at 640 x 480")
-        times = []
-        for depth in ("5", "3", ""):
-            n = page.full_shown()
-            page.set_control("max-depth", depth)
-            page.wait_idle(n + 1)
-            times.append(page.js("return window.whitted.renders[window.whitted.renders.length - 1].ms"))
-        times.sort()
-        native = run_native(o.build, 8, got["args"], got["text"], threads=1)[5]
-        print(f"chapter 8 at 640 x 480 at rest: {times[1] / 1000:.2f} s (median of 3; target 1 s); "
-              f"native, one thread: {native:.2f} s")
-        page.set_control("size", "")
-        page.wait_idle(page.full_shown())
-        fps, mean, elapsed = drag(page, 4)
-        print(f"chapter 8 dragged for {elapsed:.1f} s: {fps:.1f} coarse frames a second (target 15), "
-              f"{mean:.0f} ms a frame from request to canvas")
-        page.wait_idle(page.full_shown() + 1)
+        measure_chapter_8(page, o.build, "chapter 8", n + 2)
         compare_with_native(page, o.build, 8, "chapter 8 after the drag (the moved camera's scene)")
 
         # Chapter 8's other scene, the glass of water (no mesh): the same measures.
         page.open("chapter=8&scene=08-glass-of-water.scene")
-        n = page.full_shown()
-        page.set_control("size", "640x480")
-        page.wait_idle(n + 1)
-        got = compare_with_native(page, o.build, 8, "chapter 8, glass of water, at 640 x 480")
-        times = []
-        for depth in ("5", "3", ""):
-            n = page.full_shown()
-            page.set_control("max-depth", depth)
-            page.wait_idle(n + 1)
-            times.append(page.js("return window.whitted.renders[window.whitted.renders.length - 1].ms"))
-        native = run_native(o.build, 8, got["args"], got["text"], threads=1)[5]
-        print(f"chapter 8, glass of water, at 640 x 480 at rest: {sorted(times)[1] / 1000:.2f} s (median of 3; "
-              f"target 1 s); native, one thread: {native:.2f} s")
-        page.set_control("size", "")
-        page.wait_idle(page.full_shown())
-        fps, mean, elapsed = drag(page, 4)
-        print(f"chapter 8, glass of water, dragged for {elapsed:.1f} s: {fps:.1f} coarse frames a second "
-              f"(target 15), {mean:.0f} ms a frame from request to canvas")
-        page.wait_idle(page.full_shown() + 1)
+        measure_chapter_8(page, o.build, "chapter 8, glass of water,", page.full_shown())
         page.open("chapter=8")
 
         # A broken line: the native program's message.
