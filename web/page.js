@@ -3,7 +3,7 @@
 //
 // Every picture is the chapter program's own, run with a command line the page shows (the same line
 // gives the same picture natively). While the camera moves the program draws a coarse picture (a
-// quarter of the width and height, one sample a pixel); at rest, the full one. A new change while a
+// fraction of the width and height, one sample a pixel); at rest, the full one. A new change while a
 // full picture is being drawn stops it (the worker is ended and a new one started).
 "use strict";
 
@@ -11,14 +11,20 @@ const CHAPTERS = ["camera", "sphere", "triangle", "plane", "aabb", "phong", "sha
                   "bvh", "fast", "antialias", "distributed", "textures", "paths"];
 const RUNGS = ["plain", "wide", "simd", "prefetch", "build", "float", "compact"];
 // While the camera moves, the picture is state.coarse times smaller each way: 4 to start with, then
-// whatever keeps one coarse picture near COARSE_MS of the program's time (between 2 and 16).
-const COARSE_MS = 30;
+// whatever keeps one coarse picture near COARSE_MS of the program's time (from COARSE_MIN to COARSE_MAX).
+const COARSE_MS = 30, COARSE_START = 4, COARSE_MIN = 2, COARSE_MAX = 16;
+// The canvas's size for a scene whose image line cannot be read (the program then reports the error).
+const DEFAULT_SIZE = [400, 300];
+const DEFAULT_CHAPTER = 8; // shown when the address names none
 const TYPING_PAUSE = 300; // ms without typing before the picture follows the editor
+// The camera under the mouse: radians of orbit a pixel, the distance to the target panned a pixel, the
+// distance's factor a wheel unit (as exp), and the highest and lowest the eye goes (radians of pitch).
+const ORBIT_PER_PIXEL = 0.01, PAN_PER_PIXEL = 0.002, ZOOM_PER_WHEEL = 0.001, PITCH_LIMIT = 1.5;
 
 const $ = id => document.getElementById(id);
 const state = {
-    chapter: 8, scenes: [], worker: null, running: null, pending: null, nextId: 1, typing: 0,
-    picture: null, dragging: null, coarse: 4,
+    chapter: DEFAULT_CHAPTER, scenes: [], worker: null, running: null, pending: null, nextId: 1, typing: 0,
+    picture: null, dragging: null, coarse: COARSE_START,
 };
 // What the browser test reads: every render's kind, times and status, the last full render.
 window.whitted = {renders: [], fullShown: 0, lastFull: null, loadedAt: performance.now()};
@@ -62,10 +68,8 @@ function writeCamera(text, eye, target) {
 
 function readImageSize(text) {
     const k = sceneLine(text, "image");
-    if (k < 0)
-        return [400, 300];
-    const w = text.split("\n")[k].trim().split(/\s+/);
-    return [Number(w[1]) || 400, Number(w[2]) || 300];
+    const w = k < 0 ? [] : text.split("\n")[k].replace(/#.*/, "").trim().split(/\s+/);
+    return [Number(w[1]) || DEFAULT_SIZE[0], Number(w[2]) || DEFAULT_SIZE[1]];
 }
 
 // ---- the command line -------------------------------------------------------------------------------
@@ -149,7 +153,7 @@ async function finished(result) {
     window.whitted.renders.push({coarse: job.coarse, ms, programMs: result.ms, status: result.status,
                                  at: performance.now(), args: job.args});
     if (job.coarse && result.status === 0)
-        state.coarse = Math.min(16, Math.max(2, state.coarse * Math.sqrt(result.ms / COARSE_MS)));
+        state.coarse = Math.min(COARSE_MAX, Math.max(COARSE_MIN, state.coarse * Math.sqrt(result.ms / COARSE_MS)));
     await show(job, result, ms);
     if (state.pending) {
         const next = state.pending;
@@ -218,15 +222,15 @@ function moveCamera(kind, dx, dy, factor) {
     const offset = sub(eye, target);
     const r = Math.sqrt(dot(offset, offset));
     if (kind === "orbit") {
-        let yaw = Math.atan2(offset[0], offset[2]) - dx * 0.01;
-        let pitch = Math.asin(Math.max(-1, Math.min(1, offset[1] / r))) + dy * 0.01;
-        pitch = Math.max(-1.5, Math.min(1.5, pitch));
+        const yaw = Math.atan2(offset[0], offset[2]) - dx * ORBIT_PER_PIXEL;
+        const pitch = Math.max(-PITCH_LIMIT, Math.min(PITCH_LIMIT,
+                               Math.asin(Math.max(-1, Math.min(1, offset[1] / r))) + dy * ORBIT_PER_PIXEL));
         eye = add(target, [r * Math.cos(pitch) * Math.sin(yaw), r * Math.sin(pitch), r * Math.cos(pitch) * Math.cos(yaw)]);
     } else if (kind === "pan") {
         const forward = unit(scale(offset, -1));
         const right = unit(cross(forward, cam.up));
         const up = cross(right, forward);
-        const move = add(scale(right, -dx * r * 0.002), scale(up, dy * r * 0.002));
+        const move = add(scale(right, -dx * r * PAN_PER_PIXEL), scale(up, dy * r * PAN_PER_PIXEL));
         eye = add(eye, move);
         target = add(target, move);
     } else {
@@ -266,7 +270,7 @@ function setUpMouse() {
     let wheelTimer = 0;
     canvas.addEventListener("wheel", e => {
         e.preventDefault();
-        if (!moveCamera("zoom", 0, 0, Math.exp(e.deltaY * 0.001)))
+        if (!moveCamera("zoom", 0, 0, Math.exp(e.deltaY * ZOOM_PER_WHEEL)))
             return;
         render(true);
         clearTimeout(wheelTimer);
@@ -338,7 +342,7 @@ async function start() {
         $(id).addEventListener("change", () => render(false));
     const params = new URL(location.href).searchParams;
     const n = Number(params.get("chapter"));
-    await chooseChapter(n >= 1 && n <= CHAPTERS.length ? n : 8, params.get("scene"));
+    await chooseChapter(n >= 1 && n <= CHAPTERS.length ? n : DEFAULT_CHAPTER, params.get("scene"));
 }
 
 start();
