@@ -307,14 +307,21 @@ def main():
         page.open("chapter=10", timeout=300)
         first10 = time.monotonic() - started
         got = compare_with_native(page, o.build, 10, "chapter 10")
-        native = run_native(o.build, 10, got["args"], got["text"], threads=1)
+        page_times, native_times = [got["ms"] / 1000], []
+        for depth in ("5", ""):  # the scene's own max_depth is 5: the same picture, drawn again
+            n = page.full_shown()
+            page.set_control("max-depth", depth)
+            page.wait_idle(n + 1, timeout=300)
+            page_times.append(page.js("return window.whitted.lastFull.result.ms") / 1000)
+        for _ in range(3):
+            native_times.append(run_native(o.build, 10, got["args"], got["text"], threads=1)[5])
+        in_page, native = sorted(page_times)[1], sorted(native_times)[1]
         triangles = next((l for l in got["stdout"].splitlines() if l.startswith("acceleration:")), "")
-        print(f"chapter 10: first full picture {first10:.1f} s after loading the page (target 10 s); "
-              f"the program {got['ms'] / 1000:.2f} s in the page, {native[5]:.2f} s natively on one thread "
-              f"(ratio {got['ms'] / 1000 / native[5]:.2f}, target 3)")
+        print(f"chapter 10: first full picture {first10:.1f} s after loading the page (target 10 s); the program "
+              f"{in_page:.2f} s in the page, {native:.2f} s natively on one thread, whole process (medians of 3; "
+              f"ratio {in_page / native:.2f}, target 3)")
         if triangles:
             print(f"      {triangles.strip()}")
-
 
         if o.screenshot:
             page.open("chapter=8")
