@@ -105,7 +105,7 @@ function commandArgs(text, coarse) {
         [w, h] = [Math.max(1, Math.ceil(w / state.coarse)), Math.max(1, Math.ceil(h / state.coarse))];
     if (coarse || $("size").value)
         args.push("--width", String(w), "--height", String(h));
-    if ($("heatmap").checked && !coarse)
+    if ($("heatmap").checked)
         args.push("--heatmap", "out/heatmap.png");
     return args;
 }
@@ -174,14 +174,11 @@ async function show(job, result, ms) {
             window.whitted.lastFull = {job, result};
         return;
     }
-    const png = job.coarse || !$("heatmap").checked ? result.picture : result.heatmap;
+    const png = job.args.includes("--heatmap") ? result.heatmap : result.picture;
     const bitmap = await createImageBitmap(new Blob([png], {type: "image/png"}));
     const canvas = $("picture");
     const ctx = canvas.getContext("2d");
-    if (job.coarse) {
-        const [w, h] = pictureSize(job.text);
-        if (canvas.width !== w || canvas.height !== h)
-            [canvas.width, canvas.height] = [w, h];
+    if (job.coarse) { // stretched over the last full picture's canvas
         ctx.imageSmoothingEnabled = false;
         ctx.drawImage(bitmap, 0, 0, canvas.width, canvas.height);
         $("status").textContent = `coarse ${bitmap.width} x ${bitmap.height}: ${ms.toFixed(0)} ms`;
