@@ -13,7 +13,8 @@
 # need and is missing (nothing while the Makefile is only read, so make help and make clean install
 # nothing). Building and rendering a chapter needs gcc and stb; the tests add Criterion, POV-Ray and
 # gnuplot; make compare adds POV-Ray, make results POV-Ray and gnuplot. make bench and make fuzz install
-# Embree and clang in their own recipes, before a second make that sees them. The rule is `deps`, at
+# Embree and clang in their own recipes, before a second make that sees them; make web installs
+# emscripten (and make test-web Chromium, its driver and Selenium) the same way. The rule is `deps`, at
 # the end.
 DEPS_NEEDS := build $(strip \
     $(if $(filter test test-long test-sanitize test-accel-long %run-tests %run-accel-long,$(MAKECMDGOALS)),test) \
@@ -375,6 +376,103 @@ TEST_FILTER = @($(shell grep -v '^\#' tests/student-suites | paste -sd'|'))/*
 else
 TEST_FILTER = !($(LONG_TESTS_PATTERN))
 endif
+
+# ---- the browser: every chapter compiled to WebAssembly (web/) ----------------------------------------
+#   make web        compiles each chapter's own main.c and the common/ modules it links (MODULES_NN) to
+#                   WebAssembly with Emscripten (Debian's emscripten, installed on demand) into
+#                   build/web/: the page (index.html, page.js, worker.js), one chapter-NN.js and
+#                   chapter-NN.wasm per chapter (the page loads only the chapter it shows), the scenes,
+#                   their meshes and textures. A static folder: any web server can serve it.
+#   make serve      serves build/web on http://localhost:$(WEB_PORT)/ (python3's http.server)
+#   make test-web   builds the page and the native chapters, serves the page and drives it in headless
+#                   Chromium (web/test_web.py): pictures against the native ones (chapters 2, 8 and 10 at
+#                   their size, every chapter small), frame rates, a parse error, the big teapot, a
+#                   screenshot of the page (WEB_SCREENSHOT)
+#
+# The same floating-point rules as the native build: -ffp-contract=off (WebAssembly has no fused
+# multiply-add anyway) and no fast-math. Chapter 11's four-float boxes (common/float4.h) use GCC's
+# vector extension; with -msimd128 clang compiles it to WebAssembly's 128-bit SIMD instructions (the
+# x86 intrinsics are behind __SSE__, which is not defined here), and the lanes compute what SSE's
+# minps/maxps compute, so the picture is the same. OpenMP is not used: the page renders in one worker,
+# one thread (render.c's loop runs serially without _OPENMP). stb's code, a library natively, is
+# compiled in from its header by web/stb_code.c.
+
+WEB := build/web
+# The objects, beside the folder the page is served from (which holds only what the page loads).
+WEB_OBJ := build/web-obj
+WEB_PORT ?= 8642
+# Where make test-web puts its screenshot of the page; README's is made with
+# make test-web WEB_SCREENSHOT=docs/images/web-page.png
+WEB_SCREENSHOT ?= out/web-page.png
+# Debian's emcc runs JavaScript tools (acorn) that Debian installs under /usr/share/nodejs; a node from
+# elsewhere does not look there by itself.
+EMCC := NODE_PATH=/usr/share/nodejs emcc
+WEB_CFLAGS := -std=c11 -D_DEFAULT_SOURCE -O2 -ffp-contract=off -msimd128 -Wall -Wextra -Werror -Icommon \
+              -I/usr/include/stb
+# One module per chapter, run like a process: the worker makes a fresh instance for every render and
+# calls main with the command line (so each render starts from the program's first state, as natively).
+WEB_LDFLAGS := -O2 -msimd128 -sMODULARIZE=1 -sEXPORT_NAME=createChapter -sENVIRONMENT=worker \
+               -sINVOKE_RUN=0 -sEXIT_RUNTIME=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=2GB \
+               -sFORCE_FILESYSTEM=1 -sEXPORTED_RUNTIME_METHODS=FS,callMain
+WEB_PAGE := $(addprefix $(WEB)/,index.html page.js worker.js)
+WEB_CHAPTERS := $(foreach c,$(CHAPTERS),$(WEB)/chapter-$(call chapter_number,$(c)).js)
+
+.PHONY: web serve test-web
+
+## make web            every chapter compiled to WebAssembly, with the page, scenes and meshes, into
+##                     build/web/ (a static folder; installs Debian's emscripten first)
+web: $(WEB_CHAPTERS) $(WEB_PAGE) $(WEB)/scenes.stamp
+
+## make serve          serves build/web on http://localhost:8642/ (WEB_PORT=N for another port)
+serve: web
+	@echo "the chapters in the browser: http://localhost:$(WEB_PORT)/"
+	cd $(WEB) && python3 -m http.server --bind 127.0.0.1 $(WEB_PORT)
+
+## make test-web       the page in headless Chromium against the native chapters: the same pixels,
+##                     frame rates, a parse error, the big teapot, README's screenshot
+test-web: web $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) | deps
+	tools/build/install-deps.sh test-web
+	@mkdir -p $(dir $(WEB_SCREENSHOT))
+	/usr/bin/python3 web/test_web.py --web $(WEB) --build $(BUILD) --port $(WEB_PORT) --screenshot $(WEB_SCREENSHOT)
+
+web-deps:
+	@tools/build/install-deps.sh web
+
+$(WEB_OBJ)/common/%.o: common/%.c | web-deps
+	@mkdir -p $(@D)
+	$(EMCC) $(WEB_CFLAGS) -MMD -MP -c $< -o $@
+
+$(WEB_OBJ)/chapters/%.o: chapters/%/main.c | web-deps
+	@mkdir -p $(@D)
+	$(EMCC) $(WEB_CFLAGS) -MMD -MP -c $< -o $@
+
+$(WEB_OBJ)/stb_code.o: web/stb_code.c | web-deps
+	@mkdir -p $(@D)
+	$(EMCC) $(WEB_CFLAGS) -Wno-unused-function -c $< -o $@
+
+-include $(wildcard $(WEB_OBJ)/*/*.d)
+
+# One module per chapter, linked from exactly that chapter's modules (as the native link).
+define web_chapter_rules
+$(WEB)/chapter-$(call chapter_number,$(1)).js: $(WEB_OBJ)/chapters/$(1).o $(WEB_OBJ)/stb_code.o \
+        $(addprefix $(WEB_OBJ)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
+	$(EMCC) $(WEB_LDFLAGS) $$^ -o $$@
+endef
+$(foreach c,$(CHAPTERS),$(eval $(call web_chapter_rules,$(c))))
+
+$(WEB)/%: web/%
+	@mkdir -p $(@D)
+	cp $< $@
+
+# The scenes and what they name (mesh and texture paths are relative to scenes/), and the list of
+# scenes the page offers.
+$(WEB)/scenes.stamp: $(wildcard scenes/*.scene) $(SCENE_MODELS) $(SCENE_TEXTURES) scenes/models/bunny.ply
+	@mkdir -p $(WEB)/scenes/models $(WEB)/scenes/textures
+	cp scenes/*.scene $(WEB)/scenes/
+	cp $(SCENE_MODELS) scenes/models/bunny.ply $(WEB)/scenes/models/
+	cp $(SCENE_TEXTURES) $(WEB)/scenes/textures/
+	cd scenes && ls *.scene | sed 's/.*/"&"/' | paste -sd, | sed 's/.*/[&]/' > ../$(WEB)/scenes/index.json
+	touch $@
 
 # ---- housekeeping ----------------------------------------------------------------------------------
 ## make deps           install the Debian packages building needs, and those of the goals named with it

@@ -2,7 +2,8 @@
 # install-deps.sh: makes sure the Debian packages a make target needs are there, installing only what
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
-#   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, cycles, results, bench, fuzz
+#   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, cycles, results, bench, fuzz,
+#                                             web, test-web
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
 #   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test and
@@ -13,6 +14,10 @@
 #   bench    build + Intel Embree 3 (libembree-dev): make bench
 #   fuzz     clang with its libFuzzer and sanitizer runtimes (clang; on systems where the runtimes are
 #            a package of their own, libclang-rt-N-dev for clang N): make fuzz
+#   web      Emscripten (emscripten, with Debian's clang, LLVM and binaryen), to compile the chapters to
+#            WebAssembly: make web and make serve
+#   test-web web + headless Chromium (chromium), its WebDriver (chromium-driver) and Selenium for the
+#            system's Python (python3-selenium, so the test runs with /usr/bin/python3): make test-web
 #
 # How it installs: as root with apt-get; otherwise with `sudo apt-get` when sudo needs no password.
 # Without either (a lab machine), the only library the chapters need, stb, is fetched into .deps/ with
@@ -68,9 +73,17 @@ for need in "${needs[@]}"; do
             want "libclang-rt-$(clang -dumpversion | cut -d. -f1)-dev"
         fi
         ;;
-    build) ;;
+    web | test-web)
+        have_command emcc || [ -x /usr/bin/emcc ] || want emscripten
+        ;;&
+    test-web)
+        have_command chromium || want chromium
+        have_command chromedriver || want chromium-driver
+        /usr/bin/python3 -c 'import selenium' >/dev/null 2>&1 || want python3-selenium
+        ;;
+    build | web) ;;
     *)
-        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench or fuzz)" >&2
+        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench, fuzz, web or test-web)" >&2
         exit 2
         ;;
     esac

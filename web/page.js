@@ -1,0 +1,345 @@
+// page.js: the page's controls: the chapter and its scene, the editor, the camera under the mouse, the
+// settings each chapter's command line takes, and the renders, which a worker runs (worker.js).
+//
+// Every picture is the chapter program's own, run with a command line the page shows (the same line
+// gives the same picture natively). While the camera moves the program draws a coarse picture (a
+// fraction of the width and height, one sample a pixel); at rest, the full one. A new change while a
+// full picture is being drawn stops it (the worker is ended and a new one started).
+"use strict";
+
+const CHAPTERS = ["camera", "sphere", "triangle", "plane", "aabb", "phong", "shadows", "recursion", "kdtree",
+                  "bvh", "fast", "antialias", "distributed", "textures", "paths"];
+const RUNGS = ["plain", "wide", "simd", "prefetch", "build", "float", "compact"];
+// While the camera moves, the picture is state.coarse times smaller each way: 4 to start with, then
+// whatever keeps one coarse picture near COARSE_MS of the program's time (from COARSE_MIN to COARSE_MAX).
+const COARSE_MS = 30, COARSE_START = 4, COARSE_MIN = 2, COARSE_MAX = 16;
+// The canvas's size for a scene whose image line cannot be read (the program then reports the error).
+const DEFAULT_SIZE = [400, 300];
+const DEFAULT_CHAPTER = 8; // shown when the address names none
+const TYPING_PAUSE = 300; // ms without typing before the picture follows the editor
+// The camera under the mouse: radians of orbit a pixel, the distance to the target panned a pixel, the
+// distance's factor a wheel unit (as exp), and the highest and lowest the eye goes (radians of pitch).
+const ORBIT_PER_PIXEL = 0.01, PAN_PER_PIXEL = 0.002, ZOOM_PER_WHEEL = 0.001, PITCH_LIMIT = 1.5;
+
+const $ = id => document.getElementById(id);
+const state = {
+    chapter: DEFAULT_CHAPTER, scenes: [], worker: null, running: null, pending: null, nextId: 1, typing: 0,
+    picture: null, dragging: null, coarse: COARSE_START,
+};
+// What the browser test reads: every render's kind, times and status, the last full render.
+window.whitted = {renders: [], fullShown: 0, lastFull: null, loadedAt: performance.now()};
+
+const pad = n => String(n).padStart(2, "0");
+const chapterName = n => `${pad(n)}-${CHAPTERS[n - 1]}`;
+
+// ---- the scene text: the camera and image lines ----------------------------------------------------
+function sceneLine(text, directive) {
+    return text.split("\n").findIndex(l => l.replace(/#.*/, "").trim().split(/\s+/)[0] === directive);
+}
+
+// The values of the camera line's keys eye, target, up and fov (up defaults to 0 1 0).
+function readCamera(text) {
+    const k = sceneLine(text, "camera");
+    if (k < 0)
+        return null;
+    const words = text.split("\n")[k].replace(/#.*/, "").trim().split(/\s+/);
+    const key = (name, n) => {
+        const at = words.indexOf(name);
+        return at < 0 ? null : words.slice(at + 1, at + 1 + n).map(Number);
+    };
+    const cam = {eye: key("eye", 3), target: key("target", 3), up: key("up", 3) || [0, 1, 0], fov: key("fov", 1)};
+    return cam.eye && cam.target && [...cam.eye, ...cam.target].every(Number.isFinite) ? cam : null;
+}
+
+// The text with the camera line's eye and target replaced, every other word kept.
+function writeCamera(text, eye, target) {
+    const lines = text.split("\n");
+    const k = sceneLine(text, "camera");
+    const comment = lines[k].includes("#") ? " " + lines[k].slice(lines[k].indexOf("#")) : "";
+    const words = lines[k].replace(/#.*/, "").trim().split(/\s+/);
+    const num = x => String(Number(x.toFixed(4)));
+    for (const [name, v] of [["eye", eye], ["target", target]]) {
+        const at = words.indexOf(name);
+        words.splice(at + 1, 3, ...v.map(num));
+    }
+    lines[k] = words.join(" ") + comment;
+    return lines.join("\n");
+}
+
+function readImageSize(text) {
+    const k = sceneLine(text, "image");
+    const w = k < 0 ? [] : text.split("\n")[k].replace(/#.*/, "").trim().split(/\s+/);
+    return [Number(w[1]) || DEFAULT_SIZE[0], Number(w[2]) || DEFAULT_SIZE[1]];
+}
+
+// ---- the command line -------------------------------------------------------------------------------
+function scenePath() {
+    return `scenes/${$("scene-file").value}`;
+}
+
+function pictureSize(text) {
+    const size = $("size").value;
+    return size ? size.split("x").map(Number) : readImageSize(text);
+}
+
+// The arguments of the chapter program for the current controls; coarse: the quick picture.
+function commandArgs(text, coarse) {
+    const args = [scenePath(), "--stats"];
+    const set = s => args.push("--set", s);
+    const n = state.chapter;
+    if ($("max-depth").value && n >= 8)
+        set(`max_depth=${$("max-depth").value}`);
+    if ($("fov").value)
+        set(`camera.fov=${$("fov").value}`);
+    const samplesKey = n === 15 ? "paths.samples" : n >= 12 ? "antialias.samples" : null;
+    if (samplesKey && (coarse || $("samples").value))
+        set(`${samplesKey}=${coarse ? 1 : $("samples").value}`);
+    if (n >= 9 && $("accel").value)
+        args.push("--accel", $("accel").value);
+    if (n >= 9 && $("split").value)
+        args.push("--split", $("split").value);
+    if (n === 11 && $("rung").value)
+        args.push("--rung", $("rung").value);
+    let [w, h] = pictureSize(text);
+    if (coarse)
+        [w, h] = [Math.max(1, Math.ceil(w / state.coarse)), Math.max(1, Math.ceil(h / state.coarse))];
+    if (coarse || $("size").value)
+        args.push("--width", String(w), "--height", String(h));
+    if ($("heatmap").checked)
+        args.push("--heatmap", "out/heatmap.png");
+    return args;
+}
+
+function shellWord(w) {
+    return /^[\w./=:,-]+$/.test(w) ? w : `'${w.replace(/'/g, "'\\''")}'`;
+}
+
+// ---- the worker ------------------------------------------------------------------------------------
+function startWorker() {
+    if (state.worker)
+        state.worker.terminate();
+    state.worker = new Worker(`worker.js?chapter=${pad(state.chapter)}`);
+    state.worker.onmessage = e => finished(e.data);
+    state.running = null;
+}
+
+function run(job) {
+    state.running = job;
+    job.started = performance.now();
+    document.body.dataset.state = "rendering";
+    state.worker.postMessage({id: job.id, scenePath: job.scenePath, text: job.text, args: job.args});
+}
+
+// Asks for a picture of the editor's scene: a coarse one while the camera moves, else the full one.
+function render(coarse) {
+    const text = $("scene").value;
+    const job = {id: state.nextId++, coarse, text, scenePath: scenePath(), args: commandArgs(text, coarse)};
+    if (!state.running) {
+        run(job);
+    } else if (!state.running.coarse) {
+        startWorker(); // a full picture is being drawn: stop it
+        run(job);
+    } else {
+        state.pending = job; // a coarse picture is quick: the newest request waits for it
+    }
+}
+
+async function finished(result) {
+    const job = state.running;
+    if (!job || result.id !== job.id)
+        return;
+    state.running = null;
+    const ms = performance.now() - job.started;
+    window.whitted.renders.push({coarse: job.coarse, ms, programMs: result.ms, status: result.status,
+                                 at: performance.now(), args: job.args});
+    if (job.coarse && result.status === 0)
+        state.coarse = Math.min(COARSE_MAX, Math.max(COARSE_MIN, state.coarse * Math.sqrt(result.ms / COARSE_MS)));
+    await show(job, result, ms);
+    if (state.pending) {
+        const next = state.pending;
+        state.pending = null;
+        run(next);
+    } else if (!state.running) {
+        document.body.dataset.state = "idle";
+    }
+}
+
+async function show(job, result, ms) {
+    const errors = result.status !== 0;
+    $("errors").textContent = errors ? result.stderr.trim() : "";
+    $("warnings").textContent = errors ? "" : result.stderr.trim();
+    if (errors || !result.picture) {
+        $("status").textContent = `the program stopped with status ${result.status}`;
+        if (!job.coarse)
+            window.whitted.lastFull = {job, result};
+        return;
+    }
+    const png = job.args.includes("--heatmap") ? result.heatmap : result.picture;
+    const bitmap = await createImageBitmap(new Blob([png], {type: "image/png"}));
+    const canvas = $("picture");
+    const ctx = canvas.getContext("2d");
+    if (job.coarse) { // stretched over the last full picture's canvas
+        ctx.imageSmoothingEnabled = false;
+        ctx.drawImage(bitmap, 0, 0, canvas.width, canvas.height);
+        $("status").textContent = `coarse ${bitmap.width} x ${bitmap.height}: ${ms.toFixed(0)} ms`;
+        return;
+    }
+    [canvas.width, canvas.height] = [bitmap.width, bitmap.height];
+    ctx.drawImage(bitmap, 0, 0);
+    $("status").textContent = `${bitmap.width} x ${bitmap.height} in ${(ms / 1000).toFixed(2)} s ` +
+                              `(the program: ${(result.ms / 1000).toFixed(2)} s)`;
+    $("counters").textContent = result.stdout.trim();
+    $("command").textContent = `./build/chapter-${pad(state.chapter)} ` + job.args.map(shellWord).join(" ") +
+                               "\n(with the scene as the editor has it)";
+    state.picture = result.picture;
+    const link = $("download-picture");
+    URL.revokeObjectURL(link.href);
+    link.href = URL.createObjectURL(new Blob([result.picture], {type: "image/png"}));
+    link.download = `chapter-${pad(state.chapter)}.png`;
+    window.whitted.lastFull = {job, result};
+    window.whitted.fullShown++;
+}
+
+// ---- the camera under the mouse -----------------------------------------------------------------
+const sub = (a, b) => a.map((x, i) => x - b[i]);
+const add = (a, b) => a.map((x, i) => x + b[i]);
+const scale = (a, s) => a.map(x => x * s);
+const dot = (a, b) => a.reduce((s, x, i) => s + x * b[i], 0);
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const unit = a => scale(a, 1 / Math.sqrt(dot(a, a)));
+
+// Moves the camera of the editor's scene: orbit around the target (dx, dy in pixels), pan both eye and
+// target, or zoom (factor on the distance). Returns false when the scene has no readable camera line.
+function moveCamera(kind, dx, dy, factor) {
+    const text = $("scene").value;
+    const cam = readCamera(text);
+    if (!cam)
+        return false;
+    let {eye, target} = cam;
+    const offset = sub(eye, target);
+    const r = Math.sqrt(dot(offset, offset));
+    if (kind === "orbit") {
+        const yaw = Math.atan2(offset[0], offset[2]) - dx * ORBIT_PER_PIXEL;
+        const pitch = Math.max(-PITCH_LIMIT, Math.min(PITCH_LIMIT,
+                               Math.asin(Math.max(-1, Math.min(1, offset[1] / r))) + dy * ORBIT_PER_PIXEL));
+        eye = add(target, [r * Math.cos(pitch) * Math.sin(yaw), r * Math.sin(pitch), r * Math.cos(pitch) * Math.cos(yaw)]);
+    } else if (kind === "pan") {
+        const forward = unit(scale(offset, -1));
+        const right = unit(cross(forward, cam.up));
+        const up = cross(right, forward);
+        const move = add(scale(right, -dx * r * PAN_PER_PIXEL), scale(up, dy * r * PAN_PER_PIXEL));
+        eye = add(eye, move);
+        target = add(target, move);
+    } else {
+        eye = add(target, scale(offset, factor));
+    }
+    $("scene").value = writeCamera(text, eye, target);
+    updateSceneLink();
+    return true;
+}
+
+function setUpMouse() {
+    const canvas = $("picture");
+    canvas.addEventListener("contextmenu", e => e.preventDefault());
+    canvas.addEventListener("pointerdown", e => {
+        state.dragging = {x: e.clientX, y: e.clientY, pan: e.shiftKey || e.button === 2};
+        canvas.setPointerCapture(e.pointerId);
+        canvas.classList.add("dragging");
+    });
+    canvas.addEventListener("pointermove", e => {
+        const d = state.dragging;
+        if (!d)
+            return;
+        const [dx, dy] = [e.clientX - d.x, e.clientY - d.y];
+        [d.x, d.y] = [e.clientX, e.clientY];
+        if ((dx || dy) && moveCamera(d.pan ? "pan" : "orbit", dx, dy))
+            render(true);
+    });
+    const release = () => {
+        if (!state.dragging)
+            return;
+        state.dragging = null;
+        canvas.classList.remove("dragging");
+        render(false);
+    };
+    canvas.addEventListener("pointerup", release);
+    canvas.addEventListener("pointercancel", release);
+    let wheelTimer = 0;
+    canvas.addEventListener("wheel", e => {
+        e.preventDefault();
+        if (!moveCamera("zoom", 0, 0, Math.exp(e.deltaY * ZOOM_PER_WHEEL)))
+            return;
+        render(true);
+        clearTimeout(wheelTimer);
+        wheelTimer = setTimeout(() => render(false), TYPING_PAUSE);
+    }, {passive: false});
+}
+
+// ---- the chapter and its scene --------------------------------------------------------------------
+function updateSceneLink() {
+    const link = $("download-scene");
+    URL.revokeObjectURL(link.href);
+    link.href = URL.createObjectURL(new Blob([$("scene").value], {type: "text/plain"}));
+    link.download = $("scene-file").value;
+    link.textContent = link.download;
+}
+
+// Shows the controls the chapter's program has.
+function showControls() {
+    const n = state.chapter;
+    for (const label of document.querySelectorAll("#controls label")) {
+        const from = label.dataset.from, only = label.dataset.only;
+        const shown = (from === undefined || n >= Number(from)) && (only === undefined || n === Number(only)) &&
+                      (label.dataset.samples === undefined || n >= 12);
+        label.classList.toggle("hidden", !shown);
+    }
+    const kinds = n === 9 ? ["kdtree", "none"] : ["bvh", "kdtree", "none"];
+    $("accel").innerHTML = kinds.map((k, i) => `<option value="${i ? k : ""}">${k}${i ? "" : " (default)"}</option>`).join("");
+    $("samples").placeholder = n === 15 ? "paths'" : "scene's";
+}
+
+async function loadScene(name) {
+    $("scene-file").value = name;
+    const response = await fetch(`scenes/${name}`);
+    $("scene").value = await response.text();
+    updateSceneLink();
+    render(true); // a quick first view, then the full picture
+    render(false);
+}
+
+async function chooseChapter(n, sceneName) {
+    state.chapter = n;
+    $("chapter").value = String(n);
+    const own = state.scenes.filter(s => s.startsWith(pad(n) + "-"));
+    $("scene-file").innerHTML = own.map(s => `<option>${s}</option>`).join("");
+    showControls();
+    startWorker();
+    const name = own.includes(sceneName) ? sceneName : own.includes(`${chapterName(n)}.scene`) ? `${chapterName(n)}.scene` : own[0];
+    const url = new URL(location.href);
+    url.searchParams.set("chapter", String(n));
+    url.searchParams.set("scene", name);
+    history.replaceState(null, "", url);
+    await loadScene(name);
+}
+
+async function start() {
+    $("chapter").innerHTML = CHAPTERS.map((t, i) => `<option value="${i + 1}">${i + 1} ${t}</option>`).join("");
+    $("rung").innerHTML = `<option value="">6 float (default)</option>` +
+                          RUNGS.map((r, i) => `<option value="${i + 1}">${i + 1} ${r}</option>`).join("");
+    state.scenes = await (await fetch("scenes/index.json")).json();
+    setUpMouse();
+    $("chapter").addEventListener("change", () => chooseChapter(Number($("chapter").value)));
+    $("scene-file").addEventListener("change", () => loadScene($("scene-file").value));
+    $("scene").addEventListener("input", () => {
+        updateSceneLink();
+        clearTimeout(state.typing);
+        state.typing = setTimeout(() => render(false), TYPING_PAUSE);
+    });
+    for (const id of ["max-depth", "fov", "samples", "accel", "split", "rung", "size", "heatmap"])
+        $(id).addEventListener("change", () => render(false));
+    const params = new URL(location.href).searchParams;
+    const n = Number(params.get("chapter"));
+    await chooseChapter(n >= 1 && n <= CHAPTERS.length ? n : DEFAULT_CHAPTER, params.get("scene"));
+}
+
+start();

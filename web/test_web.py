@@ -1,0 +1,343 @@
+#!/usr/bin/python3
+"""test_web.py: the chapters in a real browser (make test-web).
+
+Serves build/web as `make serve` does, drives Debian's headless Chromium through chromium-driver and
+Selenium, and checks the page against the native programs:
+  - chapters 2, 8 and 10 at rest: the PNG the page's program wrote is byte for byte the native one for
+    the same scene and command line, and the canvas's pixels are that picture's;
+  - chapter 8's heat-map is the native one; every chapter's own scene at 160 x 120 (chapter 11 at its
+    default rung 6, at the SIMD rung 3 and the compact rung 7) gives the native PNG too;
+  - a broken scene line gives the native program's message ("scenes/NN-name.scene:LINE: what");
+and prints how fast it is: the page's first picture, chapter 8 at 640 x 480, the frame rate while the
+camera is dragged, and chapter 10's 353,546 triangles against the native program on one thread. It
+ends with a screenshot of the page (--screenshot) for README.
+
+Run with the system's python3 (/usr/bin/python3), which is where Debian's python3-selenium installs.
+Exit status 0 when every check holds; the speeds are printed against their targets, not asserted.
+"""
+import argparse
+import base64
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import zlib
+
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.action_chains import ActionChains
+from selenium.webdriver.common.by import By
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+failures = []
+
+
+def check(ok, what):
+    print(("ok    " if ok else "FAIL  ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+def png_pixels(data):
+    """The RGB pixels of an 8-bit, non-interlaced RGB or RGBA PNG (what stb writes): (w, h, bytes)."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    pos, idat, width = 8, b"", 0
+    while pos < len(data):
+        length = int.from_bytes(data[pos:pos + 4], "big")
+        kind, body = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height = int.from_bytes(body[0:4], "big"), int.from_bytes(body[4:8], "big")
+            assert body[8] == 8 and body[9] in (2, 6) and body[12] == 0, "unsupported PNG"
+            channels = 3 if body[9] == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw, stride = zlib.decompress(idat), width * channels
+    out, prev = bytearray(), bytearray(stride)
+    for y in range(height):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for x in range(stride):
+            a = line[x - channels] if x >= channels else 0
+            b, c = prev[x], prev[x - channels] if x >= channels else 0
+            if kind == 1:
+                line[x] = (line[x] + a) & 255
+            elif kind == 2:
+                line[x] = (line[x] + b) & 255
+            elif kind == 3:
+                line[x] = (line[x] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        prev = line
+        for x in range(width):
+            out += line[x * channels:x * channels + 3]
+    return width, height, bytes(out)
+
+
+def run_native(build, chapter, args, text, threads=None):
+    """Runs build/chapter-NN with the page's arguments on the page's scene text (written where the page's
+    program had it, in a temporary copy of scenes/ that links the models and textures), its outputs
+    going to that folder. Returns (status, stdout, stderr, picture bytes, heat-map bytes, wall seconds)."""
+    folder = tempfile.mkdtemp(prefix="whitted-web-")
+    os.makedirs(os.path.join(folder, "scenes"))
+    for shared in ("models", "textures"):
+        os.symlink(os.path.join(REPO, "scenes", shared), os.path.join(folder, "scenes", shared))
+    with open(os.path.join(folder, args[0]), "w") as f:
+        f.write(text)
+    args = list(args)
+    if "--heatmap" in args:
+        args[args.index("--heatmap") + 1] = "heatmap.png"
+    command = [os.path.join(REPO, build, f"chapter-{chapter:02d}")] + args + ["-o", "p.png"]
+    if threads:
+        command += ["--threads", str(threads)]
+    started = time.monotonic()
+    done = subprocess.run(command, cwd=folder, capture_output=True, text=True)
+    seconds = time.monotonic() - started
+    read = lambda name: open(os.path.join(folder, name), "rb").read() if os.path.exists(os.path.join(folder, name)) else None
+    result = (done.returncode, done.stdout, done.stderr, read("p.png"), read("heatmap.png"), seconds)
+    shutil.rmtree(folder)
+    return result
+
+
+class Page:
+    def __init__(self, driver, base):
+        self.driver, self.base = driver, base
+
+    def js(self, script, *args):
+        return self.driver.execute_script(script, *args)
+
+    def wait(self, condition, timeout, what):
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            if self.js("return " + condition):
+                return True
+            time.sleep(0.02)
+        raise TimeoutError(f"waited {timeout} s for {what}")
+
+    def wait_idle(self, full_shown, timeout=120):
+        """Waits until at least full_shown full pictures were shown and nothing is being drawn."""
+        self.wait(f"window.whitted && window.whitted.fullShown >= {full_shown} && "
+                  "document.body.dataset.state === 'idle'", timeout, "the full picture")
+
+    def open(self, query, timeout=120):
+        started = time.monotonic()
+        self.driver.get(f"{self.base}/index.html?{query}")
+        self.wait_idle(1, timeout)
+        return time.monotonic() - started
+
+    def last_full(self):
+        """The last full render: its arguments, status, output, PNG bytes and the canvas's pixels."""
+        got = self.js("""
+            const f = window.whitted.lastFull, c = document.getElementById('picture');
+            const b64 = a => { let s = ''; for (let k = 0; k < a.length; k += 32768)
+                                   s += String.fromCharCode.apply(null, a.subarray(k, k + 32768));
+                               return btoa(s); };
+            const px = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+            return {args: f.job.args, text: f.job.text, status: f.result.status, stdout: f.result.stdout, stderr: f.result.stderr,
+                    ms: f.result.ms, picture: f.result.picture ? b64(f.result.picture) : null,
+                    heatmap: f.result.heatmap ? b64(f.result.heatmap) : null,
+                    width: c.width, height: c.height, canvas: b64(px)};""")
+        for key in ("picture", "heatmap", "canvas"):
+            got[key] = base64.b64decode(got[key]) if got[key] else None
+        return got
+
+    def set_control(self, element_id, value):
+        self.js("const e = document.getElementById(arguments[0]);"
+                "if (e.type === 'checkbox') e.checked = arguments[1]; else e.value = arguments[1];"
+                "e.dispatchEvent(new Event('change'));", element_id, value)
+
+    def full_shown(self):
+        return self.js("return window.whitted.fullShown")
+
+
+def compare_with_native(page, build, chapter, label):
+    """The page's last full picture against the native program's with the same arguments."""
+    got = page.last_full()
+    status, _, stderr, picture, heatmap, _ = run_native(build, chapter, got["args"], got["text"])
+    command = f"chapter-{chapter:02d} " + " ".join(got["args"])
+    check(got["status"] == 0 and status == 0, f"{label}: page and native both render ({command})"
+          + ("" if status == 0 and got["status"] == 0 else f"; page: {got['stderr'].strip()}; native: {stderr.strip()}"))
+    if picture is None or got["picture"] is None:
+        return got
+    same = got["picture"] == picture
+    check(same, f"{label}: the page's PNG is byte for byte the native one ({len(picture)} bytes)")
+    if not same:
+        w, h, native = png_pixels(picture)
+        page_px = png_pixels(got["picture"])[2]
+        differ = sum(1 for k in range(0, len(native), 3) if native[k:k + 3] != page_px[k:k + 3])
+        print(f"      {differ} of {w * h} pixels differ")
+    # The canvas shows the picture, or with --heatmap the heat-map (with its colour bar).
+    w, h, native = png_pixels(heatmap if "--heatmap" in got["args"] else picture)
+    canvas = got["canvas"]
+    shown = bytes(b for k in range(0, len(canvas), 4) for b in canvas[k:k + 3]) if canvas else b""
+    check((got["width"], got["height"]) == (w, h) and shown == native,
+          f"{label}: the canvas shows those pixels ({got['width']} x {got['height']})")
+    if "--heatmap" in got["args"]:
+        check(got["heatmap"] == heatmap, f"{label}: the heat-map is byte for byte the native one")
+    return got
+
+
+def drag(page, seconds):
+    """Drags the camera around for about `seconds`; returns the coarse frames shown per second."""
+    canvas = page.driver.find_element(By.ID, "picture")
+    before = page.js("return window.whitted.renders.length")
+    started = time.monotonic()
+    actions = ActionChains(page.driver, duration=0)
+    actions.move_to_element(canvas).click_and_hold()
+    steps = int(seconds / 0.02)
+    for k in range(steps):
+        actions.move_by_offset(4 if (k // 40) % 2 == 0 else -4, 1 if (k // 25) % 2 == 0 else -1).pause(0.02)
+    actions.perform()
+    elapsed = time.monotonic() - started
+    renders = page.js("return window.whitted.renders.slice(arguments[0])", before)
+    ActionChains(page.driver).release().perform()
+    coarse = [r for r in renders if r["coarse"] and r["status"] == 0]
+    mean = sum(r["ms"] for r in coarse) / len(coarse) if coarse else float("nan")
+    return len(coarse) / elapsed, mean, elapsed
+
+
+def measure_chapter_8(page, build, label, shown):
+    """On chapter 8's page, after `shown` full pictures: the full picture at 640 x 480 against the
+    native one and the time it takes (three renders, at depths 5, 3 and the scene's), then the frame
+    rate while the camera is dragged at the scene's size, ending at rest."""
+    page.set_control("size", "640x480")
+    page.wait_idle(shown + 1)
+    got = compare_with_native(page, build, 8, f"{label} at 640 x 480")
+    times = []
+    for depth in ("5", "3", ""):
+        n = page.full_shown()
+        page.set_control("max-depth", depth)
+        page.wait_idle(n + 1)
+        times.append(page.js("return window.whitted.renders[window.whitted.renders.length - 1].ms"))
+    native = run_native(build, 8, got["args"], got["text"], threads=1)[5]
+    print(f"{label} at 640 x 480 at rest: {sorted(times)[1] / 1000:.2f} s (median of 3; target 1 s); "
+          f"native, one thread: {native:.2f} s")
+    page.set_control("size", "")
+    page.wait_idle(page.full_shown())
+    fps, mean, elapsed = drag(page, 4)
+    print(f"{label} dragged for {elapsed:.1f} s: {fps:.1f} coarse frames a second (target 15), "
+          f"{mean:.0f} ms a frame from request to canvas")
+    page.wait_idle(page.full_shown() + 1)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--web", default="build/web")
+    parser.add_argument("--build", default="build")
+    parser.add_argument("--port", type=int, default=8642)
+    parser.add_argument("--screenshot", default=None)
+    o = parser.parse_args()
+    os.chdir(REPO)
+
+    server = subprocess.Popen([sys.executable, "-m", "http.server", "--bind", "127.0.0.1", str(o.port)],
+                              cwd=o.web, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    options = webdriver.ChromeOptions()
+    options.binary_location = "/usr/bin/chromium"
+    for flag in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1300,900"):
+        options.add_argument(flag)
+    driver = None
+    try:
+        time.sleep(0.5)
+        driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
+        page = Page(driver, f"http://127.0.0.1:{o.port}")
+
+        # Chapter 2, and the first view of the page.
+        page.open("chapter=2")
+        page.driver.get(f"{page.base}/index.html?chapter=8")  # with the browser's caches warm
+        page.wait_idle(1)
+        first = page.js("return performance.getEntriesByType('navigation')[0].domContentLoadedEventEnd")
+        renders = page.js("return window.whitted.renders")
+        full = next(r for r in renders if not r["coarse"])
+        print(f"page: controls shown {first:.0f} ms after loading; chapter 8's first (coarse) picture at "
+              f"{renders[0]['at']:.0f} ms (target 2000 ms), its full picture at {full['at']:.0f} ms "
+              f"(the program {full['programMs']:.0f} ms)")
+        compare_with_native(page, o.build, 8, "chapter 8")
+        page.open("chapter=2")
+        compare_with_native(page, o.build, 2, "chapter 2")
+
+        # Chapter 8: the heat-map, the full 640 x 480 picture, the drag.
+        page.open("chapter=8")
+        n = page.full_shown()
+        page.set_control("heatmap", True)
+        page.wait_idle(n + 1)
+        compare_with_native(page, o.build, 8, "chapter 8 heat-map")
+        page.set_control("heatmap", False)
+        page.wait_idle(n + 2)
+        measure_chapter_8(page, o.build, "chapter 8", n + 2)
+        compare_with_native(page, o.build, 8, "chapter 8 after the drag (the moved camera's scene)")
+
+        # Chapter 8's other scene, the glass of water (no mesh): the same measures.
+        page.open("chapter=8&scene=08-glass-of-water.scene")
+        measure_chapter_8(page, o.build, "chapter 8, glass of water,", page.full_shown())
+        page.open("chapter=8")
+
+        # A broken line: the native program's message.
+        text = page.js("return document.getElementById('scene').value").split("\n")
+        line = next(k for k, l in enumerate(text) if l.startswith("sphere")) + 1
+        text[line - 1] = "sphere centre 0 1 0 radius -2 material glass"
+        broken = "\n".join(text)
+        n = len(page.js("return window.whitted.renders"))
+        page.js("const e = document.getElementById('scene'); e.value = arguments[0];"
+                "e.dispatchEvent(new Event('input'));", broken)
+        page.wait(f"window.whitted.renders.length > {n} && document.body.dataset.state === 'idle'", 60, "the message")
+        shown = page.driver.find_element(By.ID, "errors").text.strip()
+        args = page.js("return window.whitted.renders[window.whitted.renders.length - 1].args")
+        status, _, stderr, _, _, _ = run_native(o.build, 8, args, broken)
+        check(status == 1 and shown == stderr.strip() and shown.startswith(f"scenes/08-recursion.scene:{line}:"),
+              f"a broken line {line} shows the native message: {shown!r}")
+
+        # Every chapter's own scene at 160 x 120, and chapter 11's SIMD rung (3) and compact rung (7).
+        for chapter in range(1, 16):
+            page.open(f"chapter={chapter}", timeout=300)
+            n = page.full_shown()
+            page.set_control("size", "160x120")
+            page.wait_idle(n + 1, timeout=300)
+            compare_with_native(page, o.build, chapter, f"chapter {chapter} at 160 x 120")
+            for rung in ("3", "7") if chapter == 11 else ():
+                n = page.full_shown()
+                page.set_control("rung", rung)
+                page.wait_idle(n + 1, timeout=300)
+                compare_with_native(page, o.build, chapter, f"chapter 11 at 160 x 120, rung {rung}")
+
+        # Chapter 10: the big teapot, from a fresh page.
+        started = time.monotonic()
+        page.open("chapter=10", timeout=300)
+        first10 = time.monotonic() - started
+        got = compare_with_native(page, o.build, 10, "chapter 10")
+        page_times, native_times = [got["ms"] / 1000], []
+        for depth in ("5", ""):  # the scene's own max_depth is 5: the same picture, drawn again
+            n = page.full_shown()
+            page.set_control("max-depth", depth)
+            page.wait_idle(n + 1, timeout=300)
+            page_times.append(page.js("return window.whitted.lastFull.result.ms") / 1000)
+        for _ in range(3):
+            native_times.append(run_native(o.build, 10, got["args"], got["text"], threads=1)[5])
+        in_page, native = sorted(page_times)[1], sorted(native_times)[1]
+        triangles = next((l for l in got["stdout"].splitlines() if l.startswith("acceleration:")), "")
+        print(f"chapter 10: first full picture {first10:.1f} s after loading the page (target 10 s); the program "
+              f"{in_page:.2f} s in the page, {native:.2f} s natively on one thread, whole process (medians of 3; "
+              f"ratio {in_page / native:.2f}, target 3)")
+        if triangles:
+            print(f"      {triangles.strip()}")
+
+        if o.screenshot:
+            page.open("chapter=8")
+            n = page.full_shown()
+            page.set_control("max-depth", "3")
+            page.wait_idle(n + 1)
+            driver.save_screenshot(o.screenshot)
+            print(f"screenshot: {o.screenshot}")
+    finally:
+        if driver:
+            driver.quit()
+        server.terminate()
+        server.wait()
+    print(f"test-web: {'all checks hold' if not failures else f'{len(failures)} checks FAILED'}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
