@@ -407,8 +407,8 @@ WEB_SCREENSHOT ?= out/web-page.png
 # Debian's emcc runs JavaScript tools (acorn) that Debian installs under /usr/share/nodejs; a node from
 # elsewhere does not look there by itself.
 EMCC := NODE_PATH=/usr/share/nodejs emcc
-WEB_CFLAGS := -std=c11 -D_DEFAULT_SOURCE -O2 -ffp-contract=off -msimd128 -Wall -Wextra -Werror -Icommon \
-              -I/usr/include/stb
+WEB_CFLAGS = -std=c11 -D_DEFAULT_SOURCE -O2 -ffp-contract=off -msimd128 -Wall -Wextra -Werror -Icommon \
+             $(STB_CFLAGS)
 # One module per chapter, run like a process: the worker makes a fresh instance for every render and
 # calls main with the command line (so each render starts from the program's first state, as natively).
 WEB_LDFLAGS := -O2 -msimd128 -sMODULARIZE=1 -sEXPORT_NAME=createChapter -sENVIRONMENT=worker \
@@ -435,7 +435,8 @@ test-web: web $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c
 	@mkdir -p $(dir $(WEB_SCREENSHOT))
 	/usr/bin/python3 web/test_web.py --web $(WEB) --build $(BUILD) --port $(WEB_PORT) --screenshot $(WEB_SCREENSHOT)
 
-web-deps:
+# After the native build's packages (stb's headers, and gcc for the models and textures the page loads).
+web-deps: | deps
 	@tools/build/install-deps.sh web
 
 $(WEB_OBJ)/common/%.o: common/%.c | web-deps
