@@ -62,3 +62,14 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
     w->world.accel = &w->accel;
     return true;
 }
+
+struct accel_world *accel_world_create_at_rung(struct scene *s, const struct accel_choice *c, int rung, char *err,
+                                               size_t err_size) {
+    struct accel_world *w = accel_world_create(s, c, err, err_size);
+    if (w != NULL && c->kind == ACCEL_BVH &&
+        !accel_world_use_fast_bvh(w, c->sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, rung, err, err_size)) {
+        accel_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
