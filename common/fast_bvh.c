@@ -357,8 +357,7 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
     running = running && b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, s.inverse, box_min, box_max, &root_entry);
     /* Rung 6: the window in float, rounded outward, and the limit a put-aside entry must be within. */
     bool in_float = f != NULL;
-    float float_min = in_float ? float_at_most(box_min) : 0.0f, float_max = in_float ? float_at_least(box_max) : 0.0f;
-    double limit = in_float ? float_reach(f, float_max) : box_max, limit_for = box_max;
+    struct walk_window w = window_up_to(f, in_float ? float_at_most(box_min) : 0.0f, box_max);
     while (running) {
         visits++;
         if (count == 0) {
@@ -367,7 +366,7 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
             unsigned hit = 0;
             if (in_float) {
                 float4 enter;
-                hit = child_quad_hit(n, &s, f, float_min, float_max, &enter);
+                hit = child_quad_hit(n, &s, f, w.float_min, w.float_max, &enter);
                 float4_widened(enter, entry);
             } else if (simd) {
                 hit = child_pair_hit(n, 0, &s, box_min, box_max, &entry[0]) |
@@ -409,28 +408,14 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
             }
         } else if (!test_triangles(b, &s.triangle, child, count, t_min, t_max, kind, compact, q, &box_max, &tests)) {
             break;
-        } else if (kind == QUERY_CLOSEST && box_max < limit_for) { /* a nearer hit: narrow the window */
-            float_max = in_float ? float_at_least(box_max) : 0.0f;
-            limit = in_float ? float_reach(f, float_max) : box_max;
-            limit_for = box_max;
+        } else if (kind == QUERY_CLOSEST && box_max < w.limit_for) { /* a nearer hit: narrow the window */
+            w = window_up_to(f, w.float_min, box_max);
         }
-        /* Next: the most recently put aside subtree that can still hold something at or before box_max
-         * (at: a lower face at the same t would win the tie); on rung 6, whose entries are computed in
-         * float, within the same reach as its box test. */
-        running = false;
-        while (top > 0) {
-            const struct stack_entry *e = &stack[--top];
-            if (e->entry <= limit) {
-                child = e->child;
-                count = e->count;
-                running = true;
-                break;
-            }
-        }
+        /* Next: the most recently put aside subtree that can still hold something at or before box_max;
+         * on rung 6, whose entries are computed in float, within the same reach as its box test. */
+        running = stack_pop_within(stack, &top, w.limit, &child, &count);
     }
-    stats_thread.node_visits += visits;
-    stats_thread.box_tests += boxes;
-    stats_thread.triangle_tests += tests;
+    walk_counted(visits, boxes, tests);
     return q->found;
 }
 

@@ -134,8 +134,7 @@ static inline AVX2 __attribute__((always_inline)) bool traverse8(const struct fa
     double root_entry;
     running = running && b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, inverse, box_min, box_max, &root_entry);
     bool in_float = f != NULL;
-    float float_min = in_float ? float_at_most(box_min) : 0.0f, float_max = in_float ? float_at_least(box_max) : 0.0f;
-    double limit = in_float ? float_reach(f, float_max) : box_max, limit_for = box_max;
+    struct walk_window w = window_up_to(f, in_float ? float_at_most(box_min) : 0.0f, box_max);
     while (running) {
         visits++;
         if (count == 0) {
@@ -144,7 +143,7 @@ static inline AVX2 __attribute__((always_inline)) bool traverse8(const struct fa
             unsigned hit = 0, used = used_children(n);
             if (in_float) {
                 float8 enter;
-                hit = children_hit8(n, near, origin8, inverse8, f, float_min, float_max, &enter) & used;
+                hit = children_hit8(n, near, origin8, inverse8, f, w.float_min, w.float_max, &enter) & used;
                 for (unsigned rest = hit; rest != 0; rest &= rest - 1)
                     entry[__builtin_ctz(rest)] = enter[__builtin_ctz(rest)];
             } else {
@@ -178,25 +177,12 @@ static inline AVX2 __attribute__((always_inline)) bool traverse8(const struct fa
             }
         } else if (!test_triangles(b, &ready, child, count, t_min, t_max, kind, false, q, &box_max, &tests)) {
             break;
-        } else if (kind == QUERY_CLOSEST && box_max < limit_for) { /* a nearer hit: narrow the window */
-            float_max = in_float ? float_at_least(box_max) : 0.0f;
-            limit = in_float ? float_reach(f, float_max) : box_max;
-            limit_for = box_max;
+        } else if (kind == QUERY_CLOSEST && box_max < w.limit_for) { /* a nearer hit: narrow the window */
+            w = window_up_to(f, w.float_min, box_max);
         }
-        running = false; /* next: the most recent subtree put aside that can still matter */
-        while (top > 0) {
-            const struct stack_entry *e = &stack[--top];
-            if (e->entry <= limit) {
-                child = e->child;
-                count = e->count;
-                running = true;
-                break;
-            }
-        }
+        running = stack_pop_within(stack, &top, w.limit, &child, &count); /* as in fast_bvh.c */
     }
-    stats_thread.node_visits += visits;
-    stats_thread.box_tests += boxes;
-    stats_thread.triangle_tests += tests;
+    walk_counted(visits, boxes, tests);
     return q->found;
 }
 

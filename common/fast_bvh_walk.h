@@ -13,6 +13,7 @@
 
 #include "fast_bvh.h"
 #include "float4.h"
+#include "stats.h"
 #include "triangle.h"
 
 /* ---- rung 6: four boxes in float (rung 8: eight) ------------------------------------------------
@@ -168,5 +169,44 @@ struct stack_entry {
     uint32_t child, count;
     double entry;
 };
+
+/* A walk's window in float (rungs 6 and 8), and the limit that a subtree put aside must be entered
+ * within: the float test's reach on those rungs, box_max itself on the others. */
+struct walk_window {
+    float float_min, float_max; /* the window's ends, rounded outward to float */
+    double limit;
+    double limit_for;           /* the box_max that float_max and limit were made from */
+};
+
+/* The window up to box_max, with its start float_min kept: at the start of a walk, and whenever a leaf
+ * finds a nearer hit (box_max lowered below limit_for). f is the ray's float setup, NULL when the walk
+ * tests its boxes in double. */
+static inline struct walk_window window_up_to(const struct float_setup *f, float float_min, double box_max) {
+    float float_max = f != NULL ? float_at_least(box_max) : 0.0f;
+    return (struct walk_window){float_min, float_max, f != NULL ? float_reach(f, float_max) : box_max, box_max};
+}
+
+/* The next subtree to walk: the most recently put aside of stack[0 .. *top) whose entry is within
+ * limit (at: a lower face at the same t would win the tie), into *child and *count, the ones beyond it
+ * dropped on the way. Returns false when none is left. */
+static inline bool stack_pop_within(const struct stack_entry *stack, int *top, double limit, uint32_t *child,
+                                    uint32_t *count) {
+    while (*top > 0) {
+        const struct stack_entry *e = &stack[--*top];
+        if (e->entry <= limit) {
+            *child = e->child;
+            *count = e->count;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* Adds one walk's counters to the calling thread's (stats.h): once per ray, not once per node. */
+static inline void walk_counted(uint64_t visits, uint64_t boxes, uint64_t tests) {
+    stats_thread.node_visits += visits;
+    stats_thread.box_tests += boxes;
+    stats_thread.triangle_tests += tests;
+}
 
 #endif
