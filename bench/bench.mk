@@ -7,6 +7,8 @@
 #   make bench-memory  peak memory of chapters 10 and 11 (every rung) per triangle, on a teapot of about
 #                      4 million triangles made by tools/models/teapot.c into out/bench/
 #   make bench         every benchmark: bench-accel, then bench-memory
+#   make bench-profile instructions, cache misses and mispredicted branches per ray for rungs 1, 5 to 8
+#                      and Embree on the teapot frame (bench/profile.sh, under valgrind: ten minutes or so)
 #
 # $(BUILD)/bench_accel --csv FILE also writes its tables' rows as CSV (see bench_accel.c), and --size WxH
 # traces a smaller frame; make test builds it too, for tests/test_bench_csv.c.
@@ -19,7 +21,7 @@
 # machine without Embree, make bench, which installs Embree, links the Embree one (tests/test_build.c).
 
 BENCH_MODELS := scenes/models/teapot-346k.ply scenes/models/bunny.ply
-BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_build kdtree kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj mesh_load infile camera
+BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_eight fast_bvh_build kdtree kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj mesh_load infile camera
 # Embree's header, when it is installed (`make BENCH_EMBREE= ...` builds the plain variant anyway).
 BENCH_EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
 BENCH_VARIANT := $(if $(BENCH_EMBREE),embree,plain)
@@ -28,7 +30,7 @@ BENCH_OBJECTS := $(patsubst bench/%.c,$(BUILD)/bench/$(BENCH_VARIANT)/%.o,$(BENC
 BENCH_CFLAGS := $(if $(BENCH_EMBREE),-DWHITTED_EMBREE)
 BENCH_LDLIBS := $(if $(BENCH_EMBREE),-lembree3)
 
-.PHONY: bench bench-accel bench-memory
+.PHONY: bench bench-accel bench-memory bench-profile
 
 ## make bench          every benchmark: make bench-accel, then make bench-memory
 bench: bench-accel bench-memory
@@ -56,6 +58,14 @@ $(BUILD)/bench_accel: $(BENCH_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix 
 
 -include $(wildcard $(BUILD)/bench/*/*.d)
 
+## make bench-profile  where a ray's time goes, rung by rung and in Embree: instructions, cache misses and
+##                     mispredicted branches per ray on the teapot frame, counted by valgrind
+##                     (bench/profile.sh; ten minutes or so)
+bench-profile: scenes/models/teapot-346k.ply | deps
+	tools/build/install-deps.sh bench
+	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_accel
+	bench/profile.sh $(BUILD)/bench_accel scenes/models/teapot-346k.ply
+
 # ---- memory: peak RSS per triangle on a big teapot ----------------------------------------------
 BENCH_MEMORY_TRIANGLES := 4000000
 BENCH_MEMORY_DIR := out/bench
@@ -80,7 +90,7 @@ bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_
 	echo "peak memory on $(BENCH_MEMORY_SCENE) ($$triangles triangles, 64x48, 1 thread):"; \
 	$(BUILD)/peak_rss $$triangles "chapter 10, BVH-SAH" $(BUILD)/chapter-10 $(BENCH_MEMORY_SCENE) --threads 1 --quiet \
 	    -o $(BENCH_MEMORY_DIR)/memory.png && \
-	for rung in 1 2 3 4 5 6 7; do \
+	for rung in 1 2 3 4 5 6 7 8; do \
 	    $(BUILD)/peak_rss $$triangles "chapter 11, rung $$rung" $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE) --threads 1 \
 	        --quiet --rung $$rung -o $(BENCH_MEMORY_DIR)/memory.png || exit 1; \
 	done; \

@@ -38,12 +38,20 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
     static const char *const names[2][FAST_BVH_RUNG_TOP + 1] = {
         {"", "", "fast BVH, rung 2 wide (median split)", "fast BVH, rung 3 simd (median split)",
          "fast BVH, rung 4 prefetch (median split)", "fast BVH, rung 5 build (median split)",
-         "fast BVH, rung 6 float (median split)", "fast BVH, rung 7 compact (median split)"},
+         "fast BVH, rung 6 float (median split)", "fast BVH, rung 7 compact (median split)",
+         "fast BVH, rung 8 eight (median split)"},
         {"", "", "fast BVH, rung 2 wide (binned SAH)", "fast BVH, rung 3 simd (binned SAH)",
          "fast BVH, rung 4 prefetch (binned SAH)", "fast BVH, rung 5 build (binned SAH)",
-         "fast BVH, rung 6 float (binned SAH)", "fast BVH, rung 7 compact (binned SAH)"},
+         "fast BVH, rung 6 float (binned SAH)", "fast BVH, rung 7 compact (binned SAH)",
+         "fast BVH, rung 8 eight (binned SAH)"},
     };
-    w->summary = (struct accel_summary){names[split == BVH_SPLIT_SAH][rung], build_ms, info.nodes, info.leaves,
+    /* Rung 8 on a processor without AVX2 (or told to act so) built rung 6's tree: the report says so. */
+    static const char *const fallback[2] = {"fast BVH, rung 8 eight without AVX2: rung 6's tree and walk (median split)",
+                                            "fast BVH, rung 8 eight without AVX2: rung 6's tree and walk (binned SAH)"
+    };
+    const char *name = rung == FAST_BVH_RUNG_EIGHT && bvh->nodes8 == NULL ? fallback[split == BVH_SPLIT_SAH]
+                                                                          : names[split == BVH_SPLIT_SAH][rung];
+    w->summary = (struct accel_summary){name, build_ms, info.nodes, info.leaves,
                                         info.max_depth, info.sah_cost};
     w->structure = bvh;
     w->free_structure = fast_bvh_free_any;
@@ -53,4 +61,15 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
     w->accel.for_each_hit = fast_bvh_for_each_hit_any;
     w->world.accel = &w->accel;
     return true;
+}
+
+struct accel_world *accel_world_create_at_rung(struct scene *s, const struct accel_choice *c, int rung, char *err,
+                                               size_t err_size) {
+    struct accel_world *w = accel_world_create(s, c, err, err_size);
+    if (w != NULL && c->kind == ACCEL_BVH &&
+        !accel_world_use_fast_bvh(w, c->sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, rung, err, err_size)) {
+        accel_world_destroy(w);
+        return NULL;
+    }
+    return w;
 }

@@ -14,4 +14,13 @@
  * does not exist. */
 bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *err, size_t err_size);
 
+/* Builds the world over every triangle of s with the structure c chooses, as accel_world_create does,
+ * and when c chooses the BVH routes its triangle queries through chapter 11's hierarchy at `rung` (an
+ * enum fast_bvh_rung; chapters 12 to 15 pass FAST_BVH_RUNG_DEFAULT), built by c's split rule. Rung 7
+ * reads its triangles from the world's gathered mesh and does not free the scene's meshes (chapter 11
+ * does that itself). Returns the world, to be freed with accel_world_destroy, or NULL with the reason in
+ * err (a bad scene, memory running out, a rung that does not exist). */
+struct accel_world *accel_world_create_at_rung(struct scene *s, const struct accel_choice *c, int rung, char *err,
+                                               size_t err_size);
+
 #endif

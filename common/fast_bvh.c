@@ -16,6 +16,9 @@
  *  - FAST_BVH_RUNG_COMPACT: rung 6's tree and walk with compact leaves: a leaf's triangles are read
  *    from the mesh by their face numbers (test_triangles), so the 72-byte copy of each triangle in
  *    leaf order is not made; one more dependent load per triangle test.
+ *  - FAST_BVH_RUNG_EIGHT: rung 6 on an 8-wide tree, walked by fast_bvh_eight.c with AVX2 when the
+ *    processor has it; a tree built without it is rung 6's and walked here as rung 6.
+ * The shared pieces (the float setup, the queries, the leaves' triangle test) are in fast_bvh_walk.h.
  * The traversal is one function specialised at compile time for each query and rung.
  *
  * Layout, chosen for speed. A binary tree is collapsed into a 4-wide one (each node takes its widest
@@ -43,6 +46,8 @@
 #include <emmintrin.h>
 #endif
 
+#include "fast_bvh_eight.h"
+#include "fast_bvh_walk.h"
 #include "float4.h"
 #include "stats.h"
 #include "triangle.h"
@@ -57,6 +62,7 @@ void fast_bvh_free(struct fast_bvh *b) {
     if (b == NULL)
         return;
     free(b->nodes);
+    free(b->nodes8);
     free(b->triangles);
     free(b->faces);
     free(b);
@@ -79,7 +85,30 @@ static bool check_fail(struct check *c, const char *message, size_t where) {
     return false;
 }
 
+/* A node of either width, as the check reads it: its children's bounds ([axis][low or high][child],
+ * width children per row), their child numbers and counts. */
+struct node_view {
+    const float *bounds;
+    const uint32_t *child, *count;
+    int width;
+};
+
+static struct node_view node_at(const struct fast_bvh *b, size_t index) {
+    if (b->nodes8 != NULL) {
+        const struct fast_bvh_node8 *n = &b->nodes8[index];
+        return (struct node_view){&n->bounds[0][0][0], n->child, n->count, FAST_BVH_WIDTH_EIGHT};
+    }
+    const struct fast_bvh_node *n = &b->nodes[index];
+    return (struct node_view){&n->bounds[0][0][0], n->child, n->count, FAST_BVH_WIDTH};
+}
+
 /* Child k's box in node n, widened back to double. */
+static struct aabb child_box_of(struct node_view n, int k) {
+    const float *lo = n.bounds + k, *hi = n.bounds + n.width + k; /* axis a's row pair starts at 2 a width */
+    return (struct aabb){{lo[0], lo[2 * n.width], lo[4 * n.width]}, {hi[0], hi[2 * n.width], hi[4 * n.width]}};
+}
+
+/* Child k's box in 4-wide node n, widened back to double. */
 static struct aabb child_box(const struct fast_bvh_node *n, int k) {
     return (struct aabb){{n->bounds[0][0][k], n->bounds[1][0][k], n->bounds[2][0][k]},
                          {n->bounds[0][1][k], n->bounds[1][1][k], n->bounds[2][1][k]}};
@@ -94,20 +123,20 @@ static bool check_subtree(struct check *c, uint32_t child, uint32_t count, const
                               c->why_size);
     if (child >= c->b->node_count || c->seen_node[child]++)
         return check_fail(c, "node index out of range or reached twice", child);
-    const struct fast_bvh_node *n = &c->b->nodes[child];
-    if (n->child[0] == FAST_BVH_NO_CHILD || n->child[1] == FAST_BVH_NO_CHILD)
+    struct node_view n = node_at(c->b, child);
+    if (n.child[0] == FAST_BVH_NO_CHILD || n.child[1] == FAST_BVH_NO_CHILD)
         return check_fail(c, "node with fewer than two children", child);
-    for (int k = 0; k < FAST_BVH_WIDTH; k++) {
-        struct aabb inner = child_box(n, k);
-        if (n->child[k] == FAST_BVH_NO_CHILD) {
+    for (int k = 0; k < n.width; k++) {
+        struct aabb inner = child_box_of(n, k);
+        if (n.child[k] == FAST_BVH_NO_CHILD) {
             struct aabb empty = aabb_empty();
-            if (memcmp(&inner, &empty, sizeof inner) != 0 || n->count[k] != 0)
+            if (memcmp(&inner, &empty, sizeof inner) != 0 || n.count[k] != 0)
                 return check_fail(c, "unused child slot without the empty box", child);
             continue;
         }
         if (!aabb_holds(box, &inner))
             return check_fail(c, "child box sticks out of its parent's", child);
-        if (!check_subtree(c, n->child[k], n->count[k], &inner, depth + 1))
+        if (!check_subtree(c, n.child[k], n.count[k], &inner, depth + 1))
             return false;
     }
     return true;
@@ -253,93 +282,6 @@ static inline unsigned child_pair_hit(const struct fast_bvh_node *n, int h, cons
     return lanes_true(enter <= leave);
 }
 
-/* ---- rung 6: four boxes in float --------------------------------------------------------------
- * Rung 6 computes each slab distance t = (bound - origin) / direction in float, four children per
- * instruction, from the origin rounded to the nearest float o' and 1/direction rounded to float. It
- * must never miss a box the exact slab test (real numbers, the ray's own double origin) would enter
- * in the window [t_min, t_max]: the triangles behind it might hold the brute-force loop's answer. Two
- * things move a computed t away from the exact one (docs/11-fast.md writes the argument out):
- *  - rounding, relative to t: one rounding of the difference, two of 1/direction (to double, then to
- *    float) and one of the product, at most gamma(4) = 4u / (1 - 4u) of |t| with u = 2^-24, as in Ize,
- *    "Robust BVH Ray Traversal" (JCGT 2013);
- *  - the origin's rounding, a shift of the whole ray by o - o', at most s = |o - o'| / |direction| on
- *    the t axis, the same for every box, computed per ray (the slack).
- * So every computed distance lies within gamma(4) |t| + s of the exact one, and a box the exact test
- * enters at N <= F (0 <= t_min <= N) is entered by the computed test with enter <= (1 + gamma(4)) N + s
- * and leave >= (1 - gamma(4)) F - s. The test asks enter <= (leave + s) * FAST_BVH_FLOAT_SCALE + 2 s,
- * which holds then, its own three roundings included. The argument needs t_min >= 0, no overflow and
- * no loss of relative precision to tiny numbers: hence FAST_BVH_FLOAT_RANGE (fast_bvh.h). */
-
-/* 1 + 8 FLT_EPSILON = 1 + 16u: at least (1 + gamma(4)) / ((1 - gamma(4)) (1 - u)^3) ~ 1 + 11u, the
- * relative rounding of enter and leave and of the test's own three steps. */
-#define FAST_BVH_FLOAT_SCALE (1.0f + 8.0f * FLT_EPSILON)
-/* The slack is taken as twice |o - o'| |1 / direction|, computed in double: the factor 2 covers the
- * (1 + gamma(4)) by which rounding can stretch the shift, and the rounding of the slack itself. */
-#define FAST_BVH_FLOAT_SLACK_FACTOR 2.0
-
-/* A float at least x and one at most x, for 0 <= x <= FAST_BVH_FLOAT_RANGE: the nearest float is within
- * a factor 1 +- 2^-24 of x in the normal range, so x stretched or shrunk by 2^-22 first rounds to the
- * safe side; below the normal range, FLT_MIN and 0 are (and above float's range, infinity is). Cheaper than float_above and float_below,
- * which rung 6 would call several times per ray. */
-#define FAST_BVH_FLOAT_STRETCH 0x1p-22
-
-static inline float float_at_least(double x) {
-    return x < FLT_MIN ? FLT_MIN : (float)(x * (1.0 + FAST_BVH_FLOAT_STRETCH));
-}
-
-static inline float float_at_most(double x) { return x < FLT_MIN ? 0.0f : (float)(x * (1.0 - FAST_BVH_FLOAT_STRETCH)); }
-
-/* What rung 6's box tests of one ray share: the origin rounded to float and 1 / direction in float,
- * each in all four lanes, and the slack s (twice it in slack2). */
-struct float_setup {
-    float4 origin[3], inverse[3];
-    float slack, slack2;
-};
-
-/* The far end of the window that rung 6's test compares an entry distance with, for a computed leave
- * distance: (leave + s) * FAST_BVH_FLOAT_SCALE + 2 s, for four leave distances at once or one. */
-static inline float4 float_reach4(const struct float_setup *f, float4 leave) {
-    return (leave + f->slack) * FAST_BVH_FLOAT_SCALE + f->slack2;
-}
-
-static inline float float_reach(const struct float_setup *f, float leave) {
-    return (leave + f->slack) * FAST_BVH_FLOAT_SCALE + f->slack2;
-}
-
-/* Makes *f for ray r in tree b with the window starting at t_min; returns false,
- * when the bound above does not cover this ray (t_min < 0, or the origin, b's box or 1 / direction
- * outside FAST_BVH_FLOAT_RANGE, or t_min beyond it): the ray then takes rung 5's test. A zero direction component has an
- * infinite 1 / direction, exact in float too; it is covered when the origin's component is a float,
- * and the slab of that axis is then decided as exactly as in double. */
-static inline bool float_setup_make(const struct fast_bvh *b, const ray *r, double t_min, struct float_setup *f) {
-    if (!b->float_range || !(t_min >= 0.0 && t_min <= FAST_BVH_FLOAT_RANGE))
-        return false;
-    double slack = 0.0;
-    for (int a = 0; a < 3; a++) {
-        double origin = vec3_axis(r->origin, a), direction = vec3_axis(r->direction, a);
-        double inverse = 1.0 / direction; /* as aabb_inverse_direction has it */
-        if (!(fabs(origin) <= FAST_BVH_FLOAT_RANGE))
-            return false;
-        float rounded = (float)origin;
-        double shift = fabs(origin - (double)rounded); /* exact: both are doubles within a float step */
-        if (direction == 0.0) {
-            if (shift != 0.0)
-                return false; /* the slab of this axis would be decided at o', not at o */
-        } else if (!(fabs(inverse) >= 1.0 / FAST_BVH_FLOAT_RANGE && fabs(inverse) <= FAST_BVH_FLOAT_RANGE)) {
-            return false;
-        } else {
-            double axis_slack = FAST_BVH_FLOAT_SLACK_FACTOR * shift * fabs(inverse);
-            slack = axis_slack > slack ? axis_slack : slack;
-        }
-        float inverse_f = (float)inverse;
-        f->origin[a] = (float4){rounded, rounded, rounded, rounded};
-        f->inverse[a] = (float4){inverse_f, inverse_f, inverse_f, inverse_f};
-    }
-    f->slack = float_at_least(slack); /* at least FLT_MIN: the floor for a product that underflows */
-    f->slack2 = 2.0f * f->slack;
-    return true;
-}
-
 /* The slab test on all four children of n at once, in float (lane k for child k), for entry distances
  * from t_near and exit distances up to t_far. Returns a 4-bit mask that holds every child the exact
  * test would find in the window (and maybe a few grazed ones besides), and the computed entry
@@ -355,67 +297,6 @@ static inline unsigned child_quad_hit(const struct fast_bvh_node *n, const struc
     }
     *entry = enter;
     return lanes4_true(enter <= float_reach4(f, leave));
-}
-
-/* The three questions one traversal answers; the code is specialised for each at compile time. */
-enum query {
-    QUERY_CLOSEST, /* nearest hit: near child first, boxes beyond the best hit skipped */
-    QUERY_ANY,     /* any hit: stop at the first */
-    QUERY_ALL,     /* every hit: visit everything the ray crosses */
-};
-
-struct query_state {
-    double t;      /* QUERY_CLOSEST: best t so far (t_max until something is found) */
-    uint32_t face; /* QUERY_CLOSEST: its face */
-    bool found;
-    bool (*visit)(void *ctx, double t, uint32_t face); /* QUERY_ALL */
-    void *ctx;
-};
-
-/* Tests triangles [first, first + count) for query q with triangle_crossing_prepared (triangle.h), the
- * arithmetic triangle_intersect uses, so t is bit-identical to the brute-force loop's; lowers *box_max
- * as nearer hits turn up. With `compact` (rung 7) each triangle's corners are read from the mesh by its
- * face number, the very doubles the brute-force loop reads; else from the copy in leaf order. Returns
- * false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
-static inline __attribute__((always_inline)) bool test_triangles(const struct fast_bvh *b,
-                                                                 const struct triangle_ray *r, uint32_t first,
-                                                                 uint32_t count, double t_min, double t_max,
-                                                                 enum query kind, bool compact, struct query_state *q,
-                                                                 double *box_max, uint64_t *tests) {
-    for (uint32_t k = first; k < first + count; k++) {
-        double t, u, v;
-        bool crossed;
-        (*tests)++;
-        if (compact) {
-            const uint32_t *corner = b->mesh->faces[b->faces[k]].v;
-            const vec3 *vertices = b->mesh->vertices;
-            crossed = triangle_crossing_prepared(vertices[corner[0]], vertices[corner[1]], vertices[corner[2]], r, &t,
-                                                 &u, &v);
-        } else {
-            const struct bvh_triangle *tri = &b->triangles[k];
-            crossed = triangle_crossing_prepared(tri->a, tri->b, tri->c, r, &t, &u, &v);
-        }
-        if (!crossed || !(t > t_min && t < t_max))
-            continue;
-        uint32_t face = b->faces[k];
-        if (kind == QUERY_ANY) {
-            q->found = true;
-            return false;
-        }
-        if (kind == QUERY_ALL) {
-            q->found = true;
-            if (!q->visit(q->ctx, t, face))
-                return false;
-            continue;
-        }
-        if (triangle_hit_wins(t, face, q->t, q->face)) { /* q->t is t_max until the first hit */
-            q->found = true;
-            q->t = t;
-            q->face = face;
-            *box_max = t; /* from now on only boxes starting at or before t matter */
-        }
-    }
-    return true;
 }
 
 /* Asks the memory system for a child the ray will visit later, so that it is in cache by then: a big
@@ -451,12 +332,6 @@ static inline int nearest_first(unsigned hit, const double2 entry[2], int order[
     return hits;
 }
 
-/* A subtree put aside for later, with the distance at which the ray enters its box. */
-struct stack_entry {
-    uint32_t child, count;
-    double entry;
-};
-
 /* Walks the tree for one query, after the slivers. Counters are kept in locals and added to the
  * thread's once at the end (one thread-local update per ray instead of one per node). Returns
  * q->found. */
@@ -482,8 +357,7 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
     running = running && b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, s.inverse, box_min, box_max, &root_entry);
     /* Rung 6: the window in float, rounded outward, and the limit a put-aside entry must be within. */
     bool in_float = f != NULL;
-    float float_min = in_float ? float_at_most(box_min) : 0.0f, float_max = in_float ? float_at_least(box_max) : 0.0f;
-    double limit = in_float ? float_reach(f, float_max) : box_max, limit_for = box_max;
+    struct walk_window w = window_up_to(f, in_float ? float_at_most(box_min) : 0.0f, box_max);
     while (running) {
         visits++;
         if (count == 0) {
@@ -492,7 +366,7 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
             unsigned hit = 0;
             if (in_float) {
                 float4 enter;
-                hit = child_quad_hit(n, &s, f, float_min, float_max, &enter);
+                hit = child_quad_hit(n, &s, f, w.float_min, w.float_max, &enter);
                 float4_widened(enter, entry);
             } else if (simd) {
                 hit = child_pair_hit(n, 0, &s, box_min, box_max, &entry[0]) |
@@ -534,28 +408,14 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
             }
         } else if (!test_triangles(b, &s.triangle, child, count, t_min, t_max, kind, compact, q, &box_max, &tests)) {
             break;
-        } else if (kind == QUERY_CLOSEST && box_max < limit_for) { /* a nearer hit: narrow the window */
-            float_max = in_float ? float_at_least(box_max) : 0.0f;
-            limit = in_float ? float_reach(f, float_max) : box_max;
-            limit_for = box_max;
+        } else if (kind == QUERY_CLOSEST && box_max < w.limit_for) { /* a nearer hit: narrow the window */
+            w = window_up_to(f, w.float_min, box_max);
         }
-        /* Next: the most recently put aside subtree that can still hold something at or before box_max
-         * (at: a lower face at the same t would win the tie); on rung 6, whose entries are computed in
-         * float, within the same reach as its box test. */
-        running = false;
-        while (top > 0) {
-            const struct stack_entry *e = &stack[--top];
-            if (e->entry <= limit) {
-                child = e->child;
-                count = e->count;
-                running = true;
-                break;
-            }
-        }
+        /* Next: the most recently put aside subtree that can still hold something at or before box_max;
+         * on rung 6, whose entries are computed in float, within the same reach as its box test. */
+        running = stack_pop_within(stack, &top, w.limit, &child, &count);
     }
-    stats_thread.node_visits += visits;
-    stats_thread.box_tests += boxes;
-    stats_thread.triangle_tests += tests;
+    walk_counted(visits, boxes, tests);
     return q->found;
 }
 
@@ -575,6 +435,12 @@ static inline __attribute__((always_inline)) bool traverse_rung(const struct fas
     case FAST_BVH_RUNG_BUILD:
         return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
     case FAST_BVH_RUNG_FLOAT: /* when its bound covers the ray; else rung 5's walk */
+        if (float_setup_make(b, r, t_min, &f))
+            return traverse(b, r, t_min, t_max, kind, true, true, &f, false, q);
+        return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
+    case FAST_BVH_RUNG_EIGHT: /* the 8-wide walk when the tree was built for it (AVX2); else rung 6's */
+        if (b->nodes8 != NULL)
+            return fast_bvh_eight_traverse(b, r, t_min, t_max, kind, q);
         if (float_setup_make(b, r, t_min, &f))
             return traverse(b, r, t_min, t_max, kind, true, true, &f, false, q);
         return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
@@ -609,7 +475,8 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
 
 /* ==== the rungs' names ======================================================================== */
 
-static const char *const rung_names[] = {NULL, "plain", "wide", "simd", "prefetch", "build", "float", "compact"};
+static const char *const rung_names[] = {NULL,    "plain", "wide",    "simd", "prefetch",
+                                         "build", "float", "compact", "eight"};
 
 int fast_bvh_rung_from_name(const char *name) {
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++)

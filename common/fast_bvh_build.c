@@ -1,5 +1,5 @@
 /* fast_bvh_build.c: building chapter 11's 4-wide hierarchy, by collapsing chapter 10's tree (rungs 2 to
- * 4) or in float, straight into the 4-wide layout (rungs 5 to 7) (chapter 11).
+ * 4) or in float, straight into the 4-wide layout (rungs 5 to 7), or the 8-wide one (rung 8) (chapter 11).
  *
  * Rungs 2 to 4 change only how the tree is stored and walked (fast_bvh.c), so they take chapter 10's
  * tree as it is: bvh_build makes it, and fast_bvh_collapse gives each node four children instead of
@@ -27,7 +27,12 @@
  * but for boxes up to one grid step larger. Where the SAH finds no plane or the tree is deeper than BVH_MAX_DEPTH, chapter 10 halves a
  * node by its median; rung 5 halves it by count as its triangles lie (all centroids at one point give
  * the same halves), so that there is one quickselect, chapter 10's. The median rule itself is built as
- * on rungs 2 to 4: it is quick already. */
+ * on rungs 2 to 4: it is quick already.
+ *
+ * Rung 8 builds as rung 5 (or collapses chapter 10's median tree) with eight children a node: the same
+ * rule opens the widest child that splits until a node has eight (struct node_store says which width
+ * is being written). Only when the processor has AVX2 (fast_bvh_eight_available), which its walk needs;
+ * otherwise it builds rung 6's 4-wide tree, and the walk is rung 6's. */
 #include "fast_bvh_build.h"
 
 #include <math.h>
@@ -35,6 +40,7 @@
 
 #include "big_alloc.h"
 #include "clock.h"
+#include "fast_bvh_eight.h"
 #include "float4.h"
 #include "triangle.h"
 
@@ -53,15 +59,33 @@ static struct aabb rounded_to_float(struct aabb box) {
                          {float_above(box.max.x), float_above(box.max.y), float_above(box.max.z)}};
 }
 
-/* Writes slot k of node n: the child (or leaf) and its box, rounded outward to float. */
-static void set_slot(struct fast_bvh_node *n, int k, struct aabb box, uint32_t child, uint32_t count) {
+/* The nodes of the tree being made: 4-wide (nodes), or 8-wide for rung 8 (nodes8, when not NULL). */
+struct node_store {
+    struct fast_bvh_node *nodes;
+    struct fast_bvh_node8 *nodes8;
+};
+
+/* Children per node in store. */
+static int store_width(struct node_store store) {
+    return store.nodes8 != NULL ? FAST_BVH_WIDTH_EIGHT : FAST_BVH_WIDTH;
+}
+
+/* Writes slot k of node `index` of store: the child (or leaf) and its box, rounded outward to float. */
+static void set_slot(struct node_store store, uint32_t index, int k, struct aabb box, uint32_t child, uint32_t count) {
     struct aabb rounded = rounded_to_float(box);
-    for (int a = 0; a < 3; a++) {
-        n->bounds[a][0][k] = (float)vec3_axis(rounded.min, a);
-        n->bounds[a][1][k] = (float)vec3_axis(rounded.max, a);
+    int width = store_width(store);
+    float *bounds = store.nodes8 != NULL ? &store.nodes8[index].bounds[0][0][0] : &store.nodes[index].bounds[0][0][0];
+    for (int a = 0; a < 3; a++) { /* bounds[a][h][k] is at (2 a + h) width + k */
+        bounds[2 * a * width + k] = (float)vec3_axis(rounded.min, a);
+        bounds[(2 * a + 1) * width + k] = (float)vec3_axis(rounded.max, a);
     }
-    n->child[k] = child;
-    n->count[k] = count;
+    if (store.nodes8 != NULL) {
+        store.nodes8[index].child[k] = child;
+        store.nodes8[index].count[k] = count;
+    } else {
+        store.nodes[index].child[k] = child;
+        store.nodes[index].count[k] = count;
+    }
 }
 
 /* The shape and SAH cost of the 4-wide tree, added up as its nodes are made. */
@@ -87,17 +111,18 @@ static void count_child(struct tree_shape *shape, struct aabb box, uint32_t coun
 
 struct collapser {
     const struct bvh *binary;
-    struct fast_bvh_node *nodes;
+    struct node_store store; /* 4-wide, or 8-wide for rung 8 */
     struct tree_shape shape;
 };
 
-/* Makes a 4-wide node out of binary node `index` and its descendants, at the given depth of the 4-wide
- * tree, and returns its index. */
+/* Makes a 4-wide node (8-wide for rung 8) out of binary node `index` and its descendants, at the given
+ * depth of the wide tree, and returns its index. */
 static uint32_t collapse_node(struct collapser *c, uint32_t index, size_t depth) {
     const struct bvh_node *nodes = c->binary->nodes;
-    uint32_t slots[FAST_BVH_WIDTH] = {nodes[index].left, nodes[index].right};
+    int width = store_width(c->store);
+    uint32_t slots[FAST_BVH_WIDTH_EIGHT] = {nodes[index].left, nodes[index].right};
     int used = 2;
-    while (used < FAST_BVH_WIDTH) {
+    while (used < width) {
         int widest = -1;
         double widest_area = -1.0;
         for (int k = 0; k < used; k++)
@@ -113,16 +138,16 @@ static uint32_t collapse_node(struct collapser *c, uint32_t index, size_t depth)
     }
     uint32_t out = (uint32_t)c->shape.node_count++;
     count_child(&c->shape, nodes[index].box, 0, depth);
-    for (int k = 0; k < FAST_BVH_WIDTH; k++) {
+    for (int k = 0; k < width; k++) {
         if (k >= used) {
-            set_slot(&c->nodes[out], k, aabb_empty(), FAST_BVH_NO_CHILD, 0);
+            set_slot(c->store, out, k, aabb_empty(), FAST_BVH_NO_CHILD, 0);
             continue;
         }
         const struct bvh_node *n = &nodes[slots[k]];
         uint32_t child = n->count > 0 ? n->first : collapse_node(c, slots[k], depth + 1);
         if (n->count > 0)
             count_child(&c->shape, n->box, n->count, depth + 1);
-        set_slot(&c->nodes[out], k, n->box, child, n->count);
+        set_slot(c->store, out, k, n->box, child, n->count);
     }
     return out;
 }
@@ -130,16 +155,22 @@ static uint32_t collapse_node(struct collapser *c, uint32_t index, size_t depth)
 struct fast_bvh *fast_bvh_collapse(struct bvh *binary, enum fast_bvh_rung rung) {
     double start = clock_seconds();
     struct fast_bvh *b = calloc(1, sizeof *b);
-    size_t interior = binary->node_count - binary->info.leaves; /* the 4-wide tree has no more nodes */
-    struct fast_bvh_node *nodes = big_alloc((interior > 0 ? interior : 1) * sizeof *nodes, false);
-    if (b == NULL || nodes == NULL) {
+    size_t interior = binary->node_count - binary->info.leaves; /* the wide tree has no more nodes */
+    struct node_store store = {NULL, NULL};
+    if (rung == FAST_BVH_RUNG_EIGHT && fast_bvh_eight_available())
+        store.nodes8 = big_alloc((interior > 0 ? interior : 1) * sizeof *store.nodes8, false);
+    else
+        store.nodes = big_alloc((interior > 0 ? interior : 1) * sizeof *store.nodes, false);
+    if (b == NULL || (store.nodes == NULL && store.nodes8 == NULL)) {
         free(b);
-        free(nodes);
+        free(store.nodes);
+        free(store.nodes8);
         return NULL;
     }
-    struct collapser c = {binary, nodes, {0.0, 0, 0, 0, 0.0}};
+    struct collapser c = {binary, store, {0.0, 0, 0, 0, 0.0}};
     b->rung = rung;
-    b->nodes = nodes;
+    b->nodes = store.nodes;
+    b->nodes8 = store.nodes8;
     b->root_box = aabb_empty();
     if (binary->tree_count > 0) {
         const struct bvh_node *root = &binary->nodes[0];
@@ -284,7 +315,7 @@ struct builder {
     struct packed_box *packed;   /* rung 7: the same in 12 bytes, on the grid (prims is then NULL) */
     struct packed_grid grid;
     uint32_t *faces;             /* the face number of each prim, reordered along with them */
-    struct fast_bvh_node *nodes; /* the 4-wide tree */
+    struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 */
     struct tree_shape shape;
 };
 
@@ -470,15 +501,16 @@ struct slot {
     bool leaf;
 };
 
-/* Makes the 4-wide node whose binary split has given left and right (at binary depth `depth`, 4-wide
- * depth `wide_depth`) and everything below it; returns its index. As in fast_bvh_collapse, the child
- * with the largest surface area that splits is replaced by its halves while there is room; a child that
- * does not split is a leaf. */
+/* Makes the 4-wide node (8-wide for rung 8) whose binary split has given left and right (at binary
+ * depth `depth`, wide depth `wide_depth`) and everything below it; returns its index. As in
+ * fast_bvh_collapse, the child with the largest surface area that splits is replaced by its halves
+ * while there is room; a child that does not split is a leaf. */
 static uint32_t build_node(struct builder *bd, const struct build_range *left, const struct build_range *right,
                            size_t depth, size_t wide_depth) {
-    struct slot slots[FAST_BVH_WIDTH] = {{*left, depth + 1, false}, {*right, depth + 1, false}};
+    int width = store_width(bd->store);
+    struct slot slots[FAST_BVH_WIDTH_EIGHT] = {{*left, depth + 1, false}, {*right, depth + 1, false}};
     int used = 2;
-    while (used < FAST_BVH_WIDTH) {
+    while (used < width) {
         int widest = -1;
         double widest_area = -1.0;
         for (int k = 0; k < used; k++) {
@@ -500,9 +532,9 @@ static uint32_t build_node(struct builder *bd, const struct build_range *left, c
         slots[used++] = (struct slot){halves[1], open.depth + 1, false};
     }
     uint32_t out = (uint32_t)bd->shape.node_count++;
-    for (int k = 0; k < FAST_BVH_WIDTH; k++) {
+    for (int k = 0; k < width; k++) {
         if (k >= used) {
-            set_slot(&bd->nodes[out], k, aabb_empty(), FAST_BVH_NO_CHILD, 0);
+            set_slot(bd->store, out, k, aabb_empty(), FAST_BVH_NO_CHILD, 0);
             continue;
         }
         const struct slot *s = &slots[k];
@@ -516,7 +548,7 @@ static uint32_t build_node(struct builder *bd, const struct build_range *left, c
         } else {
             count_child(&bd->shape, box, count, wide_depth + 1);
         }
-        set_slot(&bd->nodes[out], k, box, child, count);
+        set_slot(bd->store, out, k, box, child, count);
     }
     return out;
 }
@@ -535,12 +567,14 @@ static bool face_float_box(const struct mesh *m, size_t f, double pad, struct fl
 
 /* Rung 5's build of b (its triangle_count set) over the faces of m, by the SAH: fills b's faces,
  * root, nodes and info. With `packed` (rung 7), the build's boxes are kept in 12 bytes each where the
- * mesh is within float's range (struct packed_box). Returns false when memory runs out. */
-static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed) {
+ * mesh is within float's range (struct packed_box). With `eight` (rung 8), the nodes are 8-wide
+ * (nodes8): the same splits, each node opening its widest children until it has eight. Returns false
+ * when memory runs out. */
+static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed, bool eight) {
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
     double pad = triangle_box_pad(m);
-    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, NULL, {0.0, 0, 0, 0, 0.0}};
+    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, {NULL, NULL}, {0.0, 0, 0, 0, 0.0}};
     struct float_box box;
     if (packed) { /* a first pass for the root's box, which the grid spans */
         struct float_box root = float_box_empty();
@@ -553,9 +587,12 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
         bd.packed = big_alloc((n ? n : 1) * sizeof *bd.packed, true);
     else
         bd.prims = big_alloc((n ? n : 1) * sizeof *bd.prims, true);
-    b->nodes = big_alloc(most_nodes * sizeof *b->nodes, true);
+    if (eight)
+        b->nodes8 = big_alloc(most_nodes * sizeof *b->nodes8, true);
+    else
+        b->nodes = big_alloc(most_nodes * sizeof *b->nodes, true);
     b->faces = big_alloc((n ? n : 1) * sizeof *b->faces, true);
-    if (b->nodes == NULL || b->faces == NULL || (bd.prims == NULL && bd.packed == NULL)) {
+    if ((b->nodes == NULL && b->nodes8 == NULL) || b->faces == NULL || (bd.prims == NULL && bd.packed == NULL)) {
         free(bd.prims);
         free(bd.packed);
         return false;
@@ -576,7 +613,7 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
     b->tree_count = tree;
 
     bd.faces = b->faces;
-    bd.nodes = b->nodes;
+    bd.store = (struct node_store){b->nodes, b->nodes8};
     struct build_range root = {0, (uint32_t)tree, float_box_empty(), float_box_empty()}, halves[2];
     range_bounds(&bd, &root);
     b->root_box = float_box_widened(&root.box);
@@ -626,7 +663,8 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         return NULL;
     b->rung = rung;
     b->triangle_count = m->face_count;
-    if (!build_in_float(b, m, rung == FAST_BVH_RUNG_COMPACT)) {
+    bool eight = rung == FAST_BVH_RUNG_EIGHT && fast_bvh_eight_available(); /* else rung 6's tree */
+    if (!build_in_float(b, m, rung == FAST_BVH_RUNG_COMPACT, eight)) {
         fast_bvh_free(b);
         return NULL;
     }

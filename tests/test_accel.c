@@ -25,6 +25,7 @@
 #include "bvh.h"
 #include "fast_bvh.h"
 #include "fast_bvh_build.h"
+#include "fast_bvh_eight.h"
 #include "kdtree.h"
 #include "mesh.h"
 #include "mesh_load.h"
@@ -289,16 +290,17 @@ static void kd_for_each_hit_of(const void *s, const ray *r, double t_min, double
 }
 static void kd_free_of(void *s) { kdtree_free(s); }
 
-/* Chapters 9 and 10's four, chapter 11's rungs by the SAH, and its top rung by the median. */
-#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 1)
+/* Chapters 9 and 10's four, chapter 11's rungs by the SAH, its rungs 7 and 8 by the median, and rung 8
+ * as built without AVX2 (rung 6's tree: the fallback, which the machine running the tests may not need). */
+#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 3)
 
 /* Builds chapter 11's fast BVH over m at `rung` by `split`, checks its invariants and puts it in *out. */
 static void build_fast(const struct mesh *m, const char *mesh_name, enum bvh_split split, int rung, struct accel *out) {
     static const char *const names[2][FAST_BVH_RUNG_TOP + 1] = {
         {"", "", "fast BVH median rung 2", "fast BVH median rung 3", "fast BVH median rung 4", "fast BVH median rung 5",
-         "fast BVH median rung 6", "fast BVH median rung 7"},
+         "fast BVH median rung 6", "fast BVH median rung 7", "fast BVH median rung 8"},
         {"", "", "fast BVH SAH rung 2", "fast BVH SAH rung 3", "fast BVH SAH rung 4", "fast BVH SAH rung 5",
-         "fast BVH SAH rung 6", "fast BVH SAH rung 7"}};
+         "fast BVH SAH rung 6", "fast BVH SAH rung 7", "fast BVH SAH rung 8"}};
     char why[256];
     const char *name = names[split == BVH_SPLIT_SAH][rung];
     struct fast_bvh *b = fast_bvh_build(m, split, (enum fast_bvh_rung)rung);
@@ -323,7 +325,14 @@ static void build_all(const struct mesh *m, const char *mesh_name, struct accel 
     out[3] = (struct accel){"kd-tree SAH", kd_sah, kd_closest_of, kd_occluded_of, kd_for_each_hit_of, kd_free_of};
     for (int rung = FAST_BVH_RUNG_FIRST; rung <= FAST_BVH_RUNG_TOP; rung++)
         build_fast(m, mesh_name, BVH_SPLIT_SAH, rung, &out[4 + rung - FAST_BVH_RUNG_FIRST]);
-    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_TOP, &out[ACCEL_COUNT - 1]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_COMPACT, &out[ACCEL_COUNT - 3]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 2]);
+    cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 1]);
+    cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
+    cr_assert_null(((struct fast_bvh *)out[ACCEL_COUNT - 1].structure)->nodes8, "%s: rung 8 told there is no AVX2 "
+                   "built 8-wide nodes", mesh_name);
+    out[ACCEL_COUNT - 1].name = "fast BVH SAH rung 8 without AVX2";
 }
 
 /* Builds the kd-tree over m by each rule, checking each one's invariants; returns how many. */
@@ -1083,20 +1092,52 @@ Test(accel, rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mes
     check_mesh("sphere of radius 3e-3 at (4096, -2048, 1024)", &sphere, 57);
 }
 
-/* Chapter 11's rungs: only 1 to 7, by number or name; anything else builds nothing. */
+/* Chapter 11's rungs: only 1 to 8, by number or name; anything else builds nothing. */
 Test(accel, fast_bvh_rungs_are_named_and_checked) {
-    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build", "float", "compact"};
+    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight"};
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++) {
         char number[2] = {(char)('0' + r), '\0'};
         cr_expect_eq(fast_bvh_rung_from_name(names[r - 1]), r, "%s", names[r - 1]);
         cr_expect_eq(fast_bvh_rung_from_name(number), r, "%s", number);
         cr_expect_str_eq(fast_bvh_rung_name(r), names[r - 1]);
     }
-    cr_expect_eq(fast_bvh_rung_from_name("8"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name("9"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("0"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("fast"), 0);
     struct mesh m = make_soup(7, 20);
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PLAIN), "rung 1 is chapter 10's, not built here");
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, (enum fast_bvh_rung)(FAST_BVH_RUNG_TOP + 1)));
+    mesh_free(&m);
+}
+
+/* Rung 8 builds 8-wide nodes, more than four children each on average, exactly when the processor has AVX2 and is not told
+ * otherwise; else rung 6's tree, the same as rung 6 builds, node for node. */
+Test(accel, rung_8_is_eight_wide_with_avx2_and_rung_6_without) {
+    struct mesh m = make_soup(11, 5000);
+    struct fast_bvh *eight = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
+    cr_assert_not_null(eight);
+    if (fast_bvh_eight_available()) {
+        cr_assert_not_null(eight->nodes8, "AVX2 here, and rung 8 built no 8-wide nodes");
+        size_t children = 0;
+        for (size_t k = 0; k < eight->node_count; k++)
+            for (int c = 0; c < FAST_BVH_WIDTH_EIGHT; c++)
+                children += eight->nodes8[k].child[c] != FAST_BVH_NO_CHILD;
+        cr_expect_gt(children, FAST_BVH_WIDTH * eight->node_count, "%zu nodes with %zu children: not wider than rung 6's",
+                     eight->node_count, children);
+    } else {
+        cr_log_warn("this processor has no AVX2: rung 8's 8-wide walk is not tested here");
+    }
+    cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
+    cr_expect_not(fast_bvh_eight_available());
+    struct fast_bvh *fallback = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
+    struct fast_bvh *six = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_FLOAT);
+    cr_assert(fallback != NULL && six != NULL);
+    cr_expect_null(fallback->nodes8);
+    cr_assert_eq(fallback->node_count, six->node_count);
+    cr_expect_eq(memcmp(fallback->nodes, six->nodes, six->node_count * sizeof *six->nodes), 0,
+                 "rung 8 without AVX2 built another tree than rung 6's");
+    fast_bvh_free(eight);
+    fast_bvh_free(fallback);
+    fast_bvh_free(six);
     mesh_free(&m);
 }

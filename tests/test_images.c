@@ -89,7 +89,7 @@ Test(acceleration, every_rung_of_chapter_11_draws_the_brute_force_picture, .time
     const char *scene = chapter_scene(9);
     const char *brute = TEST_OUT "/brute-force-09-for-11.png";
     cr_assert_eq(render_chapter(11, scene, brute, "--accel none"), 0);
-    static const char *const rungs[] = {"1", "2", "3", "4", "5", "6", "7"};
+    static const char *const rungs[] = {"1", "2", "3", "4", "5", "6", "7", "8"};
     for (size_t k = 0; k < sizeof rungs / sizeof rungs[0]; k++) {
         char extra[64], tag[32];
         snprintf(extra, sizeof extra, "--rung %s", rungs[k]);
@@ -99,6 +99,10 @@ Test(acceleration, every_rung_of_chapter_11_draws_the_brute_force_picture, .time
     check_identical(11, scene, "--rung float --split seed", brute, "rung-6-median");
     check_identical(11, scene, "--rung compact --split seed", brute, "rung-7-median");
     check_identical(11, scene, "--rung plain --split seed", brute, "rung-1-median");
+    check_identical(11, scene, "--rung eight --split seed", brute, "rung-8-median");
+    cr_assert_eq(setenv("WHITTED_NO_AVX2", "1", 1), 0); /* rung 8's fallback, as without AVX2 */
+    check_identical(11, scene, "--rung eight", brute, "rung-8-without-avx2");
+    cr_assert_eq(unsetenv("WHITTED_NO_AVX2"), 0);
 }
 
 Test(acceleration, chapters_9_to_11_draw_chapter_8s_picture) {

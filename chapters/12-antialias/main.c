@@ -22,19 +22,6 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* Builds the world with the chosen structure over every triangle of the scene: chapter 9's, or the BVH
- * at chapter 11's default rung. */
-static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
-    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
-    if (w != NULL && choice.kind == ACCEL_BVH &&
-        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_DEFAULT, err,
-                                  err_size)) {
-        accel_world_destroy(w);
-        return NULL;
-    }
-    return w;
-}
-
 int main(int argc, char **argv) {
     /* The kinds of shape chapter 12 draws: every kind so far (chapter 5's). */
     static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
@@ -56,7 +43,8 @@ int main(int argc, char **argv) {
         return cli_finish(&run);
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
+    struct accel_world *w =
+        accel_world_create_at_rung(&run.scene, &choice, FAST_BVH_RUNG_DEFAULT, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
     /* What chapter 12 adds: the pixels sampled by the scene's antialias line. */

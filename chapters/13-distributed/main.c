@@ -24,19 +24,6 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* Builds the world with the chosen structure over every triangle of the scene: chapter 9's, or the BVH
- * at chapter 11's default rung. */
-static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
-    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
-    if (w != NULL && choice.kind == ACCEL_BVH &&
-        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_DEFAULT, err,
-                                  err_size)) {
-        accel_world_destroy(w);
-        return NULL;
-    }
-    return w;
-}
-
 /* What chapter 13 adds to the tracer: every light's shadow by soft_shadow_filtered, which is chapter 8's
  * filtered shadow ray for a point light and a grid of them for an area light. */
 static vec3 trace_soft(const void *world, const ray *r) {
@@ -65,7 +52,8 @@ int main(int argc, char **argv) {
         return cli_finish(&run);
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
+    struct accel_world *w =
+        accel_world_create_at_rung(&run.scene, &choice, FAST_BVH_RUNG_DEFAULT, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
     /* What chapter 13 adds: soft shadows in the tracer, and the camera samples traced through the lens. */

@@ -25,18 +25,6 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* Builds the world as chapters 12 and 13 do: the chosen structure, the BVH at chapter 11's default rung. */
-static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
-    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
-    if (w != NULL && choice.kind == ACCEL_BVH &&
-        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_DEFAULT, err,
-                                  err_size)) {
-        accel_world_destroy(w);
-        return NULL;
-    }
-    return w;
-}
-
 /* Chapter 13's tracer: soft shadows from area lights (texture_paint reaches it through scene.paint). */
 static vec3 trace_soft(const void *world, const ray *r) {
     return whitted_trace_shadowed(world, r, soft_shadow_filtered);
@@ -65,7 +53,8 @@ int main(int argc, char **argv) {
         !scene_load_meshes(&run.scene, run.err, sizeof run.err) ||
         !mesh_surface_prepare(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    struct accel_world *w = prepare(&run.scene, run.err, sizeof run.err);
+    struct accel_world *w =
+        accel_world_create_at_rung(&run.scene, &choice, FAST_BVH_RUNG_DEFAULT, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
     if (cli_render_sampled(&run, trace_soft, &w->world, &thin_lens_sampler))

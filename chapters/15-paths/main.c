@@ -42,18 +42,6 @@ static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
-/* Builds the world as chapters 12 to 14 do: the chosen structure, the BVH at chapter 11's default rung (6, the fastest). */
-static struct accel_world *prepare(struct scene *s, char *err, size_t err_size) {
-    struct accel_world *w = accel_world_create(s, &choice, err, err_size);
-    if (w != NULL && choice.kind == ACCEL_BVH &&
-        !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_DEFAULT, err,
-                                  err_size)) {
-        accel_world_destroy(w);
-        return NULL;
-    }
-    return w;
-}
-
 int main(int argc, char **argv) {
     static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
     static const struct chapter chapter = {
@@ -91,7 +79,7 @@ int main(int argc, char **argv) {
                 s->antialias.line != 0 && lens_is_open(&s->lens) ? "the antialias line and the camera's lens"
                 : s->antialias.line != 0                         ? "the antialias line"
                                                                  : "the camera's lens");
-    struct accel_world *w = prepare(s, run.err, sizeof run.err);
+    struct accel_world *w = accel_world_create_at_rung(s, &choice, FAST_BVH_RUNG_DEFAULT, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
     struct emitter_list emitters;
