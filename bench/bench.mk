@@ -62,7 +62,7 @@ $(BUILD)/bench_accel: $(BENCH_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix 
 ##                     mispredicted branches per ray on the teapot frame, counted by valgrind
 ##                     (bench/profile.sh; ten minutes or so)
 bench-profile: scenes/models/teapot-346k.ply | deps
-	tools/build/install-deps.sh bench
+	tools/build/install-deps.sh profile
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_accel
 	bench/profile.sh $(BUILD)/bench_accel scenes/models/teapot-346k.ply
 

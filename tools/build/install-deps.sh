@@ -2,8 +2,8 @@
 # install-deps.sh: makes sure the Debian packages a make target needs are there, installing only what
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
-#   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, cycles, results, bench, fuzz,
-#                                             web, test-web
+#   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, cycles, results, bench,
+#                                             profile, fuzz, web, test-web
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
 #   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test and
@@ -12,6 +12,8 @@
 #   cycles   build + Blender (blender), for its Cycles renderer: make compare-cycles (chapter 15)
 #   results  build + POV-Ray and gnuplot: make results (which adds bench for its Embree table)
 #   bench    build + Intel Embree 3 (libembree-dev): make bench
+#   profile  bench + valgrind, whose callgrind counts instructions, cache misses and mispredicted
+#            branches: make bench-profile
 #   fuzz     clang with its libFuzzer and sanitizer runtimes (clang; on systems where the runtimes are
 #            a package of their own, libclang-rt-N-dev for clang N): make fuzz
 #   web      Emscripten (emscripten, with Debian's clang, LLVM and binaryen), to compile the chapters to
@@ -49,7 +51,7 @@ want() { # want PACKAGE: add it to the list once
 }
 for need in "${needs[@]}"; do
     case $need in
-    build | test | compare | cycles | results | bench)
+    build | test | compare | cycles | results | bench | profile)
         have_command gcc || want gcc
         have_command pkg-config || want pkg-config
         have_stb || want libstb-dev
@@ -65,7 +67,11 @@ for need in "${needs[@]}"; do
         ;;
     compare) have_command povray || want povray ;;
     cycles) have_command blender || want blender ;;
-    bench) [ -e /usr/include/embree3/rtcore.h ] || want libembree-dev ;;
+    bench | profile)
+        [ -e /usr/include/embree3/rtcore.h ] || want libembree-dev
+        ;;&
+    profile) have_command valgrind || want valgrind ;;
+    bench) ;;
     fuzz)
         if ! have_command clang; then
             want clang
@@ -83,7 +89,7 @@ for need in "${needs[@]}"; do
         ;;
     build | web) ;;
     *)
-        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench, fuzz, web or test-web)" >&2
+        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench, profile, fuzz, web or test-web)" >&2
         exit 2
         ;;
     esac
