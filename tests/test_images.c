@@ -105,6 +105,32 @@ Test(acceleration, every_rung_of_chapter_11_draws_the_brute_force_picture, .time
     cr_assert_eq(unsetenv("WHITTED_NO_AVX2"), 0);
 }
 
+/* Transparent meshes: shadow rays pass through glass and take its colour, so every rung's shadow query
+ * must find each triangle the brute-force loop finds, not only the first. Chapter 9's scene with the
+ * teapot made filtering glass and the bunny clear glass, at half size, by rungs 1, 6, 7 and 8. */
+Test(acceleration, rungs_draw_transparent_meshes_as_the_brute_force_loop, .timeout = 120) {
+    const char *olds[] = {
+        "material china  colour 0.9 0.88 0.82 ambient 0.1 diffuse 0.7 phong 0.8 phong_size 120 reflection 0.1",
+        "material clay   colour 0.85 0.55 0.35 ambient 0.1 diffuse 0.8 phong 0.3 phong_size 20"};
+    const char *news[] = {
+        "material china  colour 0.5 0.9 0.6 ambient 0 diffuse 0.05 phong 0.8 phong_size 120 reflection 0.05 "
+        "filter 0.8 ior 1.4",
+        "material clay   colour 1 1 1 ambient 0 diffuse 0.05 phong 0.3 phong_size 20 transmit 0.85 ior 1.3"};
+    const char *scene = "scenes/09-kdtree.scene.glass-meshes.variant";
+    const char *brute = TEST_OUT "/brute-force-glass-meshes.png";
+    write_scene_variant(chapter_scene(9), scene, olds, news, 2, NULL);
+    int status = render_chapter(11, scene, brute, "--accel none --width 200 --height 150");
+    static const char *const rungs[] = {"1", "6", "7", "8"};
+    for (size_t k = 0; status == 0 && k < sizeof rungs / sizeof rungs[0]; k++) {
+        char extra[64], tag[32];
+        snprintf(extra, sizeof extra, "--rung %s --width 200 --height 150", rungs[k]);
+        snprintf(tag, sizeof tag, "glass-meshes-rung-%s", rungs[k]);
+        check_identical(11, scene, extra, brute, tag);
+    }
+    remove(scene);
+    cr_assert_eq(status, 0, "chapter 11 --accel none failed on the glass meshes");
+}
+
 Test(acceleration, chapters_9_to_11_draw_chapter_8s_picture) {
     const char *expected = TEST_OUT "/chapter-08-for-accel.png";
     cr_assert_eq(render_chapter(8, chapter_scene(8), expected, ""), 0);
