@@ -33,6 +33,7 @@
 #include <errno.h>
 #include <inttypes.h>
 #include <math.h>
+#include <omp.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -633,6 +634,7 @@ int main(int argc, char **argv) {
     struct options options = {false, 3, NULL, BENCH_WIDTH, BENCH_HEIGHT, NULL};
     const char *csv_path = NULL;
     int first = 1;
+    omp_set_num_threads(1); /* every build and frame on one thread, as Embree's */
     for (; first < argc && argv[first][0] == '-'; first++) {
         if (strcmp(argv[first], "--embree") == 0)
             options.with_embree = true;

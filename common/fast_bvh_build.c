@@ -17,7 +17,9 @@
  *  - straight into the 4-wide layout: a node's children are split as soon as the node is made, by the
  *    very rule fast_bvh_collapse follows, so the binary tree is never stored (40 bytes a triangle
  *    less at the build's peak);
- *  - its big arrays on 2 MB pages (big_alloc).
+ *  - its big arrays on 2 MB pages (big_alloc);
+ *  - with more than one thread (OpenMP's, omp_get_max_threads), the children of a big node are built
+ *    in parallel, each in a task of its own (build_children), into the same tree as on one thread.
  * Its tree is not chapter 10's node for node (float centroids, other slots), but as good by the SAH's
  * measure.
  *
@@ -36,6 +38,7 @@
 #include "fast_bvh_build.h"
 
 #include <math.h>
+#include <omp.h>
 #include <stdlib.h>
 
 #include "big_alloc.h"
@@ -88,7 +91,8 @@ static void set_slot(struct node_store store, uint32_t index, int k, struct aabb
     }
 }
 
-/* The shape and SAH cost of the 4-wide tree, added up as its nodes are made. */
+/* The shape and SAH cost of the 4-wide tree, added up node by node (as the collapse makes them; the
+ * float build measures its finished tree, measure_node). */
 struct tree_shape {
     double root_area;
     size_t node_count, leaves, max_depth;
@@ -315,8 +319,9 @@ struct builder {
     struct packed_box *packed;   /* rung 7: the same in 12 bytes, on the grid (prims is then NULL) */
     struct packed_grid grid;
     uint32_t *faces;             /* the face number of each prim, reordered along with them */
-    struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 */
-    struct tree_shape shape;
+    struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (spread out when parallel) */
+    size_t node_count;           /* the index of the next node to write */
+    bool parallel;               /* whether big nodes build their children in tasks (more than one thread) */
 };
 
 /* Prim k's box. */
@@ -501,12 +506,59 @@ struct slot {
     bool leaf;
 };
 
-/* Makes the 4-wide node (8-wide for rung 8) whose binary split has given left and right (at binary
- * depth `depth`, wide depth `wide_depth`) and everything below it; returns its index. As in
- * fast_bvh_collapse, the child with the largest surface area that splits is replaced by its halves
- * while there is room; a child that does not split is a leaf. */
+/* Nodes of at least FAST_BVH_TASK_FROM triangles build their children in parallel when the build has
+ * more than one thread: each child's subtree in a task of its own. Smaller than this, a task costs more
+ * than it saves. */
+#define FAST_BVH_TASK_FROM 1024
+
 static uint32_t build_node(struct builder *bd, const struct build_range *left, const struct build_range *right,
-                           size_t depth, size_t wide_depth) {
+                           size_t depth);
+
+/* The child a slot holds: a leaf (child = its first prim, count = its prims) or, if it splits, the node
+ * built over it (child = its index in bd's store, count = 0). */
+static void build_child(struct builder *bd, const struct slot *s, uint32_t *child, uint32_t *count) {
+    struct build_range halves[2];
+    *child = s->range.begin;
+    *count = s->range.end - s->range.begin;
+    if (!s->leaf && split(bd, &s->range, s->depth, &halves[0], &halves[1])) {
+        *count = 0;
+        *child = build_node(bd, &halves[0], &halves[1], s->depth);
+    }
+}
+
+/* Builds the children of a node, whose slots are given, filling child[] and count[]: one after the other,
+ * each subtree's nodes after the one before; or, for a big node when there are threads, each in a task
+ * of its own, writing its nodes from an index set aside for it. A subtree over n triangles has at most
+ * n - 1 nodes (each has two children or more), so child k's nodes start n_0 - 1 + ... + n_(k-1) - 1
+ * after the first child's, whatever the others turn out to need: the tasks never wait for one another
+ * and never write the same node, and every node lands in the order one thread writes them, with gaps
+ * that pack_node closes. */
+static void build_children(struct builder *bd, const struct slot *slots, int used, uint32_t *child, uint32_t *count) {
+    uint32_t prims = 0;
+    for (int k = 0; k < used; k++)
+        prims += slots[k].range.end - slots[k].range.begin;
+    if (!bd->parallel || prims < FAST_BVH_TASK_FROM) {
+        for (int k = 0; k < used; k++)
+            build_child(bd, &slots[k], &child[k], &count[k]);
+        return;
+    }
+    struct builder sub[FAST_BVH_WIDTH_EIGHT];
+    for (int k = 0; k < used; k++) {
+        uint32_t n = slots[k].range.end - slots[k].range.begin;
+        sub[k] = *bd;
+        bd->node_count += n > 1 ? n - 1 : 0;
+#pragma omp task default(none) firstprivate(k) shared(sub, slots, child, count)
+        build_child(&sub[k], &slots[k], &child[k], &count[k]);
+    }
+#pragma omp taskwait
+}
+
+/* Makes the 4-wide node (8-wide for rung 8) whose binary split has given left and right (at binary
+ * depth `depth`) and everything below it; returns its index. As in fast_bvh_collapse, the child with
+ * the largest surface area that splits is replaced by its halves while there is room; a child that
+ * does not split is a leaf. */
+static uint32_t build_node(struct builder *bd, const struct build_range *left, const struct build_range *right,
+                           size_t depth) {
     int width = store_width(bd->store);
     struct slot slots[FAST_BVH_WIDTH_EIGHT] = {{*left, depth + 1, false}, {*right, depth + 1, false}};
     int used = 2;
@@ -531,26 +583,70 @@ static uint32_t build_node(struct builder *bd, const struct build_range *left, c
         slots[widest] = (struct slot){halves[0], open.depth + 1, false};
         slots[used++] = (struct slot){halves[1], open.depth + 1, false};
     }
-    uint32_t out = (uint32_t)bd->shape.node_count++;
+    uint32_t out = (uint32_t)bd->node_count++;
+    uint32_t child[FAST_BVH_WIDTH_EIGHT] = {0}, count[FAST_BVH_WIDTH_EIGHT] = {0};
+    build_children(bd, slots, used, child, count);
     for (int k = 0; k < width; k++) {
-        if (k >= used) {
+        if (k < used)
+            set_slot(bd->store, out, k, float_box_widened(&slots[k].range.box), child[k], count[k]);
+        else
             set_slot(bd->store, out, k, aabb_empty(), FAST_BVH_NO_CHILD, 0);
-            continue;
-        }
-        const struct slot *s = &slots[k];
-        struct aabb box = float_box_widened(&s->range.box);
-        struct build_range halves[2];
-        uint32_t child = s->range.begin, count = s->range.end - s->range.begin;
-        if (!s->leaf && split(bd, &s->range, s->depth, &halves[0], &halves[1])) {
-            count = 0;
-            count_child(&bd->shape, box, 0, wide_depth + 1);
-            child = build_node(bd, &halves[0], &halves[1], s->depth, wide_depth + 1);
-        } else {
-            count_child(&bd->shape, box, count, wide_depth + 1);
-        }
-        set_slot(bd->store, out, k, box, child, count);
     }
     return out;
+}
+
+/* Room for `count` nodes of the given width (8 or 4) in *store, on 2 MB pages or not (big_alloc); false
+ * when memory runs out. */
+static bool store_alloc(struct node_store *store, bool eight, size_t count, bool huge_pages) {
+    *store = (struct node_store){NULL, NULL};
+    if (eight)
+        store->nodes8 = big_alloc((count > 0 ? count : 1) * sizeof *store->nodes8, huge_pages);
+    else
+        store->nodes = big_alloc((count > 0 ? count : 1) * sizeof *store->nodes, huge_pages);
+    return store->nodes != NULL || store->nodes8 != NULL;
+}
+
+/* Copies node `index` of from, and everything below it, into to, from node *next on, each node before
+ * its children's subtrees, slot by slot: the order in which one thread makes them. Returns its index in
+ * to. The parallel build's nodes are spread out with gaps (build_children); packed, they are the same
+ * array, byte for byte, as one thread's. */
+static uint32_t pack_node(struct node_store to, struct node_store from, uint32_t index, uint32_t *next) {
+    uint32_t out = (*next)++;
+    if (to.nodes8 != NULL)
+        to.nodes8[out] = from.nodes8[index];
+    else
+        to.nodes[out] = from.nodes[index];
+    uint32_t *child = to.nodes8 != NULL ? to.nodes8[out].child : to.nodes[out].child;
+    const uint32_t *count = to.nodes8 != NULL ? to.nodes8[out].count : to.nodes[out].count;
+    for (int k = 0; k < store_width(to); k++)
+        if (count[k] == 0 && child[k] != FAST_BVH_NO_CHILD)
+            child[k] = pack_node(to, from, child[k], next);
+    return out;
+}
+
+/* The box of slot k of node `index` of store, widened back to double (exactly). */
+static struct aabb slot_box(struct node_store store, uint32_t index, int k) {
+    int width = store_width(store);
+    const float *bounds = store.nodes8 != NULL ? &store.nodes8[index].bounds[0][0][0] : &store.nodes[index].bounds[0][0][0];
+    return (struct aabb){{bounds[k], bounds[2 * width + k], bounds[4 * width + k]},
+                         {bounds[width + k], bounds[3 * width + k], bounds[5 * width + k]}};
+}
+
+/* Adds the children of node `index` of store (at wide depth `depth`) and everything below them to
+ * *shape, slot by slot, each node before its subtree: the order in which one thread makes them, so that
+ * the SAH cost is summed in one order whatever the number of threads. */
+static void measure_node(struct node_store store, uint32_t index, size_t depth, struct tree_shape *shape) {
+    shape->node_count++;
+    int width = store_width(store);
+    for (int k = 0; k < width; k++) {
+        uint32_t child = store.nodes8 != NULL ? store.nodes8[index].child[k] : store.nodes[index].child[k];
+        uint32_t count = store.nodes8 != NULL ? store.nodes8[index].count[k] : store.nodes[index].count[k];
+        if (child == FAST_BVH_NO_CHILD)
+            continue;
+        count_child(shape, slot_box(store, index, k), count, depth + 1);
+        if (count == 0)
+            measure_node(store, child, depth + 1, shape);
+    }
 }
 
 /* The box of face f of m grown by pad (bvh_face_box) and rounded outward to float, in *box; false, leaving
@@ -574,7 +670,7 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
     double pad = triangle_box_pad(m);
-    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, {NULL, NULL}, {0.0, 0, 0, 0, 0.0}};
+    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, {NULL, NULL}, 0, omp_get_max_threads() > 1};
     struct float_box box;
     if (packed) { /* a first pass for the root's box, which the grid spans */
         struct float_box root = float_box_empty();
@@ -587,12 +683,12 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
         bd.packed = big_alloc((n ? n : 1) * sizeof *bd.packed, true);
     else
         bd.prims = big_alloc((n ? n : 1) * sizeof *bd.prims, true);
-    if (eight)
-        b->nodes8 = big_alloc(most_nodes * sizeof *b->nodes8, true);
-    else
-        b->nodes = big_alloc(most_nodes * sizeof *b->nodes, true);
+    struct node_store store;
+    bool stored = store_alloc(&store, eight, most_nodes, true);
+    b->nodes = store.nodes;
+    b->nodes8 = store.nodes8;
     b->faces = big_alloc((n ? n : 1) * sizeof *b->faces, true);
-    if ((b->nodes == NULL && b->nodes8 == NULL) || b->faces == NULL || (bd.prims == NULL && bd.packed == NULL)) {
+    if (!stored || b->faces == NULL || (bd.prims == NULL && bd.packed == NULL)) {
         free(bd.prims);
         free(bd.packed);
         return false;
@@ -613,23 +709,40 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
     b->tree_count = tree;
 
     bd.faces = b->faces;
-    bd.store = (struct node_store){b->nodes, b->nodes8};
+    bd.store = store;
+    if (bd.parallel && !store_alloc(&bd.store, eight, most_nodes, false)) { /* spread out, then packed into store */
+        free(bd.prims);
+        free(bd.packed);
+        return false;
+    }
     struct build_range root = {0, (uint32_t)tree, float_box_empty(), float_box_empty()}, halves[2];
     range_bounds(&bd, &root);
     b->root_box = float_box_widened(&root.box);
-    bd.shape.root_area = aabb_surface_area(b->root_box);
+    struct tree_shape shape = {aabb_surface_area(b->root_box), 0, 0, 0, 0.0};
     if (tree > 0 && split(&bd, &root, 0, &halves[0], &halves[1])) {
-        count_child(&bd.shape, b->root_box, 0, 0);
-        b->root_child = build_node(&bd, &halves[0], &halves[1], 0, 0);
+#pragma omp parallel if (bd.parallel) default(none) shared(bd, b, halves)
+#pragma omp single
+        b->root_child = build_node(&bd, &halves[0], &halves[1], 0);
+        if (bd.parallel) {
+            uint32_t packed_count = 0;
+            b->root_child = pack_node(store, bd.store, b->root_child, &packed_count);
+            bd.node_count = packed_count;
+        }
+        count_child(&shape, b->root_box, 0, 0);
+        measure_node(store, b->root_child, 0, &shape);
     } else if (tree > 0) {
-        count_child(&bd.shape, b->root_box, (uint32_t)tree, 0); /* the whole tree is one leaf */
+        count_child(&shape, b->root_box, (uint32_t)tree, 0); /* the whole tree is one leaf */
         b->root_count = (uint32_t)tree;
+    }
+    if (bd.parallel) {
+        free(bd.store.nodes);
+        free(bd.store.nodes8);
     }
     free(bd.prims);
     free(bd.packed);
-    b->node_count = bd.shape.node_count;
-    b->info = (struct bvh_info){bd.shape.node_count + bd.shape.leaves, bd.shape.leaves, bd.shape.max_depth, 0.0,
-                                bd.shape.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
+    b->node_count = bd.node_count;
+    b->info = (struct bvh_info){shape.node_count + shape.leaves, shape.leaves, shape.max_depth, 0.0,
+                                shape.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
     return true;
 }
 

@@ -14,8 +14,10 @@
  * already, is built as on rung 4); on rung 8 with 8-wide nodes when the processor has AVX2
  * (fast_bvh_eight_available), else with rung 6's tree. Below rung 7, m is only read, and not kept: it may be changed or
  * freed afterwards. On rung 7 (compact leaves) the hierarchy reads its triangles from m: m must stay
- * as it is until the hierarchy is freed. A mesh without faces gives a hierarchy that nothing hits. Returns NULL when memory runs
- * out. Free the result with fast_bvh_free. */
+ * as it is until the hierarchy is freed. A mesh without faces gives a hierarchy that nothing hits. From
+ * rung 5 on, the SAH build runs on as many threads as OpenMP gives a parallel region (omp_get_max_threads:
+ * OMP_NUM_THREADS or omp_set_num_threads) and makes the same tree, byte for byte, on any number. Returns
+ * NULL when memory runs out. Free the result with fast_bvh_free. */
 struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum fast_bvh_rung rung);
 
 /* Makes the 4-wide hierarchy of chapter 10's binary one (8-wide for rung 8 when the processor has AVX2),

@@ -17,6 +17,7 @@
  * and the bunny and the small teapot when scenes/models has them. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <omp.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -934,6 +935,68 @@ Test(accel, rung_5_builds_a_tree_as_good_by_the_sah) {
         fast_bvh_free(built);
         mesh_free(&meshes[k]);
     }
+}
+
+/* Whether a and b, built from one mesh of `faces` faces, are the same tree byte for byte: nodes, leaf
+ * order, triangles, root and shape; says where they differ in why. */
+static bool same_tree(const struct fast_bvh *a, const struct fast_bvh *b, size_t faces, char *why, size_t why_size) {
+    size_t node_bytes = a->nodes8 != NULL ? sizeof *a->nodes8 : sizeof *a->nodes;
+    const void *a_nodes = a->nodes8 != NULL ? (const void *)a->nodes8 : (const void *)a->nodes;
+    const void *b_nodes = b->nodes8 != NULL ? (const void *)b->nodes8 : (const void *)b->nodes;
+    const char *differ = NULL;
+    if (a->node_count != b->node_count || (a->nodes8 == NULL) != (b->nodes8 == NULL))
+        differ = "node count or width";
+    else if (memcmp(a_nodes, b_nodes, a->node_count * node_bytes) != 0)
+        differ = "nodes";
+    else if (memcmp(a->faces, b->faces, faces * sizeof *a->faces) != 0)
+        differ = "leaf order (faces)";
+    else if ((a->triangles == NULL) != (b->triangles == NULL) ||
+             (a->triangles != NULL && memcmp(a->triangles, b->triangles, faces * sizeof *a->triangles) != 0))
+        differ = "triangles";
+    else if (a->root_child != b->root_child || a->root_count != b->root_count ||
+             memcmp(&a->root_box, &b->root_box, sizeof a->root_box) != 0 || a->tree_count != b->tree_count)
+        differ = "root";
+    else if (a->info.nodes != b->info.nodes || a->info.leaves != b->info.leaves ||
+             a->info.max_depth != b->info.max_depth || memcmp(&a->info.sah_cost, &b->info.sah_cost, sizeof(double)) != 0)
+        differ = "shape or SAH cost";
+    if (differ != NULL)
+        snprintf(why, why_size, "%s", differ);
+    return differ == NULL;
+}
+
+/* The float build (rungs 5, 7 and 8) makes the same tree, byte for byte, on 1, 2 and 4 threads: on more
+ * than one, big nodes build their children in tasks that may finish in any order. */
+Test(accel, float_build_is_the_same_tree_on_any_number_of_threads, .timeout = ACCEL_TEST_TIMEOUT) {
+    static const char *const models[] = {"scenes/models/teapot-5k.ply", "scenes/models/bunny.ply"};
+    static const enum fast_bvh_rung rungs[] = {FAST_BVH_RUNG_BUILD, FAST_BVH_RUNG_COMPACT, FAST_BVH_RUNG_EIGHT};
+    static const int threads[] = {2, 4};
+    int threads_before = omp_get_max_threads();
+    for (size_t i = 0; i < sizeof models / sizeof models[0]; i++) {
+        struct mesh m;
+        char err[512];
+        cr_assert(mesh_load(models[i], &m, err, sizeof err), "%s", err);
+        for (size_t r = 0; r < sizeof rungs / sizeof rungs[0]; r++) {
+            omp_set_num_threads(1);
+            struct fast_bvh *one = fast_bvh_build(&m, BVH_SPLIT_SAH, rungs[r]);
+            cr_assert(one != NULL);
+            for (size_t t = 0; t < sizeof threads / sizeof threads[0]; t++) {
+                omp_set_num_threads(threads[t]);
+                cr_assert_eq(omp_get_max_threads(), threads[t]);
+                for (int round = 0; round < 3; round++) { /* the tasks finish in another order each time */
+                    struct fast_bvh *many = fast_bvh_build(&m, BVH_SPLIT_SAH, rungs[r]);
+                    cr_assert(many != NULL);
+                    char why[64];
+                    cr_expect(same_tree(one, many, m.face_count, why, sizeof why),
+                              "%s, rung %d: on %d threads the tree differs from one thread's: %s", models[i],
+                              (int)rungs[r], threads[t], why);
+                    fast_bvh_free(many);
+                }
+            }
+            fast_bvh_free(one);
+        }
+        mesh_free(&m);
+    }
+    omp_set_num_threads(threads_before);
 }
 
 /* The SAH tree is the cheaper one by the SAH's own measure (the seed's rule prices nothing), and an
