@@ -320,7 +320,7 @@ struct builder {
     struct packed_grid grid;
     uint32_t *faces;             /* the face number of each prim, reordered along with them */
     struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (spread out when parallel) */
-    size_t node_count;           /* the index of the next node to write */
+    uint32_t node_count;         /* nodes written to store so far: the next one's index (taken atomically) */
     bool parallel;               /* whether big nodes build their children in tasks (more than one thread) */
 };
 
@@ -383,6 +383,57 @@ static inline int4 bins_of(float4 centroid, float4 origin, float4 scale, int slo
     return __builtin_convertvector(min4(x, last), int4);
 }
 
+/* Clears `sets` sets of bins and bins prims [begin, end) into them, prim i into set i % sets: the slots
+ * of their centroids (origin and scale as in bins_of) counted and their boxes grown. */
+static void bin_prims(const struct builder *bd, uint32_t begin, uint32_t end, float4 origin, float4 scale, int slots,
+                      int sets, struct bin bins[][3][BVH_BINS]) {
+    for (int set = 0; set < sets; set++)
+        for (int a = 0; a < 3; a++)
+            for (int k = 0; k < slots; k++)
+                bins[set][a][k] = (struct bin){float_box_empty(), 0};
+    for (uint32_t i = begin; i < end; i++) {
+        struct float_box p = prim_box(bd, i);
+        int4 k = bins_of(centroid_of(&p), origin, scale, slots);
+        struct bin (*set)[BVH_BINS] = bins[sets == 1 ? 0 : i % FAST_BVH_BIN_SETS]; /* a constant %: a mask */
+        for (int a = 0; a < 3; a++) {
+            struct bin *slot = &set[a][k[a]];
+            slot->count++;
+            float_box_grow(&slot->box, p.lo, p.hi);
+        }
+    }
+}
+
+/* With more than one thread, nodes of at least FAST_BVH_BIN_PARTS_FROM triangles are binned in
+ * FAST_BVH_BIN_PARTS parts, a task each, whose bins are then added up. The bins are the same as one
+ * thread's, bit for bit, in any order of the parts: a box's bounds are minima and maxima, and the counts
+ * whole numbers, so no rounding depends on the order. It is the top of the tree, where there are not yet
+ * enough subtrees to keep the threads busy. */
+#define FAST_BVH_BIN_PARTS 4
+#define FAST_BVH_BIN_PARTS_FROM 4096
+
+/* Bins r's prims into FAST_BVH_BIN_SETS sets of bins (as bin_prims), in parallel parts. */
+static void bin_in_parts(const struct builder *bd, const struct build_range *r, float4 scale, int slots,
+                         struct bin bins[FAST_BVH_BIN_SETS][3][BVH_BINS]) {
+    struct bin parts[FAST_BVH_BIN_PARTS - 1][FAST_BVH_BIN_SETS][3][BVH_BINS]; /* part 0 is bins itself */
+    uint64_t n = r->end - r->begin;
+    for (int part = 0; part < FAST_BVH_BIN_PARTS; part++) {
+        uint32_t begin = r->begin + (uint32_t)(n * part / FAST_BVH_BIN_PARTS);
+        uint32_t end = r->begin + (uint32_t)(n * (part + 1) / FAST_BVH_BIN_PARTS);
+        struct bin (*into)[3][BVH_BINS] = part == 0 ? bins : parts[part - 1];
+#pragma omp task default(none) firstprivate(bd, r, scale, slots, begin, end, into)
+        bin_prims(bd, begin, end, r->centroids.lo, scale, slots, FAST_BVH_BIN_SETS, into);
+    }
+#pragma omp taskwait
+    for (int part = 1; part < FAST_BVH_BIN_PARTS; part++)
+        for (int set = 0; set < FAST_BVH_BIN_SETS; set++)
+            for (int a = 0; a < 3; a++)
+                for (int k = 0; k < slots; k++) {
+                    bins[set][a][k].count += parts[part - 1][set][a][k].count;
+                    float_box_grow(&bins[set][a][k].box, parts[part - 1][set][a][k].box.lo,
+                                   parts[part - 1][set][a][k].box.hi);
+                }
+}
+
 /* Looks for the cheapest SAH split of r. Returns false, leaving the prims alone, when a leaf is
  * cheaper or no plane separates the centroids; otherwise partitions r into *left and *right. */
 static bool split_sah(struct builder *bd, const struct build_range *r, struct build_range *left,
@@ -394,20 +445,10 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
     float4 extent = r->centroids.hi - r->centroids.lo, scale = {0, 0, 0, 0};
     for (int a = 0; a < 3; a++)
         scale[a] = extent[a] > 0.0f ? (float)slots / extent[a] : 0.0f; /* 0: one slot takes all */
-    for (int set = 0; set < sets; set++)
-        for (int a = 0; a < 3; a++)
-            for (int k = 0; k < slots; k++)
-                bins[set][a][k] = (struct bin){float_box_empty(), 0};
-    for (uint32_t i = r->begin; i < r->end; i++) {
-        struct float_box p = prim_box(bd, i);
-        int4 k = bins_of(centroid_of(&p), r->centroids.lo, scale, slots);
-        struct bin (*set)[BVH_BINS] = bins[sets == 1 ? 0 : i % FAST_BVH_BIN_SETS]; /* a constant %: a mask */
-        for (int a = 0; a < 3; a++) {
-            struct bin *slot = &set[a][k[a]];
-            slot->count++;
-            float_box_grow(&slot->box, p.lo, p.hi);
-        }
-    }
+    if (bd->parallel && n >= FAST_BVH_BIN_PARTS_FROM)
+        bin_in_parts(bd, r, scale, slots, bins);
+    else
+        bin_prims(bd, r->begin, r->end, r->centroids.lo, scale, slots, sets, bins);
     for (int set = 1; set < sets; set++)
         for (int a = 0; a < 3; a++)
             for (int k = 0; k < slots; k++) {
@@ -527,28 +568,21 @@ static void build_child(struct builder *bd, const struct slot *s, uint32_t *chil
 }
 
 /* Builds the children of a node, whose slots are given, filling child[] and count[]: one after the other,
- * each subtree's nodes after the one before; or, for a big node when there are threads, each in a task
- * of its own, writing its nodes from an index set aside for it. A subtree over n triangles has at most
- * n - 1 nodes (each has two children or more), so child k's nodes start n_0 - 1 + ... + n_(k-1) - 1
- * after the first child's, whatever the others turn out to need: the tasks never wait for one another
- * and never write the same node, and every node lands in the order one thread writes them, with gaps
- * that pack_node closes. */
+ * or, for a big node when there are threads, each in a task of its own. The tasks take their nodes'
+ * indices as they come (build_node), so that the nodes are not in the order one thread writes them
+ * until pack_node has put them there. */
 static void build_children(struct builder *bd, const struct slot *slots, int used, uint32_t *child, uint32_t *count) {
     uint32_t prims = 0;
     for (int k = 0; k < used; k++)
         prims += slots[k].range.end - slots[k].range.begin;
-    if (!bd->parallel || prims < FAST_BVH_TASK_FROM) {
-        for (int k = 0; k < used; k++)
-            build_child(bd, &slots[k], &child[k], &count[k]);
-        return;
-    }
-    struct builder sub[FAST_BVH_WIDTH_EIGHT];
+    bool in_tasks = bd->parallel && prims >= FAST_BVH_TASK_FROM;
     for (int k = 0; k < used; k++) {
-        uint32_t n = slots[k].range.end - slots[k].range.begin;
-        sub[k] = *bd;
-        bd->node_count += n > 1 ? n - 1 : 0;
-#pragma omp task default(none) firstprivate(k) shared(sub, slots, child, count)
-        build_child(&sub[k], &slots[k], &child[k], &count[k]);
+        if (in_tasks) {
+#pragma omp task default(none) firstprivate(bd, k) shared(slots, child, count)
+            build_child(bd, &slots[k], &child[k], &count[k]);
+        } else {
+            build_child(bd, &slots[k], &child[k], &count[k]);
+        }
     }
 #pragma omp taskwait
 }
@@ -583,7 +617,9 @@ static uint32_t build_node(struct builder *bd, const struct build_range *left, c
         slots[widest] = (struct slot){halves[0], open.depth + 1, false};
         slots[used++] = (struct slot){halves[1], open.depth + 1, false};
     }
-    uint32_t out = (uint32_t)bd->node_count++;
+    uint32_t out;
+#pragma omp atomic capture
+    out = bd->node_count++;
     uint32_t child[FAST_BVH_WIDTH_EIGHT] = {0}, count[FAST_BVH_WIDTH_EIGHT] = {0};
     build_children(bd, slots, used, child, count);
     for (int k = 0; k < width; k++) {
@@ -608,8 +644,8 @@ static bool store_alloc(struct node_store *store, bool eight, size_t count, bool
 
 /* Copies node `index` of from, and everything below it, into to, from node *next on, each node before
  * its children's subtrees, slot by slot: the order in which one thread makes them. Returns its index in
- * to. The parallel build's nodes are spread out with gaps (build_children); packed, they are the same
- * array, byte for byte, as one thread's. */
+ * to. The parallel build's nodes are in the order the tasks made them (build_children); packed, they
+ * are the same array, byte for byte, as one thread's. */
 static uint32_t pack_node(struct node_store to, struct node_store from, uint32_t index, uint32_t *next) {
     uint32_t out = (*next)++;
     if (to.nodes8 != NULL)
@@ -710,7 +746,7 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
 
     bd.faces = b->faces;
     bd.store = store;
-    if (bd.parallel && !store_alloc(&bd.store, eight, most_nodes, false)) { /* spread out, then packed into store */
+    if (bd.parallel && !store_alloc(&bd.store, eight, most_nodes, true)) { /* in any order, then packed into store */
         free(bd.prims);
         free(bd.packed);
         return false;
@@ -719,14 +755,15 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
     range_bounds(&bd, &root);
     b->root_box = float_box_widened(&root.box);
     struct tree_shape shape = {aabb_surface_area(b->root_box), 0, 0, 0, 0.0};
-    if (tree > 0 && split(&bd, &root, 0, &halves[0], &halves[1])) {
-#pragma omp parallel if (bd.parallel) default(none) shared(bd, b, halves)
+    bool root_splits = false;
+#pragma omp parallel if (bd.parallel) default(none) shared(bd, b, root, halves, root_splits, tree)
 #pragma omp single
+    if (tree > 0 && (root_splits = split(&bd, &root, 0, &halves[0], &halves[1])))
         b->root_child = build_node(&bd, &halves[0], &halves[1], 0);
+    if (root_splits) {
         if (bd.parallel) {
-            uint32_t packed_count = 0;
-            b->root_child = pack_node(store, bd.store, b->root_child, &packed_count);
-            bd.node_count = packed_count;
+            uint32_t packed = 0;
+            b->root_child = pack_node(store, bd.store, b->root_child, &packed);
         }
         count_child(&shape, b->root_box, 0, 0);
         measure_node(store, b->root_child, 0, &shape);
@@ -745,6 +782,9 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
                                 shape.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
     return true;
 }
+
+/* The triangles are copied into leaf order in parts of this many, shared among the threads. */
+#define FAST_BVH_COPY_PART 65536
 
 /* Whether every bound of box is within FAST_BVH_FLOAT_RANGE of 0 (an empty box is not). */
 static bool in_float_range(struct aabb box) {
@@ -795,7 +835,12 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         fast_bvh_free(b);
         return NULL;
     }
-    bvh_copy_triangles(m, b->faces, b->triangle_count, b->triangles);
+    /* In parts, one per task at most. */
+#pragma omp parallel for schedule(static) default(none) shared(b, m)
+    for (size_t start = 0; start < b->triangle_count; start += FAST_BVH_COPY_PART) {
+        size_t count = b->triangle_count - start < FAST_BVH_COPY_PART ? b->triangle_count - start : FAST_BVH_COPY_PART;
+        bvh_copy_triangles(m, b->faces + start, count, b->triangles + start);
+    }
     b->info.build_ms = 1e3 * (clock_seconds() - start);
     return b;
 }
