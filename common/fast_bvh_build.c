@@ -319,7 +319,8 @@ struct builder {
     struct packed_box *packed;   /* rung 7: the same in 12 bytes, on the grid (prims is then NULL) */
     struct packed_grid grid;
     uint32_t *faces;             /* the face number of each prim, reordered along with them */
-    struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (spread out when parallel) */
+    struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (on more than one thread,
+                                    in the order the tasks made the nodes: pack_node reorders them) */
     uint32_t node_count;         /* nodes written to store so far: the next one's index (taken atomically) */
     bool parallel;               /* whether big nodes build their children in tasks (more than one thread) */
 };
