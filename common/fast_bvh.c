@@ -14,7 +14,7 @@
  *    made conservative by a bound on their rounding (float_setup_make says how); a ray the bound
  *    cannot cover takes rung 5's test instead.
  *  - FAST_BVH_RUNG_COMPACT: rung 6's tree and walk with compact leaves: a leaf's triangles are read
- *    from the mesh by their face numbers (test_triangles), so the 72-byte copy of each triangle in
+ *    from the mesh by their face numbers (test_leaf_triangles), so the 72-byte copy of each triangle in
  *    leaf order is not made; one more dependent load per triangle test.
  *  - FAST_BVH_RUNG_EIGHT: rung 6 on an 8-wide tree, walked by fast_bvh_eight.c with AVX2 when the
  *    processor has it; a tree built without it is rung 6's and walked here as rung 6.
@@ -347,14 +347,15 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
     double box_max = t_max < DBL_MAX ? t_max : DBL_MAX;
     uint64_t visits = 0, boxes = 0, tests = 0;
     struct ray_setup s = ray_setup_make(r); /* once per query: the box tests' and the triangle test's setup */
-    bool running = test_triangles(b, &s.triangle, (uint32_t)b->tree_count,
-                                  (uint32_t)(b->triangle_count - b->tree_count), t_min, t_max, kind, compact, q,
-                                  &box_max, &tests);
-    struct stack_entry stack[FAST_BVH_STACK_SIZE];
+    bool running = test_leaf_triangles(b, &s.triangle, (uint32_t)b->tree_count,
+                                       (uint32_t)(b->triangle_count - b->tree_count), t_min, t_max, kind, compact, q,
+                                       &box_max, &tests);
+    struct walk_stack_entry stack[FAST_BVH_STACK_SIZE];
     int top = 0;
     uint32_t child = b->root_child, count = b->root_count;
     double root_entry;
-    running = running && b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, s.inverse, box_min, box_max, &root_entry);
+    running = running && b->tree_count > 0 &&
+              aabb_hit(&b->root_box, r->origin, s.inverse, box_min, box_max, &root_entry);
     /* Rung 6: the window in float, rounded outward, and the limit a put-aside entry must be within. */
     bool in_float = f != NULL;
     struct walk_window w = window_up_to(f, in_float ? float_at_most(box_min) : 0.0f, box_max);
@@ -398,7 +399,7 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
             if (hits > 0) {
                 for (int i = hits - 1; i > 0; i--) {
                     int k = order[i];
-                    stack[top++] = (struct stack_entry){n->child[k], n->count[k], entry[k >> 1][k & 1]};
+                    stack[top++] = (struct walk_stack_entry){n->child[k], n->count[k], entry[k >> 1][k & 1]};
                     if (prefetch)
                         prefetch_child(b, n->child[k], n->count[k], compact);
                 }
@@ -406,7 +407,8 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
                 count = n->count[order[0]];
                 continue;
             }
-        } else if (!test_triangles(b, &s.triangle, child, count, t_min, t_max, kind, compact, q, &box_max, &tests)) {
+        } else if (!test_leaf_triangles(b, &s.triangle, child, count, t_min, t_max, kind, compact, q, &box_max,
+                                        &tests)) {
             break;
         } else if (kind == QUERY_CLOSEST && box_max < w.limit_for) { /* a nearer hit: narrow the window */
             w = window_up_to(f, w.float_min, box_max);

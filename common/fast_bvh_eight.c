@@ -5,7 +5,7 @@
  * deep again, and a node's eight boxes are tested by the same three loads, subtractions, products,
  * minima and maxima per axis, eight lanes wide, with rung 6's bound on the rounding (fast_bvh_walk.h),
  * so that no box the exact test would enter is missed. The triangles are tested in double by the same
- * test_triangles, so every answer is the brute-force loop's. A ray the bound does not cover takes chapter
+ * test_leaf_triangles, so every answer is the brute-force loop's. A ray the bound does not cover takes chapter
  * 5's slab test in double, child by child.
  *
  * AVX2 is not in the x86-64 baseline, so its instructions must not run on a processor without it.
@@ -126,9 +126,10 @@ static inline AVX2 __attribute__((always_inline)) bool traverse8(const struct fa
         }
     }
     struct triangle_ray ready = triangle_ray_make(r);
-    bool running = test_triangles(b, &ready, (uint32_t)b->tree_count, (uint32_t)(b->triangle_count - b->tree_count),
-                                  t_min, t_max, kind, false, q, &box_max, &tests);
-    struct stack_entry stack[FAST_BVH_STACK_SIZE_EIGHT];
+    bool running = test_leaf_triangles(b, &ready, (uint32_t)b->tree_count,
+                                       (uint32_t)(b->triangle_count - b->tree_count),
+                                       t_min, t_max, kind, false, q, &box_max, &tests);
+    struct walk_stack_entry stack[FAST_BVH_STACK_SIZE_EIGHT];
     int top = 0;
     uint32_t child = b->root_child, count = b->root_count;
     double root_entry;
@@ -168,14 +169,14 @@ static inline AVX2 __attribute__((always_inline)) bool traverse8(const struct fa
             if (hits > 0) {
                 for (int i = hits - 1; i > 0; i--) {
                     int k = order[i];
-                    stack[top++] = (struct stack_entry){n->child[k], n->count[k], entry[k]};
+                    stack[top++] = (struct walk_stack_entry){n->child[k], n->count[k], entry[k]};
                     prefetch_child8(b, n->child[k], n->count[k]);
                 }
                 child = n->child[order[0]];
                 count = n->count[order[0]];
                 continue;
             }
-        } else if (!test_triangles(b, &ready, child, count, t_min, t_max, kind, false, q, &box_max, &tests)) {
+        } else if (!test_leaf_triangles(b, &ready, child, count, t_min, t_max, kind, false, q, &box_max, &tests)) {
             break;
         } else if (kind == QUERY_CLOSEST && box_max < w.limit_for) { /* a nearer hit: narrow the window */
             w = window_up_to(f, w.float_min, box_max);

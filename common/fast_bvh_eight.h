@@ -5,7 +5,7 @@
 
 #include <stdbool.h>
 
-#include "fast_bvh.h"
+#include "fast_bvh_tree.h"
 #include "fast_bvh_walk.h"
 #include "ray.h"
 

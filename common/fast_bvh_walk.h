@@ -11,7 +11,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "fast_bvh.h"
+#include "fast_bvh_tree.h"
 #include "float4.h"
 #include "stats.h"
 #include "triangle.h"
@@ -123,11 +123,11 @@ struct query_state {
  * as nearer hits turn up. With `compact` (rung 7) each triangle's corners are read from the mesh by its
  * face number, the very doubles the brute-force loop reads; else from the copy in leaf order. Returns
  * false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
-static inline __attribute__((always_inline)) bool test_triangles(const struct fast_bvh *b,
-                                                                 const struct triangle_ray *r, uint32_t first,
-                                                                 uint32_t count, double t_min, double t_max,
-                                                                 enum query kind, bool compact, struct query_state *q,
-                                                                 double *box_max, uint64_t *tests) {
+static inline __attribute__((always_inline)) bool test_leaf_triangles(const struct fast_bvh *b,
+                                                                      const struct triangle_ray *r, uint32_t first,
+                                                                      uint32_t count, double t_min, double t_max,
+                                                                      enum query kind, bool compact, struct query_state *q,
+                                                                      double *box_max, uint64_t *tests) {
     for (uint32_t k = first; k < first + count; k++) {
         double t, u, v;
         bool crossed;
@@ -165,7 +165,7 @@ static inline __attribute__((always_inline)) bool test_triangles(const struct fa
 }
 
 /* A subtree put aside for later, with the distance at which the ray enters its box. */
-struct stack_entry {
+struct walk_stack_entry {
     uint32_t child, count;
     double entry;
 };
@@ -189,10 +189,10 @@ static inline struct walk_window window_up_to(const struct float_setup *f, float
 /* The next subtree to walk: the most recently put aside of stack[0 .. *top) whose entry is within
  * limit (at: a lower face at the same t would win the tie), into *child and *count, the ones beyond it
  * dropped on the way. Returns false when none is left. */
-static inline bool stack_pop_within(const struct stack_entry *stack, int *top, double limit, uint32_t *child,
+static inline bool stack_pop_within(const struct walk_stack_entry *stack, int *top, double limit, uint32_t *child,
                                     uint32_t *count) {
     while (*top > 0) {
-        const struct stack_entry *e = &stack[--*top];
+        const struct walk_stack_entry *e = &stack[--*top];
         if (e->entry <= limit) {
             *child = e->child;
             *count = e->count;
