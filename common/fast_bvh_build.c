@@ -761,6 +761,8 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
 #pragma omp single
     if (tree > 0 && (root_splits = split(&bd, &root, 0, &halves[0], &halves[1])))
         b->root_child = build_node(&bd, &halves[0], &halves[1], 0);
+    free(bd.prims); /* before the nodes are packed, so that the peak memory holds the one or the other */
+    free(bd.packed);
     if (root_splits) {
         if (bd.parallel) {
             uint32_t packed = 0;
@@ -776,8 +778,6 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
         free(bd.store.nodes);
         free(bd.store.nodes8);
     }
-    free(bd.prims);
-    free(bd.packed);
     b->node_count = bd.node_count;
     b->info = (struct bvh_info){shape.node_count + shape.leaves, shape.leaves, shape.max_depth, 0.0,
                                 shape.sah_cost + BVH_COST_TRIANGLE * slivers, slivers};
