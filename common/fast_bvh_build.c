@@ -38,7 +38,9 @@
 #include "fast_bvh_build.h"
 
 #include <math.h>
+#ifdef _OPENMP
 #include <omp.h>
+#endif
 #include <stdlib.h>
 
 #include "big_alloc.h"
@@ -698,6 +700,16 @@ static bool face_float_box(const struct mesh *m, size_t f, double pad, struct fl
     return true;
 }
 
+/* True when the build may run in parallel: OpenMP is compiled in (not in the browser's build) and gives
+ * more than one thread. */
+static bool threads_to_share(void) {
+#ifdef _OPENMP
+    return omp_get_max_threads() > 1;
+#else
+    return false;
+#endif
+}
+
 /* Rung 5's build of b (its triangle_count set) over the faces of m, by the SAH: fills b's faces,
  * root, nodes and info. With `packed` (rung 7), the build's boxes are kept in 12 bytes each where the
  * mesh is within float's range (struct packed_box). With `eight` (rung 8), the nodes are 8-wide
@@ -707,7 +719,7 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
     double pad = triangle_box_pad(m);
-    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, {NULL, NULL}, 0, omp_get_max_threads() > 1};
+    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, {NULL, NULL}, 0, threads_to_share()};
     struct float_box box;
     if (packed) { /* a first pass for the root's box, which the grid spans */
         struct float_box root = float_box_empty();

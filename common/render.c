@@ -16,6 +16,15 @@ uint64_t render_thread_cost(void) {
     return s->node_visits + s->box_tests + s->sphere_tests + s->triangle_tests + s->plane_tests;
 }
 
+void render_use_threads(int n) {
+#ifdef _OPENMP
+    if (n > 0)
+        omp_set_num_threads(n);
+#else
+    (void)n;
+#endif
+}
+
 static void print_progress(int done, int pieces, double started) {
     double elapsed = clock_seconds() - started;
     double left = done > 0 ? elapsed * (pieces - done) / done : 0.0;

@@ -57,4 +57,9 @@ void render_image(const struct render_job *job, struct image *img, struct stats 
  * triangle and plane tests. The difference before and after a ray is that ray's cost. */
 uint64_t render_thread_cost(void);
 
+/* Makes every parallel part of the program use n threads: the pixel loop (unless a job names its own)
+ * and what else asks OpenMP how many it has (chapter 11's build). n <= 0 leaves OpenMP's default, one a
+ * core. Without OpenMP (the browser's build) everything runs on one thread and this does nothing. */
+void render_use_threads(int n);
+
 #endif

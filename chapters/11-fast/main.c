@@ -5,7 +5,6 @@
  * --rung N (1 to 8) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6 the
  * default, 7 the smallest, 8 eight boxes at a time where the processor has AVX2. The picture is
  * chapter 10's on every rung; only the time and the memory change. */
-#include <omp.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -82,8 +81,7 @@ int main(int argc, char **argv) {
         return cli_finish(&run);
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    if (run.options.threads > 0) /* the build's threads too (fast_bvh_build.h); the tree is the same for any */
-        omp_set_num_threads(run.options.threads);
+    render_use_threads(run.options.threads); /* the build's too; the tree is the same for any number */
     struct accel_world *w = prepare(&run.scene, run.options.pov != NULL, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
