@@ -323,8 +323,10 @@ struct builder {
     uint32_t *faces;             /* the face number of each prim, reordered along with them */
     struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (on more than one thread,
                                     in the order the tasks made the nodes: pack_node reorders them) */
-    uint32_t node_count;         /* nodes written to store so far: the next one's index (taken atomically) */
     bool parallel;               /* whether big nodes build their children in tasks (more than one thread) */
+    /* Nodes written to store so far: the next one's index, taken atomically. On a cache line of its own,
+     * so that a task taking it does not evict the fields above, which every task reads all the time. */
+    _Alignas(64) uint32_t node_count;
 };
 
 /* Prim k's box. */
@@ -719,7 +721,7 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
     double pad = triangle_box_pad(m);
-    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, {NULL, NULL}, 0, threads_to_share()};
+    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, {NULL, NULL}, threads_to_share(), 0};
     struct float_box box;
     if (packed) { /* a first pass for the root's box, which the grid spans */
         struct float_box root = float_box_empty();
