@@ -233,7 +233,7 @@ PARALLEL_BUILD := $(if $(filter -j%,$(MAKEFLAGS)),,-j$(shell nproc 2>/dev/null |
 TEST_JOBS := $(shell echo $$(( $(if $(filter 1,$(SAN)),1,2) * $$(nproc 2>/dev/null || echo 1) )))
 RUN_TESTS := LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan-criterion.supp WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-tests
 
-## make test           the quick suite, about a minute: unit tests, reference images, agreement with
+## make test           the quick suite, under a minute and a half: unit tests, reference images, agreement with
 ##                     POV-Ray, the docs' code and outputs (installs what it needs first)
 test: | deps
 	$(MAKE) --no-print-directory $(PARALLEL_BUILD) all $(BUILD)/run-tests $(BUILD)/check $(BUILD)/bench_accel
