@@ -1,4 +1,4 @@
-// worker.js: runs one chapter program, compiled to WebAssembly (web/web.mk), off the page's main thread.
+// worker.js: runs one chapter program, compiled to WebAssembly (make web), off the page's main thread.
 //
 // The page starts one worker per chapter: new Worker("worker.js?chapter=08"). Each message it posts is
 // a render: {id, scenePath, text, args}. The worker writes the scene text to scenePath and every mesh
