@@ -50,7 +50,7 @@
 #include "triangle.h"
 
 /* Nodes of at least FAST_BVH_MANY_SETS_FROM triangles are binned into FAST_BVH_BIN_SETS sets of slots,
- * prim i into set i % FAST_BVH_BIN_SETS, and the sets are added up afterwards. Neighbouring prims
+ * the prims into the sets in turn, and the sets are added up afterwards. Neighbouring prims
  * usually fall into the same slot, and with one set each update of a slot waits for the previous one
  * to be stored; with four, four updates are under way at once. It took a fifth off the build of the
  * 350k-triangle teapot. Small nodes use one set: there, clearing the extra slots costs more than it
