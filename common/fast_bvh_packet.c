@@ -31,15 +31,24 @@
 #include <math.h>
 #include <stdbool.h>
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 #include "aabb.h"
 #include "fast_bvh.h"
+#include "float4.h"
 #include "fast_bvh_walk.h"
 #include "stats.h"
 #include "triangle.h"
 
-/* One float per ray of the packet, and what comparing two of them gives (all bits set where true). */
-typedef float float_lanes __attribute__((vector_size(4 * FAST_BVH_PACKET_SIZE)));
-typedef int32_t int_lanes __attribute__((vector_size(4 * FAST_BVH_PACKET_SIZE)));
+/* Eight floats processed by one instruction where the processor can (AVX2; two SSE instructions on
+ * the baseline), and what comparing two of them gives (all bits set where true). They hold one float
+ * per child of an 8-wide node, or one per ray of the packet. */
+typedef float float8 __attribute__((vector_size(32)));
+typedef int32_t int8v __attribute__((vector_size(32)));
+
+_Static_assert(FAST_BVH_PACKET_SIZE == 8 && FAST_BVH_WIDTH_EIGHT == 8, "one float8 lane per ray and per child");
 
 /* The helpers below pass and return 8-float vectors; GCC warns that, without AVX, such values cross a
  * function call differently than with it. They are static and inlined, so no call is ever made with
@@ -54,83 +63,109 @@ typedef int32_t int_lanes __attribute__((vector_size(4 * FAST_BVH_PACKET_SIZE)))
 /* Bit set in a lane mask for every ray of the packet. */
 #define PACKET_ALL_LANES ((1u << FAST_BVH_PACKET_SIZE) - 1)
 
-static inline float_lanes lanes_of(float x) { return (float_lanes){x, x, x, x, x, x, x, x}; }
-
-/* Lane by lane, m ? a : b. */
-static inline float_lanes lanes_select(int_lanes m, float_lanes a, float_lanes b) {
-    return (float_lanes)(((int_lanes)a & m) | ((int_lanes)b & ~m));
-}
+static inline float8 broadcast8(float x) { return (float8){x, x, x, x, x, x, x, x}; }
 
 /* Lane by lane, a > b ? a : b and a < b ? a : b: a NaN in a gives b, as max4 and min4 (float4.h). */
-static inline float_lanes lanes_max(float_lanes a, float_lanes b) { return lanes_select(a > b, a, b); }
-static inline float_lanes lanes_min(float_lanes a, float_lanes b) { return lanes_select(a < b, a, b); }
+static inline float8 max8(float8 a, float8 b) {
+    int8v pick_a = a > b;
+    return (float8)(((int8v)a & pick_a) | ((int8v)b & ~pick_a));
+}
 
-/* Bit k set when lane k of the comparison result m is true. */
-static inline unsigned lanes_true(int_lanes m) {
+static inline float8 min8(float8 a, float8 b) {
+    int8v pick_a = a < b;
+    return (float8)(((int8v)a & pick_a) | ((int8v)b & ~pick_a));
+}
+
+/* The eight floats at p, which is 32-byte aligned. */
+static inline float8 load8(const float *p) {
+    float8 v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+}
+
+/* Bit k set when lane k of the comparison result m is true: two SSE instructions on x86 (one lane
+ * mask of each half), a loop elsewhere. */
+static inline unsigned lanes8_true(int8v m) {
+#if defined(__SSE__)
+    __m128 low, high;
+    __builtin_memcpy(&low, &m, sizeof low);
+    __builtin_memcpy(&high, (const char *)&m + sizeof low, sizeof high);
+    return (unsigned)_mm_movemask_ps(low) | (unsigned)_mm_movemask_ps(high) << 4;
+#else
     unsigned bits = 0;
-    for (int k = 0; k < FAST_BVH_PACKET_SIZE; k++)
+    for (int k = 0; k < 8; k++)
         bits |= (unsigned)(m[k] & 1) << k;
     return bits;
+#endif
 }
 
-/* What the walk knows of each ray: lane k of every vector and entry k of every array is ray k. */
-struct packet {
-    float_lanes origin[3], inverse[3]; /* rung 6's float origin and 1 / direction (struct float_setup) */
-    int_lanes negative[3];             /* rays that enter boxes through the high face on this axis */
-    float_lanes slack, slack2;
-    float_lanes float_min, float_max, limit; /* each ray's window and reach (struct walk_window) */
-    double limit_for[FAST_BVH_PACKET_SIZE];  /* the box_max that float_max and limit were made from */
-    double box_max[FAST_BVH_PACKET_SIZE];
-    double t_min[FAST_BVH_PACKET_SIZE], t_max[FAST_BVH_PACKET_SIZE];
-    struct float_setup setup[FAST_BVH_PACKET_SIZE];
-    struct triangle_ray ready[FAST_BVH_PACKET_SIZE];
-    struct query_state q[FAST_BVH_PACKET_SIZE];
+/* One ray of the packet, as the single-ray walk sets it up (fast_bvh_walk.h): rung 6's float origin,
+ * 1 / direction and slack (in setup, four lanes wide, and again eight wide), its window and reach (a
+ * struct walk_window), the triangle test's set-up and the nearest hit so far. */
+struct lane {
+    float8 origin8[3], inverse8[3];
+    struct float_setup setup;
+    int near[3];                /* 0 when the ray enters a box through its low face on this axis, 1 for the high */
+    float float_min, float_max; /* the window, rounded outward to float */
+    double limit_for;           /* the box_max that float_max and the reach were made from */
+    double box_max, t_min, t_max;
+    struct triangle_ray ready;
+    struct query_state q;
 };
 
-/* A subtree put aside: the rays that entered its box, and where each entered it. */
+/* The packet: its rays, and each one's reach (walk_window's limit) in lane k of `limit`. */
+struct packet {
+    struct lane lane[FAST_BVH_PACKET_SIZE];
+    float8 limit;
+};
+
+/* A subtree put aside: the rays that entered its box, and the nearest of their entry distances. */
 struct packet_stack_entry {
-    float_lanes entry;
     uint32_t child, count;
     unsigned lanes;
+    float entry;
 };
 
-/* Lane k's window up to its box_max (window_up_to, fast_bvh_walk.h): at the start and after a nearer hit. */
+/* Ray k's window up to its box_max (window_up_to, fast_bvh_walk.h): at the start and after a nearer hit. */
 static inline void packet_narrow(struct packet *p, int k) {
-    struct walk_window w = window_up_to(&p->setup[k], p->float_min[k], p->box_max[k]);
-    p->float_max[k] = w.float_max;
+    struct lane *l = &p->lane[k];
+    struct walk_window w = window_up_to(&l->setup, l->float_min, l->box_max);
+    l->float_max = w.float_max;
+    l->limit_for = w.limit_for;
     p->limit[k] = (float)w.limit; /* a float already: float_reach's */
-    p->limit_for[k] = w.limit_for;
 }
 
-/* Rung 6's float test of one box, the box of child c with its bounds in `bounds` ([axis][low or high]
- * [child], `width` children a row), against every ray of p: the mask of the rays in `lanes` that enter
- * it, and their entry distances in *entry. */
-static inline unsigned box_hit_lanes(const struct packet *p, const float *bounds, int width, int c, unsigned lanes,
-                                     float_lanes *entry) {
-    float_lanes enter = p->float_min, leave = p->float_max;
+/* Rung 8's float test of ray l on all eight children of n (children_hit8 in fast_bvh_eight.c, the same
+ * operations): the mask of the children it enters in its window, their entry distances in entry. */
+static inline unsigned lane_hits8(const struct lane *l, const struct fast_bvh_node8 *n, float entry[8]) {
+    float8 enter = broadcast8(l->float_min), leave = broadcast8(l->float_max);
     for (int a = 0; a < 3; a++) {
-        float_lanes low = lanes_of(bounds[(2 * a) * width + c]), high = lanes_of(bounds[(2 * a + 1) * width + c]);
-        float_lanes t0 = (lanes_select(p->negative[a], high, low) - p->origin[a]) * p->inverse[a];
-        float_lanes t1 = (lanes_select(p->negative[a], low, high) - p->origin[a]) * p->inverse[a];
-        enter = lanes_max(t0, enter);
-        leave = lanes_min(t1, leave);
+        float8 t0 = (load8(n->bounds[a][l->near[a]]) - l->origin8[a]) * l->inverse8[a];
+        float8 t1 = (load8(n->bounds[a][1 - l->near[a]]) - l->origin8[a]) * l->inverse8[a];
+        enter = max8(t0, enter);
+        leave = min8(t1, leave);
     }
-    *entry = enter;
-    return lanes_true(enter <= (leave + p->slack) * FAST_BVH_FLOAT_SCALE + p->slack2) & lanes;
+    __builtin_memcpy(entry, &enter, sizeof enter);
+    return lanes8_true(enter <= (leave + l->setup.slack) * FAST_BVH_FLOAT_SCALE + l->setup.slack2);
 }
 
-/* The smallest entry distance among the rays of `lanes`: the key by which a node's children are walked,
- * nearest first. */
-static inline float nearest_entry(float_lanes entry, unsigned lanes) {
-    float nearest = INFINITY;
-    for (unsigned rest = lanes; rest != 0; rest &= rest - 1)
-        nearest = fminf(nearest, entry[__builtin_ctz(rest)]);
-    return nearest;
+/* Rung 6's float test of ray l on the four children of n (child_quad_hit in fast_bvh.c), likewise. */
+static inline unsigned lane_hits4(const struct lane *l, const struct fast_bvh_node *n, float entry[4]) {
+    const struct float_setup *f = &l->setup;
+    float4 enter = {l->float_min, l->float_min, l->float_min, l->float_min};
+    float4 leave = {l->float_max, l->float_max, l->float_max, l->float_max};
+    for (int a = 0; a < 3; a++) {
+        float4 t0 = (load4(n->bounds[a][l->near[a]]) - f->origin[a]) * f->inverse[a];
+        float4 t1 = (load4(n->bounds[a][1 - l->near[a]]) - f->origin[a]) * f->inverse[a];
+        enter = max4(t0, enter);
+        leave = min4(t1, leave);
+    }
+    __builtin_memcpy(entry, &enter, sizeof enter);
+    return lanes4_true(enter <= float_reach4(f, leave));
 }
 
 /* Walks the tree once for the rays of `lanes`, which p has set up and whose root box test passed, from
- * the root; `eight` when the tree is 8-wide (b->nodes8), `compact` for rung 7's leaves. Returns the
- * counters to add. */
+ * the root; `eight` when the tree is 8-wide (b->nodes8), `compact` for rung 7's leaves. */
 static inline __attribute__((always_inline)) void packet_walk(const struct fast_bvh *b, struct packet *p,
                                                               unsigned lanes, bool eight, bool compact) {
     const int width = eight ? FAST_BVH_WIDTH_EIGHT : FAST_BVH_WIDTH;
@@ -142,31 +177,41 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
     while (running) {
         visits++;
         if (count == 0) {
-            const float *bounds = eight ? &b->nodes8[child].bounds[0][0][0] : &b->nodes[child].bounds[0][0][0];
             const uint32_t *children = eight ? b->nodes8[child].child : b->nodes[child].child;
             const uint32_t *counts = eight ? b->nodes8[child].count : b->nodes[child].count;
-            float_lanes entry[FAST_BVH_WIDTH_EIGHT];
-            unsigned hit_lanes[FAST_BVH_WIDTH_EIGHT];
+            unsigned used = 0;
+            for (int c = 0; c < width; c++)
+                used |= (unsigned)(children[c] != FAST_BVH_NO_CHILD) << c;
+            /* Each ray tests the node's children; a child is entered by the rays that hit it, at the
+             * nearest of their entry distances. */
+            unsigned hit_lanes[FAST_BVH_WIDTH_EIGHT] = {0}, entered = 0;
             float key[FAST_BVH_WIDTH_EIGHT];
+            for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
+                int k = __builtin_ctz(rest);
+                _Alignas(32) float entry[FAST_BVH_WIDTH_EIGHT];
+                unsigned hit = (eight ? lane_hits8(&p->lane[k], &b->nodes8[child], entry)
+                                      : lane_hits4(&p->lane[k], &b->nodes[child], entry)) & used;
+                for (unsigned each = hit; each != 0; each &= each - 1) {
+                    int c = __builtin_ctz(each);
+                    key[c] = entered >> c & 1 && key[c] <= entry[c] ? key[c] : entry[c];
+                    hit_lanes[c] |= 1u << k;
+                }
+                entered |= hit;
+            }
+            boxes += (uint64_t)__builtin_popcount(used) * (uint64_t)__builtin_popcount(lanes);
+            /* The children entered, nearest first (equal keys in slot order); all but the first put
+             * aside, farthest deepest. */
             int order[FAST_BVH_WIDTH_EIGHT], hits = 0;
-            for (int c = 0; c < width; c++) {
-                if (children[c] == FAST_BVH_NO_CHILD)
-                    continue;
-                boxes += (uint64_t)__builtin_popcount(lanes);
-                hit_lanes[c] = box_hit_lanes(p, bounds, width, c, lanes, &entry[c]);
-                if (hit_lanes[c] == 0)
-                    continue;
-                /* nearest first by the packet's nearest entry; equal keys keep their slot order */
-                key[c] = nearest_entry(entry[c], hit_lanes[c]);
-                int at = hits++;
+            for (unsigned each = entered; each != 0; each &= each - 1) {
+                int c = __builtin_ctz(each), at = hits++;
                 for (; at > 0 && key[c] < key[order[at - 1]]; at--)
                     order[at] = order[at - 1];
                 order[at] = c;
             }
             if (hits > 0) {
-                for (int i = hits - 1; i > 0; i--) { /* all but the nearest put aside, farthest deepest */
+                for (int i = hits - 1; i > 0; i--) {
                     int c = order[i];
-                    stack[top++] = (struct packet_stack_entry){entry[c], children[c], counts[c], hit_lanes[c]};
+                    stack[top++] = (struct packet_stack_entry){children[c], counts[c], hit_lanes[c], key[c]};
                 }
                 lanes = hit_lanes[order[0]];
                 child = children[order[0]];
@@ -176,17 +221,20 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
         } else {
             for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
                 int k = __builtin_ctz(rest);
-                test_leaf_triangles(b, &p->ready[k], child, count, p->t_min[k], p->t_max[k], QUERY_CLOSEST, compact,
-                                    &p->q[k], &p->box_max[k], &tests);
-                if (p->box_max[k] < p->limit_for[k]) /* a nearer hit: narrow this ray's window */
+                struct lane *l = &p->lane[k];
+                test_leaf_triangles(b, &l->ready, child, count, l->t_min, l->t_max, QUERY_CLOSEST, compact, &l->q,
+                                    &l->box_max, &tests);
+                if (l->box_max < l->limit_for) /* a nearer hit: narrow this ray's window */
                     packet_narrow(p, k);
             }
         }
-        /* Next: the most recently put aside subtree that some of its rays still enter within their reach. */
+        /* Next: the most recently put aside subtree that some of its rays may still enter within their
+         * reach. Its entry is the nearest of its rays' entries, so a ray whose own entry is beyond its
+         * reach may come along; its own box tests turn it away below. */
         running = false;
         while (top > 0 && !running) {
             const struct packet_stack_entry *e = &stack[--top];
-            lanes = e->lanes & lanes_true(e->entry <= p->limit);
+            lanes = e->lanes & lanes8_true(broadcast8(e->entry) <= p->limit);
             child = e->child;
             count = e->count;
             running = lanes != 0;
@@ -216,38 +264,37 @@ static void packet_walk_four_compact(const struct fast_bvh *b, struct packet *p,
     packet_walk(b, p, lanes, false, true);
 }
 
-/* Sets lane k of p up for ray r, as the single-ray walk sets itself up (fast_bvh.c's traverse): the
- * slivers tested, then the root box. Returns false when the float test cannot cover r (the caller then
- * asks fast_bvh_closest); else true, with *inside telling whether r enters the root box. */
+/* Sets ray k of p up for ray r, as the single-ray walk sets itself up (fast_bvh.c's traverse): the
+ * slivers tested, then the root's box in double. Returns false when the float test cannot cover r (the
+ * caller then asks fast_bvh_closest); else true, with *inside telling whether r enters the root's box. */
 static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, const ray *r, double t_min,
                              double t_max, uint64_t *tests, bool *inside) {
-    struct float_setup *f = &p->setup[k];
-    if (!float_setup_make(b, r, t_min, f))
+    struct lane *l = &p->lane[k];
+    if (!float_setup_make(b, r, t_min, &l->setup))
         return false;
-    vec3 inverse = aabb_inverse_direction(r->direction);
     for (int a = 0; a < 3; a++) {
-        p->origin[a][k] = f->origin[a][0];
-        p->inverse[a][k] = f->inverse[a][0];
-        p->negative[a][k] = vec3_axis(inverse, a) < 0.0 ? -1 : 0;
+        float inverse = l->setup.inverse[a][0]; /* 1 / direction in double rounded: the same sign */
+        l->origin8[a] = broadcast8(l->setup.origin[a][0]);
+        l->inverse8[a] = broadcast8(inverse);
+        l->near[a] = inverse < 0.0f;
     }
-    p->slack[k] = f->slack;
-    p->slack2[k] = f->slack2;
-    p->t_min[k] = t_min;
-    p->t_max[k] = t_max;
-    p->q[k] = (struct query_state){.t = t_max};
-    p->ready[k] = triangle_ray_make(r);
+    l->t_min = t_min;
+    l->t_max = t_max;
+    l->q = (struct query_state){.t = t_max};
+    l->ready = triangle_ray_make(r);
     double box_min = t_min; /* >= 0: float_setup_make checked it */
-    p->box_max[k] = t_max < DBL_MAX ? t_max : DBL_MAX;
-    bool compact = b->triangles == NULL;
-    if (compact)
-        test_leaf_triangles(b, &p->ready[k], (uint32_t)b->tree_count, (uint32_t)(b->triangle_count - b->tree_count),
-                            t_min, t_max, QUERY_CLOSEST, true, &p->q[k], &p->box_max[k], tests);
-    else
-        test_leaf_triangles(b, &p->ready[k], (uint32_t)b->tree_count, (uint32_t)(b->triangle_count - b->tree_count),
-                            t_min, t_max, QUERY_CLOSEST, false, &p->q[k], &p->box_max[k], tests);
+    l->box_max = t_max < DBL_MAX ? t_max : DBL_MAX;
+    uint32_t slivers = (uint32_t)(b->triangle_count - b->tree_count);
+    if (slivers > 0 && b->triangles == NULL)
+        test_leaf_triangles(b, &l->ready, (uint32_t)b->tree_count, slivers, t_min, t_max, QUERY_CLOSEST, true, &l->q,
+                            &l->box_max, tests);
+    else if (slivers > 0)
+        test_leaf_triangles(b, &l->ready, (uint32_t)b->tree_count, slivers, t_min, t_max, QUERY_CLOSEST, false,
+                            &l->q, &l->box_max, tests);
     double root_entry;
-    *inside = b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, inverse, box_min, p->box_max[k], &root_entry);
-    p->float_min[k] = float_at_most(box_min);
+    *inside = b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, aabb_inverse_direction(r->direction), box_min,
+                                            l->box_max, &root_entry);
+    l->float_min = float_at_most(box_min);
     packet_narrow(p, k);
     return true;
 }
@@ -255,10 +302,8 @@ static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, 
 unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
                                  const double t_min[FAST_BVH_PACKET_SIZE], const double t_max[FAST_BVH_PACKET_SIZE],
                                  double t[FAST_BVH_PACKET_SIZE], uint32_t face[FAST_BVH_PACKET_SIZE]) {
-    struct packet p = {0}; /* lanes of no ray stay zero: they are never in a walk's mask */
-    p.float_min = lanes_of(INFINITY);
-    p.float_max = lanes_of(-INFINITY);
-    p.limit = lanes_of(-INFINITY);
+    struct packet p;
+    p.limit = broadcast8(-INFINITY); /* a lane of no ray is never in a walk's mask */
     unsigned walking = 0, answered = 0, found = 0;
     uint64_t tests = 0;
     for (unsigned rest = active & PACKET_ALL_LANES; rest != 0; rest &= rest - 1) {
@@ -280,9 +325,9 @@ unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_B
         packet_walk_four(b, &p, walking);
     for (unsigned rest = answered; rest != 0; rest &= rest - 1) {
         int k = __builtin_ctz(rest);
-        if (p.q[k].found) {
-            t[k] = p.q[k].t;
-            face[k] = p.q[k].face;
+        if (p.lane[k].q.found) {
+            t[k] = p.lane[k].q.t;
+            face[k] = p.lane[k].q.face;
             found |= 1u << k;
         }
     }
