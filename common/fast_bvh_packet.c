@@ -27,6 +27,13 @@
  * only the baseline, in whatever the compiler makes of 8-float vectors. */
 #include "fast_bvh_packet.h"
 
+/* The helpers below pass and return 8-float vectors; GCC warns that, without AVX, such values cross a
+ * function call differently than with it. They are static and inlined, so no call is ever made with
+ * them: the warning does not apply. (Clang has no such warning.) */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 #include <float.h>
 #include <math.h>
 #include <stdbool.h>
@@ -49,13 +56,6 @@ typedef float float8 __attribute__((vector_size(32)));
 typedef int32_t int8v __attribute__((vector_size(32)));
 
 _Static_assert(FAST_BVH_PACKET_SIZE == 8 && FAST_BVH_WIDTH_EIGHT == 8, "one float8 lane per ray and per child");
-
-/* The helpers below pass and return 8-float vectors; GCC warns that, without AVX, such values cross a
- * function call differently than with it. They are static and inlined, so no call is ever made with
- * them: the warning does not apply. (Clang has no such warning.) */
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
 
 /* At most seven subtrees put aside per level of the 8-wide tree, which is no deeper than the binary one. */
 #define PACKET_STACK_SIZE ((FAST_BVH_WIDTH_EIGHT - 1) * (BVH_DEEPEST + 1))
@@ -117,6 +117,13 @@ struct lane {
 struct packet {
     struct lane lane[FAST_BVH_PACKET_SIZE];
     float8 limit;
+    /* A coherent packet (packet_make_interval): every ray with the same float origin and on every axis
+     * the same sign of 1 / direction, finite. Then its rays' 1 / direction lie in [inverse_low,
+     * inverse_high] axis by axis, and one interval test (packet_hits8) stands for all of them. */
+    bool coherent;
+    float8 origin8[3], inverse_low8[3], inverse_high8[3];
+    int near[3];
+    float float_min, float_max, slack, slack2; /* the widest window and the largest slack of its rays */
 };
 
 /* A subtree put aside: the rays that entered its box, and the nearest of their entry distances. */
@@ -164,6 +171,26 @@ static inline unsigned lane_hits4(const struct lane *l, const struct fast_bvh_no
     return lanes4_true(enter <= float_reach4(f, leave));
 }
 
+/* The interval test of a coherent packet on all eight children of n: a mask that holds every child
+ * that lane_hits8 finds for any of the packet's rays, and entry distances no greater than any of theirs
+ * in entry. Why: for each ray the difference bound - origin is the same float d (the same origin), its
+ * product fl(d * inverse) lies between fl(d * inverse_low) and fl(d * inverse_high) because rounding is
+ * monotone, and so the smaller of those two is at most its entry distance on that axis and the larger
+ * at least its exit; the window here is the widest of the rays', the slack the largest, and the reach
+ * (leave + s) * scale + 2 s grows with leave and with s. So a ray whose own test enters a child makes
+ * this test enter it too. */
+static inline unsigned packet_hits8(const struct packet *p, const struct fast_bvh_node8 *n, float entry[8]) {
+    float8 enter = broadcast8(p->float_min), leave = broadcast8(p->float_max);
+    for (int a = 0; a < 3; a++) {
+        float8 d0 = load8(n->bounds[a][p->near[a]]) - p->origin8[a];
+        float8 d1 = load8(n->bounds[a][1 - p->near[a]]) - p->origin8[a];
+        enter = max8(min8(d0 * p->inverse_low8[a], d0 * p->inverse_high8[a]), enter);
+        leave = min8(max8(d1 * p->inverse_low8[a], d1 * p->inverse_high8[a]), leave);
+    }
+    __builtin_memcpy(entry, &enter, sizeof enter);
+    return lanes8_true(enter <= (leave + p->slack) * FAST_BVH_FLOAT_SCALE + p->slack2);
+}
+
 /* Walks the tree once for the rays of `lanes`, which p has set up and whose root box test passed, from
  * the root; `eight` when the tree is 8-wide (b->nodes8), `compact` for rung 7's leaves. */
 static inline __attribute__((always_inline)) void packet_walk(const struct fast_bvh *b, struct packet *p,
@@ -183,10 +210,26 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
             for (int c = 0; c < width; c++)
                 used |= (unsigned)(children[c] != FAST_BVH_NO_CHILD) << c;
             /* Each ray tests the node's children; a child is entered by the rays that hit it, at the
-             * nearest of their entry distances. */
+             * nearest of their entry distances. A coherent packet first tests them all at once: when
+             * no child it may enter is a leaf, it enters those children with all its rays, each ray's
+             * own test being left to the nodes below (before a leaf, every ray tests its box). */
             unsigned hit_lanes[FAST_BVH_WIDTH_EIGHT] = {0}, entered = 0;
-            float key[FAST_BVH_WIDTH_EIGHT];
-            for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
+            _Alignas(32) float key[FAST_BVH_WIDTH_EIGHT];
+            bool tested_at_once = false;
+            if (eight && p->coherent) {
+                unsigned maybe = packet_hits8(p, &b->nodes8[child], key) & used;
+                unsigned leaves = 0;
+                for (int c = 0; c < width; c++)
+                    leaves |= (unsigned)(counts[c] != 0) << c;
+                if ((maybe & leaves) == 0) {
+                    tested_at_once = true;
+                    entered = maybe;
+                    for (unsigned each = maybe; each != 0; each &= each - 1)
+                        hit_lanes[__builtin_ctz(each)] = lanes;
+                    boxes += (uint64_t)__builtin_popcount(used);
+                }
+            }
+            for (unsigned rest = tested_at_once ? 0 : lanes; rest != 0; rest &= rest - 1) {
                 int k = __builtin_ctz(rest);
                 _Alignas(32) float entry[FAST_BVH_WIDTH_EIGHT];
                 unsigned hit = (eight ? lane_hits8(&p->lane[k], &b->nodes8[child], entry)
@@ -198,7 +241,8 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
                 }
                 entered |= hit;
             }
-            boxes += (uint64_t)__builtin_popcount(used) * (uint64_t)__builtin_popcount(lanes);
+            if (!tested_at_once)
+                boxes += (uint64_t)__builtin_popcount(used) * (uint64_t)__builtin_popcount(lanes);
             /* The children entered, nearest first (equal keys in slot order); all but the first put
              * aside, farthest deepest. */
             int order[FAST_BVH_WIDTH_EIGHT], hits = 0;
@@ -299,6 +343,41 @@ static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, 
     return true;
 }
 
+/* Decides whether the rays of `lanes` make a coherent packet (struct packet) and if so sets its interval
+ * up. */
+static void packet_make_interval(struct packet *p, unsigned lanes) {
+    p->coherent = lanes != 0;
+    const struct lane *first = &p->lane[lanes != 0 ? __builtin_ctz(lanes) : 0];
+    float low[3], high[3];
+    for (int a = 0; a < 3 && p->coherent; a++) {
+        p->near[a] = first->near[a];
+        low[a] = high[a] = first->setup.inverse[a][0];
+    }
+    p->float_min = first->float_min;
+    p->float_max = first->float_max;
+    p->slack = first->setup.slack;
+    p->slack2 = first->setup.slack2;
+    for (unsigned rest = lanes; rest != 0 && p->coherent; rest &= rest - 1) {
+        const struct lane *l = &p->lane[__builtin_ctz(rest)];
+        for (int a = 0; a < 3; a++) {
+            float inverse = l->setup.inverse[a][0];
+            p->coherent = p->coherent && l->near[a] == first->near[a] && isfinite(inverse) &&
+                          l->setup.origin[a][0] == first->setup.origin[a][0];
+            low[a] = inverse < low[a] ? inverse : low[a];
+            high[a] = inverse > high[a] ? inverse : high[a];
+        }
+        p->float_min = l->float_min < p->float_min ? l->float_min : p->float_min;
+        p->float_max = l->float_max > p->float_max ? l->float_max : p->float_max;
+        p->slack = l->setup.slack > p->slack ? l->setup.slack : p->slack;
+        p->slack2 = l->setup.slack2 > p->slack2 ? l->setup.slack2 : p->slack2;
+    }
+    for (int a = 0; a < 3 && p->coherent; a++) {
+        p->origin8[a] = broadcast8(first->setup.origin[a][0]);
+        p->inverse_low8[a] = broadcast8(low[a]);
+        p->inverse_high8[a] = broadcast8(high[a]);
+    }
+}
+
 unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
                                  const double t_min[FAST_BVH_PACKET_SIZE], const double t_max[FAST_BVH_PACKET_SIZE],
                                  double t[FAST_BVH_PACKET_SIZE], uint32_t face[FAST_BVH_PACKET_SIZE]) {
@@ -317,6 +396,7 @@ unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_B
         walking |= (unsigned)inside << k;
     }
     walk_counted(0, 0, tests);
+    packet_make_interval(&p, walking);
     if (walking != 0 && b->nodes8 != NULL)
         packet_walk_eight(b, &p, walking);
     else if (walking != 0 && b->triangles == NULL)

@@ -278,7 +278,7 @@ Test(packet, a_packet_of_camera_rays_shares_its_walk) {
     cr_log_info("bunny, 64 x 48 camera rays: %llu node visits in packets, %llu one by one; triangle tests %llu, %llu",
                 (unsigned long long)packets.node_visits, (unsigned long long)singles.node_visits,
                 (unsigned long long)packets.triangle_tests, (unsigned long long)singles.triangle_tests);
-    cr_expect_lt(3 * packets.node_visits, singles.node_visits, "packets visited %llu nodes, single rays %llu",
+    cr_expect_lt(2 * packets.node_visits, singles.node_visits, "packets visited %llu nodes, single rays %llu",
                  (unsigned long long)packets.node_visits, (unsigned long long)singles.node_visits);
     cr_expect_lt(packets.triangle_tests, singles.triangle_tests + singles.triangle_tests / 4);
     fast_bvh_free(b);
