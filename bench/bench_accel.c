@@ -71,10 +71,6 @@ bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light
                       double *build_ms, double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
 #endif
 
-/* Rung 10 packs the camera rays of BENCH_PACKET_COLUMNS x BENCH_PACKET_ROWS neighbouring pixels, as
- * chapter 11 does, and Embree's packet rows the same pixels (rtcIntersect4: the top row's four). */
-#define BENCH_PACKET_COLUMNS 4
-#define BENCH_PACKET_ROWS 2
 
 /* The benchmark's clock, in milliseconds: the processor time of the whole process (see the comment at
  * the top). */
@@ -248,34 +244,27 @@ static bool shadowed(const struct built *structure, const ray *r, const struct p
     return occluded(structure, &shadow, SHADOW_T_MIN, distance - SHADOW_T_MIN);
 }
 
-/* Rung 10: the whole frame with the camera rays in packets of BENCH_PACKET_COLUMNS x BENCH_PACKET_ROWS
- * pixels (fast_bvh_closest_packet), the shadow rays one by one, into pixels as trace_frame does. */
+/* Rung 10: the whole frame with the camera rays in packets of FAST_BVH_PACKET_COLUMNS x
+ * FAST_BVH_PACKET_ROWS pixels, as chapter 11 packs them (fast_bvh_closest_packet), the shadow rays one by one, into pixels as trace_frame does. */
 static void trace_frame_in_packets(const struct built *structure, const struct camera *cam, vec3 light,
                                    struct pixel *pixels, struct frame *out) {
     stats_reset_thread();
     uint64_t primary_tests = 0;
     double start = processor_ms();
-    for (int y = 0; y < cam->height; y += BENCH_PACKET_ROWS)
-        for (int x = 0; x < cam->width; x += BENCH_PACKET_COLUMNS) {
+    for (int y = 0; y < cam->height; y += FAST_BVH_PACKET_ROWS)
+        for (int x = 0; x < cam->width; x += FAST_BVH_PACKET_COLUMNS) {
             ray rays[FAST_BVH_PACKET_SIZE];
             double t_min[FAST_BVH_PACKET_SIZE], t_max[FAST_BVH_PACKET_SIZE], t[FAST_BVH_PACKET_SIZE];
             uint32_t face[FAST_BVH_PACKET_SIZE];
-            unsigned active = 0;
-            for (int k = 0; k < FAST_BVH_PACKET_SIZE; k++) {
-                int i = x + k % BENCH_PACKET_COLUMNS, j = y + k / BENCH_PACKET_COLUMNS;
-                if (i < cam->width && j < cam->height) {
-                    rays[k] = camera_ray(cam, i, j);
-                    t_min[k] = RAY_T_MIN;
-                    t_max[k] = INFINITY;
-                    active |= 1u << k;
-                }
-            }
+            /* the window starts at ray_t_min(eye), RAY_T_MIN as trace_frame's unless the eye is beyond 1e5 */
+            unsigned active = fast_bvh_camera_packet(cam, x, y, cam->width, cam->height, rays, t_min, t_max);
             stats_thread.primary_rays += (uint64_t)__builtin_popcount(active);
             uint64_t before = stats_thread.triangle_tests;
             unsigned found = fast_bvh_closest_packet(structure->fast_bvh, rays, active, t_min, t_max, t, face);
             primary_tests += stats_thread.triangle_tests - before;
             for (unsigned rest = active; rest != 0; rest &= rest - 1) {
-                int k = __builtin_ctz(rest), i = x + k % BENCH_PACKET_COLUMNS, j = y + k / BENCH_PACKET_COLUMNS;
+                int k = __builtin_ctz(rest);
+                int i = x + k % FAST_BVH_PACKET_COLUMNS, j = y + k / FAST_BVH_PACKET_COLUMNS;
                 struct pixel p = {INFINITY, UINT32_MAX, false};
                 if (found >> k & 1) {
                     p.t = t[k];

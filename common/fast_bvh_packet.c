@@ -56,6 +56,7 @@ typedef float float8 __attribute__((vector_size(32)));
 typedef int32_t int8v __attribute__((vector_size(32)));
 
 _Static_assert(FAST_BVH_PACKET_SIZE == 8 && FAST_BVH_WIDTH_EIGHT == 8, "one float8 lane per ray and per child");
+_Static_assert(FAST_BVH_PACKET_COLUMNS * FAST_BVH_PACKET_ROWS == FAST_BVH_PACKET_SIZE, "a pixel for each lane");
 
 /* At most seven subtrees put aside per level of the 8-wide tree, which is no deeper than the binary one. */
 #define PACKET_STACK_SIZE ((FAST_BVH_WIDTH_EIGHT - 1) * (BVH_DEEPEST + 1))
@@ -412,4 +413,20 @@ unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_B
         }
     }
     return found;
+}
+
+unsigned fast_bvh_camera_packet(const struct camera *cam, int x, int y, int right, int bottom,
+                                ray rays[FAST_BVH_PACKET_SIZE], double t_min[FAST_BVH_PACKET_SIZE],
+                                double t_max[FAST_BVH_PACKET_SIZE]) {
+    unsigned active = 0;
+    for (int k = 0; k < FAST_BVH_PACKET_SIZE; k++) {
+        int i = x + k % FAST_BVH_PACKET_COLUMNS, j = y + k / FAST_BVH_PACKET_COLUMNS;
+        if (i < right && j < bottom) {
+            rays[k] = camera_ray(cam, i, j);
+            t_min[k] = ray_t_min(rays[k].origin); /* as whitted_trace asks */
+            t_max[k] = INFINITY;
+            active |= 1u << k;
+        }
+    }
+    return active;
 }

@@ -6,11 +6,15 @@
 
 #include <stdint.h>
 
+#include "camera.h"
 #include "fast_bvh_tree.h"
 #include "ray.h"
 
 /* The rays of one packet: at most this many, one in each lane of an 8-float vector. */
 #define FAST_BVH_PACKET_SIZE 8
+/* A packet of camera rays covers this many columns and rows of pixels. */
+#define FAST_BVH_PACKET_COLUMNS 4
+#define FAST_BVH_PACKET_ROWS 2
 
 /* For every ray k (0 <= k < FAST_BVH_PACKET_SIZE) whose bit k is set in `active`, finds the nearest face
  * hit by rays[k] with t_min[k] < t < t_max[k], exactly as fast_bvh_closest(b, &rays[k], t_min[k],
@@ -23,5 +27,13 @@
 unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
                                  const double t_min[FAST_BVH_PACKET_SIZE], const double t_max[FAST_BVH_PACKET_SIZE],
                                  double t[FAST_BVH_PACKET_SIZE], uint32_t face[FAST_BVH_PACKET_SIZE]);
+
+/* Fills a packet with the camera rays of cam through the pixels (x + k % FAST_BVH_PACKET_COLUMNS,
+ * y + k / FAST_BVH_PACKET_COLUMNS), ray k in lane k, each with the window a camera ray is traced in
+ * (ray_t_min of its origin, infinity), and returns the mask of the lanes filled: those whose pixel lies
+ * left of column `right` and above row `bottom` (the edge of the picture or of a block of it). */
+unsigned fast_bvh_camera_packet(const struct camera *cam, int x, int y, int right, int bottom,
+                                ray rays[FAST_BVH_PACKET_SIZE], double t_min[FAST_BVH_PACKET_SIZE],
+                                double t_max[FAST_BVH_PACKET_SIZE]);
 
 #endif

@@ -6,7 +6,6 @@
  * the default, 7 the smallest, 8 eight boxes at a time where the processor has AVX2, 10 rung 8 with the
  * camera rays traced in packets of eight (render_in_packets, below). The picture is chapter 10's on
  * every rung; only the time and the memory change. */
-#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -65,11 +64,6 @@ static struct accel_world *prepare(struct scene *s, bool writing_twin, char *err
 
 /* ---- rung 10: camera rays in packets ---------------------------------------------------------- */
 
-/* A packet is the camera rays of PACKET_COLUMNS x PACKET_ROWS neighbouring pixels. */
-#define PACKET_COLUMNS 4
-#define PACKET_ROWS 2
-_Static_assert(PACKET_COLUMNS * PACKET_ROWS == FAST_BVH_PACKET_SIZE, "a packet is one ray per lane");
-
 /* The answer of a packet's walk for one of its camera rays, and the hierarchy's own queries. */
 struct packet_answer {
     const struct world_accel *tree;
@@ -119,26 +113,18 @@ static void render_in_packets(const struct render_job *job, struct image *img, i
                                   packet_occluded, packet_for_each_hit};
     struct world world = *seen;
     world.accel = &packets;
-    for (int y = top; y < bottom; y += PACKET_ROWS) {
-        for (int x = left; x < right; x += PACKET_COLUMNS) {
+    for (int y = top; y < bottom; y += FAST_BVH_PACKET_ROWS) {
+        for (int x = left; x < right; x += FAST_BVH_PACKET_COLUMNS) {
             ray rays[FAST_BVH_PACKET_SIZE];
             double t_min[FAST_BVH_PACKET_SIZE], t_max[FAST_BVH_PACKET_SIZE], t[FAST_BVH_PACKET_SIZE];
             uint32_t face[FAST_BVH_PACKET_SIZE];
-            unsigned active = 0;
-            for (int k = 0; k < FAST_BVH_PACKET_SIZE; k++) {
-                int i = x + k % PACKET_COLUMNS, j = y + k / PACKET_COLUMNS;
-                if (i < right && j < bottom) {
-                    rays[k] = camera_ray(job->camera, i, j);
-                    t_min[k] = ray_t_min(rays[k].origin); /* as whitted_trace asks */
-                    t_max[k] = INFINITY;
-                    active |= 1u << k;
-                }
-            }
+            unsigned active = fast_bvh_camera_packet(job->camera, x, y, right, bottom, rays, t_min, t_max);
             uint64_t cost_before = render_thread_cost();
             unsigned found = fast_bvh_closest_packet(seen->accel->structure, rays, active, t_min, t_max, t, face);
             uint64_t packet_cost = (render_thread_cost() - cost_before) / (uint64_t)__builtin_popcount(active);
             for (unsigned rest = active; rest != 0; rest &= rest - 1) {
-                int k = __builtin_ctz(rest), i = x + k % PACKET_COLUMNS, j = y + k / PACKET_COLUMNS;
+                int k = __builtin_ctz(rest);
+                int i = x + k % FAST_BVH_PACKET_COLUMNS, j = y + k / FAST_BVH_PACKET_COLUMNS;
                 answer = (struct packet_answer){seen->accel, rays[k], t_min[k], found >> k & 1, t[k], face[k]};
                 cost_before = render_thread_cost();
                 stats_thread.primary_rays++;
