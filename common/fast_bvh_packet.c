@@ -192,6 +192,18 @@ static inline unsigned packet_hits8(const struct packet *p, const struct fast_bv
     return lanes8_true(enter <= (leave + p->slack) * FAST_BVH_FLOAT_SCALE + p->slack2);
 }
 
+/* Asks the memory system for a subtree put aside, so that it is in cache when the walk comes back to
+ * it, as the single-ray walks do (rung 4): a node's cache lines, or a leaf's first triangles. */
+static inline void prefetch_subtree(const struct fast_bvh *b, uint32_t child, uint32_t count, bool eight) {
+    const char *at = count == 0 && eight ? (const char *)&b->nodes8[child]
+                     : count == 0        ? (const char *)&b->nodes[child]
+                     : b->triangles != NULL ? (const char *)&b->triangles[child]
+                                          : NULL; /* rung 7: the mesh's corners, not prefetched */
+    int lines = count == 0 && eight ? 4 : 2;
+    for (int k = 0; at != NULL && k < lines; k++)
+        __builtin_prefetch(at + 64 * k);
+}
+
 /* Walks the tree once for the rays of `lanes`, which p has set up and whose root box test passed, from
  * the root; `eight` when the tree is 8-wide (b->nodes8), `compact` for rung 7's leaves. */
 static inline __attribute__((always_inline)) void packet_walk(const struct fast_bvh *b, struct packet *p,
@@ -257,6 +269,7 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
                 for (int i = hits - 1; i > 0; i--) {
                     int c = order[i];
                     stack[top++] = (struct packet_stack_entry){children[c], counts[c], hit_lanes[c], key[c]};
+                    prefetch_subtree(b, children[c], counts[c], eight);
                 }
                 lanes = hit_lanes[order[0]];
                 child = children[order[0]];
