@@ -3,28 +3,32 @@
  *
  * Neighbouring camera rays start at the same eye and point almost the same way, so they visit almost the
  * same nodes. A packet walks the tree once for all of them: a node is visited when any of its rays enters
- * one of its children, and each child's box is tested against all the rays at once, one ray in each lane
- * of an 8-float vector (the single-ray rungs put the children in the lanes instead). Each ray keeps its
- * own window, shortened by its own nearest hit so far, and a mask says which rays are still in the walk
- * of a subtree; a leaf's triangles are tested, in double, only for the rays whose box test entered it.
- * What a packet saves is the walk's bookkeeping (one stack, one loop, one fetch of each node) shared by
- * its rays; what it costs is the box tests of rays that a sibling ray dragged into a node. Camera rays
- * are coherent and gain; the scattered rays of reflections and shadows would not, and are not packed.
+ * it, each ray keeps its own window, shortened by its own nearest hit so far, and a mask says which rays
+ * are still in the walk of a subtree; a leaf's triangles are tested, in double, only for the rays whose
+ * own box test entered it. The rays share the walk's bookkeeping: one stack, one ordering of the
+ * children, one fetch of each node. The children of a node are tested in one of two ways:
+ *  - each ray tests them itself with rung 8's (rung 6's) float test, all children in one instruction
+ *    (lane_hits8, lane_hits4), exactly as its single-ray walk would;
+ *  - a coherent packet (one float origin, the same signs of 1 / direction: camera rays) tests them once
+ *    for all its rays by interval arithmetic on 1 / direction (packet_hits8). The walk does so at nodes
+ *    whose children it may enter are all nodes, and enters them with all its rays; at a node with a leaf
+ *    among them every ray tests for itself.
+ * Camera rays are coherent and gain; the scattered rays of reflections and shadows would not, and are
+ * not packed.
  *
- * Exact per ray. Lane k's box test is rung 6's float test of ray k, operation for operation: the same
- * float origin, 1 / direction, slack and window (fast_bvh_walk.h), the same entry and exit distances,
- * rounded the same way, so it never refuses a box that the exact test enters in ray k's window, by rung
- * 6's argument. A ray is carried into a subtree only when its own test entered it (or not at all): it
- * visits every leaf its single-ray walk would need, and maybe more, and tests their triangles with
- * test_leaf_triangles, keeping the nearest by triangle_hit_wins. The order in which leaves are visited
- * changes, the answer cannot: the nearest hit, lowest face among equal t, is the same whatever the order.
- * Rays the float test cannot cover (t_min < 0, coordinates beyond FAST_BVH_FLOAT_RANGE) take
- * fast_bvh_closest one by one.
+ * Exact per ray. A ray's own test is rung 6's float test, operation for operation: the same float
+ * origin, 1 / direction, slack and window (fast_bvh_walk.h), so it never refuses a box that the exact
+ * test enters in the ray's window, by rung 6's argument; the interval test refuses nothing that a ray's
+ * own test would enter (packet_hits8 says why). So every ray visits every leaf its single-ray walk would
+ * need, and maybe more, and tests their triangles with test_leaf_triangles, keeping the nearest by
+ * triangle_hit_wins. The order in which leaves are visited changes, the answer cannot: the nearest hit,
+ * lowest face among equal t, is the same whatever the order. Rays the float test cannot cover (t_min < 0,
+ * coordinates beyond FAST_BVH_FLOAT_RANGE) take fast_bvh_closest one by one.
  *
  * The walk is written once with GCC's vector extension: on x86 it is compiled twice, for AVX2 (the
  * 8-wide tree of rung 8, which is built only when the processor has AVX2) and for the baseline (rung
- * 6's 4-wide tree, each 8-float operation done as two SSE ones); elsewhere (the browser's WebAssembly)
- * only the baseline, in whatever the compiler makes of 8-float vectors. */
+ * 6's 4-wide tree, tested four children per SSE instruction); elsewhere (the browser's WebAssembly) only
+ * the baseline. */
 #include "fast_bvh_packet.h"
 
 /* The helpers below pass and return 8-float vectors; GCC and Clang warn that, without AVX, such values
