@@ -45,6 +45,7 @@
 #include "fast_bvh.h"
 #include "fast_bvh_build.h"
 #include "fast_bvh_eight.h"
+#include "fast_bvh_packet.h"
 #include "camera.h"
 #include "kdtree.h"
 #include "mesh.h"
@@ -66,9 +67,10 @@
 
 #ifdef WHITTED_EMBREE
 /* Defined in embree_ref.c: builds and traces the same frame with Embree; see there. */
-bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int repeats, double *build_ms,
-                      double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet, int repeats,
+                      double *build_ms, double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
 #endif
+
 
 /* The benchmark's clock, in milliseconds: the processor time of the whole process (see the comment at
  * the top). */
@@ -76,14 +78,14 @@ static double processor_ms(void) { return 1e3 * clock_processor_seconds(); }
 
 /* ---- the structures behind one interface -------------------------------------------------------- */
 
-enum structure { NAIVE, KDTREE, BVH, FAST_BVH };
+enum structure { NAIVE, KDTREE, BVH, FAST_BVH, FAST_BVH_PACKETS };
 
 struct accel {
     const char *name;     /* as the table and --only say it */
     const char *csv_name; /* the stable machine name in the CSV's "structure" column */
     enum structure structure;
     int rule;  /* an enum kd_split for KDTREE, an enum bvh_split for BVH, an enum fast_bvh_rung for FAST_BVH
-                  (built by the SAH) */
+                  and FAST_BVH_PACKETS (built by the SAH; the packets' camera rays walk that rung's tree) */
     int below; /* the row of the rung below, for the ratio; -1 when not a rung */
 };
 
@@ -115,6 +117,7 @@ static bool build(const struct accel *a, const struct mesh *m, struct built *out
         out->bvh = bvh_build(m, (enum bvh_split)a->rule);
         break;
     case FAST_BVH:
+    case FAST_BVH_PACKETS:
         out->fast_bvh = fast_bvh_build(m, BVH_SPLIT_SAH, (enum fast_bvh_rung)a->rule);
         break;
     }
@@ -173,6 +176,7 @@ static bool closest(const struct built *b, const ray *r, double t_min, double t_
     case BVH:
         return bvh_closest(b->bvh, r, t_min, t_max, t, face);
     case FAST_BVH:
+    case FAST_BVH_PACKETS:
         return fast_bvh_closest(b->fast_bvh, r, t_min, t_max, t, face);
     default:
         return naive_closest(b->mesh, r, t_min, t_max, t, face);
@@ -187,6 +191,7 @@ static bool occluded(const struct built *b, const ray *r, double t_min, double t
     case BVH:
         return bvh_occluded(b->bvh, r, t_min, t_max);
     case FAST_BVH:
+    case FAST_BVH_PACKETS:
         return fast_bvh_occluded(b->fast_bvh, r, t_min, t_max);
     default:
         return naive_occluded(b->mesh, r, t_min, t_max);
@@ -208,6 +213,7 @@ static const struct accel accels[] = {
     {"rung 6 float", "rung-6", FAST_BVH, FAST_BVH_RUNG_FLOAT, 8},
     {"rung 7 compact", "rung-7", FAST_BVH, FAST_BVH_RUNG_COMPACT, 9},
     {"rung 8 eight", "rung-8", FAST_BVH, FAST_BVH_RUNG_EIGHT, 9}, /* rung 6 on eight lanes: compared with 6 */
+    {"rung 10 packet", "rung-10", FAST_BVH_PACKETS, FAST_BVH_RUNG_EIGHT, 11}, /* rung 8's tree: compared with 8 */
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
 #define ACCEL_NAIVE 0
@@ -228,6 +234,51 @@ struct frame {
     uint64_t primary_tests;       /* triangle tests spent on camera rays alone */
 };
 
+/* The shadow ray of pixel p, whose camera ray r hit at p->t: whether the light is hidden. */
+static bool shadowed(const struct built *structure, const ray *r, const struct pixel *p, vec3 light) {
+    vec3 point = ray_at(*r, p->t);
+    vec3 to_light = vec3_sub(light, point);
+    double distance = vec3_length(to_light);
+    ray shadow = {point, vec3_scale(to_light, 1.0 / distance)};
+    stats_thread.shadow_rays++;
+    return occluded(structure, &shadow, SHADOW_T_MIN, distance - SHADOW_T_MIN);
+}
+
+/* Rung 10: the whole frame with the camera rays in packets of FAST_BVH_PACKET_COLUMNS x
+ * FAST_BVH_PACKET_ROWS pixels, as chapter 11 packs them (fast_bvh_closest_packet), the shadow rays one by one, into pixels as trace_frame does. */
+static void trace_frame_in_packets(const struct built *structure, const struct camera *cam, vec3 light,
+                                   struct pixel *pixels, struct frame *out) {
+    stats_reset_thread();
+    uint64_t primary_tests = 0;
+    double start = processor_ms();
+    for (int y = 0; y < cam->height; y += FAST_BVH_PACKET_ROWS)
+        for (int x = 0; x < cam->width; x += FAST_BVH_PACKET_COLUMNS) {
+            ray rays[FAST_BVH_PACKET_SIZE];
+            double t_min[FAST_BVH_PACKET_SIZE], t_max[FAST_BVH_PACKET_SIZE], t[FAST_BVH_PACKET_SIZE];
+            uint32_t face[FAST_BVH_PACKET_SIZE];
+            /* the window starts at ray_t_min(eye), RAY_T_MIN as trace_frame's unless the eye is beyond 1e5 */
+            unsigned active = fast_bvh_camera_packet(cam, x, y, cam->width, cam->height, rays, t_min, t_max);
+            stats_thread.primary_rays += (uint64_t)__builtin_popcount(active);
+            uint64_t before = stats_thread.triangle_tests;
+            unsigned found = fast_bvh_closest_packet(structure->fast_bvh, rays, active, t_min, t_max, t, face);
+            primary_tests += stats_thread.triangle_tests - before;
+            for (unsigned rest = active; rest != 0; rest &= rest - 1) {
+                int k = __builtin_ctz(rest);
+                int i = x + k % FAST_BVH_PACKET_COLUMNS, j = y + k / FAST_BVH_PACKET_COLUMNS;
+                struct pixel p = {INFINITY, UINT32_MAX, false};
+                if (found >> k & 1) {
+                    p.t = t[k];
+                    p.face = face[k];
+                    p.shadowed = shadowed(structure, &rays[k], &p, light);
+                }
+                pixels[(size_t)j * cam->width + i] = p;
+            }
+        }
+    out->ms = processor_ms() - start;
+    out->counters = stats_thread;
+    out->primary_tests = primary_tests;
+}
+
 /* Traces the rows listed in rows[0..row_count) into pixels (indexed by j * width + i). */
 static void trace_frame(const struct built *structure, const struct camera *cam, vec3 light, const int *rows,
                         int row_count, struct pixel *pixels, struct frame *out) {
@@ -243,14 +294,8 @@ static void trace_frame(const struct built *structure, const struct camera *cam,
             uint64_t before = stats_thread.triangle_tests;
             bool hit = closest(structure, &r, RAY_T_MIN, INFINITY, &p.t, &p.face);
             primary_tests += stats_thread.triangle_tests - before;
-            if (hit) {
-                vec3 point = ray_at(r, p.t);
-                vec3 to_light = vec3_sub(light, point);
-                double distance = vec3_length(to_light);
-                ray shadow = {point, vec3_scale(to_light, 1.0 / distance)};
-                stats_thread.shadow_rays++;
-                p.shadowed = occluded(structure, &shadow, SHADOW_T_MIN, distance - SHADOW_T_MIN);
-            }
+            if (hit)
+                p.shadowed = shadowed(structure, &r, &p, light);
             pixels[(size_t)j * cam->width + i] = p;
         }
     }
@@ -514,6 +559,9 @@ static int bench_model(const char *path, const struct options *options) {
     struct row embree = {0};
     embree.build_ms = INFINITY;
     embree.frame_ms = INFINITY;
+    /* Embree's packets of 4 and 8 camera rays, for rung 10: their best frame times. */
+    static const int embree_packets[] = {4, 8};
+    double embree_packet_ms[2] = {INFINITY, INFINITY};
     /* Round after round, every structure once per round (interleaved, so that a busy spell of a shared
      * machine slows all of them alike rather than one of them throughout); the best of the rounds is
      * kept. The reference goes first in each round, Embree last; the brute-force loop runs in the first round
@@ -547,7 +595,10 @@ static int bench_model(const char *path, const struct options *options) {
                 return 1;
             }
             struct frame f;
-            trace_frame(&structure, &cam, light, list, list_count, k == ACCEL_REFERENCE ? reference : pixels, &f);
+            if (a->structure == FAST_BVH_PACKETS)
+                trace_frame_in_packets(&structure, &cam, light, pixels, &f);
+            else
+                trace_frame(&structure, &cam, light, list, list_count, k == ACCEL_REFERENCE ? reference : pixels, &f);
             destroy(&structure);
             double scale = (double)cam.height / list_count; /* extrapolation of the sampled rows */
             row->build_ms = build_ms < row->build_ms ? build_ms : row->build_ms;
@@ -572,7 +623,7 @@ static int bench_model(const char *path, const struct options *options) {
             unsigned char *codes = malloc(pixel_count);
             double build_ms, frame_ms;
             if (codes == NULL ||
-                !embree_ref_frame(&m, &cam, light, 1, &build_ms, &frame_ms, codes, err, sizeof err)) {
+                !embree_ref_frame(&m, &cam, light, 1, 1, &build_ms, &frame_ms, codes, err, sizeof err)) {
                 fprintf(stderr, "bench_accel: %s: %s\n", path, codes == NULL ? "out of memory" : err);
                 return 1;
             }
@@ -589,6 +640,14 @@ static int bench_model(const char *path, const struct options *options) {
             embree.rays = (double)(pixel_count + hits);
             embree.differ = differ;
             embree.done = true;
+            for (int p = 0; p < 2 && (only == NULL || strcmp(only, "rung 10 packet") == 0); p++) {
+                if (!embree_ref_frame(&m, &cam, light, embree_packets[p], 1, &build_ms, &frame_ms, codes, err,
+                                      sizeof err)) {
+                    fprintf(stderr, "bench_accel: %s: %s\n", path, err);
+                    return 1;
+                }
+                embree_packet_ms[p] = frame_ms < embree_packet_ms[p] ? frame_ms : embree_packet_ms[p];
+            }
             free(codes);
         }
 #else
@@ -601,6 +660,11 @@ static int bench_model(const char *path, const struct options *options) {
     if (embree.done)
         printf("  Embree's pixels are compared with BVH-SAH's hit/miss and shadow only: it works in float, so a\n"
                "  few grazing rays may go the other way\n");
+    const struct row *packets = &rows[ACCEL_COUNT - 1];
+    for (int p = 0; p < 2 && packets->done && embree.done && !isinf(embree_packet_ms[p]); p++)
+        printf("  Embree 3 rtcIntersect%d (camera rays in packets of %d, shadow rays one by one): frame %.1f ms;\n"
+               "    rung 10 packet / it: %.2f\n",
+               embree_packets[p], embree_packets[p], embree_packet_ms[p], packets->frame_ms / embree_packet_ms[p]);
     printf("\n");
     fflush(stdout);
     if (options->csv != NULL) {

@@ -4,7 +4,10 @@
  * /usr/include/embree3/rtcore.h and defines WHITTED_EMBREE). Embree is a production ray tracing kernel
  * library: wide BVHs, SIMD box and triangle tests, float arithmetic. To compare like with like it runs
  * here as our code does: one thread (device config "threads=1"), one ray at a time (rtcIntersect1 for
- * camera rays, rtcOccluded1 for shadow rays), default scene flags and build quality.
+ * camera rays, rtcOccluded1 for shadow rays), default scene flags and build quality. Beside rung 10, whose
+ * camera rays walk in packets, it also traces them in its own packets (rtcIntersect4 on four neighbouring
+ * pixels of a row, rtcIntersect8 on 4 x 2 pixels, the context flagged coherent), the shadow rays one
+ * by one as rung 10 does.
  *
  * The rays are the very rays bench_accel traces, rounded to float: each pixel's camera ray, and from
  * each hit one shadow ray to the light over SHADOW_T_MIN < t < distance - SHADOW_T_MIN. The hit point
@@ -20,8 +23,8 @@
 #include "mesh.h"
 
 /* Also declared in bench_accel.c (the benchmark has no header of its own). */
-bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int repeats, double *build_ms,
-                      double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet, int repeats,
+                      double *build_ms, double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
 
 /* A scene holding m as one triangle geometry, not yet committed (built). NULL on failure. */
 static RTCScene new_scene(RTCDevice device, const struct mesh *m) {
@@ -64,6 +67,69 @@ static void set_ray(struct RTCRay *out, vec3 origin, vec3 direction, double t_mi
     out->flags = 0;
 }
 
+/* The shadow ray from a camera ray r's hit at t: 2 when the light is hidden, else 1. */
+static unsigned char shadow_code(RTCScene scene, struct RTCIntersectContext *context, ray r, float t, vec3 light) {
+    vec3 point = ray_at(r, t);
+    vec3 to_light = vec3_sub(light, point);
+    double distance = vec3_length(to_light);
+    struct RTCRay shadow;
+    set_ray(&shadow, point, vec3_scale(to_light, 1.0 / distance), SHADOW_T_MIN, distance - SHADOW_T_MIN);
+    rtcOccluded1(scene, context, &shadow);
+    return shadow.tfar == -INFINITY ? 2 : 1; /* Embree marks an occluded ray with tfar = -inf */
+}
+
+/* Embree's packet of n rays (RTCRayHit4 or RTCRayHit8) as the header lays it out for any n: each field
+ * an array of n, in the order of struct RTCRay then struct RTCHit; written and read through these
+ * offsets (in 4-byte words) so that one function fills packets of 4 and of 8. */
+enum packet_field { P_ORG_X, P_ORG_Y, P_ORG_Z, P_TNEAR, P_DIR_X, P_DIR_Y, P_DIR_Z, P_TIME, P_TFAR, P_MASK, P_ID,
+                    P_FLAGS, P_NG_X, P_NG_Y, P_NG_Z, P_U, P_V, P_PRIM_ID, P_GEOM_ID, P_INST_ID, P_FIELDS };
+
+/* One frame with the camera rays in Embree's packets of n (4: four pixels of a row; 8: 4 x 2 pixels);
+ * as trace_frame otherwise. */
+static double trace_frame_in_packets(RTCScene scene, const struct camera *cam, vec3 light, int n,
+                                     unsigned char *pixels) {
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    int rows = n / 4;
+    double start = 1e3 * clock_processor_seconds();
+    for (int y = 0; y < cam->height; y += rows) {
+        for (int x = 0; x < cam->width; x += 4) {
+            _Alignas(32) union { float f[P_FIELDS * 8]; unsigned u[P_FIELDS * 8]; } packet;
+            _Alignas(32) int valid[8];
+            ray rays[8];
+            for (int k = 0; k < n; k++) {
+                int i = x + k % 4, j = y + k / 4;
+                valid[k] = i < cam->width && j < cam->height ? -1 : 0;
+                rays[k] = camera_ray(cam, valid[k] ? i : x, valid[k] ? j : y);
+                float values[] = {(float)rays[k].origin.x, (float)rays[k].origin.y, (float)rays[k].origin.z,
+                                  (float)RAY_T_MIN, (float)rays[k].direction.x, (float)rays[k].direction.y,
+                                  (float)rays[k].direction.z, 0.0f, INFINITY};
+                for (int f = P_ORG_X; f <= P_TFAR; f++)
+                    packet.f[f * n + k] = values[f];
+                packet.u[P_MASK * n + k] = UINT32_MAX;
+                packet.u[P_ID * n + k] = 0;
+                packet.u[P_FLAGS * n + k] = 0;
+                packet.u[P_GEOM_ID * n + k] = RTC_INVALID_GEOMETRY_ID;
+                packet.u[P_PRIM_ID * n + k] = RTC_INVALID_GEOMETRY_ID;
+            }
+            if (n == 4)
+                rtcIntersect4(valid, scene, &context, (struct RTCRayHit4 *)&packet);
+            else
+                rtcIntersect8(valid, scene, &context, (struct RTCRayHit8 *)&packet);
+            for (int k = 0; k < n; k++) {
+                if (!valid[k])
+                    continue;
+                unsigned char code = 0;
+                if (packet.u[P_GEOM_ID * n + k] != RTC_INVALID_GEOMETRY_ID)
+                    code = shadow_code(scene, &context, rays[k], packet.f[P_TFAR * n + k], light);
+                pixels[(size_t)(y + k / 4) * cam->width + x + k % 4] = code;
+            }
+        }
+    }
+    return 1e3 * clock_processor_seconds() - start;
+}
+
 /* Traces one frame into pixels (0 nothing hit, 1 lit, 2 in shadow); returns the elapsed ms. */
 static double trace_frame(RTCScene scene, const struct camera *cam, vec3 light, unsigned char *pixels) {
     struct RTCIntersectContext context;
@@ -78,25 +144,19 @@ static double trace_frame(RTCScene scene, const struct camera *cam, vec3 light, 
             hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(scene, &context, &hit);
             unsigned char code = 0;
-            if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-                vec3 point = ray_at(r, hit.ray.tfar);
-                vec3 to_light = vec3_sub(light, point);
-                double distance = vec3_length(to_light);
-                struct RTCRay shadow;
-                set_ray(&shadow, point, vec3_scale(to_light, 1.0 / distance), SHADOW_T_MIN, distance - SHADOW_T_MIN);
-                rtcOccluded1(scene, &context, &shadow);
-                code = shadow.tfar == -INFINITY ? 2 : 1; /* Embree marks an occluded ray with tfar = -inf */
-            }
+            if (hit.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+                code = shadow_code(scene, &context, r, hit.ray.tfar, light);
             pixels[(size_t)j * cam->width + i] = code;
         }
     }
     return 1e3 * clock_processor_seconds() - start;
 }
 
-/* Builds the scene `repeats` times and traces the frame `repeats` times; reports the fastest of each
- * (the least disturbed by the rest of the machine). Returns false with a message in err on failure. */
-bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int repeats, double *build_ms,
-                      double *frame_ms, unsigned char *pixels, char *err, size_t err_size) {
+/* Builds the scene `repeats` times and traces the frame `repeats` times, its camera rays one by one
+ * (packet 1) or in packets of 4 or 8; reports the fastest of each (the least disturbed by the rest of the
+ * machine). Returns false with a message in err on failure. */
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet, int repeats,
+                      double *build_ms, double *frame_ms, unsigned char *pixels, char *err, size_t err_size) {
     RTCDevice device = rtcNewDevice("threads=1");
     if (device == NULL) {
         snprintf(err, err_size, "embree: rtcNewDevice failed (error %d)", (int)rtcGetDeviceError(NULL));
@@ -120,7 +180,8 @@ bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light
             rtcReleaseDevice(device);
             return false;
         }
-        double traced = trace_frame(scene, cam, light, pixels);
+        double traced = packet == 1 ? trace_frame(scene, cam, light, pixels)
+                                    : trace_frame_in_packets(scene, cam, light, packet, pixels);
         *build_ms = built < *build_ms ? built : *build_ms;
         *frame_ms = traced < *frame_ms ? traced : *frame_ms;
         rtcReleaseScene(scene);

@@ -27,7 +27,8 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
     if (rung == FAST_BVH_RUNG_PLAIN) /* chapter 10's hierarchy, unchanged */
         return accel_world_use_bvh(w, split, err, err_size);
     double started = clock_seconds();
-    struct fast_bvh *bvh = fast_bvh_build(&w->triangles, (enum bvh_split)split, (enum fast_bvh_rung)rung);
+    int tree_rung = rung == FAST_BVH_RUNG_PACKET ? FAST_BVH_RUNG_EIGHT : rung; /* rung 10 walks rung 8's tree */
+    struct fast_bvh *bvh = fast_bvh_build(&w->triangles, (enum bvh_split)split, (enum fast_bvh_rung)tree_rung);
     double build_ms = 1e3 * (clock_seconds() - started);
     if (bvh == NULL) {
         snprintf(err, err_size, "out of memory building the BVH");
@@ -49,8 +50,14 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
     static const char *const fallback[2] = {"fast BVH, rung 8 eight without AVX2: rung 6's tree and walk (median split)",
                                             "fast BVH, rung 8 eight without AVX2: rung 6's tree and walk (binned SAH)"
     };
-    const char *name = rung == FAST_BVH_RUNG_EIGHT && bvh->nodes8 == NULL ? fallback[split == BVH_SPLIT_SAH]
-                                                                          : names[split == BVH_SPLIT_SAH][rung];
+    /* Rung 10, camera rays in packets (chapter 11 renders them), over rung 8's tree or its fallback. */
+    static const char *const packet[2][2] = {
+        {"fast BVH, rung 10 packet without AVX2: rung 6's tree (median split)",
+         "fast BVH, rung 10 packet without AVX2: rung 6's tree (binned SAH)"},
+        {"fast BVH, rung 10 packet (median split)", "fast BVH, rung 10 packet (binned SAH)"}};
+    const char *name = rung == FAST_BVH_RUNG_PACKET  ? packet[bvh->nodes8 != NULL][split == BVH_SPLIT_SAH]
+                       : rung == FAST_BVH_RUNG_EIGHT && bvh->nodes8 == NULL ? fallback[split == BVH_SPLIT_SAH]
+                                                                            : names[split == BVH_SPLIT_SAH][rung];
     w->summary = (struct accel_summary){name, build_ms, info.nodes, info.leaves,
                                         info.max_depth, info.sah_cost};
     w->structure = bvh;

@@ -477,16 +477,21 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
 
 /* ==== the rungs' names ======================================================================== */
 
-static const char *const rung_names[] = {NULL,    "plain", "wide",    "simd", "prefetch",
-                                         "build", "float", "compact", "eight"};
+static const char *const rung_names[FAST_BVH_RUNG_LAST + 1] = {
+    NULL, "plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight",
+    [FAST_BVH_RUNG_PACKET] = "packet",
+};
 
 int fast_bvh_rung_from_name(const char *name) {
-    for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++)
-        if (strcmp(name, rung_names[r]) == 0 || (name[0] == '0' + r && name[1] == '\0'))
+    for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_LAST; r++) {
+        char number[12];
+        snprintf(number, sizeof number, "%d", r);
+        if (rung_names[r] != NULL && (strcmp(name, rung_names[r]) == 0 || strcmp(name, number) == 0))
             return r;
+    }
     return 0;
 }
 
 const char *fast_bvh_rung_name(int r) {
-    return r >= FAST_BVH_RUNG_PLAIN && r <= FAST_BVH_RUNG_TOP ? rung_names[r] : "?";
+    return r >= FAST_BVH_RUNG_PLAIN && r <= FAST_BVH_RUNG_LAST && rung_names[r] != NULL ? rung_names[r] : "?";
 }

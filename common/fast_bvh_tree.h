@@ -30,9 +30,14 @@ enum fast_bvh_rung {
     FAST_BVH_RUNG_EIGHT = 8,    /* rung 6 on an 8-wide tree: all eight children's float slab tests in one
                                    AVX2 instruction (fast_bvh_eight.c), when the processor has AVX2;
                                    without it, rung 6's tree and walk */
+    FAST_BVH_RUNG_PACKET = 10,  /* rung 8's tree, the camera rays walked through it eight at a time
+                                   (fast_bvh_packet.c); every other ray walked as on rung 8. Not a tree
+                                   of its own: fast_bvh_build makes rung 8's for it */
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
-#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_EIGHT
+#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_EIGHT /* the top rung that fast_bvh_build builds */
+/* The last rung a chapter accepts (--rung): rung 10 renders in packets over rung 8's tree. */
+#define FAST_BVH_RUNG_LAST FAST_BVH_RUNG_PACKET
 /* The rung the chapters walk unless told otherwise. Rung 7 takes the least memory, but its frames are
  * slower; rung 8 is faster on big meshes only (0.93 of rung 6's frame on the teapot, 1.00 on the bunny)
  * and needs AVX2, so that the counters the chapters print would depend on the processor

@@ -2,9 +2,10 @@
  * walked for speed, one optimisation (a rung) at a time.
  *
  * The fast hierarchy is in common/fast_bvh.c and is plugged into the world by common/accel_fast_bvh.c.
- * --rung N (1 to 8) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6 the
- * default, 7 the smallest, 8 eight boxes at a time where the processor has AVX2. The picture is
- * chapter 10's on every rung; only the time and the memory change. */
+ * --rung N (1 to 8, 10) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6
+ * the default, 7 the smallest, 8 eight boxes at a time where the processor has AVX2, 10 rung 8 with the
+ * camera rays traced in packets of eight (render_in_packets, below). The picture is chapter 10's on
+ * every rung; only the time and the memory change. */
 #include <stdio.h>
 #include <string.h>
 
@@ -12,7 +13,9 @@
 #include "box.h"
 #include "cli.h"
 #include "fast_bvh.h"
+#include "fast_bvh_packet.h"
 #include "plane.h"
+#include "render.h"
 #include "sphere.h"
 #include "triangle.h"
 #include "whitted.h"
@@ -25,7 +28,8 @@ static int parse_option(const char *option, const char *value) {
         rung = value != NULL ? fast_bvh_rung_from_name(value) : 0;
         if (rung != 0)
             return 2;
-        fprintf(stderr, "--rung needs 1 to 8 or one of: plain wide simd prefetch build float compact eight; got '%s'\n",
+        fprintf(stderr, "--rung needs 1 to 8, 10 or one of: plain wide simd prefetch build float compact eight "
+                        "packet; got '%s'\n",
                 value != NULL ? value : "");
         return -1;
     }
@@ -58,6 +62,84 @@ static struct accel_world *prepare(struct scene *s, bool writing_twin, char *err
     return w;
 }
 
+/* ---- rung 10: camera rays in packets ---------------------------------------------------------- */
+
+/* The answer of a packet's walk for one of its camera rays, and the hierarchy's own queries. */
+struct packet_answer {
+    const struct world_accel *tree;
+    ray camera_ray;
+    double t_min;
+    bool found;
+    double t;
+    uint32_t face;
+};
+
+/* The world's nearest-triangle query (struct world_accel's closest) over a packet_answer: for its camera
+ * ray, from the very origin, direction and t_min the packet was walked with, the packet's answer cut at
+ * t_max (the nearest face over (t_min, infinity) is the nearest over (t_min, t_max) when it is before
+ * t_max, and else there is none); for every other ray, the hierarchy's own query. */
+static bool packet_closest(const void *answer, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
+    const struct packet_answer *a = answer;
+    if (memcmp(r, &a->camera_ray, sizeof *r) != 0 || t_min != a->t_min)
+        return a->tree->closest(a->tree->structure, r, t_min, t_max, t, face);
+    if (!a->found || !(a->t < t_max))
+        return false;
+    *t = a->t;
+    *face = a->face;
+    return true;
+}
+
+/* The other two queries, the hierarchy's own. */
+static bool packet_occluded(const void *answer, const ray *r, double t_min, double t_max) {
+    const struct world_accel *tree = ((const struct packet_answer *)answer)->tree;
+    return tree->occluded(tree->structure, r, t_min, t_max);
+}
+
+static void packet_for_each_hit(const void *answer, const ray *r, double t_min, double t_max,
+                                world_hit_visitor visit, void *context) {
+    const struct world_accel *tree = ((const struct packet_answer *)answer)->tree;
+    tree->for_each_hit(tree->structure, r, t_min, t_max, visit, context);
+}
+
+/* Renders pixels [left, right) x [top, bottom) (a render_block_fn) with their camera rays walked through
+ * the hierarchy in packets: one walk finds each ray's nearest triangle, and then each pixel is traced as
+ * on every other rung, by job->trace, whose first query for the camera ray finds that answer waiting.
+ * The spheres, boxes and planes are still tested ray by ray, and the nearest of all wins as before. */
+static void render_in_packets(const struct render_job *job, struct image *img, int left, int top, int right,
+                              int bottom) {
+    const struct world *seen = job->world;
+    struct packet_answer answer = {.tree = seen->accel};
+    struct world_accel packets = {&answer, seen->accel->triangles, seen->accel->materials, packet_closest,
+                                  packet_occluded, packet_for_each_hit};
+    struct world world = *seen;
+    world.accel = &packets;
+    for (int y = top; y < bottom; y += FAST_BVH_PACKET_ROWS) {
+        for (int x = left; x < right; x += FAST_BVH_PACKET_COLUMNS) {
+            ray rays[FAST_BVH_PACKET_SIZE];
+            double t_min[FAST_BVH_PACKET_SIZE], t_max[FAST_BVH_PACKET_SIZE], t[FAST_BVH_PACKET_SIZE];
+            uint32_t face[FAST_BVH_PACKET_SIZE];
+            unsigned active = fast_bvh_camera_packet(job->camera, x, y, right, bottom, rays, t_min, t_max);
+            uint64_t cost_before = render_thread_cost();
+            unsigned found = fast_bvh_closest_packet(seen->accel->structure, rays, active, t_min, t_max, t, face);
+            uint64_t packet_cost = (render_thread_cost() - cost_before) / (uint64_t)__builtin_popcount(active);
+            for (unsigned rest = active; rest != 0; rest &= rest - 1) {
+                int k = __builtin_ctz(rest);
+                int i = x + k % FAST_BVH_PACKET_COLUMNS, j = y + k / FAST_BVH_PACKET_COLUMNS;
+                answer = (struct packet_answer){seen->accel, rays[k], t_min[k], found >> k & 1, t[k], face[k]};
+                cost_before = render_thread_cost();
+                stats_thread.primary_rays++;
+                image_set(img, i, j, job->trace(&world, &rays[k]));
+                if (job->heatmap != NULL) { /* the packet's walk shared out among its rays */
+                    uint64_t cost = render_thread_cost() - cost_before + packet_cost;
+                    image_set(job->heatmap, i, j, heatmap_colour(cost > UINT32_MAX ? UINT32_MAX : (uint32_t)cost));
+                }
+            }
+        }
+    }
+    stats_thread.pixels += (uint64_t)(right - left) * (uint64_t)(bottom - top);
+    stats_thread.camera_rays_max = 1;
+}
+
 int main(int argc, char **argv) {
     /* The kinds of shape chapter 11 draws: every kind so far (chapter 5's). */
     static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
@@ -71,7 +153,9 @@ int main(int argc, char **argv) {
         .options_help = "  --rung R         how much of the speed-up to use: 1 plain (chapter 10's BVH),\n"
                         "                   2 wide, 3 simd, 4 prefetch, 5 build, 6 float (the default),\n"
                         "                   7 compact (the least memory), 8 eight (eight boxes at a\n"
-                        "                   time with AVX2; rung 6 without it); a number or a name\n"
+                        "                   time with AVX2; rung 6 without it), 10 packet (rung 8\n"
+                        "                   with the camera rays traced eight at a time); a number or\n"
+                        "                   a name\n"
                         "  --accel KIND     none, kdtree or bvh (default bvh: the fast BVH at the chosen rung)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
                         "                   kd-tree: the axis holding most objects)\n",
@@ -85,7 +169,9 @@ int main(int argc, char **argv) {
     struct accel_world *w = prepare(&run.scene, run.options.pov != NULL, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
-    if (cli_render(&run, whitted_trace, &w->world))
+    static const struct render_sampler in_packets = {render_in_packets, &heatmap_cost_scale};
+    bool packets = choice.kind == ACCEL_BVH && rung == FAST_BVH_RUNG_PACKET;
+    if (cli_render_sampled(&run, whitted_trace, &w->world, packets ? &in_packets : NULL))
         accel_report(w, &run.total, run.options.stats);
     accel_world_destroy(w);
     return cli_finish(&run);
