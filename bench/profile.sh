@@ -61,6 +61,7 @@ profile "rung 5 build" rung-5 "fast_bvh_closest fast_bvh_occluded" --only "rung 
 profile "rung 6 float" rung-6 "fast_bvh_closest fast_bvh_occluded" --only "rung 6 float"
 profile "rung 7 compact" rung-7 "fast_bvh_closest fast_bvh_occluded" --only "rung 7 compact"
 profile "rung 8 eight" rung-8 "fast_bvh_closest fast_bvh_occluded" --only "rung 8 eight"
+profile "rung 9 lean" rung-9 "fast_bvh_closest fast_bvh_occluded" --only "rung 9 lean"
 profile "Embree 3" embree "rtcIntersect1* rtcOccluded1*" --embree --only "BVH-SAH (rung 1 plain)"
 echo
 grep -h '^desc: \(I1\|D1\|LL\) cache' "$work/out" | sed 's/^desc: /simulated /'

@@ -1,6 +1,6 @@
 /* fast_bvh_tree.h: what chapter 11's hierarchy is in memory: the rungs of the ladder, the nodes of four
- * (and rung 8's of eight) children with their boxes side by side in float, and the hierarchy that holds
- * them (chapter 11). fast_bvh.h declares what is done with it; the walks (fast_bvh.c, fast_bvh_eight.c,
+ * (and rung 8's and 9's of eight) children with their boxes side by side in float, and the hierarchy that holds
+ * them (chapter 11). fast_bvh.h declares what is done with it; the walks (fast_bvh.c, fast_bvh_eight.c, fast_bvh_lean.c,
  * and what they share in fast_bvh_walk.h) and the build (fast_bvh_build.c) read this layout. */
 #ifndef WHITTED_FAST_BVH_TREE_H
 #define WHITTED_FAST_BVH_TREE_H
@@ -30,9 +30,12 @@ enum fast_bvh_rung {
     FAST_BVH_RUNG_EIGHT = 8,    /* rung 6 on an 8-wide tree: all eight children's float slab tests in one
                                    AVX2 instruction (fast_bvh_eight.c), when the processor has AVX2;
                                    without it, rung 6's tree and walk */
+    FAST_BVH_RUNG_LEAN = 9,     /* rung 8's tree walked with less per ray (fast_bvh_lean.c): float root box,
+                                   sorted entries, a stack of float entries, four triangles per test in
+                                   double (AVX2); without AVX2, rung 6's tree and walk */
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
-#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_EIGHT
+#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_LEAN
 /* The rung the chapters walk unless told otherwise. Rung 7 takes the least memory, but its frames are
  * slower; rung 8 is faster on big meshes only (0.93 of rung 6's frame on the teapot, 1.00 on the bunny)
  * and needs AVX2, so that the counters the chapters print would depend on the processor
@@ -86,6 +89,8 @@ struct fast_bvh {
     uint32_t *faces;                 /* faces[k] = index into the mesh's faces of the k-th triangle in leaf
                                         order (triangles[k]) */
     size_t triangle_count, tree_count;
+    double *lean_corners;            /* rung 9 with AVX2: the tree's triangles again, as nine arrays of doubles
+                                        (fast_bvh_lean.h says how); else NULL */
     struct bvh_info info;            /* nodes counted in the 4-wide tree (the 8-wide one on rung 8) */
 };
 

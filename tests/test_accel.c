@@ -291,17 +291,18 @@ static void kd_for_each_hit_of(const void *s, const ray *r, double t_min, double
 }
 static void kd_free_of(void *s) { kdtree_free(s); }
 
-/* Chapters 9 and 10's four, chapter 11's rungs by the SAH, its rungs 7 and 8 by the median, and rung 8
- * as built without AVX2 (rung 6's tree: the fallback, which the machine running the tests may not need). */
-#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 3)
+/* Chapters 9 and 10's four, chapter 11's rungs by the SAH, its rungs 7, 8 and 9 by the median, and rungs
+ * 8 and 9 as built without AVX2 (rung 6's tree: the fallback, which the machine running the tests may not
+ * need). */
+#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 5)
 
 /* Builds chapter 11's fast BVH over m at `rung` by `split`, checks its invariants and puts it in *out. */
 static void build_fast(const struct mesh *m, const char *mesh_name, enum bvh_split split, int rung, struct accel *out) {
     static const char *const names[2][FAST_BVH_RUNG_TOP + 1] = {
         {"", "", "fast BVH median rung 2", "fast BVH median rung 3", "fast BVH median rung 4", "fast BVH median rung 5",
-         "fast BVH median rung 6", "fast BVH median rung 7", "fast BVH median rung 8"},
+         "fast BVH median rung 6", "fast BVH median rung 7", "fast BVH median rung 8", "fast BVH median rung 9"},
         {"", "", "fast BVH SAH rung 2", "fast BVH SAH rung 3", "fast BVH SAH rung 4", "fast BVH SAH rung 5",
-         "fast BVH SAH rung 6", "fast BVH SAH rung 7", "fast BVH SAH rung 8"}};
+         "fast BVH SAH rung 6", "fast BVH SAH rung 7", "fast BVH SAH rung 8", "fast BVH SAH rung 9"}};
     char why[256];
     const char *name = names[split == BVH_SPLIT_SAH][rung];
     struct fast_bvh *b = fast_bvh_build(m, split, (enum fast_bvh_rung)rung);
@@ -326,14 +327,20 @@ static void build_all(const struct mesh *m, const char *mesh_name, struct accel 
     out[3] = (struct accel){"kd-tree SAH", kd_sah, kd_closest_of, kd_occluded_of, kd_for_each_hit_of, kd_free_of};
     for (int rung = FAST_BVH_RUNG_FIRST; rung <= FAST_BVH_RUNG_TOP; rung++)
         build_fast(m, mesh_name, BVH_SPLIT_SAH, rung, &out[4 + rung - FAST_BVH_RUNG_FIRST]);
-    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_COMPACT, &out[ACCEL_COUNT - 3]);
-    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 2]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_COMPACT, &out[ACCEL_COUNT - 5]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 4]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_LEAN, &out[ACCEL_COUNT - 3]);
     cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
-    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 1]);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 2]);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN, &out[ACCEL_COUNT - 1]);
     cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
-    cr_assert_null(((struct fast_bvh *)out[ACCEL_COUNT - 1].structure)->nodes8, "%s: rung 8 told there is no AVX2 "
-                   "built 8-wide nodes", mesh_name);
-    out[ACCEL_COUNT - 1].name = "fast BVH SAH rung 8 without AVX2";
+    for (int k = ACCEL_COUNT - 2; k < ACCEL_COUNT; k++) {
+        const struct fast_bvh *fallback = out[k].structure;
+        cr_assert(fallback->nodes8 == NULL && fallback->lean_corners == NULL,
+                  "%s: %s told there is no AVX2 built 8-wide nodes", mesh_name, out[k].name);
+    }
+    out[ACCEL_COUNT - 2].name = "fast BVH SAH rung 8 without AVX2";
+    out[ACCEL_COUNT - 1].name = "fast BVH SAH rung 9 without AVX2";
 }
 
 /* Builds the kd-tree over m by each rule, checking each one's invariants; returns how many. */
@@ -968,7 +975,8 @@ static bool same_tree(const struct fast_bvh *a, const struct fast_bvh *b, size_t
  * than one, big nodes build their children in tasks that may finish in any order. */
 Test(accel, float_build_is_the_same_tree_on_any_number_of_threads, .timeout = ACCEL_TEST_TIMEOUT) {
     static const char *const models[] = {"scenes/models/teapot-5k.ply", "scenes/models/bunny.ply"};
-    static const enum fast_bvh_rung rungs[] = {FAST_BVH_RUNG_BUILD, FAST_BVH_RUNG_COMPACT, FAST_BVH_RUNG_EIGHT};
+    static const enum fast_bvh_rung rungs[] = {FAST_BVH_RUNG_BUILD, FAST_BVH_RUNG_COMPACT, FAST_BVH_RUNG_EIGHT,
+                                               FAST_BVH_RUNG_LEAN};
     static const int threads[] = {2, 4};
     int threads_before = omp_get_max_threads();
     for (size_t i = 0; i < sizeof models / sizeof models[0]; i++) {
@@ -1155,16 +1163,17 @@ Test(accel, rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mes
     check_mesh("sphere of radius 3e-3 at (4096, -2048, 1024)", &sphere, 57);
 }
 
-/* Chapter 11's rungs: only 1 to 8, by number or name; anything else builds nothing. */
+/* Chapter 11's rungs: only 1 to 9, by number or name; anything else builds nothing. */
 Test(accel, fast_bvh_rungs_are_named_and_checked) {
-    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight"};
+    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean"};
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++) {
         char number[2] = {(char)('0' + r), '\0'};
         cr_expect_eq(fast_bvh_rung_from_name(names[r - 1]), r, "%s", names[r - 1]);
         cr_expect_eq(fast_bvh_rung_from_name(number), r, "%s", number);
         cr_expect_str_eq(fast_bvh_rung_name(r), names[r - 1]);
     }
-    cr_expect_eq(fast_bvh_rung_from_name("9"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name("10"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name(":"), 0); /* the character after '9' */
     cr_expect_eq(fast_bvh_rung_from_name("0"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("fast"), 0);
     struct mesh m = make_soup(7, 20);
