@@ -67,6 +67,8 @@ typedef int64_t long4 __attribute__((vector_size(32)));
 
 /* The bytes of one row of a node's bounds (one bound of one axis, all eight children). */
 #define LEAN_ROW_BYTES sizeof(((const struct fast_bvh_node8 *)NULL)->bounds[0][0])
+/* An axis's two rows start at a multiple of twice that, so near ^ LEAN_ROW_BYTES is the other row. */
+_Static_assert(LEAN_ROW_BYTES == 32, "a row is eight floats, a power of two bytes");
 
 /* A child slot's number fits in a key's lowest three bits (sort8). */
 #define LEAN_SLOT_BITS 7u
@@ -83,7 +85,7 @@ struct lean_stack_entry {
  * coordinates on those axes. */
 struct lean_ray {
     float8 origin[3], inverse[3];
-    size_t near[3], far[3]; /* the byte offsets in a node of each axis's near and far bounds */
+    size_t near[3]; /* the byte offset in a node of each axis's near bounds; the far ones' is near ^ LEAN_ROW_BYTES */
     double4 o[3], sx, sy, sz;
     const double *corner_a[3]; /* corner a's coordinates on the ray's x, y and z axes */
     size_t corner_step;        /* from one corner's arrays to the next's: corner c's are at corner_a + c * step */
@@ -99,18 +101,26 @@ static inline AVX2 double4 load4d(const double *p) { return _mm256_loadu_pd(p); 
 static inline AVX2 unsigned lanes8_true(int8v m) { return (unsigned)_mm256_movemask_ps((__m256)m); }
 static inline AVX2 unsigned lanes4d_true(long4 m) { return (unsigned)_mm256_movemask_pd((__m256d)m); }
 
+/* One axis of children_hit: the slab's entry and exit distances of all eight children, folded into
+ * *enter and *leave. */
+static inline AVX2 __attribute__((always_inline)) void slab(const char *bounds, const struct lean_ray *l, int a,
+                                                            float8 *enter, float8 *leave) {
+    float8 t0 = (_mm256_load_ps((const float *)(bounds + l->near[a])) - l->origin[a]) * l->inverse[a];
+    float8 t1 =
+        (_mm256_load_ps((const float *)(bounds + (l->near[a] ^ LEAN_ROW_BYTES))) - l->origin[a]) * l->inverse[a];
+    *enter = _mm256_max_ps(t0, *enter); /* a NaN in t0 gives enter, as in max4 */
+    *leave = _mm256_min_ps(t1, *leave);
+}
+
 /* The slab test on all eight children of n, as children_hit8 in fast_bvh_eight.c: a mask holding every
  * child the exact test would find in [t_near, t_far], and the computed entry distances in *entry. */
 static inline AVX2 unsigned children_hit(const struct fast_bvh_node8 *n, const struct lean_ray *l,
                                          const struct float_setup *f, float t_near, float t_far, float8 *entry) {
     float8 enter = broadcast8(t_near), leave = broadcast8(t_far);
     const char *bounds = (const char *)n->bounds;
-    for (int a = 0; a < 3; a++) {
-        float8 t0 = (_mm256_load_ps((const float *)(bounds + l->near[a])) - l->origin[a]) * l->inverse[a];
-        float8 t1 = (_mm256_load_ps((const float *)(bounds + l->far[a])) - l->origin[a]) * l->inverse[a];
-        enter = _mm256_max_ps(t0, enter); /* a NaN in t0 gives enter, as in max4 */
-        leave = _mm256_min_ps(t1, leave);
-    }
+    slab(bounds, l, 0, &enter, &leave); /* the three axes written out: the compiler did not unroll the loop */
+    slab(bounds, l, 1, &enter, &leave);
+    slab(bounds, l, 2, &enter, &leave);
     *entry = enter;
     float8 reach = (leave + f->slack) * FAST_BVH_FLOAT_SCALE + f->slack2;
     return lanes8_true(enter <= reach);
@@ -221,9 +231,7 @@ static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const ray *r,
         slack = axis_slack[a] > slack ? axis_slack[a] : slack;
         l->origin[a] = broadcast8(rounded[a]);
         l->inverse[a] = broadcast8(inverse_f[a]);
-        size_t near = negative >> a & 1u; /* the row of the bound the ray enters by */
-        l->near[a] = LEAN_ROW_BYTES * (2 * (size_t)a + near);
-        l->far[a] = LEAN_ROW_BYTES * (2 * (size_t)a + 1 - near);
+        l->near[a] = LEAN_ROW_BYTES * (2 * (size_t)a + (negative >> a & 1u)); /* the bound it enters by */
     }
     f->slack = float_at_least(slack); /* at least FLT_MIN: the floor for a product that underflows */
     f->slack2 = 2.0f * f->slack;

@@ -3,10 +3,11 @@
  *
  * Every ray is first traced by brute force: triangle_intersect on every face, which gives each face's
  * t. The answer for any window t_min < t < t_max follows from those: the nearest hit (the lowest face
- * among equal t), whether anything is hit, and the set of faces hit. All ten structures (chapter 10's
+ * among equal t), whether anything is hit, and the set of faces hit. All the structures (chapter 10's
  * BVH with the median and the SAH split, kd-tree with the dissertation's rule and the SAH, chapter 11's
- * fast BVH at rungs 2 to 6 by the SAH and at the top rung by the median) must then give exactly that
- * answer: the same t to the last bit, the same face, the same set, each face reported once.
+ * fast BVH at every rung by the SAH, at rungs 7 to 9 by the median, and rungs 8 and 9 as without AVX2)
+ * must then give exactly that answer: the same t to the last bit, the same face, the same set, each face
+ * reported once.
  *
  * The rays are chosen to hurt: random ones, rays aimed at faces, vertices and shared edges, rays along
  * the axes (with signed zero components) through vertices, rays lying in planes through vertices or
@@ -27,6 +28,7 @@
 #include "fast_bvh.h"
 #include "fast_bvh_build.h"
 #include "fast_bvh_eight.h"
+#include "fast_bvh_lean.h"
 #include "kdtree.h"
 #include "mesh.h"
 #include "mesh_load.h"
@@ -1208,6 +1210,49 @@ Test(accel, rung_8_is_eight_wide_with_avx2_and_rung_6_without) {
     cr_assert_eq(fallback->node_count, six->node_count);
     cr_expect_eq(memcmp(fallback->nodes, six->nodes, six->node_count * sizeof *six->nodes), 0,
                  "rung 8 without AVX2 built another tree than rung 6's");
+    fast_bvh_free(eight);
+    fast_bvh_free(fallback);
+    fast_bvh_free(six);
+    mesh_free(&m);
+}
+
+/* Rung 9 builds rung 8's tree and lays the tree's triangles out once more, nine arrays of doubles with
+ * zeros past the end, where the processor has AVX2; without it (or told so), rung 6's tree and no copy. */
+Test(accel, rung_9_lays_its_triangles_out_as_nine_arrays_and_is_rung_6_without_avx2) {
+    struct mesh m = make_soup(13, 3000);
+    struct fast_bvh *lean = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN);
+    struct fast_bvh *eight = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
+    cr_assert(lean != NULL && eight != NULL);
+    if (fast_bvh_eight_available()) {
+        cr_assert_not_null(lean->nodes8, "AVX2 here, and rung 9 built no 8-wide nodes");
+        cr_assert_not_null(lean->lean_corners);
+        cr_assert_eq(lean->node_count, eight->node_count);
+        cr_expect_eq(memcmp(lean->nodes8, eight->nodes8, eight->node_count * sizeof *eight->nodes8), 0,
+                     "rung 9 built another tree than rung 8's");
+        size_t stride = FAST_BVH_LEAN_STRIDE(lean);
+        for (size_t k = 0; k < stride; k++) {
+            const struct bvh_triangle *t = k < lean->tree_count ? &lean->triangles[k] : NULL;
+            for (int c = 0; c < 3; c++)
+                for (int a = 0; a < 3; a++) {
+                    double want = t == NULL ? 0.0 : vec3_axis(c == 0 ? t->a : c == 1 ? t->b : t->c, a);
+                    double got = lean->lean_corners[(size_t)(3 * c + a) * stride + k];
+                    cr_assert_eq(memcmp(&got, &want, sizeof got), 0, "triangle %zu corner %d axis %d: %a, want %a", k,
+                                 c, a, got, want);
+                }
+        }
+    } else {
+        cr_log_warn("this processor has no AVX2: rung 9's walk is not tested here");
+    }
+    cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
+    struct fast_bvh *fallback = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN);
+    struct fast_bvh *six = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_FLOAT);
+    cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
+    cr_assert(fallback != NULL && six != NULL);
+    cr_expect(fallback->nodes8 == NULL && fallback->lean_corners == NULL);
+    cr_assert_eq(fallback->node_count, six->node_count);
+    cr_expect_eq(memcmp(fallback->nodes, six->nodes, six->node_count * sizeof *six->nodes), 0,
+                 "rung 9 without AVX2 built another tree than rung 6's");
+    fast_bvh_free(lean);
     fast_bvh_free(eight);
     fast_bvh_free(fallback);
     fast_bvh_free(six);
