@@ -12,13 +12,15 @@
  *  - the stack holds each subtree's float entry distance, and a popped subtree entered beyond the
  *    window's reach is dropped without touching its node, by the same comparison as rung 8's;
  *  - a leaf's triangles are tested four at a time in double (leaf_triangles4), on the copy of them that
- *    fast_bvh_lean_prepare lays out as nine arrays. Each lane does exactly the arithmetic of
+ *    fast_bvh_lean_prepare lays out in blocks of four. Each lane does exactly the arithmetic of
  *    triangle_crossing_prepared (triangle.h), in its order, each product rounded on its own (AVX2
  *    brings no fused multiply-add, and the Makefile's -ffp-contract=off forbids fusing): the same
  *    sheared corners, the same three edge functions, the same test of their signs (zero is inside) and
  *    of det == 0, bit for bit. So a lane that this filter drops is a triangle triangle_crossing_prepared
- *    rejects, and every lane it keeps is tested again by test_leaf_triangles, the very code of the other
- *    rungs, which gives t, the face and the tie rule. The filter decides nothing; it only skips work.
+ *    rejects, and every lane it keeps is tested again by triangle_crossing_prepared itself, on the same
+ *    doubles read back from the block, and handed to leaf_hit_taken (fast_bvh_walk.h), the code of the
+ *    other rungs, which applies the window and the tie rule. The filter decides nothing; it only skips
+ *    work.
  * A ray that rung 6's bound does not cover is walked by rung 8, in double.
  *
  * As fast_bvh_eight.c, only the functions that need AVX2 are compiled for it (the AVX2 attribute); the
@@ -26,23 +28,29 @@
 #include "fast_bvh_lean.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "fast_bvh_eight.h"
 #include "float4.h"
 #include "stats.h"
 #include "triangle.h"
 
+/* The blocks' alignment: one AVX2 load of four doubles. */
+#define FAST_BVH_LEAN_ALIGN 32
+
 bool fast_bvh_lean_prepare(struct fast_bvh *b) {
-    size_t stride = FAST_BVH_LEAN_STRIDE(b);
-    double *corners = calloc(9 * stride, sizeof *corners); /* the entries past the last triangle stay 0 */
+    size_t blocks = (b->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES;
+    size_t bytes = (blocks > 0 ? blocks : 1) * FAST_BVH_LEAN_BLOCK * sizeof(double); /* a multiple of 32 */
+    double *corners = aligned_alloc(FAST_BVH_LEAN_ALIGN, bytes);
     if (corners == NULL)
         return false;
+    memset(corners, 0, bytes); /* the lanes past the last triangle */
     for (size_t k = 0; k < b->tree_count; k++) {
         const struct bvh_triangle *t = &b->triangles[k];
         const vec3 corner[3] = {t->a, t->b, t->c};
         for (int c = 0; c < 3; c++)
             for (int a = 0; a < 3; a++)
-                corners[(size_t)(3 * c + a) * stride + k] = vec3_axis(corner[c], a);
+                corners[fast_bvh_lean_index(k, c, a)] = vec3_axis(corner[c], a);
     }
     b->lean_corners = corners;
     return true;
@@ -87,15 +95,14 @@ struct lean_ray {
     float8 origin[3], inverse[3];
     size_t near[3]; /* the byte offset in a node of each axis's near bounds; the far ones' is near ^ LEAN_ROW_BYTES */
     double4 o[3], sx, sy, sz;
-    const double *corner_a[3]; /* corner a's coordinates on the ray's x, y and z axes */
-    size_t corner_step;        /* from one corner's arrays to the next's: corner c's are at corner_a + c * step */
+    size_t axis[3]; /* where corner a's coordinates on the ray's x, y and z axes are in a block */
 };
 
 static inline AVX2 float8 broadcast8(float x) { return (float8){x, x, x, x, x, x, x, x}; }
 static inline AVX2 double4 broadcast4(double x) { return (double4){x, x, x, x}; }
 
-/* The four doubles at p, which need not be aligned. */
-static inline AVX2 double4 load4d(const double *p) { return _mm256_loadu_pd(p); }
+/* The four doubles at p, which is 32-byte aligned. */
+static inline AVX2 double4 load4d(const double *p) { return _mm256_load_pd(p); }
 
 /* Bit k of the result is set when lane k of the comparison result m is true. */
 static inline AVX2 unsigned lanes8_true(int8v m) { return (unsigned)_mm256_movemask_ps((__m256)m); }
@@ -160,8 +167,8 @@ static inline AVX2 void nearest_first(float8 entry, unsigned hit, uint32_t order
 
 /* Tests triangles [first, first + count) of the tree for query q, four at a time: lanes that
  * triangle_crossing_prepared would reject are dropped by its own arithmetic, lane by lane (see the top
- * of this file), and the others are tested by test_leaf_triangles (fast_bvh_walk.h), which decides.
- * Returns false when the walk should stop, as test_leaf_triangles does. */
+ * of this file), and the others are tested again by triangle_crossing_prepared, which decides, and taken
+ * by leaf_hit_taken. Returns false when the walk should stop, as test_leaf_triangles does. */
 static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const struct fast_bvh *b,
                                                                        const struct lean_ray *l,
                                                                        const struct triangle_ray *ready,
@@ -170,34 +177,43 @@ static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const str
                                                                        struct query_state *q, double *box_max,
                                                                        uint64_t *tests) {
     const double4 zero = broadcast4(0.0);
-    uint64_t tested_again = 0; /* counted once below, as one test per triangle */
     *tests += count;
-    for (uint32_t j = 0; j < count; j += FAST_BVH_LEAN_LANES) {
-        uint32_t k = first + j;
-        /* The corners relative to the origin, sheared, as in triangle_crossing_prepared. */
-        const double *x = l->corner_a[0] + k, *y = l->corner_a[1] + k, *z = l->corner_a[2] + k;
-        size_t step = l->corner_step;
+    const size_t corner = fast_bvh_lean_index(0, 1, 0); /* from one corner's coordinates to the next's */
+    uint32_t end = first + count;
+    for (uint32_t k = first - first % FAST_BVH_LEAN_LANES; k < end; k += FAST_BVH_LEAN_LANES) {
+        const double *block = b->lean_corners + fast_bvh_lean_index(k, 0, 0);
+        const double *x = block + l->axis[0], *y = block + l->axis[1], *z = block + l->axis[2];
         double4 az = load4d(z) - l->o[2];
         double4 ax = (load4d(x) - l->o[0]) - l->sx * az;
         double4 ay = (load4d(y) - l->o[1]) - l->sy * az;
-        double4 bz = load4d(z + step) - l->o[2];
-        double4 bx = (load4d(x + step) - l->o[0]) - l->sx * bz;
-        double4 by = (load4d(y + step) - l->o[1]) - l->sy * bz;
-        double4 cz = load4d(z + 2 * step) - l->o[2];
-        double4 cx = (load4d(x + 2 * step) - l->o[0]) - l->sx * cz;
-        double4 cy = (load4d(y + 2 * step) - l->o[1]) - l->sy * cz;
+        double4 bz = load4d(z + corner) - l->o[2];
+        double4 bx = (load4d(x + corner) - l->o[0]) - l->sx * bz;
+        double4 by = (load4d(y + corner) - l->o[1]) - l->sy * bz;
+        double4 cz = load4d(z + 2 * corner) - l->o[2];
+        double4 cx = (load4d(x + 2 * corner) - l->o[0]) - l->sx * cz;
+        double4 cy = (load4d(y + 2 * corner) - l->o[1]) - l->sy * cz;
         /* triangle_edge_function, three times. */
         double4 w_a = bx * cy - by * cx, w_b = cx * ay - cy * ax, w_c = ax * by - ay * bx;
         long4 inside_positive = (w_a >= zero) & (w_b >= zero) & (w_c >= zero);
         long4 inside_negative = (w_a <= zero) & (w_b <= zero) & (w_c <= zero);
         double4 det = w_a + w_b + w_c;
         unsigned keep = lanes4d_true((inside_positive | inside_negative) & (det != zero));
-        if (count - j < FAST_BVH_LEAN_LANES)
-            keep &= (1u << (count - j)) - 1u; /* the lanes past the leaf */
-        for (; keep != 0; keep &= keep - 1)
-            if (!test_leaf_triangles(b, ready, k + (uint32_t)__builtin_ctz(keep), 1, t_min, t_max, kind, false, q,
-                                     box_max, &tested_again))
+        if (k < first)
+            keep &= ~((1u << (first - k)) - 1u); /* the lanes before the leaf */
+        if (end - k < FAST_BVH_LEAN_LANES)
+            keep &= (1u << (end - k)) - 1u; /* the lanes past it */
+        for (; keep != 0; keep &= keep - 1) { /* the lanes kept, tested again from the same block */
+            int lane = __builtin_ctz(keep);
+            vec3 corner[3];
+            for (int c = 0; c < 3; c++)
+                corner[c] = vec3_make(block[fast_bvh_lean_index((size_t)lane, c, 0)],
+                                      block[fast_bvh_lean_index((size_t)lane, c, 1)],
+                                      block[fast_bvh_lean_index((size_t)lane, c, 2)]);
+            double t, u, v;
+            if (triangle_crossing_prepared(corner[0], corner[1], corner[2], ready, &t, &u, &v) &&
+                !leaf_hit_taken(kind, t, b->faces[k + (uint32_t)lane], t_min, t_max, q, box_max))
                 return false;
+        }
     }
     return true;
 }
@@ -239,16 +255,14 @@ static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const ray *r,
 }
 
 /* Makes *ready for r and the triangles' half of *l from it. */
-static inline AVX2 void lean_ray_ready(const struct fast_bvh *b, const ray *r, struct triangle_ray *ready,
+static inline AVX2 void lean_ray_ready(const ray *r, struct triangle_ray *ready,
                                        struct lean_ray *l) {
     *ready = triangle_ray_make(r);
     const int axis[3] = {ready->kx, ready->ky, ready->kz};
-    size_t stride = FAST_BVH_LEAN_STRIDE(b);
     for (int a = 0; a < 3; a++) {
         l->o[a] = broadcast4(vec3_axis(r->origin, axis[a]));
-        l->corner_a[a] = b->lean_corners + (size_t)axis[a] * stride;
+        l->axis[a] = fast_bvh_lean_index(0, 0, axis[a]);
     }
-    l->corner_step = 3 * stride;
     l->sx = broadcast4(ready->sx);
     l->sy = broadcast4(ready->sy);
     l->sz = broadcast4(ready->sz);
@@ -350,7 +364,7 @@ static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struc
         return q->found;
     }
     struct triangle_ray ready;
-    lean_ray_ready(b, r, &ready, l);
+    lean_ray_ready(r, &ready, l);
     while (running) {
         visits++;
         if (s.count == 0) {

@@ -10,16 +10,22 @@
 #include "fast_bvh_walk.h"
 #include "ray.h"
 
-/* Rung 9's copy of the tree's triangles (b->lean_corners): nine arrays of doubles, one for each corner
- * (a, b, c) and axis (x, y, z), each FAST_BVH_LEAN_STRIDE(b) long, so that corner c's axis a of the k-th
- * triangle in leaf order is lean_corners[(3 c + a) * stride + k]. Four triangles side by side are one
- * load per array; the three entries past the tree's last triangle are zeros, for a load that runs
- * past a leaf at the end. */
+/* Rung 9's copy of the tree's triangles (b->lean_corners): blocks of four triangles in leaf order
+ * (triangles 4 j to 4 j + 3 in block j), each block the nine coordinates (corner a, b, c; axis x, y, z)
+ * of its four triangles side by side, FAST_BVH_LEAN_BLOCK doubles (288 bytes, 32-byte aligned), so
+ * that one aligned load gives one coordinate of four triangles and a leaf's triangles are next to each
+ * other in memory. The last block is padded with zeros. */
 #define FAST_BVH_LEAN_LANES 4
-#define FAST_BVH_LEAN_STRIDE(b) ((b)->tree_count + FAST_BVH_LEAN_LANES - 1)
+#define FAST_BVH_LEAN_BLOCK (9 * FAST_BVH_LEAN_LANES)
 
-/* Makes rung 9's copy of b's triangles (b->lean_corners, from b->triangles). b is an 8-wide tree with its triangles in leaf order. Returns false when out of
- * memory (b is then unchanged). */
+/* Where corner c's coordinate on axis a of the k-th triangle is in b->lean_corners. */
+static inline size_t fast_bvh_lean_index(size_t k, int c, int a) {
+    return k / FAST_BVH_LEAN_LANES * FAST_BVH_LEAN_BLOCK + (size_t)(3 * c + a) * FAST_BVH_LEAN_LANES +
+           k % FAST_BVH_LEAN_LANES;
+}
+
+/* Makes rung 9's copy of b's triangles (b->lean_corners, from b->triangles). b is an 8-wide tree with
+ * its triangles in leaf order. Returns false when out of memory (b is then unchanged). */
 bool fast_bvh_lean_prepare(struct fast_bvh *b);
 
 /* Answers query `kind` for r with t_min < t < t_max over b, built for rung 9 (b->nodes8 and

@@ -89,7 +89,7 @@ struct fast_bvh {
     uint32_t *faces;                 /* faces[k] = index into the mesh's faces of the k-th triangle in leaf
                                         order (triangles[k]) */
     size_t triangle_count, tree_count;
-    double *lean_corners;            /* rung 9 with AVX2: the tree's triangles again, as nine arrays of doubles
+    double *lean_corners;            /* rung 9 with AVX2: the tree's triangles again, in blocks of four
                                         (fast_bvh_lean.h says how); else NULL */
     struct bvh_info info;            /* nodes counted in the 4-wide tree (the 8-wide one on rung 8) */
 };

@@ -1216,9 +1216,10 @@ Test(accel, rung_8_is_eight_wide_with_avx2_and_rung_6_without) {
     mesh_free(&m);
 }
 
-/* Rung 9 builds rung 8's tree and lays the tree's triangles out once more, nine arrays of doubles with
- * zeros past the end, where the processor has AVX2; without it (or told so), rung 6's tree and no copy. */
-Test(accel, rung_9_lays_its_triangles_out_as_nine_arrays_and_is_rung_6_without_avx2) {
+/* Rung 9 builds rung 8's tree and lays the tree's triangles out once more, in aligned blocks of four
+ * with zeros past the end, where the processor has AVX2; without it (or told so), rung 6's tree and no
+ * copy. */
+Test(accel, rung_9_lays_its_triangles_out_in_blocks_of_four_and_is_rung_6_without_avx2) {
     struct mesh m = make_soup(13, 3000);
     struct fast_bvh *lean = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN);
     struct fast_bvh *eight = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
@@ -1229,13 +1230,14 @@ Test(accel, rung_9_lays_its_triangles_out_as_nine_arrays_and_is_rung_6_without_a
         cr_assert_eq(lean->node_count, eight->node_count);
         cr_expect_eq(memcmp(lean->nodes8, eight->nodes8, eight->node_count * sizeof *eight->nodes8), 0,
                      "rung 9 built another tree than rung 8's");
-        size_t stride = FAST_BVH_LEAN_STRIDE(lean);
-        for (size_t k = 0; k < stride; k++) {
+        size_t padded = (lean->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES * FAST_BVH_LEAN_LANES;
+        cr_expect_eq((uintptr_t)lean->lean_corners % 32, 0, "the blocks are not aligned for AVX2's loads");
+        for (size_t k = 0; k < padded; k++) {
             const struct bvh_triangle *t = k < lean->tree_count ? &lean->triangles[k] : NULL;
             for (int c = 0; c < 3; c++)
                 for (int a = 0; a < 3; a++) {
                     double want = t == NULL ? 0.0 : vec3_axis(c == 0 ? t->a : c == 1 ? t->b : t->c, a);
-                    double got = lean->lean_corners[(size_t)(3 * c + a) * stride + k];
+                    double got = lean->lean_corners[fast_bvh_lean_index(k, c, a)];
                     cr_assert_eq(memcmp(&got, &want, sizeof got), 0, "triangle %zu corner %d axis %d: %a, want %a", k,
                                  c, a, got, want);
                 }
