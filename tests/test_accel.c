@@ -1184,6 +1184,24 @@ Test(accel, fast_bvh_rungs_are_named_and_checked) {
     mesh_free(&m);
 }
 
+/* Told there is no AVX2 (FAST_BVH_NO_AVX2_VARIABLE), `rung` (8 or 9) builds rung 6's tree over m, node
+ * for node, and nothing 8-wide. */
+static void expect_rung_6_without_avx2(const struct mesh *m, enum fast_bvh_rung rung) {
+    cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
+    cr_expect_not(fast_bvh_eight_available());
+    struct fast_bvh *fallback = fast_bvh_build(m, BVH_SPLIT_SAH, rung);
+    struct fast_bvh *six = fast_bvh_build(m, BVH_SPLIT_SAH, FAST_BVH_RUNG_FLOAT);
+    cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
+    cr_assert(fallback != NULL && six != NULL);
+    cr_expect(fallback->nodes8 == NULL && fallback->lean_corners == NULL, "rung %d without AVX2 built 8-wide nodes",
+              rung);
+    cr_assert_eq(fallback->node_count, six->node_count);
+    cr_expect_eq(memcmp(fallback->nodes, six->nodes, six->node_count * sizeof *six->nodes), 0,
+                 "rung %d without AVX2 built another tree than rung 6's", rung);
+    fast_bvh_free(fallback);
+    fast_bvh_free(six);
+}
+
 /* Rung 8 builds 8-wide nodes, more than four children each on average, exactly when the processor has AVX2 and is not told
  * otherwise; else rung 6's tree, the same as rung 6 builds, node for node. */
 Test(accel, rung_8_is_eight_wide_with_avx2_and_rung_6_without) {
@@ -1201,18 +1219,8 @@ Test(accel, rung_8_is_eight_wide_with_avx2_and_rung_6_without) {
     } else {
         cr_log_warn("this processor has no AVX2: rung 8's 8-wide walk is not tested here");
     }
-    cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
-    cr_expect_not(fast_bvh_eight_available());
-    struct fast_bvh *fallback = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
-    struct fast_bvh *six = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_FLOAT);
-    cr_assert(fallback != NULL && six != NULL);
-    cr_expect_null(fallback->nodes8);
-    cr_assert_eq(fallback->node_count, six->node_count);
-    cr_expect_eq(memcmp(fallback->nodes, six->nodes, six->node_count * sizeof *six->nodes), 0,
-                 "rung 8 without AVX2 built another tree than rung 6's");
+    expect_rung_6_without_avx2(&m, FAST_BVH_RUNG_EIGHT);
     fast_bvh_free(eight);
-    fast_bvh_free(fallback);
-    fast_bvh_free(six);
     mesh_free(&m);
 }
 
@@ -1245,18 +1253,8 @@ Test(accel, rung_9_lays_its_triangles_out_in_blocks_of_four_and_is_rung_6_withou
     } else {
         cr_log_warn("this processor has no AVX2: rung 9's walk is not tested here");
     }
-    cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
-    struct fast_bvh *fallback = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN);
-    struct fast_bvh *six = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_FLOAT);
-    cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
-    cr_assert(fallback != NULL && six != NULL);
-    cr_expect(fallback->nodes8 == NULL && fallback->lean_corners == NULL);
-    cr_assert_eq(fallback->node_count, six->node_count);
-    cr_expect_eq(memcmp(fallback->nodes, six->nodes, six->node_count * sizeof *six->nodes), 0,
-                 "rung 9 without AVX2 built another tree than rung 6's");
+    expect_rung_6_without_avx2(&m, FAST_BVH_RUNG_LEAN);
     fast_bvh_free(lean);
     fast_bvh_free(eight);
-    fast_bvh_free(fallback);
-    fast_bvh_free(six);
     mesh_free(&m);
 }
