@@ -89,11 +89,11 @@ struct lean_stack_entry {
 
 /* What the walk of one ray needs, made once: rung 6's float origin and 1 / direction in eight lanes,
  * which bound of each axis is the near one, and for the triangles the ray's origin and shear in four
- * lanes, in the ray's own axes (kx, ky, kz of struct triangle_ray), with the arrays of the corners'
- * coordinates on those axes. */
+ * lanes, in the ray's own axes (kx, ky, kz of struct triangle_ray), and where a block holds the
+ * corners' coordinates on those axes. */
 struct lean_ray {
     float8 origin[3], inverse[3];
-    size_t near[3]; /* the byte offset in a node of each axis's near bounds; the far ones' is near ^ LEAN_ROW_BYTES */
+    size_t near[3]; /* each axis's near bounds' byte offset in a node; the far ones' is near ^ LEAN_ROW_BYTES */
     double4 o[3], sx, sy, sz;
     size_t axis[3]; /* where corner a's coordinates on the ray's x, y and z axes are in a block */
 };
@@ -204,13 +204,13 @@ static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const str
             keep &= (1u << (end - k)) - 1u; /* the lanes past it */
         for (; keep != 0; keep &= keep - 1) { /* the lanes kept, tested again from the same block */
             int lane = __builtin_ctz(keep);
-            vec3 corner[3];
+            vec3 p[3]; /* the triangle's corners a, b and c */
             for (int c = 0; c < 3; c++)
-                corner[c] = vec3_make(block[fast_bvh_lean_index((size_t)lane, c, 0)],
-                                      block[fast_bvh_lean_index((size_t)lane, c, 1)],
-                                      block[fast_bvh_lean_index((size_t)lane, c, 2)]);
+                p[c] = vec3_make(block[fast_bvh_lean_index((size_t)lane, c, 0)],
+                                 block[fast_bvh_lean_index((size_t)lane, c, 1)],
+                                 block[fast_bvh_lean_index((size_t)lane, c, 2)]);
             double t, u, v;
-            if (triangle_crossing_prepared(corner[0], corner[1], corner[2], ready, &t, &u, &v) &&
+            if (triangle_crossing_prepared(p[0], p[1], p[2], ready, &t, &u, &v) &&
                 !leaf_hit_taken(kind, t, b->faces[k + (uint32_t)lane], t_min, t_max, q, box_max))
                 return false;
         }
@@ -255,8 +255,7 @@ static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const ray *r,
 }
 
 /* Makes *ready for r and the triangles' half of *l from it. */
-static inline AVX2 void lean_ray_ready(const ray *r, struct triangle_ray *ready,
-                                       struct lean_ray *l) {
+static inline AVX2 void lean_ray_ready(const ray *r, struct triangle_ray *ready, struct lean_ray *l) {
     *ready = triangle_ray_make(r);
     const int axis[3] = {ready->kx, ready->ky, ready->kz};
     for (int a = 0; a < 3; a++) {
