@@ -7,7 +7,7 @@
 #   make bench-memory  peak memory of chapters 10 and 11 (every rung) per triangle, on a teapot of about
 #                      4 million triangles made by tools/models/teapot.c into out/bench/
 #   make bench         every benchmark: bench-accel, then bench-memory
-#   make bench-profile instructions, cache misses and mispredicted branches per ray for rungs 1, 5 to 8
+#   make bench-profile instructions, cache misses and mispredicted branches per ray for rungs 1, 5 to 9
 #                      and Embree on the teapot frame (bench/profile.sh, under valgrind: ten minutes or so)
 #
 # $(BUILD)/bench_accel --csv FILE also writes its tables' rows as CSV (see bench_accel.c), and --size WxH
@@ -21,7 +21,7 @@
 # machine without Embree, make bench, which installs Embree, links the Embree one (tests/test_build.c).
 
 BENCH_MODELS := scenes/models/teapot-346k.ply scenes/models/bunny.ply
-BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_eight fast_bvh_build fast_bvh_packet kdtree kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj mesh_load infile camera
+BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_eight fast_bvh_lean fast_bvh_build fast_bvh_packet kdtree kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj mesh_load infile camera
 # Embree's header, when it is installed (`make BENCH_EMBREE= ...` builds the plain variant anyway).
 BENCH_EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
 BENCH_VARIANT := $(if $(BENCH_EMBREE),embree,plain)
@@ -90,7 +90,7 @@ bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_
 	echo "peak memory on $(BENCH_MEMORY_SCENE) ($$triangles triangles, 64x48, 1 thread):"; \
 	$(BUILD)/peak_rss $$triangles "chapter 10, BVH-SAH" $(BUILD)/chapter-10 $(BENCH_MEMORY_SCENE) --threads 1 --quiet \
 	    -o $(BENCH_MEMORY_DIR)/memory.png && \
-	for rung in 1 2 3 4 5 6 7 8; do \
+	for rung in 1 2 3 4 5 6 7 8 9; do \
 	    $(BUILD)/peak_rss $$triangles "chapter 11, rung $$rung" $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE) --threads 1 \
 	        --quiet --rung $$rung -o $(BENCH_MEMORY_DIR)/memory.png || exit 1; \
 	done; \

@@ -213,6 +213,7 @@ static const struct accel accels[] = {
     {"rung 6 float", "rung-6", FAST_BVH, FAST_BVH_RUNG_FLOAT, 8},
     {"rung 7 compact", "rung-7", FAST_BVH, FAST_BVH_RUNG_COMPACT, 9},
     {"rung 8 eight", "rung-8", FAST_BVH, FAST_BVH_RUNG_EIGHT, 9}, /* rung 6 on eight lanes: compared with 6 */
+    {"rung 9 lean", "rung-9", FAST_BVH, FAST_BVH_RUNG_LEAN, 11},  /* rung 8's tree, less per ray: with 8 */
     {"rung 10 packet", "rung-10", FAST_BVH_PACKETS, FAST_BVH_RUNG_EIGHT, 11}, /* rung 8's tree: compared with 8 */
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
@@ -748,7 +749,7 @@ int main(int argc, char **argv) {
         fprintf(options.csv, "%s\n", CSV_HEADER);
     }
     if (!fast_bvh_eight_available())
-        fprintf(stderr, "bench_accel: no AVX2 here (or %s is set): rung 8's row is rung 6's tree and walk\n",
+        fprintf(stderr, "bench_accel: no AVX2 here (or %s is set): rung 8's and 9's rows are rung 6's tree and walk\n",
                 FAST_BVH_NO_AVX2_VARIABLE);
     int status = 0;
     for (int k = first; k < argc; k++)

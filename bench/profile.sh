@@ -1,6 +1,6 @@
 #!/bin/sh
 # bench/profile.sh: where a ray's time goes on chapter 11's ladder: instructions, data cache misses and
-# mispredicted branches per ray for rungs 1, 5, 6, 7 and 8 and for Embree 3, on make bench-accel's frame
+# mispredicted branches per ray for rungs 1 and 5 to 9 and for Embree 3, on make bench-accel's frame
 # of the teapot (800 x 600, a camera ray per pixel and a shadow ray per hit, one thread). make
 # bench-profile runs it; docs/11-fast.md shows its table.
 #
@@ -61,6 +61,7 @@ profile "rung 5 build" rung-5 "fast_bvh_closest fast_bvh_occluded" --only "rung 
 profile "rung 6 float" rung-6 "fast_bvh_closest fast_bvh_occluded" --only "rung 6 float"
 profile "rung 7 compact" rung-7 "fast_bvh_closest fast_bvh_occluded" --only "rung 7 compact"
 profile "rung 8 eight" rung-8 "fast_bvh_closest fast_bvh_occluded" --only "rung 8 eight"
+profile "rung 9 lean" rung-9 "fast_bvh_closest fast_bvh_occluded" --only "rung 9 lean"
 profile "Embree 3" embree "rtcIntersect1* rtcOccluded1*" --embree --only "BVH-SAH (rung 1 plain)"
 echo
 grep -h '^desc: \(I1\|D1\|LL\) cache' "$work/out" | sed 's/^desc: /simulated /'

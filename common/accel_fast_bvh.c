@@ -40,24 +40,28 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
         {"", "", "fast BVH, rung 2 wide (median split)", "fast BVH, rung 3 simd (median split)",
          "fast BVH, rung 4 prefetch (median split)", "fast BVH, rung 5 build (median split)",
          "fast BVH, rung 6 float (median split)", "fast BVH, rung 7 compact (median split)",
-         "fast BVH, rung 8 eight (median split)"},
+         "fast BVH, rung 8 eight (median split)", "fast BVH, rung 9 lean (median split)"},
         {"", "", "fast BVH, rung 2 wide (binned SAH)", "fast BVH, rung 3 simd (binned SAH)",
          "fast BVH, rung 4 prefetch (binned SAH)", "fast BVH, rung 5 build (binned SAH)",
          "fast BVH, rung 6 float (binned SAH)", "fast BVH, rung 7 compact (binned SAH)",
-         "fast BVH, rung 8 eight (binned SAH)"},
+         "fast BVH, rung 8 eight (binned SAH)", "fast BVH, rung 9 lean (binned SAH)"},
     };
     /* Rung 8 on a processor without AVX2 (or told to act so) built rung 6's tree: the report says so. */
-    static const char *const fallback[2] = {"fast BVH, rung 8 eight without AVX2: rung 6's tree and walk (median split)",
-                                            "fast BVH, rung 8 eight without AVX2: rung 6's tree and walk (binned SAH)"
+    static const char *const fallback[2][2] = {
+        {"fast BVH, rung 8 eight without AVX2: rung 6's tree and walk (median split)",
+         "fast BVH, rung 8 eight without AVX2: rung 6's tree and walk (binned SAH)"},
+        {"fast BVH, rung 9 lean without AVX2: rung 6's tree and walk (median split)",
+         "fast BVH, rung 9 lean without AVX2: rung 6's tree and walk (binned SAH)"},
     };
     /* Rung 10, camera rays in packets (chapter 11 renders them), over rung 8's tree or its fallback. */
     static const char *const packet[2][2] = {
         {"fast BVH, rung 10 packet without AVX2: rung 6's tree (median split)",
          "fast BVH, rung 10 packet without AVX2: rung 6's tree (binned SAH)"},
         {"fast BVH, rung 10 packet (median split)", "fast BVH, rung 10 packet (binned SAH)"}};
-    const char *name = rung == FAST_BVH_RUNG_PACKET  ? packet[bvh->nodes8 != NULL][split == BVH_SPLIT_SAH]
-                       : rung == FAST_BVH_RUNG_EIGHT && bvh->nodes8 == NULL ? fallback[split == BVH_SPLIT_SAH]
-                                                                            : names[split == BVH_SPLIT_SAH][rung];
+    bool wide = rung == FAST_BVH_RUNG_EIGHT || rung == FAST_BVH_RUNG_LEAN;
+    const char *name = rung == FAST_BVH_RUNG_PACKET ? packet[bvh->nodes8 != NULL][split == BVH_SPLIT_SAH]
+                       : wide && bvh->nodes8 == NULL ? fallback[rung == FAST_BVH_RUNG_LEAN][split == BVH_SPLIT_SAH]
+                                                     : names[split == BVH_SPLIT_SAH][rung];
     w->summary = (struct accel_summary){name, build_ms, info.nodes, info.leaves,
                                         info.max_depth, info.sah_cost};
     w->structure = bvh;

@@ -18,6 +18,8 @@
  *    leaf order is not made; one more dependent load per triangle test.
  *  - FAST_BVH_RUNG_EIGHT: rung 6 on an 8-wide tree, walked by fast_bvh_eight.c with AVX2 when the
  *    processor has it; a tree built without it is rung 6's and walked here as rung 6.
+ *  - FAST_BVH_RUNG_LEAN: rung 8's tree walked with less work per ray by fast_bvh_lean.c (its leaves'
+ *    triangles also laid out to be tested four at a time); without AVX2, as rung 8 without it.
  * The shared pieces (the float setup, the queries, the leaves' triangle test) are in fast_bvh_walk.h.
  * The traversal is one function specialised at compile time for each query and rung.
  *
@@ -47,6 +49,7 @@
 #endif
 
 #include "fast_bvh_eight.h"
+#include "fast_bvh_lean.h"
 #include "fast_bvh_walk.h"
 #include "float4.h"
 #include "stats.h"
@@ -64,6 +67,7 @@ void fast_bvh_free(struct fast_bvh *b) {
     free(b->nodes);
     free(b->nodes8);
     free(b->triangles);
+    free(b->lean_corners);
     free(b->faces);
     free(b);
 }
@@ -446,6 +450,12 @@ static inline __attribute__((always_inline)) bool traverse_rung(const struct fas
         if (float_setup_make(b, r, t_min, &f))
             return traverse(b, r, t_min, t_max, kind, true, true, &f, false, q);
         return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
+    case FAST_BVH_RUNG_LEAN: /* rung 8's tree walked leaner (AVX2); else rung 6's */
+        if (b->nodes8 != NULL)
+            return fast_bvh_lean_traverse(b, r, t_min, t_max, kind, q);
+        if (float_setup_make(b, r, t_min, &f))
+            return traverse(b, r, t_min, t_max, kind, true, true, &f, false, q);
+        return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
     default: /* rung 7: rung 6's walk over compact leaves */
         if (float_setup_make(b, r, t_min, &f))
             return traverse(b, r, t_min, t_max, kind, true, true, &f, true, q);
@@ -478,7 +488,7 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
 /* ==== the rungs' names ======================================================================== */
 
 static const char *const rung_names[FAST_BVH_RUNG_LAST + 1] = {
-    NULL, "plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight",
+    NULL, "plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean",
     [FAST_BVH_RUNG_PACKET] = "packet",
 };
 

@@ -47,8 +47,8 @@ void fast_bvh_get_info(const struct fast_bvh *b, struct bvh_info *info);
  * why (why_size bytes). For tests: it walks the whole tree. */
 bool fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why, size_t why_size);
 
-/* The rung called `name` ("plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight",
- * "packet") or written as its number ("1" to "8", "10"); 0 when there is none. */
+/* The rung called `name` ("plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean",
+ * "packet") or written as its number ("1" to "10"); 0 when there is none. */
 int fast_bvh_rung_from_name(const char *name);
 
 /* The name of rung r, for reports ("plain", ...); "?" for a number that is not a rung. */

@@ -34,7 +34,8 @@
  * Rung 8 builds as rung 5 (or collapses chapter 10's median tree) with eight children a node: the same
  * rule opens the widest child that splits until a node has eight (struct node_store says which width
  * is being written). Only when the processor has AVX2 (fast_bvh_eight_available), which its walk needs;
- * otherwise it builds rung 6's 4-wide tree, and the walk is rung 6's. */
+ * otherwise it builds rung 6's 4-wide tree, and the walk is rung 6's. Rung 9 builds rung 8's tree, and
+ * then lays its triangles out once more for its walk (fast_bvh_lean_prepare). */
 #include "fast_bvh_build.h"
 
 #include <math.h>
@@ -46,6 +47,7 @@
 #include "big_alloc.h"
 #include "clock.h"
 #include "fast_bvh_eight.h"
+#include "fast_bvh_lean.h"
 #include "float4.h"
 #include "triangle.h"
 
@@ -113,6 +115,21 @@ static void count_child(struct tree_shape *shape, struct aabb box, uint32_t coun
     shape->max_depth = depth > shape->max_depth ? depth : shape->max_depth;
 }
 
+/* Whether rung's tree is 8-wide: rungs 8 and 9 where the processor has AVX2 (else rung 6's tree). */
+static bool eight_wide(enum fast_bvh_rung rung) {
+    return (rung == FAST_BVH_RUNG_EIGHT || rung == FAST_BVH_RUNG_LEAN) && fast_bvh_eight_available();
+}
+
+/* Rung 9's leaves: b's triangles laid out for its walk too (fast_bvh_lean_prepare), when b is 8-wide.
+ * Returns b, or NULL (b freed) when out of memory. */
+static struct fast_bvh *with_lean_leaves(struct fast_bvh *b) {
+    if (b != NULL && b->rung == FAST_BVH_RUNG_LEAN && b->nodes8 != NULL && !fast_bvh_lean_prepare(b)) {
+        fast_bvh_free(b);
+        return NULL;
+    }
+    return b;
+}
+
 /* ==== rung 2: chapter 10's tree, collapsed ===================================================== */
 
 struct collapser {
@@ -163,7 +180,7 @@ struct fast_bvh *fast_bvh_collapse(struct bvh *binary, enum fast_bvh_rung rung) 
     struct fast_bvh *b = calloc(1, sizeof *b);
     size_t interior = binary->node_count - binary->info.leaves; /* the wide tree has no more nodes */
     struct node_store store = {NULL, NULL};
-    if (rung == FAST_BVH_RUNG_EIGHT && fast_bvh_eight_available())
+    if (eight_wide(rung))
         store.nodes8 = big_alloc((interior > 0 ? interior : 1) * sizeof *store.nodes8, false);
     else
         store.nodes = big_alloc((interior > 0 ? interior : 1) * sizeof *store.nodes, false);
@@ -839,7 +856,7 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
             b->triangles = NULL;
             b->mesh = m;
         }
-        return b;
+        return with_lean_leaves(b);
     }
     double start = clock_seconds();
     struct fast_bvh *b = calloc(1, sizeof *b);
@@ -847,7 +864,7 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         return NULL;
     b->rung = rung;
     b->triangle_count = m->face_count;
-    bool eight = rung == FAST_BVH_RUNG_EIGHT && fast_bvh_eight_available(); /* else rung 6's tree */
+    bool eight = eight_wide(rung);
     if (!build_in_float(b, m, rung == FAST_BVH_RUNG_COMPACT, eight)) {
         fast_bvh_free(b);
         return NULL;
@@ -872,6 +889,8 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         size_t count = b->triangle_count - start < FAST_BVH_COPY_PART ? b->triangle_count - start : FAST_BVH_COPY_PART;
         bvh_copy_triangles(m, b->faces + start, count, b->triangles + start);
     }
-    b->info.build_ms = 1e3 * (clock_seconds() - start);
+    b = with_lean_leaves(b);
+    if (b != NULL)
+        b->info.build_ms = 1e3 * (clock_seconds() - start);
     return b;
 }

@@ -1,6 +1,6 @@
 /* fast_bvh_tree.h: what chapter 11's hierarchy is in memory: the rungs of the ladder, the nodes of four
- * (and rung 8's of eight) children with their boxes side by side in float, and the hierarchy that holds
- * them (chapter 11). fast_bvh.h declares what is done with it; the walks (fast_bvh.c, fast_bvh_eight.c,
+ * (and rung 8's and 9's of eight) children with their boxes side by side in float, and the hierarchy that holds
+ * them (chapter 11). fast_bvh.h declares what is done with it; the walks (fast_bvh.c, fast_bvh_eight.c, fast_bvh_lean.c,
  * and what they share in fast_bvh_walk.h) and the build (fast_bvh_build.c) read this layout. */
 #ifndef WHITTED_FAST_BVH_TREE_H
 #define WHITTED_FAST_BVH_TREE_H
@@ -30,12 +30,15 @@ enum fast_bvh_rung {
     FAST_BVH_RUNG_EIGHT = 8,    /* rung 6 on an 8-wide tree: all eight children's float slab tests in one
                                    AVX2 instruction (fast_bvh_eight.c), when the processor has AVX2;
                                    without it, rung 6's tree and walk */
+    FAST_BVH_RUNG_LEAN = 9,     /* rung 8's tree walked with less per ray (fast_bvh_lean.c): float root box,
+                                   sorted entries, a stack of float entries, four triangles per test in
+                                   double (AVX2); without AVX2, rung 6's tree and walk */
     FAST_BVH_RUNG_PACKET = 10,  /* rung 8's tree, the camera rays walked through it eight at a time
                                    (fast_bvh_packet.c); every other ray walked as on rung 8. Not a tree
                                    of its own: fast_bvh_build makes rung 8's for it */
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
-#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_EIGHT /* the top rung that fast_bvh_build builds */
+#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_LEAN /* the top rung that fast_bvh_build builds */
 /* The last rung a chapter accepts (--rung): rung 10 renders in packets over rung 8's tree. */
 #define FAST_BVH_RUNG_LAST FAST_BVH_RUNG_PACKET
 /* The rung the chapters walk unless told otherwise. Rung 7 takes the least memory, but its frames are
@@ -91,6 +94,8 @@ struct fast_bvh {
     uint32_t *faces;                 /* faces[k] = index into the mesh's faces of the k-th triangle in leaf
                                         order (triangles[k]) */
     size_t triangle_count, tree_count;
+    double *lean_corners;            /* rung 9 with AVX2: the tree's triangles again, in blocks of four
+                                        (fast_bvh_lean.h says how); else NULL */
     struct bvh_info info;            /* nodes counted in the 4-wide tree (the 8-wide one on rung 8) */
 };
 

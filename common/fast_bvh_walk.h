@@ -118,6 +118,32 @@ struct query_state {
     void *ctx;
 };
 
+/* What query q does with a crossing of `face` at t: nothing outside t_min < t < t_max; else QUERY_ANY has
+ * its answer, QUERY_ALL reports it, and QUERY_CLOSEST keeps it when it wins (triangle_hit_wins) and
+ * lowers *box_max to it. Returns false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's
+ * visit said so). */
+static inline __attribute__((always_inline)) bool leaf_hit_taken(enum query kind, double t, uint32_t face,
+                                                                 double t_min, double t_max, struct query_state *q,
+                                                                 double *box_max) {
+    if (!(t > t_min && t < t_max))
+        return true;
+    if (kind == QUERY_ANY) {
+        q->found = true;
+        return false;
+    }
+    if (kind == QUERY_ALL) {
+        q->found = true;
+        return q->visit(q->ctx, t, face);
+    }
+    if (triangle_hit_wins(t, face, q->t, q->face)) { /* q->t is t_max until the first hit */
+        q->found = true;
+        q->t = t;
+        q->face = face;
+        *box_max = t; /* from now on only boxes starting at or before t matter */
+    }
+    return true;
+}
+
 /* Tests triangles [first, first + count) for query q with triangle_crossing_prepared (triangle.h), the
  * arithmetic triangle_intersect uses, so t is bit-identical to the brute-force loop's; lowers *box_max
  * as nearer hits turn up. With `compact` (rung 7) each triangle's corners are read from the mesh by its
@@ -141,25 +167,8 @@ static inline __attribute__((always_inline)) bool test_leaf_triangles(const stru
             const struct bvh_triangle *tri = &b->triangles[k];
             crossed = triangle_crossing_prepared(tri->a, tri->b, tri->c, r, &t, &u, &v);
         }
-        if (!crossed || !(t > t_min && t < t_max))
-            continue;
-        uint32_t face = b->faces[k];
-        if (kind == QUERY_ANY) {
-            q->found = true;
+        if (crossed && !leaf_hit_taken(kind, t, b->faces[k], t_min, t_max, q, box_max))
             return false;
-        }
-        if (kind == QUERY_ALL) {
-            q->found = true;
-            if (!q->visit(q->ctx, t, face))
-                return false;
-            continue;
-        }
-        if (triangle_hit_wins(t, face, q->t, q->face)) { /* q->t is t_max until the first hit */
-            q->found = true;
-            q->t = t;
-            q->face = face;
-            *box_max = t; /* from now on only boxes starting at or before t matter */
-        }
     }
     return true;
 }

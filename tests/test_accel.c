@@ -3,10 +3,11 @@
  *
  * Every ray is first traced by brute force: triangle_intersect on every face, which gives each face's
  * t. The answer for any window t_min < t < t_max follows from those: the nearest hit (the lowest face
- * among equal t), whether anything is hit, and the set of faces hit. All ten structures (chapter 10's
+ * among equal t), whether anything is hit, and the set of faces hit. All the structures (chapter 10's
  * BVH with the median and the SAH split, kd-tree with the dissertation's rule and the SAH, chapter 11's
- * fast BVH at rungs 2 to 6 by the SAH and at the top rung by the median) must then give exactly that
- * answer: the same t to the last bit, the same face, the same set, each face reported once.
+ * fast BVH at every rung by the SAH, at rungs 7 to 9 by the median, and rungs 8 and 9 as without AVX2)
+ * must then give exactly that answer: the same t to the last bit, the same face, the same set, each face
+ * reported once.
  *
  * The rays are chosen to hurt: random ones, rays aimed at faces, vertices and shared edges, rays along
  * the axes (with signed zero components) through vertices, rays lying in planes through vertices or
@@ -27,6 +28,7 @@
 #include "fast_bvh.h"
 #include "fast_bvh_build.h"
 #include "fast_bvh_eight.h"
+#include "fast_bvh_lean.h"
 #include "kdtree.h"
 #include "mesh.h"
 #include "mesh_load.h"
@@ -291,17 +293,18 @@ static void kd_for_each_hit_of(const void *s, const ray *r, double t_min, double
 }
 static void kd_free_of(void *s) { kdtree_free(s); }
 
-/* Chapters 9 and 10's four, chapter 11's rungs by the SAH, its rungs 7 and 8 by the median, and rung 8
- * as built without AVX2 (rung 6's tree: the fallback, which the machine running the tests may not need). */
-#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 3)
+/* Chapters 9 and 10's four, chapter 11's rungs by the SAH, its rungs 7, 8 and 9 by the median, and rungs
+ * 8 and 9 as built without AVX2 (rung 6's tree: the fallback, which the machine running the tests may not
+ * need). */
+#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 5)
 
 /* Builds chapter 11's fast BVH over m at `rung` by `split`, checks its invariants and puts it in *out. */
 static void build_fast(const struct mesh *m, const char *mesh_name, enum bvh_split split, int rung, struct accel *out) {
     static const char *const names[2][FAST_BVH_RUNG_TOP + 1] = {
         {"", "", "fast BVH median rung 2", "fast BVH median rung 3", "fast BVH median rung 4", "fast BVH median rung 5",
-         "fast BVH median rung 6", "fast BVH median rung 7", "fast BVH median rung 8"},
+         "fast BVH median rung 6", "fast BVH median rung 7", "fast BVH median rung 8", "fast BVH median rung 9"},
         {"", "", "fast BVH SAH rung 2", "fast BVH SAH rung 3", "fast BVH SAH rung 4", "fast BVH SAH rung 5",
-         "fast BVH SAH rung 6", "fast BVH SAH rung 7", "fast BVH SAH rung 8"}};
+         "fast BVH SAH rung 6", "fast BVH SAH rung 7", "fast BVH SAH rung 8", "fast BVH SAH rung 9"}};
     char why[256];
     const char *name = names[split == BVH_SPLIT_SAH][rung];
     struct fast_bvh *b = fast_bvh_build(m, split, (enum fast_bvh_rung)rung);
@@ -326,14 +329,20 @@ static void build_all(const struct mesh *m, const char *mesh_name, struct accel 
     out[3] = (struct accel){"kd-tree SAH", kd_sah, kd_closest_of, kd_occluded_of, kd_for_each_hit_of, kd_free_of};
     for (int rung = FAST_BVH_RUNG_FIRST; rung <= FAST_BVH_RUNG_TOP; rung++)
         build_fast(m, mesh_name, BVH_SPLIT_SAH, rung, &out[4 + rung - FAST_BVH_RUNG_FIRST]);
-    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_COMPACT, &out[ACCEL_COUNT - 3]);
-    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 2]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_COMPACT, &out[ACCEL_COUNT - 5]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 4]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_LEAN, &out[ACCEL_COUNT - 3]);
     cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
-    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 1]);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 2]);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN, &out[ACCEL_COUNT - 1]);
     cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
-    cr_assert_null(((struct fast_bvh *)out[ACCEL_COUNT - 1].structure)->nodes8, "%s: rung 8 told there is no AVX2 "
-                   "built 8-wide nodes", mesh_name);
-    out[ACCEL_COUNT - 1].name = "fast BVH SAH rung 8 without AVX2";
+    for (int k = ACCEL_COUNT - 2; k < ACCEL_COUNT; k++) {
+        const struct fast_bvh *fallback = out[k].structure;
+        cr_assert(fallback->nodes8 == NULL && fallback->lean_corners == NULL,
+                  "%s: %s told there is no AVX2 built 8-wide nodes", mesh_name, out[k].name);
+    }
+    out[ACCEL_COUNT - 2].name = "fast BVH SAH rung 8 without AVX2";
+    out[ACCEL_COUNT - 1].name = "fast BVH SAH rung 9 without AVX2";
 }
 
 /* Builds the kd-tree over m by each rule, checking each one's invariants; returns how many. */
@@ -968,7 +977,8 @@ static bool same_tree(const struct fast_bvh *a, const struct fast_bvh *b, size_t
  * than one, big nodes build their children in tasks that may finish in any order. */
 Test(accel, float_build_is_the_same_tree_on_any_number_of_threads, .timeout = ACCEL_TEST_TIMEOUT) {
     static const char *const models[] = {"scenes/models/teapot-5k.ply", "scenes/models/bunny.ply"};
-    static const enum fast_bvh_rung rungs[] = {FAST_BVH_RUNG_BUILD, FAST_BVH_RUNG_COMPACT, FAST_BVH_RUNG_EIGHT};
+    static const enum fast_bvh_rung rungs[] = {FAST_BVH_RUNG_BUILD, FAST_BVH_RUNG_COMPACT, FAST_BVH_RUNG_EIGHT,
+                                               FAST_BVH_RUNG_LEAN};
     static const int threads[] = {2, 4};
     int threads_before = omp_get_max_threads();
     for (size_t i = 0; i < sizeof models / sizeof models[0]; i++) {
@@ -1155,22 +1165,41 @@ Test(accel, rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mes
     check_mesh("sphere of radius 3e-3 at (4096, -2048, 1024)", &sphere, 57);
 }
 
-/* Chapter 11's rungs: only 1 to 8, by number or name; anything else builds nothing. */
+/* Chapter 11's rungs: only 1 to 9, by number or name; anything else builds nothing. */
 Test(accel, fast_bvh_rungs_are_named_and_checked) {
-    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight"};
+    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean"};
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++) {
         char number[2] = {(char)('0' + r), '\0'};
         cr_expect_eq(fast_bvh_rung_from_name(names[r - 1]), r, "%s", names[r - 1]);
         cr_expect_eq(fast_bvh_rung_from_name(number), r, "%s", number);
         cr_expect_str_eq(fast_bvh_rung_name(r), names[r - 1]);
     }
-    cr_expect_eq(fast_bvh_rung_from_name("9"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name("10"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name(":"), 0); /* the character after '9' */
     cr_expect_eq(fast_bvh_rung_from_name("0"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("fast"), 0);
     struct mesh m = make_soup(7, 20);
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PLAIN), "rung 1 is chapter 10's, not built here");
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, (enum fast_bvh_rung)(FAST_BVH_RUNG_TOP + 1)));
     mesh_free(&m);
+}
+
+/* Told there is no AVX2 (FAST_BVH_NO_AVX2_VARIABLE), `rung` (8 or 9) builds rung 6's tree over m, node
+ * for node, and nothing 8-wide. */
+static void expect_rung_6_without_avx2(const struct mesh *m, enum fast_bvh_rung rung) {
+    cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
+    cr_expect_not(fast_bvh_eight_available());
+    struct fast_bvh *fallback = fast_bvh_build(m, BVH_SPLIT_SAH, rung);
+    struct fast_bvh *six = fast_bvh_build(m, BVH_SPLIT_SAH, FAST_BVH_RUNG_FLOAT);
+    cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
+    cr_assert(fallback != NULL && six != NULL);
+    cr_expect(fallback->nodes8 == NULL && fallback->lean_corners == NULL, "rung %d without AVX2 built 8-wide nodes",
+              rung);
+    cr_assert_eq(fallback->node_count, six->node_count);
+    cr_expect_eq(memcmp(fallback->nodes, six->nodes, six->node_count * sizeof *six->nodes), 0,
+                 "rung %d without AVX2 built another tree than rung 6's", rung);
+    fast_bvh_free(fallback);
+    fast_bvh_free(six);
 }
 
 /* Rung 8 builds 8-wide nodes, more than four children each on average, exactly when the processor has AVX2 and is not told
@@ -1190,17 +1219,42 @@ Test(accel, rung_8_is_eight_wide_with_avx2_and_rung_6_without) {
     } else {
         cr_log_warn("this processor has no AVX2: rung 8's 8-wide walk is not tested here");
     }
-    cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
-    cr_expect_not(fast_bvh_eight_available());
-    struct fast_bvh *fallback = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
-    struct fast_bvh *six = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_FLOAT);
-    cr_assert(fallback != NULL && six != NULL);
-    cr_expect_null(fallback->nodes8);
-    cr_assert_eq(fallback->node_count, six->node_count);
-    cr_expect_eq(memcmp(fallback->nodes, six->nodes, six->node_count * sizeof *six->nodes), 0,
-                 "rung 8 without AVX2 built another tree than rung 6's");
+    expect_rung_6_without_avx2(&m, FAST_BVH_RUNG_EIGHT);
     fast_bvh_free(eight);
-    fast_bvh_free(fallback);
-    fast_bvh_free(six);
+    mesh_free(&m);
+}
+
+/* Rung 9 builds rung 8's tree and lays the tree's triangles out once more, in aligned blocks of four
+ * with zeros past the end, where the processor has AVX2; without it (or told so), rung 6's tree and no
+ * copy. */
+Test(accel, rung_9_lays_its_triangles_out_in_blocks_of_four_and_is_rung_6_without_avx2) {
+    struct mesh m = make_soup(13, 3000);
+    struct fast_bvh *lean = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN);
+    struct fast_bvh *eight = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
+    cr_assert(lean != NULL && eight != NULL);
+    if (fast_bvh_eight_available()) {
+        cr_assert_not_null(lean->nodes8, "AVX2 here, and rung 9 built no 8-wide nodes");
+        cr_assert_not_null(lean->lean_corners);
+        cr_assert_eq(lean->node_count, eight->node_count);
+        cr_expect_eq(memcmp(lean->nodes8, eight->nodes8, eight->node_count * sizeof *eight->nodes8), 0,
+                     "rung 9 built another tree than rung 8's");
+        size_t padded = (lean->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES * FAST_BVH_LEAN_LANES;
+        cr_expect_eq((uintptr_t)lean->lean_corners % 32, 0, "the blocks are not aligned for AVX2's loads");
+        for (size_t k = 0; k < padded; k++) {
+            const struct bvh_triangle *t = k < lean->tree_count ? &lean->triangles[k] : NULL;
+            for (int c = 0; c < 3; c++)
+                for (int a = 0; a < 3; a++) {
+                    double want = t == NULL ? 0.0 : vec3_axis(c == 0 ? t->a : c == 1 ? t->b : t->c, a);
+                    double got = lean->lean_corners[fast_bvh_lean_index(k, c, a)];
+                    cr_assert_eq(memcmp(&got, &want, sizeof got), 0, "triangle %zu corner %d axis %d: %a, want %a", k,
+                                 c, a, got, want);
+                }
+        }
+    } else {
+        cr_log_warn("this processor has no AVX2: rung 9's walk is not tested here");
+    }
+    expect_rung_6_without_avx2(&m, FAST_BVH_RUNG_LEAN);
+    fast_bvh_free(lean);
+    fast_bvh_free(eight);
     mesh_free(&m);
 }

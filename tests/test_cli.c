@@ -42,10 +42,10 @@ Test(cli, a_wrong_accel_is_refused_with_the_choices) {
     expect_chapter_run(9, "--accel bvh", 2, "--accel needs one of: none kdtree; got 'bvh'");
     expect_chapter_run(10, "--split middle", 2, "--split needs 'sah' or 'seed' (the seed's rule), got 'middle'");
     expect_chapter_run(10, "--rung 2", 2, "unknown option '--rung'");
-    expect_chapter_run(11, "--rung 9", 2,
-                       "--rung needs 1 to 8, 10 or one of: plain wide simd prefetch build float compact eight packet; got '9'");
+    expect_chapter_run(11, "--rung 11", 2,
+                       "--rung needs 1 to 10 or one of: plain wide simd prefetch build float compact eight lean packet; got '11'");
     expect_chapter_run(11, "--rung fast", 2,
-                       "--rung needs 1 to 8, 10 or one of: plain wide simd prefetch build float compact eight packet; got 'fast'");
+                       "--rung needs 1 to 10 or one of: plain wide simd prefetch build float compact eight lean packet; got 'fast'");
 }
 
 Test(cli, a_missing_scene_file_is_bad_input) {

@@ -1,0 +1,412 @@
+/* fast_bvh_lean.c: rung 9 of chapter 11's ladder: rung 8's 8-wide tree walked with less work per ray
+ * (chapter 11).
+ *
+ * The tree and the float box test are rung 8's (fast_bvh_eight.c), eight children's slab tests in one
+ * AVX2 instruction with rung 6's bound on the rounding (fast_bvh_walk.h). What changes is the work
+ * around them:
+ *  - one set-up of the ray in float for all three axes at once (lean_float_setup), and the root's box
+ *    not tested at all: the first node's test of its children's boxes decides as much;
+ *  - for the nearest hit, the children hit are ordered by a fixed network of eight-lane minima and
+ *    maxima on integer keys made of their float entry distances (sort8), not by an insertion sort with
+ *    a branch per step; the order only decides which subtree is walked first, never the answer;
+ *  - the stack holds each subtree's float entry distance, and a popped subtree entered beyond the
+ *    window's reach is dropped without touching its node, by the same comparison as rung 8's;
+ *  - a leaf's triangles are tested four at a time in double (leaf_triangles4), on the copy of them that
+ *    fast_bvh_lean_prepare lays out in blocks of four. Each lane does exactly the arithmetic of
+ *    triangle_crossing_prepared (triangle.h), in its order, each product rounded on its own (AVX2
+ *    brings no fused multiply-add, and the Makefile's -ffp-contract=off forbids fusing): the same
+ *    sheared corners, the same three edge functions, the same test of their signs (zero is inside) and
+ *    of det == 0, bit for bit. So a lane that this filter drops is a triangle triangle_crossing_prepared
+ *    rejects, and every lane it keeps is tested again by triangle_crossing_prepared itself, on the same
+ *    doubles read back from the block, and handed to leaf_hit_taken (fast_bvh_walk.h), the code of the
+ *    other rungs, which applies the window and the tie rule. The filter decides nothing; it only skips
+ *    work.
+ * A ray that rung 6's bound does not cover is walked by rung 8, in double.
+ *
+ * As fast_bvh_eight.c, only the functions that need AVX2 are compiled for it (the AVX2 attribute); the
+ * build makes rung 9's tree only when fast_bvh_eight_available() says the processor has AVX2. */
+#include "fast_bvh_lean.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "fast_bvh_eight.h"
+#include "float4.h"
+#include "stats.h"
+#include "triangle.h"
+
+/* The blocks' alignment: one AVX2 load of four doubles. */
+#define FAST_BVH_LEAN_ALIGN 32
+
+bool fast_bvh_lean_prepare(struct fast_bvh *b) {
+    size_t blocks = (b->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES;
+    size_t bytes = (blocks > 0 ? blocks : 1) * FAST_BVH_LEAN_BLOCK * sizeof(double); /* a multiple of 32 */
+    double *corners = aligned_alloc(FAST_BVH_LEAN_ALIGN, bytes);
+    if (corners == NULL)
+        return false;
+    memset(corners, 0, bytes); /* the lanes past the last triangle */
+    for (size_t k = 0; k < b->tree_count; k++) {
+        const struct bvh_triangle *t = &b->triangles[k];
+        const vec3 corner[3] = {t->a, t->b, t->c};
+        for (int c = 0; c < 3; c++)
+            for (int a = 0; a < 3; a++)
+                corners[fast_bvh_lean_index(k, c, a)] = vec3_axis(corner[c], a);
+    }
+    b->lean_corners = corners;
+    return true;
+}
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+
+/* This file's walk is compiled for AVX2 (see above). */
+#define AVX2 __attribute__((target("avx2")))
+
+/* Eight floats, eight 32-bit integers and four doubles processed by one instruction each, and four
+ * 64-bit integers, what a comparison of doubles gives. */
+typedef float float8 __attribute__((vector_size(32)));
+typedef int32_t int8v __attribute__((vector_size(32)));
+typedef uint32_t uint8v __attribute__((vector_size(32)));
+typedef double double4 __attribute__((vector_size(32)));
+typedef int64_t long4 __attribute__((vector_size(32)));
+
+/* As in fast_bvh_eight.c: at most seven entries put aside per level of the 8-wide tree. */
+#define LEAN_STACK_SIZE ((FAST_BVH_WIDTH_EIGHT - 1) * (BVH_DEEPEST + 1))
+
+/* The bytes of one row of a node's bounds (one bound of one axis, all eight children). */
+#define LEAN_ROW_BYTES sizeof(((const struct fast_bvh_node8 *)NULL)->bounds[0][0])
+/* An axis's two rows start at a multiple of twice that, so near ^ LEAN_ROW_BYTES is the other row. */
+_Static_assert(LEAN_ROW_BYTES == 32, "a row is eight floats, a power of two bytes");
+
+/* A child slot's number fits in a key's lowest three bits (sort8). */
+#define LEAN_SLOT_BITS 7u
+
+/* A subtree put aside, with the float distance at which the ray enters its box. */
+struct lean_stack_entry {
+    uint32_t child, count;
+    float entry;
+};
+
+/* What the walk of one ray needs, made once: rung 6's float origin and 1 / direction in eight lanes,
+ * which bound of each axis is the near one, and for the triangles the ray's origin and shear in four
+ * lanes, in the ray's own axes (kx, ky, kz of struct triangle_ray), and where a block holds the
+ * corners' coordinates on those axes. */
+struct lean_ray {
+    float8 origin[3], inverse[3];
+    size_t near[3]; /* each axis's near bounds' byte offset in a node; the far ones' is near ^ LEAN_ROW_BYTES */
+    double4 o[3], sx, sy, sz;
+    size_t axis[3]; /* where corner a's coordinates on the ray's x, y and z axes are in a block */
+};
+
+static inline AVX2 float8 broadcast8(float x) { return (float8){x, x, x, x, x, x, x, x}; }
+static inline AVX2 double4 broadcast4(double x) { return (double4){x, x, x, x}; }
+
+/* The four doubles at p, which is 32-byte aligned. */
+static inline AVX2 double4 load4d(const double *p) { return _mm256_load_pd(p); }
+
+/* Bit k of the result is set when lane k of the comparison result m is true. */
+static inline AVX2 unsigned lanes8_true(int8v m) { return (unsigned)_mm256_movemask_ps((__m256)m); }
+static inline AVX2 unsigned lanes4d_true(long4 m) { return (unsigned)_mm256_movemask_pd((__m256d)m); }
+
+/* One axis of children_hit: the slab's entry and exit distances of all eight children, folded into
+ * *enter and *leave. */
+static inline AVX2 __attribute__((always_inline)) void slab(const char *bounds, const struct lean_ray *l, int a,
+                                                            float8 *enter, float8 *leave) {
+    float8 t0 = (_mm256_load_ps((const float *)(bounds + l->near[a])) - l->origin[a]) * l->inverse[a];
+    float8 t1 =
+        (_mm256_load_ps((const float *)(bounds + (l->near[a] ^ LEAN_ROW_BYTES))) - l->origin[a]) * l->inverse[a];
+    *enter = _mm256_max_ps(t0, *enter); /* a NaN in t0 gives enter, as in max4 */
+    *leave = _mm256_min_ps(t1, *leave);
+}
+
+/* The slab test on all eight children of n, as children_hit8 in fast_bvh_eight.c: a mask holding every
+ * child the exact test would find in [t_near, t_far], and the computed entry distances in *entry. */
+static inline AVX2 unsigned children_hit(const struct fast_bvh_node8 *n, const struct lean_ray *l,
+                                         const struct float_setup *f, float t_near, float t_far, float8 *entry) {
+    float8 enter = broadcast8(t_near), leave = broadcast8(t_far);
+    const char *bounds = (const char *)n->bounds;
+    slab(bounds, l, 0, &enter, &leave); /* the three axes written out: the compiler did not unroll the loop */
+    slab(bounds, l, 1, &enter, &leave);
+    slab(bounds, l, 2, &enter, &leave);
+    *entry = enter;
+    float8 reach = (leave + f->slack) * FAST_BVH_FLOAT_SCALE + f->slack2;
+    return lanes8_true(enter <= reach);
+}
+
+/* One step of sort8: each lane compared with lane partner[lane], keeping the larger where take_larger
+ * is set and the smaller elsewhere. */
+static inline AVX2 uint8v compare_exchange(uint8v x, uint8v partner, uint8v take_larger) {
+    __m256i y = _mm256_permutevar8x32_epi32((__m256i)x, (__m256i)partner);
+    __m256i smaller = _mm256_min_epu32((__m256i)x, y), larger = _mm256_max_epu32((__m256i)x, y);
+    return (uint8v)_mm256_blendv_epi8(smaller, larger, (__m256i)take_larger);
+}
+
+/* The eight keys in increasing order, by Batcher's bitonic network: six fixed steps, no branch. */
+static inline AVX2 uint8v sort8(uint8v x) {
+    const uint8v next = {1, 0, 3, 2, 5, 4, 7, 6}, second = {2, 3, 0, 1, 6, 7, 4, 5}, fourth = {4, 5, 6, 7, 0, 1, 2, 3};
+    const uint32_t L = UINT32_MAX;
+    x = compare_exchange(x, next, (uint8v){0, L, L, 0, 0, L, L, 0});
+    x = compare_exchange(x, second, (uint8v){0, 0, L, L, L, L, 0, 0});
+    x = compare_exchange(x, next, (uint8v){0, L, 0, L, L, 0, L, 0});
+    x = compare_exchange(x, fourth, (uint8v){0, 0, 0, 0, L, L, L, L});
+    x = compare_exchange(x, second, (uint8v){0, 0, L, L, 0, 0, L, L});
+    return compare_exchange(x, next, (uint8v){0, L, 0, L, 0, L, 0, L});
+}
+
+/* The children in `hit` (at least two) nearest first, as slot numbers into order[0 .. hits): each
+ * child's key is its entry distance's bits (a float >= 0 orders as its bits do) with the slot in the
+ * lowest three, children not hit the largest key. Entries within eight units in the last place of
+ * each other may come in either order; the walk's answer does not depend on it. */
+static inline AVX2 void nearest_first(float8 entry, unsigned hit, uint32_t order[FAST_BVH_WIDTH_EIGHT]) {
+    const uint8v slot = {0, 1, 2, 3, 4, 5, 6, 7}, bit = {1, 2, 4, 8, 16, 32, 64, 128};
+    uint8v not_hit = (uint8v)(((uint8v){hit, hit, hit, hit, hit, hit, hit, hit} & bit) == 0);
+    uint8v keys = (((uint8v)entry & ~LEAN_SLOT_BITS) | slot) | not_hit;
+    uint8v sorted = sort8(keys);
+    __builtin_memcpy(order, &sorted, sizeof sorted);
+}
+
+/* Tests triangles [first, first + count) of the tree for query q, four at a time: lanes that
+ * triangle_crossing_prepared would reject are dropped by its own arithmetic, lane by lane (see the top
+ * of this file), and the others are tested again by triangle_crossing_prepared, which decides, and taken
+ * by leaf_hit_taken. Returns false when the walk should stop, as test_leaf_triangles does. */
+static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const struct fast_bvh *b,
+                                                                       const struct lean_ray *l,
+                                                                       const struct triangle_ray *ready,
+                                                                       uint32_t first, uint32_t count, double t_min,
+                                                                       double t_max, enum query kind,
+                                                                       struct query_state *q, double *box_max,
+                                                                       uint64_t *tests) {
+    const double4 zero = broadcast4(0.0);
+    *tests += count;
+    const size_t corner = fast_bvh_lean_index(0, 1, 0); /* from one corner's coordinates to the next's */
+    uint32_t end = first + count;
+    for (uint32_t k = first - first % FAST_BVH_LEAN_LANES; k < end; k += FAST_BVH_LEAN_LANES) {
+        const double *block = b->lean_corners + fast_bvh_lean_index(k, 0, 0);
+        const double *x = block + l->axis[0], *y = block + l->axis[1], *z = block + l->axis[2];
+        double4 az = load4d(z) - l->o[2];
+        double4 ax = (load4d(x) - l->o[0]) - l->sx * az;
+        double4 ay = (load4d(y) - l->o[1]) - l->sy * az;
+        double4 bz = load4d(z + corner) - l->o[2];
+        double4 bx = (load4d(x + corner) - l->o[0]) - l->sx * bz;
+        double4 by = (load4d(y + corner) - l->o[1]) - l->sy * bz;
+        double4 cz = load4d(z + 2 * corner) - l->o[2];
+        double4 cx = (load4d(x + 2 * corner) - l->o[0]) - l->sx * cz;
+        double4 cy = (load4d(y + 2 * corner) - l->o[1]) - l->sy * cz;
+        /* triangle_edge_function, three times. */
+        double4 w_a = bx * cy - by * cx, w_b = cx * ay - cy * ax, w_c = ax * by - ay * bx;
+        long4 inside_positive = (w_a >= zero) & (w_b >= zero) & (w_c >= zero);
+        long4 inside_negative = (w_a <= zero) & (w_b <= zero) & (w_c <= zero);
+        double4 det = w_a + w_b + w_c;
+        unsigned keep = lanes4d_true((inside_positive | inside_negative) & (det != zero));
+        if (k < first)
+            keep &= ~((1u << (first - k)) - 1u); /* the lanes before the leaf */
+        if (end - k < FAST_BVH_LEAN_LANES)
+            keep &= (1u << (end - k)) - 1u; /* the lanes past it */
+        for (; keep != 0; keep &= keep - 1) { /* the lanes kept, tested again from the same block */
+            int lane = __builtin_ctz(keep);
+            vec3 p[3]; /* the triangle's corners a, b and c */
+            for (int c = 0; c < 3; c++)
+                p[c] = vec3_make(block[fast_bvh_lean_index((size_t)lane, c, 0)],
+                                 block[fast_bvh_lean_index((size_t)lane, c, 1)],
+                                 block[fast_bvh_lean_index((size_t)lane, c, 2)]);
+            double t, u, v;
+            if (triangle_crossing_prepared(p[0], p[1], p[2], ready, &t, &u, &v) &&
+                !leaf_hit_taken(kind, t, b->faces[k + (uint32_t)lane], t_min, t_max, q, box_max))
+                return false;
+        }
+    }
+    return true;
+}
+
+/* Rung 6's float set-up of r (float_setup_make in fast_bvh_walk.h) for the three axes at once, in
+ * four double lanes (the fourth a dummy axis with origin 0 and direction 1, which passes every check
+ * and adds no slack): the same operations lane by lane, so the same float origin, the same float
+ * 1 / direction and the same slack, written into the boxes' half of *l and into f->slack and
+ * f->slack2 (f's other fields are not used by this walk). Returns false where float_setup_make would. */
+static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const ray *r, double t_min, struct lean_ray *l,
+                                         struct float_setup *f) {
+    if (!b->float_range || !(t_min >= 0.0 && t_min <= FAST_BVH_FLOAT_RANGE))
+        return false;
+    const double4 zero = broadcast4(0.0), range = broadcast4(FAST_BVH_FLOAT_RANGE);
+    const long4 magnitude = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX}; /* all bits but the sign */
+    double4 origin = {r->origin.x, r->origin.y, r->origin.z, 0.0};
+    double4 direction = {r->direction.x, r->direction.y, r->direction.z, 1.0};
+    double4 inverse = broadcast4(1.0) / direction; /* as aabb_inverse_direction has it */
+    __m128 rounded = _mm256_cvtpd_ps((__m256d)origin), inverse_f = _mm256_cvtpd_ps((__m256d)inverse);
+    double4 shift = (double4)((long4)(origin - (double4)_mm256_cvtps_pd(rounded)) & magnitude); /* fabs */
+    double4 size = (double4)((long4)inverse & magnitude);
+    long4 flat = direction == zero;
+    long4 fits = ((double4)((long4)origin & magnitude) <= range) &
+                 ((flat & (shift == zero)) | (~flat & (size >= 1.0 / range) & (size <= range)));
+    if (lanes4d_true(fits) != 0xFu)
+        return false;
+    double4 axis_slack = (double4)((long4)(FAST_BVH_FLOAT_SLACK_FACTOR * shift * size) & ~flat);
+    double slack = 0.0;
+    unsigned negative = (unsigned)_mm_movemask_ps(inverse_f); /* bit a: 1 / direction < 0 on axis a */
+    for (int a = 0; a < 3; a++) {
+        slack = axis_slack[a] > slack ? axis_slack[a] : slack;
+        l->origin[a] = broadcast8(rounded[a]);
+        l->inverse[a] = broadcast8(inverse_f[a]);
+        l->near[a] = LEAN_ROW_BYTES * (2 * (size_t)a + (negative >> a & 1u)); /* the bound it enters by */
+    }
+    f->slack = float_at_least(slack); /* at least FLT_MIN: the floor for a product that underflows */
+    f->slack2 = 2.0f * f->slack;
+    return true;
+}
+
+/* Makes *ready for r and the triangles' half of *l from it. */
+static inline AVX2 void lean_ray_ready(const ray *r, struct triangle_ray *ready, struct lean_ray *l) {
+    *ready = triangle_ray_make(r);
+    const int axis[3] = {ready->kx, ready->ky, ready->kz};
+    for (int a = 0; a < 3; a++) {
+        l->o[a] = broadcast4(vec3_axis(r->origin, axis[a]));
+        l->axis[a] = fast_bvh_lean_index(0, 0, axis[a]);
+    }
+    l->sx = broadcast4(ready->sx);
+    l->sy = broadcast4(ready->sy);
+    l->sz = broadcast4(ready->sz);
+}
+
+/* Where a walk is: the subtree it is at, the subtrees put aside, and how far one may be entered. */
+struct lean_walk {
+    uint32_t child, count;
+    int top;
+    float limit; /* the window's reach (struct walk_window's limit, a float) */
+    struct lean_stack_entry stack[LEAN_STACK_SIZE];
+};
+
+/* Visits node s->child: tests its children's boxes and goes down into the nearest one hit (for
+ * QUERY_CLOSEST; else the first in slot order), putting the others aside. Returns false when the ray
+ * enters none. */
+static inline AVX2 __attribute__((always_inline)) bool node_step(const struct fast_bvh *b, const struct lean_ray *l,
+                                                                 const struct float_setup *f,
+                                                                 const struct walk_window *w, enum query kind,
+                                                                 struct lean_walk *s, uint64_t *boxes) {
+    const struct fast_bvh_node8 *n = &b->nodes8[s->child];
+    uint8v slots;
+    __builtin_memcpy(&slots, n->child, sizeof slots);
+    unsigned used = lanes8_true((int8v)(slots != FAST_BVH_NO_CHILD));
+    float8 enter;
+    unsigned hit = children_hit(n, l, f, w->float_min, w->float_max, &enter) & used;
+    *boxes += (uint64_t)__builtin_popcount(used);
+    if (hit == 0)
+        return false;
+    uint32_t first;
+    if ((hit & (hit - 1)) == 0) { /* one child */
+        first = (uint32_t)__builtin_ctz(hit);
+    } else if (kind == QUERY_CLOSEST) { /* nearest first, the others put aside farthest deepest */
+        uint32_t order[FAST_BVH_WIDTH_EIGHT];
+        nearest_first(enter, hit, order);
+        for (int i = __builtin_popcount(hit) - 1; i > 0; i--) {
+            uint32_t k = order[i] & LEAN_SLOT_BITS;
+            s->stack[s->top++] = (struct lean_stack_entry){n->child[k], n->count[k], enter[k]};
+        }
+        first = order[0] & LEAN_SLOT_BITS;
+    } else { /* in slot order, as rung 8 */
+        for (unsigned rest = hit; rest & (rest - 1); rest &= ~(1u << (31 - __builtin_clz(rest)))) {
+            uint32_t k = (uint32_t)(31 - __builtin_clz(rest));
+            s->stack[s->top++] = (struct lean_stack_entry){n->child[k], n->count[k], enter[k]};
+        }
+        first = (uint32_t)__builtin_ctz(hit);
+    }
+    s->child = n->child[first];
+    s->count = n->count[first];
+    return true;
+}
+
+/* Takes the most recent subtree put aside that the ray may still enter, dropping those beyond the
+ * window's reach without touching them (as stack_pop_within in fast_bvh_walk.h). Returns false when
+ * none is left. */
+static inline AVX2 bool lean_pop(struct lean_walk *s) {
+    while (s->top > 0) {
+        const struct lean_stack_entry *e = &s->stack[--s->top];
+        if (e->entry <= s->limit) {
+            s->child = e->child;
+            s->count = e->count;
+            return true;
+        }
+    }
+    return false;
+}
+
+/* The walk of rung 8 (fast_bvh_eight.c's traverse8) for one query, on a ray whose float set-up
+ * lean_float_setup has made into the boxes' half of *l and f. */
+static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struct fast_bvh *b, const ray *r,
+                                                                     double t_min, double t_max, enum query kind,
+                                                                     struct lean_ray *l, const struct float_setup *f,
+                                                                     struct query_state *q) {
+    q->found = false;
+    q->t = t_max;
+    double box_min = t_min > -DBL_MAX ? t_min : -DBL_MAX; /* as in fast_bvh.c's traverse */
+    double box_max = t_max < DBL_MAX ? t_max : DBL_MAX;
+    uint64_t visits = 0, boxes = 0, tests = 0;
+    bool running = true;
+    if (b->triangle_count > b->tree_count) { /* the slivers, outside the tree */
+        struct triangle_ray ready = triangle_ray_make(r);
+        running = test_leaf_triangles(b, &ready, (uint32_t)b->tree_count, (uint32_t)(b->triangle_count - b->tree_count),
+                                      t_min, t_max, kind, false, q, &box_max, &tests);
+    }
+    struct walk_window w = window_up_to(f, float_at_most(box_min), box_max);
+    struct lean_walk s;
+    s.child = b->root_child;
+    s.count = b->root_count;
+    s.top = 0;
+    s.limit = (float)w.limit;
+    running = running && b->tree_count > 0; /* the root's box is not tested: the first node tests its children's */
+    /* Down to the first leaf, before the triangles' set-up: many rays reach none. */
+    while (running && s.count == 0) {
+        visits++;
+        running = node_step(b, l, f, &w, kind, &s, &boxes) || lean_pop(&s);
+    }
+    if (!running) {
+        walk_counted(visits, boxes, tests);
+        return q->found;
+    }
+    struct triangle_ray ready;
+    lean_ray_ready(r, &ready, l);
+    while (running) {
+        visits++;
+        if (s.count == 0) {
+            if (node_step(b, l, f, &w, kind, &s, &boxes))
+                continue;
+        } else {
+            if (!leaf_triangles4(b, l, &ready, s.child, s.count, t_min, t_max, kind, q, &box_max, &tests))
+                break;
+            if (kind == QUERY_CLOSEST && box_max < w.limit_for) { /* a nearer hit: narrow the window */
+                w = window_up_to(f, w.float_min, box_max);
+                s.limit = (float)w.limit;
+            }
+        }
+        running = lean_pop(&s);
+    }
+    walk_counted(visits, boxes, tests);
+    return q->found;
+}
+
+/* traverse_lean specialised for each query; a ray rung 6's bound does not cover goes to rung 8. */
+AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max,
+                                 enum query kind, struct query_state *q) {
+    struct float_setup f;
+    struct lean_ray l;
+    if (!lean_float_setup(b, r, t_min, &l, &f))
+        return fast_bvh_eight_traverse(b, r, t_min, t_max, kind, q);
+    switch (kind) {
+    case QUERY_CLOSEST:
+        return traverse_lean(b, r, t_min, t_max, QUERY_CLOSEST, &l, &f, q);
+    case QUERY_ANY:
+        return traverse_lean(b, r, t_min, t_max, QUERY_ANY, &l, &f, q);
+    default:
+        return traverse_lean(b, r, t_min, t_max, QUERY_ALL, &l, &f, q);
+    }
+}
+
+#else /* not x86: no AVX2, and rung 9 is always rung 6 */
+
+bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max, enum query kind,
+                            struct query_state *q) {
+    (void)b, (void)r, (void)t_min, (void)t_max, (void)kind;
+    q->found = false;
+    abort(); /* never called: the build makes no 8-wide tree without AVX2 */
+}
+
+#endif
