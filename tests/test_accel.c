@@ -1167,20 +1167,27 @@ Test(accel, rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mes
 
 /* Chapter 11's rungs: only 1 to 9, by number or name; anything else builds nothing. */
 Test(accel, fast_bvh_rungs_are_named_and_checked) {
-    static const char *const names[] = {"plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean"};
-    for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_TOP; r++) {
-        char number[2] = {(char)('0' + r), '\0'};
+    static const char *const names[] = {"plain", "wide",    "simd",  "prefetch", "build",
+                                        "float", "compact", "eight", "lean",     "packet"};
+    cr_assert_eq(sizeof names / sizeof names[0], FAST_BVH_RUNG_LAST);
+    for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_LAST; r++) {
+        char number[4];
+        snprintf(number, sizeof number, "%d", r);
         cr_expect_eq(fast_bvh_rung_from_name(names[r - 1]), r, "%s", names[r - 1]);
         cr_expect_eq(fast_bvh_rung_from_name(number), r, "%s", number);
         cr_expect_str_eq(fast_bvh_rung_name(r), names[r - 1]);
     }
-    cr_expect_eq(fast_bvh_rung_from_name("10"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name("11"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name("010"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name("1 "), 0);
     cr_expect_eq(fast_bvh_rung_from_name(":"), 0); /* the character after '9' */
     cr_expect_eq(fast_bvh_rung_from_name("0"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("fast"), 0);
+    cr_expect_str_eq(fast_bvh_rung_name(FAST_BVH_RUNG_LAST + 1), "?");
     struct mesh m = make_soup(7, 20);
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PLAIN), "rung 1 is chapter 10's, not built here");
-    cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, (enum fast_bvh_rung)(FAST_BVH_RUNG_TOP + 1)));
+    cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PACKET), "rung 10 walks rung 8's tree");
+    cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, (enum fast_bvh_rung)(FAST_BVH_RUNG_LAST + 1)));
     mesh_free(&m);
 }
 
