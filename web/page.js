@@ -9,8 +9,9 @@
 
 const CHAPTERS = ["camera", "sphere", "triangle", "plane", "aabb", "phong", "shadows", "recursion", "kdtree",
                   "bvh", "fast", "antialias", "distributed", "textures", "paths"];
-// Chapter 11's rungs, 1 to 8. In the browser rung 8 is rung 6 (WebAssembly has no AVX2; --stats says so).
-const RUNGS = ["plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight"];
+// Chapter 11's rungs, 1 to 10. In the browser rungs 8 and 9 are rung 6, and rung 10's packets walk rung 6's
+// tree (WebAssembly has no AVX2; --stats says so).
+const RUNGS = ["plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean", "packet"];
 // While the camera moves, the picture is state.coarse times smaller each way: 4 to start with, then
 // whatever keeps one coarse picture near COARSE_MS of the program's time (from COARSE_MIN to COARSE_MAX).
 const COARSE_MS = 30, COARSE_START = 4, COARSE_MIN = 2, COARSE_MAX = 16;

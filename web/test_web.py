@@ -6,7 +6,7 @@ Selenium, and checks the page against the native programs:
   - chapters 2, 8 and 10 at rest: the PNG the page's program wrote is byte for byte the native one for
     the same scene and command line, and the canvas's pixels are that picture's;
   - chapter 8's heat-map is the native one; every chapter's own scene at 160 x 120 (chapter 11 at its
-    default rung 6, at the SIMD rung 3 and the compact rung 7) gives the native PNG too;
+    default rung 6, at the SIMD rung 3, the compact rung 7 and the packet rung 10) gives the native PNG too;
   - a broken scene line gives the native program's message ("scenes/NN-name.scene:LINE: what");
 and prints how fast it is: the page's first picture, chapter 8 at 640 x 480, the frame rate while the
 camera is dragged, and chapter 10's 353,546 triangles against the native program on one thread. It
@@ -289,14 +289,15 @@ def main():
         check(status == 1 and shown == stderr.strip() and shown.startswith(f"scenes/08-recursion.scene:{line}:"),
               f"a broken line {line} shows the native message: {shown!r}")
 
-        # Every chapter's own scene at 160 x 120, and chapter 11's SIMD rung (3) and compact rung (7).
+        # Every chapter's own scene at 160 x 120, and chapter 11's SIMD rung (3), compact rung (7) and
+        # packet rung (10: rung 6's tree in the browser, rung 8's natively, the same picture).
         for chapter in range(1, 16):
             page.open(f"chapter={chapter}", timeout=300)
             n = page.full_shown()
             page.set_control("size", "160x120")
             page.wait_idle(n + 1, timeout=300)
             compare_with_native(page, o.build, chapter, f"chapter {chapter} at 160 x 120")
-            for rung in ("3", "7") if chapter == 11 else ():
+            for rung in ("3", "7", "10") if chapter == 11 else ():
                 n = page.full_shown()
                 page.set_control("rung", rung)
                 page.wait_idle(n + 1, timeout=300)
