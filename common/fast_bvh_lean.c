@@ -157,7 +157,7 @@ static inline AVX2 uint8v sort8(uint8v x) {
  * child's key is its entry distance's bits (a float >= 0 orders as its bits do) with the slot in the
  * lowest three, children not hit the largest key. Entries within eight units in the last place of
  * each other may come in either order; the walk's answer does not depend on it. */
-static inline AVX2 void nearest_first(float8 entry, unsigned hit, uint32_t order[FAST_BVH_WIDTH_EIGHT]) {
+static inline AVX2 void children_by_entry8(float8 entry, unsigned hit, uint32_t order[FAST_BVH_WIDTH_EIGHT]) {
     const uint8v slot = {0, 1, 2, 3, 4, 5, 6, 7}, bit = {1, 2, 4, 8, 16, 32, 64, 128};
     uint8v not_hit = (uint8v)(((uint8v){hit, hit, hit, hit, hit, hit, hit, hit} & bit) == 0);
     uint8v keys = (((uint8v)entry & ~LEAN_SLOT_BITS) | slot) | not_hit;
@@ -296,7 +296,7 @@ static inline AVX2 __attribute__((always_inline)) bool node_step(const struct fa
         first = (uint32_t)__builtin_ctz(hit);
     } else if (kind == QUERY_CLOSEST) { /* nearest first, the others put aside farthest deepest */
         uint32_t order[FAST_BVH_WIDTH_EIGHT];
-        nearest_first(enter, hit, order);
+        children_by_entry8(enter, hit, order);
         for (int i = __builtin_popcount(hit) - 1; i > 0; i--) {
             uint32_t k = order[i] & LEAN_SLOT_BITS;
             s->stack[s->top++] = (struct lean_stack_entry){n->child[k], n->count[k], enter[k]};

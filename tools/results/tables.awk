@@ -48,7 +48,7 @@ function structure_name(s) {
     if (s == "kd-sah") return "kd-tree, SAH"
     if (s == "bvh-median") return "BVH, median split (seed's rule)"
     if (s == "bvh-sah") return "BVH, SAH"
-    if (s == "fast") return "chapter 11's BVH (rung 5)"
+    if (s == "fast") return "chapter 11's BVH (rung 6)"
     if (s == "povray") return "POV-Ray 3.7"
     return s
 }
