@@ -1171,7 +1171,7 @@ Test(accel, fast_bvh_rungs_are_named_and_checked) {
                                         "float", "compact", "eight", "lean",     "packet"};
     cr_assert_eq(sizeof names / sizeof names[0], FAST_BVH_RUNG_LAST);
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_LAST; r++) {
-        char number[4];
+        char number[12];
         snprintf(number, sizeof number, "%d", r);
         cr_expect_eq(fast_bvh_rung_from_name(names[r - 1]), r, "%s", names[r - 1]);
         cr_expect_eq(fast_bvh_rung_from_name(number), r, "%s", number);
