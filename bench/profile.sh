@@ -2,7 +2,7 @@
 # bench/profile.sh: where a ray's time goes on chapter 11's ladder: instructions, data cache misses and
 # mispredicted branches per ray for rungs 1 and 5 to 9 and for Embree 3, on make bench-accel's frame
 # of the teapot (800 x 600, a camera ray per pixel and a shadow ray per hit, one thread). make
-# bench-profile runs it; docs/11-fast.md shows its table.
+# bench-profile runs it; docs/fast-notes.md shows its table.
 #
 # Usage: bench/profile.sh BENCH_ACCEL MODEL.ply
 #

@@ -40,7 +40,7 @@ uint8_t image_quantize(double v) {
 /* The PNG row filter stb is told to use for every row: 1, "Sub" (each byte minus the byte of the pixel
  * to its left). By default stb tries all five filters on each row and keeps the one that looks best,
  * which costs a third of the writing time; on our pictures, smooth gradients row after row, Sub alone
- * writes the same pixels, in a file a few per cent smaller or larger (docs/11-fast.md measures both). */
+ * writes the same pixels, in a file a few per cent smaller or larger (docs/fast-notes.md measures both). */
 #define IMAGE_PNG_FILTER_SUB 1
 
 /* stb_image_write hands its output to this callback piece by piece; we append it to the file. */
