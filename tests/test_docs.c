@@ -160,3 +160,152 @@ Test(docs, every_walkthrough_from_chapter_2_has_a_build_exercise_with_its_check)
     free(checks);
     cr_assert_eq(seen, 12, "expected the walkthroughs of chapters 2 to 13");
 }
+
+/* A walkthrough is read in one sitting: at most this many lines. What a chapter's reader can do without
+ * (the history of its measurements, the steps that got there, its engineering) goes to a page of notes
+ * the chapter links, as chapter 11's lab notes (docs/fast-notes.md). */
+#define WALKTHROUGH_MAX_LINES 500
+
+/* Walkthroughs longer than that today, each with the length it may not grow beyond until it is
+ * shortened; a page that fits again must leave this list. */
+static const struct {
+    const char *page;
+    size_t lines;
+} walkthroughs_to_shorten[] = {
+    {"docs/08-recursion.md", 533},
+    {"docs/09-kdtree.md", 653},
+    {"docs/10-bvh.md", 504},
+};
+
+static size_t count_lines(const char *text) {
+    size_t lines = 0;
+    for (const char *c = text; *c != '\0'; c++)
+        lines += *c == '\n';
+    return lines;
+}
+
+Test(docs, every_walkthrough_reads_in_one_sitting) {
+    glob_t pages;
+    cr_assert_eq(glob("docs/[0-9][0-9]-*.md", 0, NULL, &pages), 0);
+    size_t too_long = 0;
+    for (size_t k = 0; k < pages.gl_pathc; k++) {
+        char *text = read_text_file(pages.gl_pathv[k]);
+        size_t lines = count_lines(text), limit = WALKTHROUGH_MAX_LINES;
+        free(text);
+        for (size_t e = 0; e < sizeof walkthroughs_to_shorten / sizeof walkthroughs_to_shorten[0]; e++) {
+            if (strcmp(pages.gl_pathv[k], walkthroughs_to_shorten[e].page) != 0)
+                continue;
+            limit = walkthroughs_to_shorten[e].lines;
+            cr_expect_gt(lines, WALKTHROUGH_MAX_LINES,
+                         "%s has %zu lines, within %d again: take it off walkthroughs_to_shorten", pages.gl_pathv[k],
+                         lines, WALKTHROUGH_MAX_LINES);
+        }
+        if (lines > limit) {
+            too_long++;
+            fprintf(stderr, "%s has %zu lines, more than %zu: move what a reader can do without to a page of notes\n",
+                    pages.gl_pathv[k], lines, limit);
+        }
+    }
+    cr_assert_geq(pages.gl_pathc, 15, "expected the walkthroughs of chapters 1 to 15");
+    globfree(&pages);
+    cr_assert_eq(too_long, 0, "%zu walkthroughs are too long to read in one sitting (see above)", too_long);
+}
+
+/* Appends to `out` (a set of anchors, each followed by a newline) the anchor GitHub gives the heading
+ * `heading` (n bytes): lower case, spaces as hyphens, other punctuation dropped. Bytes beyond ASCII are
+ * dropped too, here and in the links compared with it, so that a heading's "×" or "–" cannot matter. */
+static void add_heading_anchor(char *out, size_t size, const char *heading, size_t n) {
+    size_t o = strlen(out);
+    for (size_t k = 0; k < n && o + 2 < size; k++) {
+        unsigned char c = (unsigned char)heading[k];
+        if (c >= 'A' && c <= 'Z')
+            out[o++] = (char)(c - 'A' + 'a');
+        else if ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_')
+            out[o++] = (char)c;
+        else if (c == ' ')
+            out[o++] = '-';
+    }
+    out[o++] = '\n';
+    out[o] = '\0';
+}
+
+/* The anchors of the page at `path` (its headings outside code blocks, and its <a id="...">), one a
+ * line, into `out`. */
+static void page_anchors(const char *path, char *out, size_t size) {
+    char *text = read_text_file(path);
+    out[0] = '\0';
+    bool in_code = false;
+    for (char *line = text; *line != '\0';) {
+        char *end = strchr(line, '\n');
+        size_t n = end != NULL ? (size_t)(end - line) : strlen(line);
+        if (strncmp(line, "```", 3) == 0)
+            in_code = !in_code;
+        else if (!in_code && line[0] == '#') {
+            size_t hashes = strspn(line, "#");
+            if (hashes < n && line[hashes] == ' ')
+                add_heading_anchor(out, size, line + hashes + 1, n - hashes - 1);
+        }
+        for (char *id = strstr(line, "<a id=\""); id != NULL && id < line + n; id = strstr(id + 1, "<a id=\"")) {
+            char *close = strchr(id + 7, '"');
+            if (close != NULL && strlen(out) + (size_t)(close - id) + 2 < size) {
+                strncat(out, id + 7, (size_t)(close - id - 7));
+                strcat(out, "\n");
+            }
+        }
+        line += n + (end != NULL);
+    }
+    free(text);
+}
+
+Test(docs, every_link_to_a_section_names_a_heading_that_is_there) {
+    /* [text](page.md#anchor) and [text](#anchor) in the docs and README.md: the page must have a heading
+     * whose anchor that is, so that moving a section to another page cannot leave links behind. */
+    glob_t docs;
+    cr_assert_eq(glob("docs/*.md", 0, NULL, &docs), 0);
+    static char anchors[1 << 16], wanted[256];
+    size_t links = 0, broken = 0;
+    for (size_t d = 0; d <= docs.gl_pathc; d++) {
+        const char *page = d < docs.gl_pathc ? docs.gl_pathv[d] : "README.md";
+        const char *folder = d < docs.gl_pathc ? "docs/" : "";
+        char *text = read_text_file(page);
+        for (char *at = strstr(text, "]("); at != NULL; at = strstr(at + 2, "](")) {
+            char *target = at + 2, *hash = strpbrk(target, "#) \n");
+            if (hash == NULL || *hash != '#' || strncmp(target, "http", 4) == 0)
+                continue;
+            char *end = strpbrk(hash, ") \n");
+            if (end == NULL || *end != ')')
+                continue;
+            char path[512];
+            if (hash == target)
+                snprintf(path, sizeof path, "%s", page);
+            else
+                snprintf(path, sizeof path, "%s%.*s", folder, (int)(hash - target), target);
+            size_t length = strlen(path);
+            if (length < 3 || strcmp(path + length - 3, ".md") != 0)
+                continue;
+            FILE *f = fopen(path, "rb");
+            if (f == NULL)
+                continue; /* every_page_links_to_pages_that_exist names it */
+            fclose(f);
+            page_anchors(path, anchors, sizeof anchors);
+            wanted[0] = '\n';
+            size_t w = 1;
+            for (char *c = hash + 1; c < end && w + 2 < sizeof wanted; c++)
+                if ((unsigned char)*c < 0x80)
+                    wanted[w++] = *c;
+            wanted[w++] = '\n';
+            wanted[w] = '\0';
+            links++;
+            bool found = strncmp(anchors, wanted + 1, w - 1) == 0 || strstr(anchors, wanted) != NULL;
+            if (!found) {
+                broken++;
+                fprintf(stderr, "%s links to %.*s, but %s has no such heading\n", page, (int)(end - target), target,
+                        path);
+            }
+        }
+        free(text);
+    }
+    globfree(&docs);
+    cr_assert_gt(links, 50, "only %zu links to sections found", links);
+    cr_assert_eq(broken, 0, "%zu links name a section that is not there (see above)", broken);
+}
