@@ -463,11 +463,15 @@ $(WEB_OBJ)/stb_code.o: web/stb_code.c | web-deps
 
 # One module per chapter, linked from exactly that chapter's modules (as the native link).
 define web_chapter_rules
+# The folder is an order-only prerequisite: the objects live elsewhere, so nothing else creates it first.
 $(WEB)/chapter-$(call chapter_number,$(1)).js: $(WEB_OBJ)/chapters/$(1).o $(WEB_OBJ)/stb_code.o \
-        $(addprefix $(WEB_OBJ)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
+        $(addprefix $(WEB_OBJ)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1))))) | $(WEB)
 	$(EMCC) $(WEB_LDFLAGS) $$^ -o $$@
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call web_chapter_rules,$(c))))
+
+$(WEB):
+	mkdir -p $@
 
 $(WEB)/%: web/%
 	@mkdir -p $(@D)
