@@ -310,8 +310,9 @@ $(MUTANT_DIR)/program: $(MUTANT_DIR)/chapters/$(MUTANT_CHAPTER)/main.o \
 endif
 
 # ---- the pictures: POV-Ray, references, gallery, figures -------------------------------------------
-## make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
-##                     (UPDATE_DOCS=1 also writes the table into docs/povray.md)
+## make compare        render chapters 1 to 14 with POV-Ray too: pictures and table in out/compare/
+##                     (UPDATE_DOCS=1 also writes the table into docs/povray.md; chapter 15 is
+##                     checked against Cycles, make compare-cycles)
 compare: all $(BUILD)/compare | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
 
