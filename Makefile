@@ -83,6 +83,14 @@ SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply scenes
 # The pictures chapter 14's scenes wrap over surfaces: drawn by tools/textures/draw_textures.c, never
 # downloaded.
 SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/textures/grid.jpg
+# What each chapter's scenes (scenes/NN-*.scene) name, meshes and pictures, as words NN:scenes/PATH (the
+# paths in a scene are relative to scenes/); scene_files NN: chapter NN's. A chapter's program has them as
+# order-only prerequisites, so that `make build/chapter-NN` leaves a program that can run its scene.
+SCENE_FILES := $(shell awk '$$1 == "mesh" { print substr(FILENAME, 8, 2) ":scenes/" $$2 } \
+                            $$1 == "pigment" { for (k = 3; k < NF; k++) if ($$k == "file") \
+                                                   print substr(FILENAME, 8, 2) ":scenes/" $$(k + 1) }' \
+                        scenes/[0-9][0-9]-*.scene)
+scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
 .PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
         clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
@@ -114,27 +122,25 @@ $(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools out:
 
 -include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
 
-# One link rule per chapter, with exactly that chapter's modules.
+# One link rule per chapter, with exactly that chapter's modules (and, order-only, what its scenes name).
 define chapter_rules
 $(BUILD)/chapter-$(call chapter_number,$(1)): $(BUILD)/chapters/$(1).o \
-        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
+        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1))))) \
+        | $(call scene_files,$(call chapter_number,$(1)))
 	tools/build/link-chapter.sh $(BUILD) $$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..15: explicit rules (GNU make skips pattern rules for phony targets). Only the
-# models that the chapter's scene names are made first (mesh paths are relative to scenes/).
+# chapter-N for N = 1..15: explicit rules (GNU make skips pattern rules for phony targets). The program's
+# rule makes the models and pictures the chapter's scenes name first.
 ## make chapter-N      build chapter N (1..15) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
 	if ! ls -d chapters/$$$$n-* >/dev/null 2>&1; then \
 	    echo "chapter $(1) is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
-	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 } \
-	                 $$$$1 == "pigment" { for (k = 3; k < NF; k++) if ($$$$k == "file") print "scenes/" $$$$(k + 1) }' \
-	             scenes/$$$$n-*.scene); \
-	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
+	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare && ./$$(BUILD)/chapter-$$$$n
 endef
 $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call run_chapter_rule,$(n))))
 
@@ -356,9 +362,7 @@ $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(PATH_PROOFS_OBJECT) $
 define check_rule
 check-$(1): $(BUILD)/check | out
 	@n=$$$$(printf '%02d' $(1)); \
-	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
-	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models $(if $(filter 14,$(1)),$(SCENE_TEXTURES)) >/dev/null && \
-	    WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
+	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
 $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call check_rule,$(n))))
 
