@@ -86,10 +86,12 @@ SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/text
 # What each chapter's scenes (scenes/NN-*.scene) name, meshes and pictures, as words NN:scenes/PATH (the
 # paths in a scene are relative to scenes/); scene_files NN: chapter NN's. A chapter's program has them as
 # order-only prerequisites, so that `make build/chapter-NN` leaves a program that can run its scene.
-SCENE_FILES := $(shell awk '$$1 == "mesh" { print substr(FILENAME, 8, 2) ":scenes/" $$2 } \
+# (None, and no awk reading standard input, in a copy without scenes/.)
+CHAPTER_SCENES := $(wildcard scenes/[0-9][0-9]-*.scene)
+SCENE_FILES := $(if $(CHAPTER_SCENES),$(shell awk '$$1 == "mesh" { print substr(FILENAME, 8, 2) ":scenes/" $$2 } \
                             $$1 == "pigment" { for (k = 3; k < NF; k++) if ($$k == "file") \
                                                    print substr(FILENAME, 8, 2) ":scenes/" $$(k + 1) }' \
-                        scenes/[0-9][0-9]-*.scene)
+                        $(CHAPTER_SCENES)))
 scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
 .PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
