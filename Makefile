@@ -83,6 +83,16 @@ SCENE_MODELS := scenes/models/teapot-5k.ply scenes/models/teapot-346k.ply scenes
 # The pictures chapter 14's scenes wrap over surfaces: drawn by tools/textures/draw_textures.c, never
 # downloaded.
 SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/textures/grid.jpg
+# What each chapter's scenes (scenes/NN-*.scene) name, meshes and pictures, as words NN:scenes/PATH (the
+# paths in a scene are relative to scenes/); scene_files NN: chapter NN's. A chapter's program has them as
+# order-only prerequisites, so that `make build/chapter-NN` leaves a program that can run its scene.
+# (None, and no awk reading standard input, in a copy without scenes/.)
+CHAPTER_SCENES := $(wildcard scenes/[0-9][0-9]-*.scene)
+SCENE_FILES := $(if $(CHAPTER_SCENES),$(shell awk '$$1 == "mesh" { print substr(FILENAME, 8, 2) ":scenes/" $$2 } \
+                            $$1 == "pigment" { for (k = 3; k < NF; k++) if ($$k == "file") \
+                                                   print substr(FILENAME, 8, 2) ":scenes/" $$(k + 1) }' \
+                        $(CHAPTER_SCENES)))
+scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
 .PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
         clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
@@ -114,27 +124,25 @@ $(BUILD)/common $(BUILD)/chapters $(BUILD)/tests $(BUILD)/tools out:
 
 -include $(wildcard $(BUILD)/*/*.d $(BUILD)/*/*/*.d)
 
-# One link rule per chapter, with exactly that chapter's modules.
+# One link rule per chapter, with exactly that chapter's modules (and, order-only, what its scenes name).
 define chapter_rules
 $(BUILD)/chapter-$(call chapter_number,$(1)): $(BUILD)/chapters/$(1).o \
-        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
+        $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1))))) \
+        | $(call scene_files,$(call chapter_number,$(1)))
 	tools/build/link-chapter.sh $(BUILD) $$(CC) $$(LDFLAGS) $$^ -o $$@ $$(LDLIBS)
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..15: explicit rules (GNU make skips pattern rules for phony targets). Only the
-# models that the chapter's scene names are made first (mesh paths are relative to scenes/).
+# chapter-N for N = 1..15: explicit rules (GNU make skips pattern rules for phony targets). The program's
+# rule makes the models and pictures the chapter's scenes name first.
 ## make chapter-N      build chapter N (1..15) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
 	if ! ls -d chapters/$$$$n-* >/dev/null 2>&1; then \
 	    echo "chapter $(1) is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
-	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 } \
-	                 $$$$1 == "pigment" { for (k = 3; k < NF; k++) if ($$$$k == "file") print "scenes/" $$$$(k + 1) }' \
-	             scenes/$$$$n-*.scene); \
-	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare $$$$models && ./$$(BUILD)/chapter-$$$$n
+	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare && ./$$(BUILD)/chapter-$$$$n
 endef
 $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call run_chapter_rule,$(n))))
 
@@ -310,8 +318,9 @@ $(MUTANT_DIR)/program: $(MUTANT_DIR)/chapters/$(MUTANT_CHAPTER)/main.o \
 endif
 
 # ---- the pictures: POV-Ray, references, gallery, figures -------------------------------------------
-## make compare        render every chapter with POV-Ray too: pictures and table in out/compare/
-##                     (UPDATE_DOCS=1 also writes the table into docs/povray.md)
+## make compare        render chapters 1 to 14 with POV-Ray too: pictures and table in out/compare/
+##                     (UPDATE_DOCS=1 also writes the table into docs/povray.md; chapter 15 is
+##                     checked against Cycles, make compare-cycles)
 compare: all $(BUILD)/compare | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
 
@@ -355,9 +364,7 @@ $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(PATH_PROOFS_OBJECT) $
 define check_rule
 check-$(1): $(BUILD)/check | out
 	@n=$$$$(printf '%02d' $(1)); \
-	models=$$$$(awk '$$$$1 == "mesh" { print "scenes/" $$$$2 }' scenes/$$$$n-*.scene); \
-	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$$$models $(if $(filter 14,$(1)),$(SCENE_TEXTURES)) >/dev/null && \
-	    WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
+	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
 endef
 $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call check_rule,$(n))))
 
@@ -463,11 +470,15 @@ $(WEB_OBJ)/stb_code.o: web/stb_code.c | web-deps
 
 # One module per chapter, linked from exactly that chapter's modules (as the native link).
 define web_chapter_rules
+# The folder is an order-only prerequisite: the objects live elsewhere, so nothing else creates it first.
 $(WEB)/chapter-$(call chapter_number,$(1)).js: $(WEB_OBJ)/chapters/$(1).o $(WEB_OBJ)/stb_code.o \
-        $(addprefix $(WEB_OBJ)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1)))))
+        $(addprefix $(WEB_OBJ)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1))))) | $(WEB)
 	$(EMCC) $(WEB_LDFLAGS) $$^ -o $$@
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call web_chapter_rules,$(c))))
+
+$(WEB):
+	mkdir -p $@
 
 $(WEB)/%: web/%
 	@mkdir -p $(@D)

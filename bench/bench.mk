@@ -4,8 +4,9 @@
 #
 #   make bench-accel   build $(BUILD)/bench_accel and run it on the big teapot and the bunny, with Intel
 #                      Embree 3 as the yardstick (installs Debian's libembree-dev if it is missing)
-#   make bench-memory  peak memory of chapters 10 and 11 (every rung) per triangle, on a teapot of about
-#                      4 million triangles made by tools/models/teapot.c into out/bench/
+#   make bench-memory  peak memory of chapters 10 and 11 (rungs 1 to 9) per triangle, on a teapot of about
+#                      4 million triangles made by tools/models/teapot.c into out/bench/; rung 10 builds
+#                      rung 8's tree and holds nothing per triangle of its own, so its peak is rung 8's
 #   make bench         every benchmark: bench-accel, then bench-memory
 #   make bench-profile instructions, cache misses and mispredicted branches per ray for rungs 1, 5 to 9
 #                      and Embree on the teapot frame (bench/profile.sh, under valgrind: ten minutes or so)
@@ -83,8 +84,8 @@ $(BENCH_MEMORY_SCENE): $(BENCH_MEMORY_DIR)/teapot-4m.ply
 	printf '%s\n' 'camera eye 0 2.5 9  target 0 1 0  fov 36' 'image 64 48' 'light position -5 8 6  colour 1 1 1' \
 	    'material china colour 0.35 0.55 0.85 ambient 0.1 diffuse 0.7' 'mesh teapot-4m.ply material china' >$@
 
-## make bench-memory   peak memory per triangle of chapters 10 and 11 (every rung) on a teapot of about
-##                     4 million triangles
+## make bench-memory   peak memory per triangle of chapters 10 and 11 (rungs 1 to 9; rung 10 traces rung
+##                     8's tree, so its peak is rung 8's) on a teapot of about 4 million triangles
 bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE)
 	@triangles=$$(awk '/^element face/ { print $$3; exit }' $(BENCH_MEMORY_DIR)/teapot-4m.ply); \
 	echo "peak memory on $(BENCH_MEMORY_SCENE) ($$triangles triangles, 64x48, 1 thread):"; \

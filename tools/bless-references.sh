@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # bless-references.sh BUILD: re-renders every chapter's scene into reference_images/ on purpose, and
-# says for each chapter whether its picture changed (and by how much) or stayed the same.
+# says for each chapter whether its picture changed (and by how much) or stayed the same. A picture whose
+# pixels are the same is left as it is, byte for byte (the PNG writer may encode the same pixels in other
+# bytes than it once did), so that blessing what has not changed leaves the tree as it found it.
 set -eu
 build=${1:-build}
 mkdir -p reference_images out
@@ -13,6 +15,8 @@ bless() {
         if difference=$("$build"/compare "$old" "$new" 2>&1) && [ "${difference%% *}" = "max" ] &&
            [ "$(echo "$difference" | awk '{print $2}')" = "0" ]; then
             echo "$label: unchanged"
+            rm -f "$new"
+            return
         else
             echo "$label: CHANGED: $difference"
         fi

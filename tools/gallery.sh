@@ -49,6 +49,10 @@ if [ -d "$build/common" ]; then
     cp -rp "$build"/common "$build"/chapters "$build"/checks "$build"/tools "$work/$build/" 2>/dev/null
     cp -p "$build"/chapter-* "$work/$build/" 2>/dev/null
 fi
+# The programs that draw the models and textures the chapters' programs need (order-only prerequisites),
+# with their times, so that the copy does not build them and draw everything again.
+mkdir -p "$work/build" && cp -p build/teapot "$work/build/" 2>/dev/null
+[ ! -e "$build/draw-textures" ] || cp -p "$build/draw-textures" "$work/$build/"
 
 # Builds chapter program NN and the grader (build/check) with the fault's patch applied; prints the
 # program's path (the grader is beside it).
@@ -137,6 +141,18 @@ caught_by() { # caught_by PATCH
     field "$1" Check | tr ' ' '\n' | awk -F. 'NF { if ($1 != last) printf "%s`make check-%s`: %s", (n++ ? "; " : ""), $1, $0; else printf ", %s", $0; last = $1 } END { print "" }'
 }
 
+# Moves the picture NEW to OLD, unless OLD already holds the same pixels: then OLD is left as it is, byte
+# for byte (a PNG writer may encode the same pixels in other bytes), so that a gallery that has not
+# changed leaves the tree as it found it.
+keep_or_replace() { # keep_or_replace NEW OLD
+    local difference
+    if [ -f "$2" ] && difference=$("$build/compare" "$2" "$1" 2>/dev/null) && [ "$(echo "$difference" | awk '{ print $1, $2 }')" = "max 0" ]; then
+        rm -f "$1"
+    else
+        mv "$1" "$2"
+    fi
+}
+
 # Render mode: every fault, its pictures, and the page.
 mkdir -p docs/gallery
 page=docs/gallery.md
@@ -171,10 +187,12 @@ for patch in tools/gallery/*.patch; do
         status=1
         continue
     fi
-    render "$program" "$patch" "docs/gallery/$name-wrong.png" &&
-        render "$build/chapter-$nn" "$patch" "docs/gallery/$name-right.png" || { status=1; continue; }
-    stats=$("$build/compare" "docs/gallery/$name-right.png" "docs/gallery/$name-wrong.png" \
-            "$work/side.png" "docs/gallery/$name-diff.png")
+    render "$program" "$patch" "$work/wrong.png" &&
+        render "$build/chapter-$nn" "$patch" "$work/right.png" || { status=1; continue; }
+    stats=$("$build/compare" "$work/right.png" "$work/wrong.png" "$work/side.png" "$work/diff.png")
+    keep_or_replace "$work/wrong.png" "docs/gallery/$name-wrong.png"
+    keep_or_replace "$work/right.png" "docs/gallery/$name-right.png"
+    keep_or_replace "$work/diff.png" "docs/gallery/$name-diff.png"
     set -- $stats
     args=$(field "$patch" Args)
     {

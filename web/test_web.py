@@ -8,6 +8,8 @@ Selenium, and checks the page against the native programs:
   - chapter 8's heat-map is the native one; every chapter's own scene at 160 x 120 (chapter 11 at its
     default rung 6, at the SIMD rung 3, the compact rung 7 and the packet rung 10) gives the native PNG too;
   - a broken scene line gives the native program's message ("scenes/NN-name.scene:LINE: what");
+  - README's sizes of a chapter's modules ("at most X MB of `.wasm` and Y MB of script") are the
+    largest of build/web/chapter-NN.wasm and .js rounded up to the hundredth of a megabyte;
 and prints how fast it is: the page's first picture, chapter 8 at 640 x 480, the frame rate while the
 camera is dragged, and chapter 10's 353,546 triangles against the native program on one thread. It
 ends with a screenshot of the page (--screenshot) for README.
@@ -17,7 +19,10 @@ Exit status 0 when every check holds; the speeds are printed against their targe
 """
 import argparse
 import base64
+import glob
+import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -38,6 +43,26 @@ def check(ok, what):
     print(("ok    " if ok else "FAIL  ") + what, flush=True)
     if not ok:
         failures.append(what)
+
+
+# README's sentence on the size of the page's modules.
+README_MODULE_SIZES = re.compile(r"at most ([0-9.]+) MB of\s+`\.wasm` and\s+([0-9.]+) MB of script")
+
+
+def check_module_sizes(web):
+    """README's sizes of the chapters' modules are the largest .wasm and .js in build/web, in megabytes
+    (10^6 bytes) rounded up to a hundredth: true, and not a loose bound that could hide growth."""
+    with open(os.path.join(REPO, "README.md"), encoding="utf-8") as f:
+        stated = README_MODULE_SIZES.search(f.read())
+    check(stated is not None, "README states the size of the page's modules (at most X MB of `.wasm` and Y MB of script)")
+    if stated is None:
+        return
+    for kind, said in ((".wasm", stated.group(1)), (".js", stated.group(2))):
+        sizes = {os.path.basename(p): os.path.getsize(p) for p in glob.glob(os.path.join(web, f"chapter-*{kind}"))}
+        name = max(sizes, key=sizes.get)
+        largest = math.ceil(sizes[name] / 1e4) / 100
+        check(float(said) == largest, f"README: at most {said} MB of {kind}; the largest is {name}, "
+                                      f"{sizes[name]} bytes, {largest:.2f} MB rounded up")
 
 
 def png_pixels(data):
@@ -231,6 +256,7 @@ def main():
     parser.add_argument("--screenshot", default=None)
     o = parser.parse_args()
     os.chdir(REPO)
+    check_module_sizes(o.web)
 
     server = subprocess.Popen([sys.executable, "-m", "http.server", "--bind", "127.0.0.1", str(o.port)],
                               cwd=o.web, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
