@@ -124,7 +124,7 @@ Test(texture, gradient_folds_its_value_as_povray_does) {
     cr_expect_float_eq(c.colour.x, 0.25, 1e-12, "the colour map blends linearly");
 }
 
-Test(texture, radial_turns_once_round_y_from_minus_z) {
+Test(texture, radial_turns_once_round_y_from_plus_x) {
     struct pigment p = plain(PIGMENT_RADIAL);
     cr_expect_float_eq(texture_pattern_value(&p, vec3_make(0, 0, 1)), 0.75, 1e-12);
     cr_expect_float_eq(texture_pattern_value(&p, vec3_make(-1, 0, 0)), 0.5, 1e-12);
