@@ -17,6 +17,14 @@
  * a draft). */
 #define SRGB_DECODE_THRESHOLD 0.04045f
 #define PNG_GAMMA_UNIT 100000.0 /* a gAMA chunk holds the gamma times 100000 */
+/* Where a PNG's header (IHDR) keeps its bit depth and colour type, and the type of a greyscale file. */
+#define PNG_BIT_DEPTH_AT 24
+#define PNG_COLOUR_TYPE_AT 25
+#define PNG_COLOUR_TYPE_GREY 0
+/* POV-Ray's weights for making a colour grey (Image::RGB2Gray), applied in single precision. */
+#define POVRAY_GREY_RED 0.297f
+#define POVRAY_GREY_GREEN 0.589f
+#define POVRAY_GREY_BLUE 0.114f
 
 float image_map_decode_srgb(float encoded) {
     if (encoded < SRGB_DECODE_THRESHOLD)
@@ -46,6 +54,23 @@ double image_map_png_gamma(const uint8_t *bytes, size_t size) {
         at += 12 + (size_t)length;
     }
     return gamma;
+}
+
+/* Whether bytes[0..size) is a PNG of grey levels without an alpha channel, 8 bits or fewer a pixel:
+ * the files POV-Ray 3.7 stores as whole 255ths of linear light (povray_grey_level). */
+static bool png_is_grey_8bit(const uint8_t *bytes, size_t size) {
+    return size > PNG_COLOUR_TYPE_AT && memcmp(bytes + 1, "PNG", 3) == 0 && memcmp(bytes + 12, "IHDR", 4) == 0 &&
+           bytes[PNG_BIT_DEPTH_AT] <= 8 && bytes[PNG_COLOUR_TYPE_AT] == PNG_COLOUR_TYPE_GREY;
+}
+
+/* The linear light POV-Ray 3.7 keeps for a grey level of such a PNG: it decodes the level to linear
+ * light, makes the colour grey (png.cpp passes it as a colour-map entry to an 8-bit grey image,
+ * Gray_Int8), and stores that as an 8-bit integer, cutting off the fraction (GrayImage::SetGrayValue).
+ * So a grey PNG is up to one 255th of linear light darker than its RGB twin, which keeps the decoded
+ * value whole (RGB_Gamma8 decodes on lookup). */
+static float povray_grey_level(float linear) {
+    float grey = linear * POVRAY_GREY_RED + linear * POVRAY_GREY_GREEN + linear * POVRAY_GREY_BLUE;
+    return (float)(uint8_t)(grey * 255.0f) / 255.0f;
 }
 
 /* Reads the whole regular file at path; returns a malloc'd buffer and its size, or NULL with why. */
@@ -96,12 +121,16 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
         return false;
     }
     double gamma = image_map_png_gamma(bytes, size);
+    bool grey_levels = !sixteen && png_is_grey_8bit(bytes, size);
     float largest = sixteen ? 65535.0f : 255.0f;
     image->opaque = true;
     for (size_t k = 0; k < count; k++) {
         float value = (sixteen ? ((const uint16_t *)pixels)[k] : ((const uint8_t *)pixels)[k]) / largest;
-        if (k % 4 != 3) /* red, green, blue are encoded light; alpha is a share */
+        if (k % 4 != 3) { /* red, green, blue are encoded light; alpha is a share */
             value = gamma > 0.0 ? powf(value, (float)(1.0 / gamma)) : image_map_decode_srgb(value);
+            if (grey_levels)
+                value = povray_grey_level(value);
+        }
         else if (value < 1.0f)
             image->opaque = false;
         image->texels[k] = value;

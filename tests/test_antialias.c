@@ -495,3 +495,107 @@ Test(povray_agreement, chapter_12_checks_catch_a_wrong_grid_and_a_wrong_threshol
     report_difference("grid 3 vs POV-Ray's grid 2", &d);
     cr_expect_lt(d.within_1, 0.9999, "a 3 x 3 grid against POV-Ray's 2 x 2 went unnoticed");
 }
+
+/* ---- the measurements the pages quote ------------------------------------------------------------- */
+
+/* One row of docs/results/antialias.csv (tools/antialias-docs.sh measure). */
+struct measured_row {
+    char method[16];
+    int n;
+    double threshold, rays, seconds, error, over_2;
+};
+
+/* Reads the CSV into rows (at most `most`); returns how many. */
+static int read_measurements(struct measured_row *rows, int most) {
+    FILE *f = fopen("docs/results/antialias.csv", "r");
+    cr_assert_not_null(f, "cannot open docs/results/antialias.csv");
+    char line[256];
+    int count = 0;
+    cr_assert_not_null(fgets(line, sizeof line, f), "the CSV has no header");
+    while (count < most && fgets(line, sizeof line, f) != NULL) {
+        struct measured_row *r = &rows[count];
+        if (sscanf(line, "%15[^,],%d,%lf,%lf,%lf,%lf,%lf", r->method, &r->n, &r->threshold, &r->rays, &r->seconds,
+                   &r->error, &r->over_2) == 7)
+            count++;
+    }
+    fclose(f);
+    return count;
+}
+
+static const struct measured_row *measured(const struct measured_row *rows, int count, const char *method, int n,
+                                           double threshold) {
+    for (int k = 0; k < count; k++)
+        if (strcmp(rows[k].method, method) == 0 && rows[k].n == n && fabs(rows[k].threshold - threshold) < 1e-9)
+            return &rows[k];
+    cr_assert_fail("docs/results/antialias.csv has no row for %s %d at threshold %g", method, n, threshold);
+    return NULL;
+}
+
+/* Reads a page with every run of blanks and line breaks made one space, so that a sentence is found
+ * however it is wrapped. */
+static char *read_page(const char *path) {
+    char *text = read_text_file(path);
+    cr_assert_not_null(text, "cannot read %s", path);
+    size_t o = 0;
+    for (size_t k = 0; text[k] != '\0'; k++) {
+        bool blank = text[k] == ' ' || text[k] == '\n';
+        if (!blank || (o > 0 && text[o - 1] != ' '))
+            text[o++] = blank ? ' ' : text[k];
+    }
+    text[o] = '\0';
+    return text;
+}
+
+static void expect_quoted(const char *page, const char *name, const char *wanted) {
+    cr_expect_not_null(strstr(page, wanted), "%s does not say \"%s\", which docs/results/antialias.csv gives", name,
+                       wanted);
+}
+
+Test(antialias, the_chapters_table_and_claims_are_the_measured_numbers) {
+    struct measured_row rows[64];
+    int count = read_measurements(rows, 64);
+    char *chapter = read_page("docs/12-antialias.md"), *results = read_page("docs/results.md");
+    static const struct {
+        const char *label, *method;
+        int n;
+        double threshold;
+    } table[] = {{"one ray (grid 1)", "grid", 1, 0.3},    {"grid", "grid", 2, 0.3},
+                 {"grid", "grid", 4, 0.3},                {"grid", "grid", 8, 0.3},
+                 {"jitter", "jitter", 4, 0.3},            {"jitter", "jitter", 8, 0.3},
+                 {"adaptive, threshold 0.3", "adaptive", 3, 0.3}, {"adaptive, threshold 0.3", "adaptive", 8, 0.3},
+                 {"adaptive, threshold 0.1", "adaptive", 8, 0.1}, {"recursive, threshold 0.3", "recursive", 3, 0.3},
+                 {"recursive, threshold 0.3", "recursive", 6, 0.3}};
+    char wanted[256];
+    for (size_t k = 0; k < sizeof table / sizeof table[0]; k++) {
+        const struct measured_row *r = measured(rows, count, table[k].method, table[k].n, table[k].threshold);
+        snprintf(wanted, sizeof wanted, "| %s | %d | %.2f | %.2f s | %.2f | %.1f %% |", table[k].label, r->n, r->rays,
+                 r->seconds, r->error, r->over_2);
+        expect_quoted(chapter, "docs/12-antialias.md's table", wanted);
+    }
+    const struct measured_row *adaptive = measured(rows, count, "adaptive", 3, 0.3),
+                              *grid2 = measured(rows, count, "grid", 2, 0.3), *grid3 = measured(rows, count, "grid", 3, 0.3),
+                              *grid4 = measured(rows, count, "grid", 4, 0.3), *grid8 = measured(rows, count, "grid", 8, 0.3),
+                              *jitter4 = measured(rows, count, "jitter", 4, 0.3),
+                              *jitter8 = measured(rows, count, "jitter", 8, 0.3);
+    snprintf(wanted, sizeof wanted,
+             "With %.2f rays a pixel its error is %.0f %% above a 3 × 3 grid's (%.2f against %.2f, for 9 rays) and "
+             "well below a 2 × 2 grid's (%.2f, for 4 rays)",
+             adaptive->rays, 100 * (adaptive->error / grid3->error - 1), adaptive->error, grid3->error, grid2->error);
+    expect_quoted(chapter, "docs/12-antialias.md", wanted);
+    cr_expect_gt(grid2->error, adaptive->error);
+    snprintf(wanted, sizeof wanted, "from n = 4 to 8 the grid's error falls from %.2f to %.2f, jitter's from %.2f to %.2f",
+             grid4->error, grid8->error, jitter4->error, jitter8->error);
+    expect_quoted(chapter, "docs/12-antialias.md", wanted);
+    snprintf(wanted, sizeof wanted, "the grid's from %.2f to %.2f levels, jitter's from %.2f to %.2f", grid4->error,
+             grid8->error, jitter4->error, jitter8->error);
+    expect_quoted(results, "docs/results.md", wanted);
+    cr_expect_gt(grid4->error / grid8->error, 2.0, "the grid's error falls rather than stalls");
+    cr_expect_gt(jitter4->error / jitter8->error, grid4->error / grid8->error, "jitter's falls faster");
+    /* the one measured time of the chapter's picture, quoted by the chapter and by the results page */
+    snprintf(wanted, sizeof wanted, "This picture's measured time is the table's above: %.2f s", adaptive->seconds);
+    expect_quoted(chapter, "docs/12-antialias.md's Run it", wanted);
+    snprintf(wanted, sizeof wanted, "chapter 12's scene, 551,955 rays in %.2f s", adaptive->seconds);
+    expect_quoted(results, "docs/results.md", wanted);
+    free(chapter);
+    free(results);
+}

@@ -124,7 +124,7 @@ Test(texture, gradient_folds_its_value_as_povray_does) {
     cr_expect_float_eq(c.colour.x, 0.25, 1e-12, "the colour map blends linearly");
 }
 
-Test(texture, radial_turns_once_round_y_from_minus_z) {
+Test(texture, radial_turns_once_round_y_from_plus_x) {
     struct pigment p = plain(PIGMENT_RADIAL);
     cr_expect_float_eq(texture_pattern_value(&p, vec3_make(0, 0, 1)), 0.75, 1e-12);
     cr_expect_float_eq(texture_pattern_value(&p, vec3_make(-1, 0, 0)), 0.5, 1e-12);
@@ -285,6 +285,36 @@ Test(image_map, missing_and_broken_images_name_the_pigment_line, .timeout = 60) 
                        TEST_OUT "/tex-broken.scene:3: pigment 'p': " TEST_OUT "/tex-broken.scene: not a PNG or JPEG image (");
 }
 
+/* Reads the PNG written with `channels` channels of `count` pixels into TEST_OUT/name; returns its texels
+ * (free them). */
+static float *read_written(const char *name, int channels, int count, const uint8_t *pixels) {
+    char path[256], why[512] = "";
+    snprintf(path, sizeof path, TEST_OUT "/%s", name);
+    cr_assert(stbi_write_png(path, count, 1, channels, pixels, count * channels), "cannot write %s", path);
+    struct pigment_image image;
+    cr_assert(image_map_read(path, &image, why, sizeof why), "%s", why);
+    return image.texels;
+}
+
+/* POV-Ray 3.7 stores an 8-bit grey PNG as whole 255ths of linear light, the fraction cut off; an RGB
+ * file of the same levels keeps the decoded value (docs/povray.md, "Image maps"). */
+Test(image_map, a_grey_png_keeps_whole_255ths_of_linear_light_as_povray_does) {
+    static const uint8_t grey[3] = {10, 128, 255}, rgb[9] = {10, 10, 10, 128, 128, 128, 255, 255, 255};
+    float *g = read_written("grey-levels.png", 1, 3, grey), *c = read_written("rgb-levels.png", 3, 3, rgb);
+    for (int k = 0; k < 3; k++) {
+        float decoded = image_map_decode_srgb(grey[k] / 255.0f);
+        cr_expect_float_eq(c[4 * k], decoded, 1e-7, "RGB level %d: decoded, kept whole", grey[k]);
+        cr_expect_eq(g[4 * k], floorf(decoded * 255.0f) / 255.0f, "grey level %d: %.7f, cut to %.7f", grey[k],
+                     decoded, g[4 * k]);
+        cr_expect_eq(g[4 * k], g[4 * k + 1], "grey: red and green alike");
+        cr_expect_eq(g[4 * k + 3], 1.0f, "grey: opaque");
+    }
+    cr_expect_eq(g[0], 0.0f, "level 10 is 0.0030 of linear light: under one 255th, cut to black");
+    cr_expect_gt(c[0], 0.003f);
+    free(g);
+    free(c);
+}
+
 /* ---- agreement with POV-Ray ----------------------------------------------------------------------- */
 
 /* Renders `scene` with chapter 14 and with POV-Ray; expects 99.99 % of pixels within one level. */
@@ -323,6 +353,31 @@ static const char *write_file(const char *name, const char *text) {
     fputs(text, f);
     fclose(f);
     return path;
+}
+
+/* A grey ramp of every level 0 to 255, one column each, as an 8-bit grey PNG on a card facing the camera
+ * (ambient 1: the picture shows the map's light itself). A PNG's grey levels are kept as POV-Ray keeps
+ * them (truncated to 255ths of linear light), so the two pictures agree to the level; before that rule
+ * 27 of the ramp's 256 columns came out one level brighter than POV-Ray's. */
+Test(povray_agreement, chapter_14_grey_png_image_map_to_the_level, .timeout = 120) {
+    uint8_t ramp[256 * 4];
+    for (int k = 0; k < 256 * 4; k++)
+        ramp[k] = (uint8_t)(k % 256);
+    cr_assert(stbi_write_png(TEST_OUT "/grey-ramp.png", 256, 4, 1, ramp, 256), "cannot write the ramp");
+    write_file("grey-ramp.scene",
+               "camera eye 0 0 10  target 0 0 0  fov 30\nimage 256 64\n"
+               "pigment ramp image_map file grey-ramp.png interpolate 0 scale 4 1 1 translate -2 -0.5 0\n"
+               "material card pigment ramp ambient 1 diffuse 0\n"
+               "box min -2 -0.5 -0.01 max 2 0.5 0 material card\n");
+    char ours[256], theirs[256];
+    snprintf(ours, sizeof ours, TEST_OUT "/tex-grey-ours.png");
+    snprintf(theirs, sizeof theirs, TEST_OUT "/tex-grey-povray.png");
+    cr_assert_eq(render_chapter(14, TEST_OUT "/grey-ramp.scene", ours, ""), 0, "chapter 14 failed on the ramp");
+    cr_assert(render_povray(14, TEST_OUT "/grey-ramp.scene", theirs), "POV-Ray failed on the ramp's twin");
+    struct image_difference d = compare_png(ours, theirs);
+    report_difference("chapter 14 grey ramp vs POV-Ray", &d);
+    cr_expect_eq(d.max, 0, "the grey ramp differs from POV-Ray's by up to %d levels (%.4f %% of pixels within 1)",
+                 d.max, 100 * d.within_1);
 }
 
 /* Loads the mesh text `text` (written to TEST_OUT/NAME) with its corners; expects failure with

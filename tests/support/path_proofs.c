@@ -79,13 +79,18 @@ void path_setup_render(const struct path_setup *t, vec3 *means, vec3 *variances)
 #define FURNACE_LE 0.5
 #define FURNACE_SIDE 8
 
-bool path_proof_furnace(double rho, const char *strategy, struct furnace_result *r, char *err, size_t err_size) {
-    char text[1024];
+bool path_proof_furnace_capped(double rho, const char *strategy, int bounces, struct furnace_result *r, char *err,
+                               size_t err_size) {
+    char text[1024], cap[32] = "";
+    if (bounces >= 0)
+        snprintf(cap, sizeof cap, " bounces %d", bounces);
+    else
+        bounces = path_settings_default().bounces;
     snprintf(text, sizeof text,
-             "camera eye 0 0 0 target 0 0 -1 fov 60\nimage %d %d\npaths samples 32 seed 3 strategy %s\n"
+             "camera eye 0 0 0 target 0 0 -1 fov 60\nimage %d %d\npaths samples 32 seed 3%s strategy %s\n"
              "material wall colour %.17g %.17g %.17g diffuse 1 emission %g %g %g\n"
              "sphere centre 0 0 0 radius 1 material wall\n",
-             FURNACE_SIDE, FURNACE_SIDE, strategy, rho, rho, rho, FURNACE_LE, FURNACE_LE, FURNACE_LE);
+             FURNACE_SIDE, FURNACE_SIDE, cap, strategy, rho, rho, rho, FURNACE_LE, FURNACE_LE, FURNACE_LE);
     struct path_setup t;
     if (!path_setup_text(&t, text, err, err_size))
         return false;
@@ -93,7 +98,9 @@ bool path_proof_furnace(double rho, const char *strategy, struct furnace_result 
     vec3 means[PIXELS];
     path_setup_render(&t, means, NULL);
     path_setup_free(&t);
-    r->expected = FURNACE_LE / (1.0 - rho);
+    /* The surfaces a path can reach are the first and `bounces` more, and the light of the one after
+     * (found by next-event estimation or by hitting it): Le times 1 + rho + ... + rho^(bounces + 1). */
+    r->expected = FURNACE_LE * (1.0 - pow(rho, bounces + 2)) / (1.0 - rho);
     for (int c = 0; c < 3; c++) {
         double sum = 0, sum2 = 0;
         for (int k = 0; k < PIXELS; k++) {
@@ -107,6 +114,10 @@ bool path_proof_furnace(double rho, const char *strategy, struct furnace_result 
     return true;
 }
 
+bool path_proof_furnace(double rho, const char *strategy, struct furnace_result *r, char *err, size_t err_size) {
+    return path_proof_furnace_capped(rho, strategy, -1, r, err, err_size);
+}
+
 bool path_proof_furnace_passes(const struct furnace_result *r, double errors) {
     for (int c = 0; c < 3; c++)
         if (!(fabs(r->mean[c] - r->expected) <= errors * r->error[c] + 1e-12))
@@ -114,26 +125,39 @@ bool path_proof_furnace_passes(const struct furnace_result *r, double errors) {
     return true;
 }
 
-bool path_proof_neighbour_correlation(double *correlation, char *err, size_t err_size) {
+bool path_proof_neighbour_correlation_of(int side, double *correlation, char *err, size_t err_size) {
+    char text[512];
+    snprintf(text, sizeof text,
+             "camera eye 0 0 0 target 0 0 -1 fov 10\nimage %d %d\npaths samples 2 seed 5 strategy scatter\n"
+             "material wall colour 0.5 0.5 0.5 diffuse 1 emission 0.5 0.5 0.5\n"
+             "sphere centre 0 0 0 radius 1 material wall\n",
+             side, side);
     struct path_setup t;
-    if (!path_setup_text(&t, "camera eye 0 0 0 target 0 0 -1 fov 10\nimage 16 16\npaths samples 2 seed 5 strategy scatter\n"
-                             "material wall colour 0.5 0.5 0.5 diffuse 1 emission 0.5 0.5 0.5\n"
-                             "sphere centre 0 0 0 radius 1 material wall\n",
-                         err, err_size))
+    if (!path_setup_text(&t, text, err, err_size))
         return false;
-    vec3 means[256];
+    vec3 *means = malloc((size_t)side * (size_t)side * sizeof *means);
+    if (means == NULL) {
+        snprintf(err, err_size, "out of memory");
+        path_setup_free(&t);
+        return false;
+    }
     path_setup_render(&t, means, NULL);
     path_setup_free(&t);
     double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
     int n = 0;
-    for (int j = 0; j < 16; j++)
-        for (int i = 0; i + 1 < 16; i++, n++) {
-            double a = means[j * 16 + i].x, b = means[j * 16 + i + 1].x;
+    for (int j = 0; j < side; j++)
+        for (int i = 0; i + 1 < side; i++, n++) {
+            double a = means[j * side + i].x, b = means[j * side + i + 1].x;
             sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
         }
+    free(means);
     double cov = sab / n - sa / n * sb / n, va = saa / n - sa / n * sa / n, vb = sbb / n - sb / n * sb / n;
     *correlation = va > 0 && vb > 0 ? cov / sqrt(va * vb) : 1.0; /* no spread at all: every pixel alike */
     return true;
+}
+
+bool path_proof_neighbour_correlation(double *correlation, char *err, size_t err_size) {
+    return path_proof_neighbour_correlation_of(16, correlation, err, err_size);
 }
 
 /* ---- convergence ---------------------------------------------------------------------------------- */

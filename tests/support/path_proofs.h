@@ -40,9 +40,16 @@ void path_setup_render(const struct path_setup *t, vec3 *means, vec3 *variances)
 struct furnace_result {
     double mean[3];  /* the image mean per channel */
     double error[3]; /* its standard error: the pixels' spread over sqrt(64) */
-    double expected; /* Le / (1 - rho) */
+    double expected; /* Le / (1 - rho), less the light of paths longer than the cap */
 };
 bool path_proof_furnace(double rho, const char *strategy, struct furnace_result *r, char *err, size_t err_size);
+
+/* The same furnace with the paths line's `bounces` set (-1: left out, the default cap, as
+ * path_proof_furnace does). The expected value is the truncated series
+ * Le (1 + rho + ... + rho^(bounces + 1)) = Le (1 - rho^(bounces + 2)) / (1 - rho): the first surface,
+ * `bounces` more, and the light of the one after, found by next-event estimation or by hitting it. */
+bool path_proof_furnace_capped(double rho, const char *strategy, int bounces, struct furnace_result *r, char *err,
+                               size_t err_size);
 
 /* Whether every channel of r is within `errors` standard errors of the expected value (and 1e-12). */
 bool path_proof_furnace_passes(const struct furnace_result *r, double errors);
@@ -50,6 +57,10 @@ bool path_proof_furnace_passes(const struct furnace_result *r, double errors);
 /* The correlation of horizontally neighbouring pixels' values in a furnace of rho 0.5 seen by 16 x 16
  * pixels with 2 paths each: near 0 when each pixel's random numbers are its own. */
 bool path_proof_neighbour_correlation(double *correlation, char *err, size_t err_size);
+
+/* The same on side x side pixels: side (side - 1) pairs, whose correlation, for unrelated noise, is 0 with a
+ * standard deviation of about 1 / sqrt(side (side - 1)). */
+bool path_proof_neighbour_correlation_of(int side, double *correlation, char *err, size_t err_size);
 
 /* The slope of log RMSE against log N for N = 1, 4, 16, 64, 256 paths a pixel, on 24 x 24 pixels of the
  * Cornell box of `scene` with its balls made white, seen below the lamp (fov 28 towards (278, 200, 0)),

@@ -57,7 +57,7 @@ def point(v):
 def read_scene(path):
     scene = {"materials": {"default": {"colour": [1, 1, 1], "diffuse": 0.6, "emission": [0, 0, 0]}},
              "triangles": [], "spheres": [], "boxes": [], "lights": [], "background": [0, 0, 0], "up": [0, 1, 0],
-             "bounces": 64}
+             "bounces": 256}
     for number, line in enumerate(open(path), 1):
         words = line.split("#")[0].split()
         if not words:
@@ -75,7 +75,7 @@ def read_scene(path):
             scene["background"] = [float(w) for w in rest]
         elif what == "paths":
             v = keys(rest, {"samples": 1, "seed": 1, "roulette": 1, "bounces": 1, "strategy": 0})
-            scene["bounces"] = int(v.get("bounces", [64])[0])
+            scene["bounces"] = int(v.get("bounces", [256])[0])
         elif what == "material":
             v = keys(rest[1:], {"colour": 3, "ambient": 1, "diffuse": 1, "phong": 1, "phong_size": 1, "reflection": 1,
                                 "filter": 1, "transmit": 1, "ior": 1, "pigment": 0, "emission": 3})
