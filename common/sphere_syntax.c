@@ -10,7 +10,7 @@ static bool sphere_make(const struct key_values *kv, void *item, char *why, size
     s->centre = key_vec3(kv, SPHERE_CENTRE);
     s->radius = kv->number[SPHERE_RADIUS][0];
     if (!(s->radius > 0.0)) {
-        snprintf(why, why_size, "sphere radius must be positive, got " KEY_NUMBER_SHOWN, s->radius);
+        snprintf(why, why_size, "sphere radius must be positive, got %g", s->radius);
         return false;
     }
     return true;

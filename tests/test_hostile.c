@@ -333,6 +333,33 @@ Test(hostile, the_brute_force_draws_an_edge_hit_as_the_bvh_does, .timeout = 60) 
     }
 }
 
+/* A file's normals are made unit however long they are: normals of length 1e200 (whose squares overflow)
+ * shade exactly as the same directions of length 1, not as a flat triangle. */
+Test(hostile, a_files_normals_of_any_length_shade_alike, .timeout = 60) {
+    char folder[64], pictures[3][128];
+    make_files(folder);
+    static const char *const meshes[3] = {
+        "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvn 1e200 0 1e200\nf 1//1 2//1 3//1\n",
+        "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nvn 1 0 1\nf 1//1 2//1 3//1\n",
+        "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n", /* flat */
+    };
+    for (int k = 0; k < 3; k++) {
+        char name[32], scene[128], text[512];
+        snprintf(name, sizeof name, "normals-%d.obj", k);
+        write_text(folder, name, meshes[k]);
+        snprintf(text, sizeof text, VIEW "mesh %s\n", name);
+        snprintf(name, sizeof name, "normals-%d.scene", k);
+        write_text(folder, name, text);
+        snprintf(scene, sizeof scene, "%s/%s", folder, name);
+        snprintf(pictures[k], sizeof pictures[k], "%s/normals-%d.png", folder, k);
+        cr_assert_eq(render_chapter(14, scene, pictures[k], "--quiet"), 0, "%s", meshes[k]);
+    }
+    struct image_difference same = compare_png(pictures[0], pictures[1]);
+    cr_expect_eq(same.max, 0, "normals of length 1e200 shade unlike those of length 1, by up to %d levels", same.max);
+    struct image_difference flat = compare_png(pictures[1], pictures[2]);
+    cr_expect_gt(flat.max, 0, "the tilted normals change the shading (else this test could not fail)");
+}
+
 /* ---- the second line of defence: patterns at any point ---------------------------------------- */
 
 static const double strange[] = {NAN, INFINITY, -INFINITY, 1e300, -1e300, 4e9, -4e9};
