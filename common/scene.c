@@ -293,6 +293,10 @@ static bool parse_light(const struct parser *p, struct scene *s, char **tok, int
     if (!key_vec3_within(light->colour, SCENE_MAX_LIGHT, "light colour", why, sizeof why))
         return fail(p, "%s", why);
     light->area = area;
+    /* An area light is a rectangle chapter 15 draws as two triangles: its corners stay in range. */
+    if (area_light_is_area(&area) && !key_vec3_within(light->position, KEY_MAX_COORD, "an area light's position", why,
+                                                      sizeof why))
+        return fail(p, "%s", why);
     return true;
 }
 

@@ -233,6 +233,8 @@ static const struct hostile non_finite[] = {
     {15, VIEW "light position 0 3 0 axis1 1e-17 0 0 axis2 0 0 1e-17 samples 3 3\nsphere centre 0 0 0 radius 1\n"
               "paths samples 2\nmaterial lamp emission 4 4 4\nsphere centre 3 3 3 radius 1 material lamp\n",
      "", 0, NULL},
+    {15, VIEW "light position 1e300 3 0 axis1 1 0 0 axis2 0 0 1 samples 2 2\nsphere centre 0 0 0 radius 1\n", "", 1,
+     "SCENE:4: an area light's position is (1e+300, 3, 0); it must stay within -1e+18 .. 1e+18"},
     /* emitters: a sum of powers that would be infinite */
     {15, VIEW "material e emission 1e308 1e308 1e308\nsphere centre 0 0 0 radius 1 material e\n", "", 1,
      "SCENE:4: material 'e': emission must be at most 1e+18 in each channel, got 1e+308 1e+308 1e+308"},
