@@ -172,7 +172,13 @@ static bool check_header(const char *path, const uint8_t *bytes, size_t size, ch
                  : size >= 4 && memcmp(bytes, "GIF8", 4) == 0 ? ": a GIF, it seems"
                                                                : "");
     }
-    if (ok && (width == 0 || height == 0)) {
+    bool named_jpeg = pigment_file_is_jpeg(path);
+    if (ok && named_jpeg != (bytes[0] == jpeg_signature[0])) {
+        ok = false;
+        snprintf(reason, sizeof reason, "a %s named as a %s: POV-Ray reads an image map by its name (.jpg or "
+                 ".jpeg for a JPEG, anything else for a PNG), so rename it", named_jpeg ? "PNG" : "JPEG",
+                 named_jpeg ? "JPEG" : "PNG");
+    } else if (ok && (width == 0 || height == 0)) {
         ok = false;
         snprintf(reason, sizeof reason, "its header declares %ld x %ld pixels: an image has at least one", width,
                  height);

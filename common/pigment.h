@@ -96,6 +96,10 @@ extern const struct key_spec pigment_transform_keys[PIGMENT_TRANSFORM_KEY_COUNT]
  * beyond KEY_MAX_COORD. */
 bool pigment_make_transform(const struct key_values *kv, int first, struct pigment *p, char *why, size_t why_size);
 
+/* Returns true when the image file's name ends in .jpg or .jpeg (either case): POV-Ray's twin names it
+ * `jpeg`, every other `png`, so chapter 14 refuses a file whose bytes say otherwise. */
+bool pigment_file_is_jpeg(const char *file);
+
 /* Writes p as POV-Ray's `pigment { ... }`, every colour as rgbft with the given filter and transmit
  * (the material's), the transform last. An image map names p->file as it is. */
 void pigment_write_pov(FILE *out, const struct pigment *p, double filter, double transmit);

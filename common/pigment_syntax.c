@@ -169,6 +169,12 @@ const struct pigment_syntax *const pigment_syntaxes[] = {&checker_syntax, &gradi
 
 /* ---- POV-Ray ------------------------------------------------------------------------------------- */
 
+bool pigment_file_is_jpeg(const char *file) {
+    const char *dot = strrchr(file, '.');
+    return dot != NULL && (strcmp(dot, ".jpg") == 0 || strcmp(dot, ".jpeg") == 0 || strcmp(dot, ".JPG") == 0 ||
+                           strcmp(dot, ".JPEG") == 0);
+}
+
 static void write_colour(FILE *out, vec3 c, double filter, double transmit) {
     fprintf(out, "rgbft <%.17g, %.17g, %.17g, %.17g, %.17g>", c.x, c.y, c.z, filter, transmit);
 }
@@ -207,9 +213,7 @@ void pigment_write_pov(FILE *out, const struct pigment *p, double filter, double
         write_colour_map(out, p, filter, transmit);
         break;
     case PIGMENT_IMAGE_MAP: {
-        const char *dot = strrchr(p->file, '.');
-        bool jpeg = dot != NULL && (strcmp(dot, ".jpg") == 0 || strcmp(dot, ".jpeg") == 0 ||
-                                    strcmp(dot, ".JPG") == 0 || strcmp(dot, ".JPEG") == 0);
+        bool jpeg = pigment_file_is_jpeg(p->file);
         /* The whole path, so that POV-Ray finds the file from whichever folder it runs in. */
         char whole[PATH_MAX];
         const char *file = realpath(p->file, whole) != NULL ? whole : p->file;

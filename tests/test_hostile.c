@@ -73,6 +73,10 @@ static void make_files(char folder[64]) {
     uint8_t *png = (uint8_t *)read_file("scenes/textures/grid.png", &size);
     cr_assert_gt(size, 200, "scenes/textures/grid.png is missing (make builds it)");
     write_bytes(folder, "grid.png", png, size);
+    write_bytes(folder, "grid.jpg", png, size); /* a PNG by its bytes */
+    uint8_t *jpeg = (uint8_t *)read_file("scenes/textures/grid.jpg", &size);
+    write_bytes(folder, "photo.png", jpeg, size); /* a JPEG by its bytes */
+    free(jpeg);
     write_bytes(folder, "cut-header.png", png, 20);  /* the signature and half a chunk header */
     write_bytes(folder, "cut-pixels.png", png, 120); /* a whole header, then the pixels cut short */
     uint8_t *changed = malloc(size);
@@ -268,6 +272,10 @@ static const struct hostile image_files[] = {
                                   "may have"),
     REFUSED_IMAGE(15, "kind.png", "a kind of PNG that is not supported (colour type 5, bit depth 8, compression 0, "
                                   "filter 0, interlace 0)"),
+    REFUSED_IMAGE(14, "grid.jpg", "a PNG named as a JPEG: POV-Ray reads an image map by its name (.jpg or .jpeg "
+                                  "for a JPEG, anything else for a PNG), so rename it"),
+    REFUSED_IMAGE(15, "photo.png", "a JPEG named as a PNG: POV-Ray reads an image map by its name (.jpg or "
+                                   ".jpeg for a JPEG, anything else for a PNG), so rename it"),
     REFUSED_IMAGE(14, "cut.jpg", "truncated or damaged: 12 bytes, and no JPEG frame header among them"),
     REFUSED_IMAGE(15, "lossless.jpg", "a kind of JPEG that is not supported (frame type 0xc3: only baseline and "
                                       "progressive JPEGs are)"),
