@@ -41,7 +41,8 @@ bool antialias_make(const struct key_values *kv, struct antialias *a, char *why,
     if (kv->present[KEY_SAMPLES]) {
         double n = kv->number[KEY_SAMPLES][0];
         if (!whole_in(n, 1, most)) {
-            snprintf(why, why_size, "antialias samples must be a whole number from 1 to %d for method %s, got %g",
+            snprintf(why, why_size,
+                     "antialias samples must be a whole number from 1 to %d for method %s, got " KEY_NUMBER_SHOWN,
                      most, method_names[a->method], n);
             return false;
         }
@@ -50,7 +51,8 @@ bool antialias_make(const struct key_values *kv, struct antialias *a, char *why,
     if (kv->present[KEY_THRESHOLD]) {
         double t = kv->number[KEY_THRESHOLD][0];
         if (!(t >= 0.0 && t <= ANTIALIAS_MAX_THRESHOLD)) {
-            snprintf(why, why_size, "antialias threshold must be between 0 and %g, got %g", ANTIALIAS_MAX_THRESHOLD, t);
+            snprintf(why, why_size, "antialias threshold must be between 0 and %g, got " KEY_NUMBER_SHOWN,
+                     ANTIALIAS_MAX_THRESHOLD, t);
             return false;
         }
         a->threshold = t;
@@ -58,7 +60,8 @@ bool antialias_make(const struct key_values *kv, struct antialias *a, char *why,
     if (kv->present[KEY_SEED]) {
         double seed = kv->number[KEY_SEED][0];
         if (!whole_in(seed, 0, UINT32_MAX)) {
-            snprintf(why, why_size, "antialias seed must be a whole number from 0 to %u, got %g", UINT32_MAX, seed);
+            snprintf(why, why_size, "antialias seed must be a whole number from 0 to %u, got " KEY_NUMBER_SHOWN,
+                     UINT32_MAX, seed);
             return false;
         }
         a->seed = (uint32_t)seed;

@@ -42,27 +42,39 @@ bool area_light_make(const struct key_values *kv, struct area_light *a, char *wh
     }
     const double *n = kv->number[KEY_SAMPLES];
     if (!whole_in(n[0], 1, AREA_LIGHT_MAX_SIZE) || !whole_in(n[1], 1, AREA_LIGHT_MAX_SIZE)) {
-        snprintf(why, why_size, "light samples must be whole numbers from 1 to %d, got %g %g", AREA_LIGHT_MAX_SIZE,
-                 n[0], n[1]);
+        snprintf(why, why_size,
+                 "light samples must be whole numbers from 1 to %d, got " KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN,
+                 AREA_LIGHT_MAX_SIZE, n[0], n[1]);
         return false;
     }
     a->axis1 = key_vec3(kv, KEY_AXIS1);
     a->axis2 = key_vec3(kv, KEY_AXIS2);
     a->size1 = (int)n[0];
     a->size2 = (int)n[1];
-    double length1 = vec3_length(a->axis1), length2 = vec3_length(a->axis2);
-    if (!(length1 > 0.0) || !(length2 > 0.0)) {
-        snprintf(why, why_size, "light %s is zero: the area light has no rectangle", length1 > 0.0 ? "axis2" : "axis1");
-        return false;
+    const vec3 axis[2] = {a->axis1, a->axis2};
+    for (int k = 0; k < 2; k++) {
+        const char *name = k == 0 ? "light axis1" : "light axis2";
+        double length = vec3_length_scaled(axis[k]);
+        if (length == 0.0) {
+            snprintf(why, why_size, "%s is zero: the area light has no rectangle", name);
+            return false;
+        }
+        if (!key_vec3_within(axis[k], KEY_MAX_COORD, name, why, why_size))
+            return false;
+        if (!(length >= AREA_LIGHT_MIN_AXIS)) {
+            snprintf(why, why_size, "%s is " KEY_NUMBER_SHOWN " long; an axis must be at least %g long", name,
+                     length, AREA_LIGHT_MIN_AXIS);
+            return false;
+        }
     }
-    if (!(vec3_length(vec3_cross(a->axis1, a->axis2)) > AREA_LIGHT_MIN_SINE * length1 * length2)) {
+    if (vec3_parallel(a->axis1, a->axis2, AREA_LIGHT_MIN_SINE)) {
         snprintf(why, why_size, "light axis1 and axis2 are parallel: the area light has no rectangle");
         return false;
     }
     if (kv->present[KEY_ADAPTIVE]) {
         double level = kv->number[KEY_ADAPTIVE][0];
         if (!whole_in(level, 0, AREA_LIGHT_MAX_ADAPTIVE)) {
-            snprintf(why, why_size, "light adaptive must be a whole number from 0 to %d, got %g",
+            snprintf(why, why_size, "light adaptive must be a whole number from 0 to %d, got " KEY_NUMBER_SHOWN,
                      AREA_LIGHT_MAX_ADAPTIVE, level);
             return false;
         }

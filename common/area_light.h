@@ -23,6 +23,9 @@
 #define AREA_LIGHT_NOT_ADAPTIVE (-1) /* no adaptive key: every point of the grid is traced */
 /* Axes closer to parallel than this (|a1 x a2| below it times |a1| |a2|) span no rectangle. */
 #define AREA_LIGHT_MIN_SINE 1e-9
+/* The shortest axis (and the longest: each coordinate within KEY_MAX_COORD), so that the light's
+ * rectangle, its area and the lengths derived from it stay finite and not zero. */
+#define AREA_LIGHT_MIN_AXIS 1e-18
 
 struct area_light {
     vec3 axis1, axis2; /* the sides of the parallelogram */
@@ -41,7 +44,8 @@ extern const struct key_spec area_light_keys[AREA_LIGHT_KEY_COUNT];
  * ({0}, adaptive AREA_LIGHT_NOT_ADAPTIVE) when none is given. Returns false with the reason in why
  * (without file and line: the parser adds them) when axis1, axis2 and samples are not all given or
  * the others come without them, samples are not whole numbers from 1 to AREA_LIGHT_MAX_SIZE, an axis
- * is zero or the two are parallel, adaptive is not a whole number from 0 to AREA_LIGHT_MAX_ADAPTIVE,
+ * is zero, shorter than AREA_LIGHT_MIN_AXIS or beyond KEY_MAX_COORD, the two are parallel (whatever
+ * their lengths), adaptive is not a whole number from 0 to AREA_LIGHT_MAX_ADAPTIVE,
  * circular or orient is not on or off, circular has a side of one point, or orient comes without
  * circular. */
 bool area_light_make(const struct key_values *kv, struct area_light *a, char *why, size_t why_size);

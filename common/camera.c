@@ -1,6 +1,8 @@
 /* camera.c: builds the camera basis and the primary ray of each pixel (chapter 1). */
 #include "camera.h"
 
+#include "shape.h" /* KEY_NUMBER_SHOWN */
+
 #include <stdio.h>
 
 /* Up vectors closer than this to the viewing direction (|sin angle| below it) give no usable basis. */
@@ -14,7 +16,7 @@ bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov
         return false;
     }
     if (!(vfov_degrees > 0.0 && vfov_degrees < 180.0)) {
-        snprintf(err, err_size, "camera fov must be between 0 and 180 degrees, got %g", vfov_degrees);
+        snprintf(err, err_size, "camera fov must be between 0 and 180 degrees, got " KEY_NUMBER_SHOWN, vfov_degrees);
         return false;
     }
     if (width <= 0 || height <= 0) {

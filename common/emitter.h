@@ -61,7 +61,8 @@ int emitter_add_area_lights(struct scene *s, char *err, size_t err_size);
 
 /* Gathers the emitters of the world w (triangles from its gathered mesh, spheres and boxes from its
  * scene). Returns false with the reason in err: "out of memory", or "scene: plane N has the emissive
- * material 'x': ..." for an emissive plane. Free with emitter_list_free. */
+ * material 'x': ..." for an emissive plane, "scene: the emitters' total power ..." when the sum of
+ * emission times area overflows. Free with emitter_list_free. */
 bool emitter_list_build(struct emitter_list *list, const struct accel_world *w, char *err, size_t err_size);
 
 /* Frees what emitter_list_build allocated. Safe on a zeroed list. */

@@ -32,16 +32,19 @@ float image_map_decode_srgb(float encoded) {
     return powf((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
+/* The first bytes of every PNG and every JPEG file. */
+static const uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+static const uint8_t jpeg_signature[3] = {0xff, 0xd8, 0xff};
+
 static uint32_t big_endian_32(const uint8_t *b) {
     return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | (uint32_t)b[3];
 }
 
 double image_map_png_gamma(const uint8_t *bytes, size_t size) {
-    static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (size < sizeof signature || memcmp(bytes, signature, sizeof signature) != 0)
+    if (size < sizeof png_signature || memcmp(bytes, png_signature, sizeof png_signature) != 0)
         return 0.0;
     double gamma = 0.0;
-    size_t at = sizeof signature;
+    size_t at = sizeof png_signature;
     while (size - at >= 12) { /* length, type, data, CRC */
         uint32_t length = big_endian_32(bytes + at);
         const uint8_t *type = bytes + at + 4;
@@ -97,17 +100,132 @@ static uint8_t *read_file(const char *path, size_t *size, char *why, size_t why_
     return bytes;
 }
 
+/* ---- the file's header, read before the decoder sees it ------------------------------------------ */
+
+#define PNG_HEADER_END 33 /* signature 8, IHDR's length and type 8, its data 13, its CRC 4 */
+
+/* True when PNG allows bit depth `depth` with colour type `type` (the PNG specification, table 11.1);
+ * these are all stb_image decodes. */
+static bool png_kind_supported(int type, int depth) {
+    switch (type) {
+    case 0: /* grey */
+        return depth == 1 || depth == 2 || depth == 4 || depth == 8 || depth == 16;
+    case 3: /* palette */
+        return depth == 1 || depth == 2 || depth == 4 || depth == 8;
+    case 2: /* RGB */
+    case 4: /* grey and alpha */
+    case 6: /* RGBA */
+        return depth == 8 || depth == 16;
+    default:
+        return false;
+    }
+}
+
+/* Reads a PNG's size from its IHDR chunk; false with why for a header that is cut short or not PNG's,
+ * or a kind of PNG the reader does not take. */
+static bool png_header(const uint8_t *b, size_t size, long *width, long *height, char *why, size_t why_size) {
+    if (size < PNG_HEADER_END) {
+        snprintf(why, why_size, "truncated: %zu bytes, too few for a PNG's header", size);
+        return false;
+    }
+    if (big_endian_32(b + 8) != 13 || memcmp(b + 12, "IHDR", 4) != 0) {
+        snprintf(why, why_size, "a damaged PNG: its first chunk is not the image header (IHDR)");
+        return false;
+    }
+    *width = (long)big_endian_32(b + 16);
+    *height = (long)big_endian_32(b + 20);
+    int depth = b[24], type = b[25], compression = b[26], filter = b[27], interlace = b[28];
+    if (!png_kind_supported(type, depth) || compression != 0 || filter != 0 || interlace > 1) {
+        snprintf(why, why_size, "a kind of PNG that is not supported (colour type %d, bit depth %d, compression "
+                 "%d, filter %d, interlace %d)", type, depth, compression, filter, interlace);
+        return false;
+    }
+    return true;
+}
+
+/* Reads a JPEG's size from its frame header (SOF), walking the segments before it; false with why for a
+ * file cut short before it, or a kind of JPEG the decoder does not take (only baseline and progressive
+ * Huffman-coded JPEGs are: not lossless, hierarchical or arithmetic-coded ones). */
+static bool jpeg_header(const uint8_t *b, size_t size, long *width, long *height, char *why, size_t why_size) {
+    size_t at = 2; /* after the start-of-image marker */
+    while (at + 4 <= size) {
+        if (b[at] != 0xff) {
+            snprintf(why, why_size, "a damaged JPEG: no marker at byte %zu", at);
+            return false;
+        }
+        int marker = b[at + 1];
+        if (marker == 0xff) { /* fill bytes before a marker */
+            at++;
+            continue;
+        }
+        size_t length = (size_t)b[at + 2] << 8 | b[at + 3];
+        bool frame = marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc;
+        if (frame) {
+            if (marker > 0xc2) {
+                snprintf(why, why_size, "a kind of JPEG that is not supported (frame type 0x%02x: only baseline "
+                         "and progressive JPEGs are)", marker);
+                return false;
+            }
+            if (at + 9 > size)
+                break;
+            *height = (long)b[at + 5] << 8 | b[at + 6];
+            *width = (long)b[at + 7] << 8 | b[at + 8];
+            return true;
+        }
+        if (marker == 0xd9 || marker == 0xda || length < 2)
+            break; /* the end, or the image data, before any frame header */
+        at += 2 + length;
+    }
+    snprintf(why, why_size, "truncated or damaged: %zu bytes, and no JPEG frame header among them", size);
+    return false;
+}
+
+/* Checks the file is a PNG or JPEG whose header declares a size within IMAGE_MAP_MAX_PIXELS, before
+ * any decoding; false with why ("path: ...") otherwise. */
+static bool check_header(const char *path, const uint8_t *bytes, size_t size, char *why, size_t why_size) {
+    char reason[256];
+    long width = 0, height = 0;
+    bool ok;
+    if (size >= sizeof png_signature && memcmp(bytes, png_signature, sizeof png_signature) == 0)
+        ok = png_header(bytes, size, &width, &height, reason, sizeof reason);
+    else if (size >= sizeof jpeg_signature && memcmp(bytes, jpeg_signature, sizeof jpeg_signature) == 0)
+        ok = jpeg_header(bytes, size, &width, &height, reason, sizeof reason);
+    else {
+        ok = false;
+        snprintf(reason, sizeof reason, "not a PNG or JPEG image (its first bytes are neither signature%s)",
+                 size >= 2 && memcmp(bytes, "BM", 2) == 0   ? ": a BMP, it seems"
+                 : size >= 4 && memcmp(bytes, "GIF8", 4) == 0 ? ": a GIF, it seems"
+                                                               : "");
+    }
+    bool named_jpeg = pigment_file_is_jpeg(path);
+    if (ok && named_jpeg != (bytes[0] == jpeg_signature[0])) {
+        ok = false;
+        snprintf(reason, sizeof reason, "a %s named as a %s: POV-Ray reads an image map by its name (.jpg or "
+                 ".jpeg for a JPEG, anything else for a PNG), so rename it", named_jpeg ? "PNG" : "JPEG",
+                 named_jpeg ? "JPEG" : "PNG");
+    } else if (ok && (width == 0 || height == 0)) {
+        ok = false;
+        snprintf(reason, sizeof reason, "its header declares %ld x %ld pixels: an image has at least one", width,
+                 height);
+    } else if (ok && (unsigned long long)width * (unsigned long long)height > IMAGE_MAP_MAX_PIXELS) {
+        ok = false;
+        snprintf(reason, sizeof reason, "its header declares %ld x %ld pixels, more than the %ld an image map may "
+                 "have", width, height, IMAGE_MAP_MAX_PIXELS);
+    }
+    if (!ok)
+        snprintf(why, why_size, "%s: %s", path, reason);
+    return ok;
+}
+
 /* Decodes the file's pixels (8 or 16 bits a channel, any channels) into linear RGBA floats. */
 static bool decode(const char *path, const uint8_t *bytes, size_t size, struct pigment_image *image, char *why,
                    size_t why_size) {
     int width, height, channels;
-    if (size > INT32_MAX || !stbi_info_from_memory(bytes, (int)size, &width, &height, &channels)) {
-        snprintf(why, why_size, "%s: not a PNG or JPEG image (%s)", path, stbi_failure_reason());
+    if (!check_header(path, bytes, size, why, why_size))
         return false;
-    }
-    if ((long)width * height > IMAGE_MAP_MAX_PIXELS) {
-        snprintf(why, why_size, "%s: %d x %d pixels is too large (at most %ld pixels)", path, width, height,
-                 IMAGE_MAP_MAX_PIXELS);
+    if (size > INT32_MAX || !stbi_info_from_memory(bytes, (int)size, &width, &height, &channels)) {
+        snprintf(why, why_size, "%s: a damaged image: its header cannot be read (the decoder says: %s)", path,
+                 stbi_failure_reason());
         return false;
     }
     bool sixteen = stbi_is_16_bit_from_memory(bytes, (int)size);
@@ -116,7 +234,11 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
     size_t count = (size_t)width * (size_t)height * 4;
     image->texels = pixels == NULL ? NULL : malloc(count * sizeof *image->texels);
     if (image->texels == NULL) {
-        snprintf(why, why_size, "%s: %s", path, pixels == NULL ? stbi_failure_reason() : "out of memory");
+        if (pixels == NULL)
+            snprintf(why, why_size, "%s: truncated or damaged: its pixels cannot be decoded (the decoder says: %s)",
+                     path, stbi_failure_reason());
+        else
+            snprintf(why, why_size, "%s: out of memory", path);
         stbi_image_free(pixels);
         return false;
     }
@@ -154,14 +276,20 @@ bool image_map_read(const char *path, struct pigment_image *image, char *why, si
 
 /* ---- looking up ---------------------------------------------------------------------------------- */
 
-/* x wrapped into [0, limit), as POV-Ray's wrap(). */
+/* x wrapped into [0, limit), as POV-Ray's wrap(); 0 for an x that is not finite, so that whatever
+ * double arrives, the result is a safe index once cast. */
 static double wrap(double x, double limit) {
     double r = fmod(x, limit);
     if (r < 0.0)
         r += limit;
-    if (r >= limit)
+    if (!(r >= 0.0 && r < limit)) /* not finite, or rounded up to limit */
         r = 0.0;
     return r;
+}
+
+/* The column or row of x in an image `size` pixels across, held at the edges: 0 for NaN. */
+static int held(double x, int size) {
+    return !(x >= 0.0) ? 0 : x >= size ? size - 1 : (int)x;
 }
 
 /* (u, v) in pixels, before wrapping, by the pigment's mapping; false where the mapping shows nothing. */
@@ -200,8 +328,8 @@ static bool map_point(const struct pigment *p, vec3 q, double *u, double *v) {
 static void pixel(const struct pigment *p, double x, double y, double rgba[4]) {
     int w = p->image.width, h = p->image.height, ix, iy;
     if (p->once) {
-        ix = x < 0.0 ? 0 : x >= w ? w - 1 : (int)x;
-        iy = y < 0.0 ? 0 : y >= h ? h - 1 : (int)y;
+        ix = held(x, w);
+        iy = held(y, h);
     } else {
         ix = (int)wrap(x, w);
         iy = (int)wrap(y, h);

@@ -19,7 +19,12 @@ bool lens_make(const struct key_values *kv, vec3 eye, struct lens *l, char *why,
     }
     l->aperture = kv->number[KEY_APERTURE][0];
     if (l->aperture < 0.0) {
-        snprintf(why, why_size, "camera aperture must not be negative, got %g", l->aperture);
+        snprintf(why, why_size, "camera aperture must not be negative, got " KEY_NUMBER_SHOWN, l->aperture);
+        return false;
+    }
+    if (l->aperture > LENS_MAX_APERTURE) {
+        snprintf(why, why_size, "camera aperture must be at most %g, got " KEY_NUMBER_SHOWN, LENS_MAX_APERTURE,
+                 l->aperture);
         return false;
     }
     if (!kv->present[KEY_FOCAL_POINT]) {
@@ -27,6 +32,9 @@ bool lens_make(const struct key_values *kv, vec3 eye, struct lens *l, char *why,
         return false;
     }
     l->focal_point = key_vec3(kv, KEY_FOCAL_POINT);
+    if (!key_vec3_within(l->focal_point, KEY_MAX_COORD, "camera focal_point", why, why_size) ||
+        !key_vec3_within(eye, KEY_MAX_COORD, "camera eye (with a lens)", why, why_size))
+        return false;
     if (!(vec3_length(vec3_sub(l->focal_point, eye)) > LENS_MIN_FOCAL_DISTANCE)) {
         snprintf(why, why_size, "camera focal_point is the eye: nothing can be in focus there");
         return false;
@@ -35,7 +43,7 @@ bool lens_make(const struct key_values *kv, vec3 eye, struct lens *l, char *why,
         double n = kv->number[KEY_BLUR_SAMPLES][0];
         if (n != 7 && n != 19 && n != 37) {
             snprintf(why, why_size, "camera blur_samples must be 7, 19 or 37 (1, 2 or 3 rings of the lens's "
-                     "hexagonal grid), got %g", n);
+                     "hexagonal grid), got " KEY_NUMBER_SHOWN, n);
             return false;
         }
         l->blur_samples = (int)n;

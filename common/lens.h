@@ -21,6 +21,9 @@
 #define LENS_DEFAULT_SAMPLES 19  /* two rings of POV-Ray's hexagonal grid */
 /* The focal point must lie farther from the eye than this: nothing nearer can be in focus. */
 #define LENS_MIN_FOCAL_DISTANCE 1e-9
+/* The widest aperture: with it, the focal point and the eye within KEY_MAX_COORD, a lens ray's
+ * direction is a difference of points whose length stays finite (and not zero). */
+#define LENS_MAX_APERTURE KEY_MAX_COORD
 
 struct lens {
     double aperture;     /* the lens's diameter; 0 for a pinhole */
@@ -34,8 +37,9 @@ extern const struct key_spec lens_keys[LENS_KEY_COUNT];
 
 /* Fills *l from the values read for lens_keys, `eye` being the camera's: a pinhole (aperture 0) when
  * none is given. Returns false with the reason in why (without file and line: the parser adds them)
- * for a negative aperture, an aperture without focal_point or focal_point or blur_samples without
- * aperture, a focal point at the eye, or blur_samples other than 7, 19 or 37. */
+ * for a negative aperture or one above LENS_MAX_APERTURE, an aperture without focal_point or focal_point or
+ * blur_samples without aperture, a focal point or (with a lens) an eye beyond KEY_MAX_COORD, a focal
+ * point at the eye, or blur_samples other than 7, 19 or 37. */
 bool lens_make(const struct key_values *kv, vec3 eye, struct lens *l, char *why, size_t why_size);
 
 /* Returns whether the camera has a lens (aperture > 0), not a pinhole. */

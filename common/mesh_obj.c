@@ -146,12 +146,14 @@ static bool scan_integer(const char **p, const char *end, long long *value) {
 }
 
 /* Splits a corner i, i/t, i//n or i/t/n into its indices (0 where one is not given) and how each was
- * written. */
+ * written (an empty text where one is not given: an index written 0 is given, and invalid). */
 static bool parse_corner(struct mesh_token corner, long long index[OBJ_INDEX_KINDS],
                          struct mesh_token text[OBJ_INDEX_KINDS]) {
     const char *p = corner.text, *end = corner.text + corner.length;
-    for (int k = 0; k < OBJ_INDEX_KINDS; k++)
+    for (int k = 0; k < OBJ_INDEX_KINDS; k++) {
         index[k] = 0;
+        text[k] = (struct mesh_token){end, 0}; /* not given */
+    }
     if (!scan_integer(&p, end, &index[OBJ_VERTEX]))
         return false;
     text[OBJ_VERTEX] = (struct mesh_token){corner.text, (int)(p - corner.text)};
@@ -173,12 +175,10 @@ static bool parse_corner(struct mesh_token corner, long long index[OBJ_INDEX_KIN
     return p == end; /* i/t/n or i//n */
 }
 
-/* Turns a corner's index of one kind into a 0-based index. */
+/* Turns a corner's index of one kind (not 0: resolve_corner refuses it) into a 0-based index. */
 static bool resolve_index(struct obj_reader *r, enum obj_index kind, long long index, struct mesh_token text,
                           uint32_t *out) {
     size_t count = so_far(r, kind);
-    if (index == 0)
-        return mesh_fail_line(r->in, r->line, "index 0 is invalid (OBJ indices start at 1)");
     if (index < 0) {
         if (-index > (long long)count)
             return mesh_fail_line(r->in, r->line, "%s %.*s reaches before the first %s (%zu %s so far)",
@@ -204,10 +204,16 @@ static bool resolve_corner(struct obj_reader *r, struct mesh_token corner, uint3
     if (!parse_corner(corner, index, text))
         return mesh_fail_line(r->in, r->line, "'%.*s' is not a face corner (expected i, i/t, i//n or i/t/n)",
                               mesh_shown(corner), corner.text);
+    bool given[OBJ_INDEX_KINDS];
+    for (int kind = 0; kind < OBJ_INDEX_KINDS; kind++) {
+        given[kind] = text[kind].length > 0;
+        if (given[kind] && index[kind] == 0)
+            return mesh_fail_line(r->in, r->line, "%s 0 is invalid (OBJ indices start at 1)", obj_index_name[kind]);
+    }
     if (r->in->corners == NULL) /* only the vertices are kept: the other indices are read past */
-        index[OBJ_TEXTURE] = index[OBJ_NORMAL] = 0;
+        given[OBJ_TEXTURE] = given[OBJ_NORMAL] = false;
     for (int kind = OBJ_TEXTURE; kind <= OBJ_NORMAL && r->in->corners != NULL; kind++) {
-        int has = index[kind] != 0;
+        int has = given[kind];
         if (r->corners_with[kind] < 0)
             r->corners_with[kind] = has;
         if (has != r->corners_with[kind])
@@ -217,7 +223,7 @@ static bool resolve_corner(struct obj_reader *r, struct mesh_token corner, uint3
     }
     out[OBJ_TEXTURE] = out[OBJ_NORMAL] = 0;
     for (int kind = 0; kind < OBJ_INDEX_KINDS; kind++)
-        if ((kind == OBJ_VERTEX || index[kind] != 0) &&
+        if (given[kind] &&
             !resolve_index(r, (enum obj_index)kind, index[kind], text[kind], &out[kind]))
             return false;
     return true;

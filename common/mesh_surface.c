@@ -55,6 +55,8 @@ bool mesh_surface_prepare(struct scene *s, char *err, size_t err_size) {
         }
         for (size_t n = 0; n < c->normal_count; n++) { /* a file's normals made unit, as POV-Ray does */
             double length = vec3_length(c->normals[n]);
+            if (isinf(length)) /* its squares overflow (vn 1e200 0 0): measured without them */
+                length = vec3_length_scaled(c->normals[n]);
             if (length > MESH_SURFACE_MIN_NORMAL)
                 c->normals[n] = vec3_scale(c->normals[n], 1.0 / length);
         }

@@ -28,8 +28,8 @@ static bool whole_key(const struct key_values *kv, int key, double lo, double hi
         return true;
     double x = kv->number[key][0];
     if (!(x >= lo && x <= hi && x == floor(x))) {
-        snprintf(why, why_size, "paths %s must be a whole number from %.0f to %.0f, got %g", path_keys[key].name, lo,
-                 hi, x);
+        snprintf(why, why_size, "paths %s must be a whole number from %.0f to %.0f, got " KEY_NUMBER_SHOWN,
+                 path_keys[key].name, lo, hi, x);
         return false;
     }
     *out = x;

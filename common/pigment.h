@@ -84,10 +84,21 @@ extern const struct pigment_syntax *const pigment_syntaxes[];
 #define PIGMENT_TRANSFORM_KEY_COUNT 3
 extern const struct key_spec pigment_transform_keys[PIGMENT_TRANSFORM_KEY_COUNT];
 
+/* The texture transform's limits, so that the point it makes of any point of the scene stays finite
+ * (and a turn's sine keeps some precision). */
+#define PIGMENT_MIN_SCALE 1e-9  /* each scale's size at least this, at most PIGMENT_MAX_SCALE */
+#define PIGMENT_MAX_SCALE 1e9
+#define PIGMENT_MAX_TURN 1e6    /* degrees each way about each axis */
+
 /* Fills the transform of *p from the values of pigment_transform_keys, which the parser read at
  * positions first .. first + 2 of kv; keys not given leave the identity. Returns false with the reason
- * in why for a scale with a zero component. */
+ * in why for a scale with a zero component or out of range, a turn beyond PIGMENT_MAX_TURN or a move
+ * beyond KEY_MAX_COORD. */
 bool pigment_make_transform(const struct key_values *kv, int first, struct pigment *p, char *why, size_t why_size);
+
+/* Returns true when the image file's name ends in .jpg or .jpeg (either case): POV-Ray's twin names it
+ * `jpeg`, every other `png`, so chapter 14 refuses a file whose bytes say otherwise. */
+bool pigment_file_is_jpeg(const char *file);
 
 /* Writes p as POV-Ray's `pigment { ... }`, every colour as rgbft with the given filter and transmit
  * (the material's), the transform last. An image map names p->file as it is. */

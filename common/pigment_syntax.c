@@ -24,7 +24,20 @@ bool pigment_make_transform(const struct key_values *kv, int first, struct pigme
         snprintf(why, why_size, "pigment '%s': scale must not be 0 along any axis", p->name);
         return false;
     }
-    return true;
+    const double scale[3] = {p->scale.x, p->scale.y, p->scale.z};
+    for (int k = 0; k < 3; k++)
+        if (!(fabs(scale[k]) >= PIGMENT_MIN_SCALE && fabs(scale[k]) <= PIGMENT_MAX_SCALE)) {
+            snprintf(why, why_size,
+                     "pigment '%s': scale " KEY_NUMBER_SHOWN " is out of range (its size must be from %g to %g)",
+                     p->name, scale[k], PIGMENT_MIN_SCALE, PIGMENT_MAX_SCALE);
+            return false;
+        }
+    char what[PIGMENT_NAME_MAX + 32];
+    snprintf(what, sizeof what, "pigment '%s': rotate", p->name);
+    if (!key_vec3_within(p->rotate, PIGMENT_MAX_TURN, what, why, why_size))
+        return false;
+    snprintf(what, sizeof what, "pigment '%s': translate", p->name);
+    return key_vec3_within(p->translate, KEY_MAX_COORD, what, why, why_size);
 }
 
 /* ---- the two colours every pattern but the image takes ---------------------------------------- */
@@ -130,8 +143,8 @@ static bool make_image_map(const struct key_values *kv, struct pigment *p, char 
     if (kv->present[IMAGE_INTERPOLATE]) {
         double interpolate = kv->number[IMAGE_INTERPOLATE][0];
         if (interpolate != 0.0 && interpolate != 2.0) {
-            snprintf(why, why_size, "pigment '%s': interpolate must be 0 (nearest) or 2 (bilinear), got %g", p->name,
-                     interpolate);
+            snprintf(why, why_size, "pigment '%s': interpolate must be 0 (nearest) or 2 (bilinear), got " KEY_NUMBER_SHOWN,
+                     p->name, interpolate);
             return false;
         }
         p->interpolate = (int)interpolate;
@@ -155,6 +168,12 @@ const struct pigment_syntax *const pigment_syntaxes[] = {&checker_syntax, &gradi
                                                          &radial_syntax, &image_map_syntax, NULL};
 
 /* ---- POV-Ray ------------------------------------------------------------------------------------- */
+
+bool pigment_file_is_jpeg(const char *file) {
+    const char *dot = strrchr(file, '.');
+    return dot != NULL && (strcmp(dot, ".jpg") == 0 || strcmp(dot, ".jpeg") == 0 || strcmp(dot, ".JPG") == 0 ||
+                           strcmp(dot, ".JPEG") == 0);
+}
 
 static void write_colour(FILE *out, vec3 c, double filter, double transmit) {
     fprintf(out, "rgbft <%.17g, %.17g, %.17g, %.17g, %.17g>", c.x, c.y, c.z, filter, transmit);
@@ -194,9 +213,7 @@ void pigment_write_pov(FILE *out, const struct pigment *p, double filter, double
         write_colour_map(out, p, filter, transmit);
         break;
     case PIGMENT_IMAGE_MAP: {
-        const char *dot = strrchr(p->file, '.');
-        bool jpeg = dot != NULL && (strcmp(dot, ".jpg") == 0 || strcmp(dot, ".jpeg") == 0 ||
-                                    strcmp(dot, ".JPG") == 0 || strcmp(dot, ".JPEG") == 0);
+        bool jpeg = pigment_file_is_jpeg(p->file);
         /* The whole path, so that POV-Ray finds the file from whichever folder it runs in. */
         char whole[PATH_MAX];
         const char *file = realpath(p->file, whole) != NULL ? whole : p->file;

@@ -252,8 +252,12 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
         return fail(p, "material '%s': colour must not be negative", m.name);
     if (kv.present[EMISSION])
         m.emission = key_vec3(&kv, EMISSION);
-    if (!(m.emission.x >= 0.0 && m.emission.y >= 0.0 && m.emission.z >= 0.0) || !vec3_is_finite(m.emission))
+    vec3 e = m.emission;
+    if (!(e.x >= 0.0 && e.y >= 0.0 && e.z >= 0.0) || !vec3_is_finite(e))
         return fail(p, "material '%s': emission must be finite and not negative", m.name);
+    if (!(e.x <= SCENE_MAX_LIGHT && e.y <= SCENE_MAX_LIGHT && e.z <= SCENE_MAX_LIGHT))
+        return fail(p, "material '%s': emission must be at most %g in each channel, got " KEY_NUMBER_SHOWN " "
+                    KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, m.name, SCENE_MAX_LIGHT, e.x, e.y, e.z);
     if (m.filter + m.transmit > 1.0)
         return fail(p, "material '%s': filter + transmit must not exceed 1", m.name);
     if (!(m.phong_size > 0.0))
@@ -286,7 +290,13 @@ static bool parse_light(const struct parser *p, struct scene *s, char **tok, int
         return fail(p, "out of memory");
     light->position = key_vec3(&kv, POSITION);
     light->colour = kv.present[COLOUR] ? key_vec3(&kv, COLOUR) : vec3_make(1, 1, 1);
+    if (!key_vec3_within(light->colour, SCENE_MAX_LIGHT, "light colour", why, sizeof why))
+        return fail(p, "%s", why);
     light->area = area;
+    /* An area light is a rectangle chapter 15 draws as two triangles: its corners stay in range. */
+    if (area_light_is_area(&area) && !key_vec3_within(light->position, KEY_MAX_COORD, "an area light's position", why,
+                                                      sizeof why))
+        return fail(p, "%s", why);
     return true;
 }
 
@@ -386,7 +396,7 @@ static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int 
     }
     double scale = kv.present[SCALE] ? kv.number[SCALE][0] : 1.0;
     if (!(scale > 0.0))
-        return fail(p, "mesh scale must be positive, got %g", scale);
+        return fail(p, "mesh scale must be positive, got " KEY_NUMBER_SHOWN, scale);
     struct scene_mesh *mesh = grow(&s->meshes, &s->mesh_count, sizeof *mesh);
     if (mesh == NULL)
         return fail(p, "out of memory");

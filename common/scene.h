@@ -20,6 +20,9 @@
 #include "pigment.h"
 #include "shape.h"
 
+/* The brightest light colour or emission, in each channel: a sum of powers (emission times area, over
+ * every emitter) stays finite. */
+#define SCENE_MAX_LIGHT 1e18
 #define SCENE_NAME_MAX 64 /* longest material name, including the terminating zero */
 
 struct material {

@@ -15,8 +15,9 @@
 #define SCENE_MESH_MAX_COORD TRIANGLE_MAX_COORD /* no coordinate beyond 1e18, so no side beyond 2e18 */
 #define SCENE_MESH_MIN_SIZE 1e-18 /* the mesh's largest side at least this */
 
-/* Checks that the placed mesh m lies within the limits above; otherwise writes
- * "scene:line: mesh FILE placed out of range: ..." into err and returns false. */
+/* Checks that the placed mesh m lies within the limits above, and its texture coordinates too (so that
+ * a point of a picture blended from three stays finite); otherwise writes "scene:line: mesh FILE placed
+ * out of range: ..." (or "mesh FILE: texture coordinate ...") into err and returns false. */
 static bool placed_in_range(const struct scene *s, const struct scene_mesh *m, char *err, size_t err_size) {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t k = 0; k < m->mesh.vertex_count; k++) {
@@ -31,6 +32,15 @@ static bool placed_in_range(const struct scene *s, const struct scene_mesh *m, c
             }
             lo[axis] = fmin(lo[axis], c[axis]);
             hi[axis] = fmax(hi[axis], c[axis]);
+        }
+    }
+    for (size_t k = 0; k < m->corners.uv_count; k++) { /* a picture's place, blended across a face */
+        struct mesh_uv uv = m->corners.uvs[k];
+        if (!(fabs(uv.u) <= SCENE_MESH_MAX_COORD && fabs(uv.v) <= SCENE_MESH_MAX_COORD)) {
+            snprintf(err, err_size, "%s:%d: mesh %s: texture coordinate %zu is (%g, %g); texture coordinates must "
+                     "stay within -%g .. %g", s->path, m->line, m->path, k + 1, uv.u, uv.v, SCENE_MESH_MAX_COORD,
+                     SCENE_MESH_MAX_COORD);
+            return false;
         }
     }
     double size = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));

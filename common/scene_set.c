@@ -15,6 +15,7 @@
 #include "scene.h"
 
 #include <ctype.h>
+#include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -141,6 +142,18 @@ static bool is_positional(const char *directive) {
     return false;
 }
 
+/* Reads a line number: digits only (no sign, no spaces, nothing after them), at most INT_MAX. */
+static bool parse_ordinal(const char *digits, int *ordinal) {
+    long value = 0;
+    for (const char *c = digits; *c != '\0'; c++) {
+        if (!isdigit((unsigned char)*c) || value > (INT_MAX - (*c - '0')) / 10)
+            return false;
+        value = value * 10 + (*c - '0');
+    }
+    *ordinal = (int)value;
+    return *digits != '\0';
+}
+
 bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) {
     char path[256], value[512];
     const char *equals = strchr(spec, '=');
@@ -167,10 +180,13 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
     const char *directive = parts[0], *name = NULL, *key = NULL;
     int ordinal = 0;
     if (part_count == 3) {
-        if (isdigit((unsigned char)parts[1][0]))
-            ordinal = atoi(parts[1]);
-        else
+        if (isdigit((unsigned char)parts[1][0])) {
+            if (!parse_ordinal(parts[1], &ordinal))
+                return set_fail(err, err_size, spec, "'%s' is not a line number (digits only, at most %d)", parts[1],
+                                INT_MAX);
+        } else {
             name = parts[1];
+        }
         key = parts[2];
     } else if (part_count == 2) {
         key = parts[1];

@@ -48,6 +48,27 @@ struct key_values {
     const char *word[KEY_MAX];
 };
 
+/* How a message shows a number read from the scene ("got 1048577"): 15 significant digits, so that a
+ * whole number up to 10^15 and any decimal written with 15 digits or fewer print as they were written
+ * (%g's six would print 1048577 as 1.04858e+06, which looks in range). */
+#define KEY_NUMBER_SHOWN "%.15g"
+
+/* The largest coordinate a point of the scene may have: a corner, a placed mesh's vertex, a focal
+ * point, a texture's move. Within it, what the program derives (sums and differences of points,
+ * lengths, boxes in float: triangle.h says why 1e18) stays finite. */
+#define KEY_MAX_COORD 1e18
+
+/* Returns true when every component of v is within -limit .. limit; otherwise false (NaN included), with
+ * "WHAT is (x, y, z); it must stay within -limit .. limit" in why. For every vector a key gives, or that
+ * is derived from keys, that must stay finite through what is computed from it. */
+static inline bool key_vec3_within(vec3 v, double limit, const char *what, char *why, size_t why_size) {
+    if (fabs(v.x) <= limit && fabs(v.y) <= limit && fabs(v.z) <= limit)
+        return true;
+    snprintf(why, why_size, "%s is (" KEY_NUMBER_SHOWN ", " KEY_NUMBER_SHOWN ", " KEY_NUMBER_SHOWN
+             "); it must stay within -%g .. %g", what, v.x, v.y, v.z, limit, limit);
+    return false;
+}
+
 /* Returns the three numbers of key `key` as a vector. */
 static inline vec3 key_vec3(const struct key_values *kv, int key) {
     return vec3_make(kv->number[key][0], kv->number[key][1], kv->number[key][2]);

@@ -47,13 +47,16 @@ vec3 texture_space(const struct pigment *p, vec3 point) {
 
 /* TASK 14.1: the checker pattern */
 static double checker(vec3 q) {
-    int sum = (int)(floor(q.x + TEXTURE_EPSILON) + floor(q.y + TEXTURE_EPSILON) + floor(q.z + TEXTURE_EPSILON));
-    return (sum & 1) ? 1.0 : 0.0;
+    /* The parity of the sum of floors, taken in double: no cast to int, which a point beyond int's
+     * range (or not finite) would make undefined. */
+    double sum = floor(q.x + TEXTURE_EPSILON) + floor(q.y + TEXTURE_EPSILON) + floor(q.z + TEXTURE_EPSILON);
+    return fabs(fmod(sum, 2.0)) == 1.0 ? 1.0 : 0.0;
 }
 
-/* The fractional part of x as POV-Ray's brick takes it: x - (int)x, moved into [0, 1). */
+/* The fractional part of x as POV-Ray's brick takes it: x - (int)x, moved into [0, 1) (trunc: the same
+ * for any x, with no cast that a large x would make undefined). */
 static double brick_fraction(double x) {
-    double f = x - (double)(int)x;
+    double f = x - trunc(x);
     return f < 0.0 ? f + 1.0 : f;
 }
 
@@ -124,7 +127,7 @@ struct texture_colour texture_pigment_at(const struct pigment *p, vec3 point) {
     double value = texture_pattern_value(p, q);
     if (value >= 1.0)
         return (struct texture_colour){p->colour[1], 0.0};
-    if (value <= 0.0)
+    if (!(value > 0.0)) /* NaN too: a point no pattern can place shows colour, never a NaN blend */
         return (struct texture_colour){p->colour[0], 0.0};
     return (struct texture_colour){vec3_add_scaled(p->colour[0], vec3_sub(p->colour[1], p->colour[0]), value), 0.0};
 }

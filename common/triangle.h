@@ -172,7 +172,7 @@ static inline bool triangle_hit_wins(double t, uint32_t face, double best_t, uin
  * alike. The acceleration structures keep boxes in float and the SAH multiplies two sides of a box in
  * float: a side up to 2e18 keeps that area (4e36) below float's largest, 3.4e38, where a corner at
  * 1e39 would not even fit a float box. */
-#define TRIANGLE_MAX_COORD 1e18
+#define TRIANGLE_MAX_COORD KEY_MAX_COORD /* 1e18, shape.h */
 
 /* Returns true when every coordinate of p is within -TRIANGLE_MAX_COORD .. TRIANGLE_MAX_COORD (false
  * for infinity and NaN too). */

@@ -65,4 +65,26 @@ static inline vec3 vec3_max(vec3 a, vec3 b) {
 /* Returns true when every component is a finite number (not NaN, not infinite). */
 static inline _Bool vec3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
+/* Returns a divided by its largest |component| (a itself when that is 0 or not finite): a vector of
+ * the same direction whose length, between 1 and sqrt(3), and whose products with another such vector
+ * neither overflow nor vanish, whatever a's scale. For tests that must not depend on scale. */
+static inline vec3 vec3_unit_max(vec3 a) {
+    double largest = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
+    return largest > 0.0 && isfinite(largest) ? vec3_scale(a, 1.0 / largest) : a;
+}
+
+/* Returns the length of a without overflow or underflow on the way (vec3_length squares its
+ * components: 1e200 would give infinity and 1e-170 zero). */
+static inline double vec3_length_scaled(vec3 a) {
+    double largest = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
+    return largest > 0.0 && isfinite(largest) ? largest * vec3_length(vec3_scale(a, 1.0 / largest)) : vec3_length(a);
+}
+
+/* Returns true when a and b are parallel (or either is zero), whatever their lengths: the sine of the
+ * angle between them is at most `sine`. */
+static inline _Bool vec3_parallel(vec3 a, vec3 b, double sine) {
+    vec3 ua = vec3_unit_max(a), ub = vec3_unit_max(b);
+    return !(vec3_length(vec3_cross(ua, ub)) > sine * vec3_length(ua) * vec3_length(ub));
+}
+
 #endif

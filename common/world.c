@@ -2,9 +2,12 @@
  *
  * Without an acceleration structure, each mesh is tested behind its bounding box; a ray that misses
  * the box adds the mesh's face count to stats_thread.triangle_tests_culled, the triangle tests the box
- * saved. With one (chapters 9 and 10), the structure counts its own work and nothing is culled here. */
+ * saved. The box is padded as the hierarchies pad theirs (world_mesh_cull_bounds), so that it never
+ * turns away a ray the triangle test would call a hit: this loop is the oracle the structures are
+ * tested against. With one (chapters 9 and 10), the structure counts its own work and nothing is culled here. */
 #include "world.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +21,15 @@ struct aabb world_mesh_bounds(const struct mesh *m) {
         for (int c = 0; c < 3; c++)
             bounds = aabb_grow(bounds, m->vertices[m->faces[k].v[c]]);
     return bounds;
+}
+
+struct aabb world_mesh_cull_bounds(const struct mesh *m) {
+    for (size_t k = 0; k < m->face_count; k++) {
+        const uint32_t *v = m->faces[k].v;
+        if (triangle_is_sliver(m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]))
+            return (struct aabb){{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+    }
+    return aabb_pad(world_mesh_bounds(m), triangle_box_pad(m));
 }
 
 int world_object_number(const struct scene *s, const struct shape_list *list, size_t index) {
@@ -64,7 +76,7 @@ bool world_init(struct world *w, const struct scene *s, char *err, size_t err_si
         return false;
     }
     for (size_t k = 0; k < s->mesh_count; k++)
-        w->mesh_bounds[k] = world_mesh_bounds(&s->meshes[k].mesh);
+        w->mesh_bounds[k] = world_mesh_cull_bounds(&s->meshes[k].mesh);
     return true;
 }
 

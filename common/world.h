@@ -43,7 +43,7 @@ struct world_shapes {
 
 struct world {
     const struct scene *scene;
-    struct aabb *mesh_bounds;        /* one box per scene mesh; owned */
+    struct aabb *mesh_bounds;        /* one box per scene mesh (world_mesh_cull_bounds); owned */
     const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
     /* The kinds of shape the queries visit, in this order: those with bounding boxes (spheres, boxes:
      * few, and a near hit shortens the ray before the meshes' boxes are tested), the triangles with the
@@ -67,6 +67,12 @@ void world_free(struct world *w);
 
 /* Returns the bounding box of mesh m (the empty box for a mesh without vertices). */
 struct aabb world_mesh_bounds(const struct mesh *m);
+
+/* Returns the box world_init culls m's rays with: world_mesh_bounds(m) grown by triangle_box_pad(m) on
+ * every side, since the triangle test rounds and may call a ray a hair outside a face a hit (on the
+ * edge of a flat mesh, whose box is flat, the unpadded slab test can miss that ray); all of space when
+ * m has a sliver (triangle_is_sliver), whose hits no pad holds. triangle.h states the bound. */
+struct aabb world_mesh_cull_bounds(const struct mesh *m);
 
 /* Every object of a scene has a number, kept in struct hit.object (chapter 8's interior list tells
  * objects apart by it): the shapes list by list in the scene's order (scene.h), then the meshes (one

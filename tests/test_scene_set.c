@@ -93,6 +93,12 @@ Test(scene_set, mistakes_are_named_exactly) {
         {"light.position=1 2 3", "--set light.position=1 2 3: the scene has no light line"},
         {"sphere.big.radius=1", "--set sphere.big.radius=1: only materials have names; use sphere.N for the Nth sphere line"},
         {"a.b.c.d=1", "--set a.b.c.d=1: PATH has more than three parts"},
+        {"sphere.2x.radius=1", "--set sphere.2x.radius=1: '2x' is not a line number (digits only, at most 2147483647)"},
+        {"sphere.4294967297.radius=1",
+         "--set sphere.4294967297.radius=1: '4294967297' is not a line number (digits only, at most 2147483647)"},
+        {"sphere.2147483648.radius=1",
+         "--set sphere.2147483648.radius=1: '2147483648' is not a line number (digits only, at most 2147483647)"},
+        {"sphere.2147483647.radius=1", "--set sphere.2147483647.radius=1: the scene has fewer than 2147483647 sphere lines"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char err[256];
