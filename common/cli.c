@@ -93,7 +93,8 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
             o->quiet = o->quiet || strcmp(arg, "--quiet") == 0;
             o->stats = o->stats || strcmp(arg, "--stats") == 0;
             takes_value = false;
-        } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0 || strcmp(arg, "--heatmap") == 0) {
+        } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0 || strcmp(arg, "--heatmap") == 0 ||
+                   (ch->output_option != NULL && strcmp(arg, ch->output_option) == 0)) {
             if (value == NULL || value[0] == '\0') {
                 complain("%s needs a file name", arg);
                 return CLI_USAGE;
@@ -110,8 +111,10 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
             }
             else if (strcmp(arg, "--pov") == 0)
                 o->pov = value;
-            else
+            else if (strcmp(arg, "--heatmap") == 0)
                 o->heatmap = value;
+            else
+                o->chapter_output = value;
         } else if (strcmp(arg, "--set") == 0) {
             if (value == NULL || strchr(value, '=') == NULL) {
                 complain("--set needs PATH=VALUE, e.g. --set max_depth=1");
@@ -151,9 +154,16 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
         if (takes_value)
             k++;
     }
-    if (o->pov == NULL && o->heatmap != NULL && outfile_same_file(o->output, o->heatmap)) {
-        complain("-o and --heatmap name the same file ('%s' and '%s'); give two", o->output, o->heatmap);
-        return CLI_USAGE;
+    if (o->pov == NULL) { /* with --pov nothing but the twin is written */
+        const char *names[] = {"-o", "--heatmap", ch->output_option};
+        const char *files[] = {o->output, o->heatmap, o->chapter_output};
+        for (int a = 0; a < 3; a++)
+            for (int b = a + 1; b < 3; b++)
+                if (files[a] != NULL && files[b] != NULL && outfile_same_file(files[a], files[b])) {
+                    complain("%s and %s name the same file ('%s' and '%s'); give two", names[a], names[b], files[a],
+                             files[b]);
+                    return CLI_USAGE;
+                }
     }
     return CLI_OK;
 }
@@ -170,8 +180,10 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
         run->status = status;
         return false;
     }
-    bool to_stdout = strcmp(o->output, "-") == 0 || (o->heatmap != NULL && strcmp(o->heatmap, "-") == 0) ||
-                     (o->pov != NULL && strcmp(o->pov, "-") == 0);
+    bool to_stdout = false;
+    const char *outputs[] = {o->output, o->heatmap, o->pov, o->chapter_output};
+    for (int k = 0; k < 4; k++)
+        to_stdout = to_stdout || (outputs[k] != NULL && strcmp(outputs[k], "-") == 0);
     if (to_stdout && !outfile_reserve_stdout()) {
         complain("cannot set standard output aside for the picture: %s", strerror(errno));
         run->status = CLI_OUTPUT_FAILED;
