@@ -5,6 +5,7 @@
 #include "clock.h"
 #include "heatmap.h"
 #include "outfile.h"
+#include "ray_budget.h"
 #include "scene_scale.h"
 #include "scene_set.h"
 #include "text_escape.h"
@@ -51,11 +52,13 @@ static void print_usage(FILE *out, const struct chapter *ch, const char *program
             "                   material.glass.ior=1.45, sphere.2.radius=0.5 (repeatable)\n"
             "  --stats          also print the details of what the chapter built\n"
             "  --quiet          print nothing but errors\n"
+            "  --no-limit       render even a scene that asks for more than %.0e rays (the\n"
+            "                   bound worked out from its keys before rendering)\n"
             "  -h, --help       show this help\n"
             "%s"
             "\n"
             "exit status: 0 done, 1 bad scene or mesh file, 2 bad command line, 3 cannot write output\n",
-            program, ch->number, ch->title, ch->default_scene, ch->number,
+            program, ch->number, ch->title, ch->default_scene, ch->number, RAY_BUDGET_LIMIT,
             ch->options_help != NULL ? ch->options_help : "");
 }
 
@@ -89,9 +92,10 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
         if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
             print_usage(stdout, ch, argv[0]);
             return -1;
-        } else if (strcmp(arg, "--quiet") == 0 || strcmp(arg, "--stats") == 0) {
+        } else if (strcmp(arg, "--quiet") == 0 || strcmp(arg, "--stats") == 0 || strcmp(arg, "--no-limit") == 0) {
             o->quiet = o->quiet || strcmp(arg, "--quiet") == 0;
             o->stats = o->stats || strcmp(arg, "--stats") == 0;
+            o->no_limit = o->no_limit || strcmp(arg, "--no-limit") == 0;
             takes_value = false;
         } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0 || strcmp(arg, "--heatmap") == 0 ||
                    (ch->output_option != NULL && strcmp(arg, ch->output_option) == 0)) {
@@ -168,6 +172,32 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
     return CLI_OK;
 }
 
+/* Bounds the rays the run's scene asks for: a note above RAY_BUDGET_LARGE, a refusal above
+ * RAY_BUDGET_LIMIT without --no-limit (run->status CLI_BAD_INPUT, returns false). */
+static bool within_budget(struct cli_run *run) {
+    const struct scene *s = &run->scene;
+    struct ray_budget b;
+    double rays = ray_budget_estimate(s, run->chapter->number, &b);
+    bool over = rays > RAY_BUDGET_LIMIT && !run->options.no_limit;
+    if (rays <= RAY_BUDGET_LARGE || (run->options.quiet && !over))
+        return true;
+    char where[PATH_MAX + 32], factors[1024];
+    if (b.line > 0)
+        snprintf(where, sizeof where, "%s:%d", s->path, b.line);
+    else
+        snprintf(where, sizeof where, "%s", s->path);
+    ray_budget_describe(&b, s, run->chapter->number, factors, sizeof factors);
+    if (!over) {
+        complain("%s: note: the scene asks for up to about %.2g rays (%s); this may take a while", where, rays,
+                 factors);
+        return true;
+    }
+    complain("%s: the scene asks for up to about %.2g rays (%s), over the limit of %.0e; pass --no-limit to "
+             "render it anyway", where, rays, factors, RAY_BUDGET_LIMIT);
+    run->status = CLI_BAD_INPUT;
+    return false;
+}
+
 bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv) {
     memset(run, 0, sizeof *run);
     run->chapter = ch;
@@ -201,7 +231,7 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
     if (o->height > 0)
         s->height = o->height;
     scene_drop_unsupported(s, ch->number, o->quiet ? NULL : stderr);
-    return true;
+    return o->pov != NULL || within_budget(run);
 }
 
 int cli_fail(struct cli_run *run) {

@@ -68,6 +68,7 @@ struct cli_options {
     bool output_given; /* -o was used; otherwise the picture goes to out/ */
     bool quiet;
     bool stats;        /* --stats: the chapter's detailed report too */
+    bool no_limit;     /* --no-limit: render even a scene over RAY_BUDGET_LIMIT (ray_budget.h) */
     const char *sets[SCENE_SET_MAX]; /* --set PATH=VALUE changes to the scene, in order */
     int set_count;
 };
@@ -85,7 +86,9 @@ struct cli_run {
 
 /* Starts chapter `ch` with the command line argc/argv: parses the options, reads the scene with the
  * chapter's kinds of shape (printing one line about those it ignores) and applies --set, --width and
- * --height. Returns true when the chapter goes on with its own steps; false when the run is over:
+ * --height. Unless --pov is given, bounds the rays the scene asks for (ray_budget.h): above
+ * RAY_BUDGET_LARGE it says so on standard error (unless --quiet), above RAY_BUDGET_LIMIT it refuses the
+ * scene (exit 1) unless --no-limit is given. Returns true when the chapter goes on with its own steps; false when the run is over:
  * --help was printed, or an error was (run->status says which). Either way, end with cli_finish. */
 bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv);
 
