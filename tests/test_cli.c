@@ -136,22 +136,27 @@ static const char *const multiplying_scene =
     "light position 0 5 5 colour 1 1 1 axis1 1 0 0 axis2 0 0 1 samples 33 33\n"
     "sphere centre 0 0 20 radius 1\n";
 
-Test(budget, a_scene_whose_keys_multiply_past_the_limit_is_refused_naming_them) {
-    const char *scene = scene_file("multiplying.scene", multiplying_scene);
+/* Fails unless chapter n refuses `scene` (exit 1) with "<scene><where>: the scene asks for up to about
+ * <rays> rays (<factors>), over the limit of 1e+12; pass --no-limit to render it anyway". */
+static void expect_over_budget(int n, const char *scene, const char *where, const char *rays, const char *factors) {
     char arguments[512], expected[1024];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", scene);
-    snprintf(expected, sizeof expected,
-             "%s: the scene asks for up to about 8.2e+14 rays (640 x 480 pixels, antialias recursive depth 6: up to "
-             "1089 rays a pixel, blur_samples 37, 1 light (area light 33 x 33): 1089 shadow rays a hit, max_depth 64: "
-             "up to 66626 rays a camera ray), over the limit of 1e+12; pass --no-limit to render it anyway\n", scene);
-    expect_chapter_run(13, arguments, 1, expected);
+    snprintf(expected, sizeof expected, "%s%s: the scene asks for up to about %s rays (%s), over the limit of 1e+12; "
+             "pass --no-limit to render it anyway\n", scene, where, rays, factors);
+    expect_chapter_run(n, arguments, 1, expected);
+}
+
+Test(budget, a_scene_whose_keys_multiply_past_the_limit_is_refused_naming_them) {
+    const char *scene = scene_file("multiplying.scene", multiplying_scene);
+    expect_over_budget(13, scene, "", "8.2e+14",
+                       "640 x 480 pixels, antialias recursive depth 6: up to 1089 rays a pixel, blur_samples 37, "
+                       "1 light (area light 33 x 33): 1089 shadow rays a hit, max_depth 64: up to 66626 rays a camera ray");
     /* Chapter 12 draws neither the lens nor the area: the same scene asks for less, still too much. */
-    snprintf(expected, sizeof expected,
-             "%s: the scene asks for up to about 4.4e+13 rays (640 x 480 pixels, antialias recursive depth 6: up to "
-             "1089 rays a pixel, 1 light: 1 shadow ray a hit, max_depth 64: up to 131074 rays a camera ray), over the "
-             "limit of 1e+12; pass --no-limit to render it anyway\n", scene);
-    expect_chapter_run(12, arguments, 1, expected);
+    expect_over_budget(12, scene, "", "4.4e+13",
+                       "640 x 480 pixels, antialias recursive depth 6: up to 1089 rays a pixel, 1 light: 1 shadow ray "
+                       "a hit, max_depth 64: up to 131074 rays a camera ray");
     /* --quiet does not hide a refusal. */
+    char arguments[512];
     snprintf(arguments, sizeof arguments, "%s --quiet -o " TEST_OUT "/never.png", scene);
     expect_chapter_run(13, arguments, 1, "over the limit of 1e+12");
 }
@@ -161,13 +166,8 @@ Test(budget, paths_that_multiply_past_the_limit_point_at_the_paths_line) {
                                                        "paths samples 1048576 bounces 4096\n"
                                                        "material lamp emission 1 1 1\n"
                                                        "sphere centre 0 0 0 radius 1 material lamp\n");
-    char arguments[512], expected[1024];
-    snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", scene);
-    snprintf(expected, sizeof expected,
-             "%s:3: the scene asks for up to about 2.6e+15 rays (640 x 480 pixels, paths samples 1048576 bounces 4096 "
-             "strategy mis: up to 8195 rays a path), over the limit of 1e+12; pass --no-limit to render it anyway\n",
-             scene);
-    expect_chapter_run(15, arguments, 1, expected);
+    expect_over_budget(15, scene, ":3", "2.6e+15",
+                       "640 x 480 pixels, paths samples 1048576 bounces 4096 strategy mis: up to 8195 rays a path");
 }
 
 Test(budget, no_limit_renders_it_and_says_it_is_large) {
