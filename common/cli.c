@@ -293,7 +293,7 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
     if (!o->output_given)
         mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
     struct render_job job = {.camera = &cam, .trace = trace, .world = world, .threads = o->threads,
-                             .progress = !o->quiet && isatty(STDERR_FILENO),
+                             .progress = !o->quiet,
                              .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = sampler,
                              .antialias = &s->antialias, .lens = &s->lens};
     double started = clock_seconds();

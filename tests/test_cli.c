@@ -104,11 +104,33 @@ Test(cli, the_counters_are_printed) {
     expect_chapter_run(2, arguments, 0, "sphere tests              384000");
 }
 
-Test(cli, no_progress_line_when_stderr_is_not_a_terminal) {
+Test(cli, no_progress_line_for_a_render_shorter_than_the_interval) {
     char command[512], output[8192];
     snprintf(command, sizeof command, "%s --width 64 --height 48 -o " TEST_OUT "/quiet-progress.png", chapter_program(3));
     cr_assert_eq(run_capturing(command, output, sizeof output), 0);
-    cr_assert_null(strstr(output, "rendering:"), "a progress line went to a pipe:\n%s", output);
+    cr_assert_null(strstr(output, "rendering:"), "a progress line for a render of less than 5 s:\n%s", output);
+}
+
+/* A render of chapter 15 that takes a good part of a second, with a line due every 20 ms. */
+#define CLI_SLOW_PATHS "WHITTED_PROGRESS_SECONDS=0.02 %s scenes/15-paths.scene --width 64 --height 64 " \
+                       "--set paths.samples=64 --threads 2 -o " TEST_OUT "/progress.png"
+
+Test(cli, progress_lines_reach_a_pipe_at_every_interval) {
+    char command[512], output[16384];
+    snprintf(command, sizeof command, CLI_SLOW_PATHS, chapter_program(15));
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    /* Lines, not a bar: each ends in a newline, the first ones may come before any block is done. */
+    cr_assert_null(strchr(output, '\r'), "%s", output);
+    const char *line = strstr(output, "rendering: ");
+    cr_assert_not_null(line, "no progress line went to the pipe:\n%s", output);
+    cr_assert(strstr(output, " of 4 blocks after ") != NULL, "%s", output);
+    cr_assert(strstr(output, " s left\n") != NULL || strstr(output, "the time left is known once one is done\n"),
+              "%s", output);
+    cr_assert_not_null(strstr(output, "rendering: done in "), "%s", output);
+    /* --quiet: nothing at all. */
+    snprintf(command, sizeof command, CLI_SLOW_PATHS " --quiet", chapter_program(15));
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    cr_assert_str_eq(output, "");
 }
 
 /* Chapters 10 and 11 on chapter 9's scene (8,786 triangles): what is tested is the line naming the
