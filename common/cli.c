@@ -5,6 +5,7 @@
 #include "clock.h"
 #include "heatmap.h"
 #include "outfile.h"
+#include "ray_budget.h"
 #include "scene_scale.h"
 #include "scene_set.h"
 #include "text_escape.h"
@@ -51,11 +52,13 @@ static void print_usage(FILE *out, const struct chapter *ch, const char *program
             "                   material.glass.ior=1.45, sphere.2.radius=0.5 (repeatable)\n"
             "  --stats          also print the details of what the chapter built\n"
             "  --quiet          print nothing but errors\n"
+            "  --no-limit       render even a scene that asks for more than %.0e rays (the\n"
+            "                   bound worked out from its keys before rendering)\n"
             "  -h, --help       show this help\n"
             "%s"
             "\n"
             "exit status: 0 done, 1 bad scene or mesh file, 2 bad command line, 3 cannot write output\n",
-            program, ch->number, ch->title, ch->default_scene, ch->number,
+            program, ch->number, ch->title, ch->default_scene, ch->number, RAY_BUDGET_LIMIT,
             ch->options_help != NULL ? ch->options_help : "");
 }
 
@@ -89,11 +92,13 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
         if (strcmp(arg, "-h") == 0 || strcmp(arg, "--help") == 0) {
             print_usage(stdout, ch, argv[0]);
             return -1;
-        } else if (strcmp(arg, "--quiet") == 0 || strcmp(arg, "--stats") == 0) {
+        } else if (strcmp(arg, "--quiet") == 0 || strcmp(arg, "--stats") == 0 || strcmp(arg, "--no-limit") == 0) {
             o->quiet = o->quiet || strcmp(arg, "--quiet") == 0;
             o->stats = o->stats || strcmp(arg, "--stats") == 0;
+            o->no_limit = o->no_limit || strcmp(arg, "--no-limit") == 0;
             takes_value = false;
-        } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0 || strcmp(arg, "--heatmap") == 0) {
+        } else if (strcmp(arg, "-o") == 0 || strcmp(arg, "--pov") == 0 || strcmp(arg, "--heatmap") == 0 ||
+                   (ch->output_option != NULL && strcmp(arg, ch->output_option) == 0)) {
             if (value == NULL || value[0] == '\0') {
                 complain("%s needs a file name", arg);
                 return CLI_USAGE;
@@ -110,8 +115,10 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
             }
             else if (strcmp(arg, "--pov") == 0)
                 o->pov = value;
-            else
+            else if (strcmp(arg, "--heatmap") == 0)
                 o->heatmap = value;
+            else
+                o->chapter_output = value;
         } else if (strcmp(arg, "--set") == 0) {
             if (value == NULL || strchr(value, '=') == NULL) {
                 complain("--set needs PATH=VALUE, e.g. --set max_depth=1");
@@ -151,11 +158,44 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
         if (takes_value)
             k++;
     }
-    if (o->pov == NULL && o->heatmap != NULL && outfile_same_file(o->output, o->heatmap)) {
-        complain("-o and --heatmap name the same file ('%s' and '%s'); give two", o->output, o->heatmap);
-        return CLI_USAGE;
+    if (o->pov == NULL) { /* with --pov nothing but the twin is written */
+        const char *names[] = {"-o", "--heatmap", ch->output_option};
+        const char *files[] = {o->output, o->heatmap, o->chapter_output};
+        for (int a = 0; a < 3; a++)
+            for (int b = a + 1; b < 3; b++)
+                if (files[a] != NULL && files[b] != NULL && outfile_same_file(files[a], files[b])) {
+                    complain("%s and %s name the same file ('%s' and '%s'); give two", names[a], names[b], files[a],
+                             files[b]);
+                    return CLI_USAGE;
+                }
     }
     return CLI_OK;
+}
+
+/* Bounds the rays the run's scene asks for: a note above RAY_BUDGET_LARGE, a refusal above
+ * RAY_BUDGET_LIMIT without --no-limit (run->status CLI_BAD_INPUT, returns false). */
+static bool within_budget(struct cli_run *run) {
+    const struct scene *s = &run->scene;
+    struct ray_budget b;
+    double rays = ray_budget_estimate(s, run->chapter->number, &b);
+    bool over = rays > RAY_BUDGET_LIMIT && !run->options.no_limit;
+    if (rays <= RAY_BUDGET_LARGE || (run->options.quiet && !over))
+        return true;
+    char where[PATH_MAX + 32], factors[1024];
+    if (b.line > 0)
+        snprintf(where, sizeof where, "%s:%d", s->path, b.line);
+    else
+        snprintf(where, sizeof where, "%s", s->path);
+    ray_budget_describe(&b, s, run->chapter->number, factors, sizeof factors);
+    if (!over) {
+        complain("%s: note: the scene asks for up to about %.2g rays (%s); this may take a while", where, rays,
+                 factors);
+        return true;
+    }
+    complain("%s: the scene asks for up to about %.2g rays (%s), over the limit of %.0e; pass --no-limit to "
+             "render it anyway", where, rays, factors, RAY_BUDGET_LIMIT);
+    run->status = CLI_BAD_INPUT;
+    return false;
 }
 
 bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv) {
@@ -170,8 +210,10 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
         run->status = status;
         return false;
     }
-    bool to_stdout = strcmp(o->output, "-") == 0 || (o->heatmap != NULL && strcmp(o->heatmap, "-") == 0) ||
-                     (o->pov != NULL && strcmp(o->pov, "-") == 0);
+    bool to_stdout = false;
+    const char *outputs[] = {o->output, o->heatmap, o->pov, o->chapter_output};
+    for (int k = 0; k < 4; k++)
+        to_stdout = to_stdout || (outputs[k] != NULL && strcmp(outputs[k], "-") == 0);
     if (to_stdout && !outfile_reserve_stdout()) {
         complain("cannot set standard output aside for the picture: %s", strerror(errno));
         run->status = CLI_OUTPUT_FAILED;
@@ -189,7 +231,7 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
     if (o->height > 0)
         s->height = o->height;
     scene_drop_unsupported(s, ch->number, o->quiet ? NULL : stderr);
-    return true;
+    return o->pov != NULL || within_budget(run);
 }
 
 int cli_fail(struct cli_run *run) {
@@ -251,7 +293,7 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
     if (!o->output_given)
         mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
     struct render_job job = {.camera = &cam, .trace = trace, .world = world, .threads = o->threads,
-                             .progress = !o->quiet && isatty(STDERR_FILENO),
+                             .progress = !o->quiet,
                              .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = sampler,
                              .antialias = &s->antialias, .lens = &s->lens};
     double started = clock_seconds();

@@ -12,7 +12,7 @@
  *   0  the picture (or POV-Ray twin) was written
  *   1  the scene or a mesh file is wrong (message: "file:line: what is wrong")
  *   2  the command line is wrong (message, then the usage): also an output name longer than the
- *      system takes, or -o and --heatmap naming one file
+ *      system takes, or two outputs (-o, --heatmap, the chapter's own output option) naming one file
  *   3  the output file cannot be written (no such folder, disk or device full), or memory ran out
  *
  * `--heatmap FILE` works in every chapter: it writes how much work each pixel's camera ray cost
@@ -47,6 +47,11 @@ struct chapter {
      * option is unknown, or -1 after printing why its value is wrong. */
     int (*parse_option)(const char *option, const char *value);
     const char *options_help;       /* lines describing those options for --help */
+    /* Optional: the name of one more output file option the chapter writes itself (chapter 15's
+     * "--hdr"), or NULL. The common parser reads it with -o's rules: a name that fits, "-" for
+     * standard output (the counters then go to standard error), never the file of another output. Its
+     * value is in cli_options.chapter_output; the chapter describes it in options_help. */
+    const char *output_option;
 };
 
 #define CLI_ERROR_SIZE (PATH_MAX + 1024) /* longest error message kept: a whole path and the reason */
@@ -57,11 +62,13 @@ struct cli_options {
     const char *output;
     const char *pov;
     const char *heatmap;
+    const char *chapter_output; /* the chapter's output_option's file, or NULL */
     int width, height; /* 0 = as the scene says */
     int threads;       /* 0 = all cores */
     bool output_given; /* -o was used; otherwise the picture goes to out/ */
     bool quiet;
     bool stats;        /* --stats: the chapter's detailed report too */
+    bool no_limit;     /* --no-limit: render even a scene over RAY_BUDGET_LIMIT (ray_budget.h) */
     const char *sets[SCENE_SET_MAX]; /* --set PATH=VALUE changes to the scene, in order */
     int set_count;
 };
@@ -79,7 +86,9 @@ struct cli_run {
 
 /* Starts chapter `ch` with the command line argc/argv: parses the options, reads the scene with the
  * chapter's kinds of shape (printing one line about those it ignores) and applies --set, --width and
- * --height. Returns true when the chapter goes on with its own steps; false when the run is over:
+ * --height. Unless --pov is given, bounds the rays the scene asks for (ray_budget.h): above
+ * RAY_BUDGET_LARGE it says so on standard error (unless --quiet), above RAY_BUDGET_LIMIT it refuses the
+ * scene (exit 1) unless --no-limit is given. Returns true when the chapter goes on with its own steps; false when the run is over:
  * --help was printed, or an error was (run->status says which). Either way, end with cli_finish. */
 bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv);
 

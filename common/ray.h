@@ -34,10 +34,11 @@
  * with transmit 0.9 the weight falls under adc_bailout's 1/255 after 53 crossings. */
 #define RAY_MAX_CROSSINGS 1000
 
-/* The most secondary rays (reflected and refracted, pass-throughs included) one camera ray may spawn.
- * A Whitted tree doubles at every glass surface: with adc_bailout 0 and max_depth 64 it never ends.
- * 65,536 is a thousand times what the shipped scenes use per pixel; past it, rays are black and
- * stats.budget_cut counts them. */
+/* The most secondary rays (reflected and refracted, pass-throughs included) one camera ray may spawn,
+ * the shadow rays of area lights counted among them (chapter 13: 33 x 33 a hit at most). A Whitted
+ * tree doubles at every glass surface: with adc_bailout 0 and max_depth 64 it never ends. 65,536 is a
+ * thousand times what the shipped scenes use per pixel; past it, rays are black and stats.budget_cut
+ * counts them. */
 #define RAY_TREE_BUDGET 65536
 
 /* How many objects deep a ray can be (chapter 8's interior list). Real scenes nest two or three deep

@@ -4,7 +4,13 @@
 #include "clock.h"
 #include "heatmap.h"
 
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
 #include <unistd.h>
 
 #ifdef _OPENMP
@@ -25,12 +31,113 @@ void render_use_threads(int n) {
 #endif
 }
 
-static void print_progress(int done, int pieces, double started) {
-    double elapsed = clock_seconds() - started;
-    double left = done > 0 ? elapsed * (pieces - done) / done : 0.0;
-    fprintf(stderr, "\rrendering: %3d%%  %6.1f s elapsed, about %6.1f s left ", 100 * done / pieces,
-            elapsed, left);
+/* ---- progress --------------------------------------------------------------------------------------
+ * A thread of its own reports the progress while the pixel loop runs, so that a report comes on time
+ * however long one row, block or pixel takes: on a terminal a bar redrawn every
+ * RENDER_PROGRESS_BAR_SECONDS, elsewhere (a pipe, a log file) a line every RENDER_PROGRESS_SECONDS. The
+ * time left is the time so far times the pieces left over the pieces done. */
+
+#define RENDER_PROGRESS_SECONDS 5.0       /* a line at least this often when standard error is no terminal */
+#define RENDER_PROGRESS_BAR_SECONDS 0.25  /* the bar's redraw on a terminal */
+#define RENDER_PROGRESS_ENV "WHITTED_PROGRESS_SECONDS" /* overrides RENDER_PROGRESS_SECONDS (for tests) */
+
+struct progress {
+    const char *unit;       /* "rows" or "blocks" */
+    int pieces;
+    atomic_int done;        /* pieces finished, counted by the render threads */
+    double started, interval;
+    bool terminal, printed; /* printed: a line or the bar was written */
+    bool finished;          /* set by render_image when the loop is over, under `lock` */
+    pthread_mutex_t lock;
+    pthread_cond_t wake;
+};
+
+/* Writes one report: the bar (no newline) on a terminal, a line elsewhere. */
+static void print_progress(struct progress *p) {
+    int done = atomic_load(&p->done);
+    double elapsed = clock_seconds() - p->started;
+    int percent = (int)(100.0 * done / p->pieces);
+    if (p->terminal) { /* the bar: a line written over itself, its end padded over a longer one's */
+        char left[64] = "time left not known yet";
+        if (done > 0)
+            snprintf(left, sizeof left, "about %.1f s left", elapsed * (p->pieces - done) / done);
+        fprintf(stderr, "\rrendering: %3d%%  %6.1f s elapsed, %-26s", percent, elapsed, left);
+    } else if (done == 0) {
+        fprintf(stderr, "rendering: 0%% of %d %s after %.1f s; the time left is known once one is done\n", p->pieces,
+                p->unit, elapsed);
+    } else {
+        fprintf(stderr, "rendering: %d%% of %d %s after %.1f s, about %.1f s left\n", percent, p->pieces, p->unit,
+                elapsed, elapsed * (p->pieces - done) / done);
+    }
     fflush(stderr);
+    p->printed = true;
+}
+
+/* The interval between lines: RENDER_PROGRESS_SECONDS, or the environment's positive number of seconds. */
+static double progress_interval(void) {
+    const char *text = getenv(RENDER_PROGRESS_ENV);
+    char *end = NULL;
+    double seconds = text != NULL ? strtod(text, &end) : 0.0;
+    if (text == NULL || end == text || *end != '\0' || !(seconds > 0.0) || !isfinite(seconds))
+        return RENDER_PROGRESS_SECONDS;
+    return seconds;
+}
+
+/* The reporting thread: a report every interval until render_image says the loop is over. */
+static void *report_progress(void *context) {
+    struct progress *p = context;
+    pthread_mutex_lock(&p->lock);
+    while (!p->finished) {
+        double at = clock_seconds() + p->interval; /* CLOCK_MONOTONIC, as the condition waits by (below) */
+        struct timespec until = {(time_t)at, (long)((at - floor(at)) * 1e9)};
+        while (!p->finished && pthread_cond_timedwait(&p->wake, &p->lock, &until) != ETIMEDOUT) {
+        }
+        if (!p->finished)
+            print_progress(p);
+    }
+    pthread_mutex_unlock(&p->lock);
+    return NULL;
+}
+
+/* Starts the reporting thread for a loop of `pieces` pieces. Returns false (and nothing will be
+ * reported) when no thread can be started, as in the browser's build, which has none. */
+static bool progress_start(struct progress *p, pthread_t *thread, int pieces, const char *unit) {
+    p->unit = unit;
+    p->pieces = pieces;
+    atomic_init(&p->done, 0);
+    p->started = clock_seconds();
+    p->terminal = isatty(STDERR_FILENO);
+    p->interval = p->terminal ? RENDER_PROGRESS_BAR_SECONDS : progress_interval();
+    p->printed = p->finished = false;
+    pthread_condattr_t monotonic;
+    pthread_condattr_init(&monotonic);
+    pthread_condattr_setclock(&monotonic, CLOCK_MONOTONIC);
+    pthread_mutex_init(&p->lock, NULL);
+    pthread_cond_init(&p->wake, &monotonic);
+    pthread_condattr_destroy(&monotonic);
+    if (pthread_create(thread, NULL, report_progress, p) == 0)
+        return true;
+    pthread_cond_destroy(&p->wake);
+    pthread_mutex_destroy(&p->lock);
+    return false;
+}
+
+/* Stops the reporting thread and writes the last report: the full bar on a terminal, or, where lines
+ * were written, a last one. */
+static void progress_stop(struct progress *p, pthread_t thread) {
+    pthread_mutex_lock(&p->lock);
+    p->finished = true;
+    pthread_cond_signal(&p->wake);
+    pthread_mutex_unlock(&p->lock);
+    pthread_join(thread, NULL);
+    pthread_cond_destroy(&p->wake);
+    pthread_mutex_destroy(&p->lock);
+    if (p->terminal) {
+        print_progress(p);
+        fputc('\n', stderr);
+    } else if (p->printed) {
+        fprintf(stderr, "rendering: done in %.1f s\n", clock_seconds() - p->started);
+    }
 }
 
 /* Renders row j of img, one ray through each pixel centre. */
@@ -64,9 +171,9 @@ void render_image(const struct render_job *job, struct image *img, struct stats 
     if (job->sampler != NULL)
         pieces = ((img->width + ANTIALIAS_BLOCK - 1) / ANTIALIAS_BLOCK) *
                  ((img->height + ANTIALIAS_BLOCK - 1) / ANTIALIAS_BLOCK);
-    int pieces_done = 0;
-    double started = clock_seconds();
-    bool progress = job->progress;
+    struct progress progress;
+    pthread_t reporter;
+    bool reporting = job->progress && progress_start(&progress, &reporter, pieces, job->sampler ? "blocks" : "rows");
 #ifdef _OPENMP
     int threads = job->threads > 0 ? job->threads : omp_get_max_threads();
 #endif
@@ -80,21 +187,12 @@ void render_image(const struct render_job *job, struct image *img, struct stats 
                 render_row(job, img, piece);
             else
                 render_block(job, img, piece);
-            int done;
-#pragma omp atomic capture
-            done = ++pieces_done;
-            bool first_thread = true;
-#ifdef _OPENMP
-            first_thread = omp_get_thread_num() == 0;
-#endif
-            if (progress && first_thread)
-                print_progress(done, pieces, started);
+            if (reporting)
+                atomic_fetch_add(&progress.done, 1);
         }
 #pragma omp critical
         stats_add(total, &stats_thread);
     }
-    if (progress) {
-        print_progress(pieces, pieces, started);
-        fputc('\n', stderr);
-    }
+    if (reporting)
+        progress_stop(&progress, reporter);
 }

@@ -41,7 +41,9 @@ struct render_job {
     render_trace_fn trace;
     const void *world;
     int threads;        /* 0 = as many as OpenMP offers */
-    bool progress;      /* print a progress line with an estimate of the time left to stderr */
+    bool progress;      /* report the progress and the time left on stderr while rendering: a bar on a
+                         * terminal, else a line every 5 s (render.c's RENDER_PROGRESS_SECONDS, or the
+                         * environment's WHITTED_PROGRESS_SECONDS) */
     struct image *heatmap; /* optional (NULL): the work each pixel cost, drawn by heatmap_colour */
     const struct render_sampler *sampler; /* optional (NULL): one ray through each pixel centre */
     const struct antialias *antialias;    /* the sampler's settings (the scene's antialias line) */

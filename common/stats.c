@@ -81,8 +81,9 @@ void stats_warn_limits(FILE *out, const struct stats *s) {
                 "(RAY_MAX_CROSSINGS); those pixels are darker than POV-Ray's\n",
                 s->crossings_capped, RAY_MAX_CROSSINGS);
     if (s->budget_cut != 0)
-        fprintf(out, "warning: %" PRIu64 " secondary rays were not traced: their camera ray had spawned %d already "
-                "(RAY_TREE_BUDGET); raise adc_bailout or lower max_depth\n",
+        fprintf(out, "warning: %" PRIu64 " secondary rays were not traced: their camera ray had spent %d already "
+                "(RAY_TREE_BUDGET: secondary rays and area-light shadow rays); raise adc_bailout or lower "
+                "max_depth\n",
                 s->budget_cut, RAY_TREE_BUDGET);
     if (s->interior_overflows != 0)
         fprintf(out, "warning: %" PRIu64 " times a ray entered an object while already inside %d "

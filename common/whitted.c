@@ -6,6 +6,7 @@
 
 #include "interior.h"
 #include "phong.h"
+#include "scene.h"
 #include "shadow.h"
 #include "stats.h"
 
@@ -32,8 +33,22 @@ bool whitted_refract(vec3 direction, vec3 normal, double eta, vec3 *out) {
 struct tree {
     const struct world *w;
     phong_shadow_fn shadow; /* each light's shadow: shadow_filtered, or chapter 13's soft shadows */
-    int budget; /* secondary rays this tree may still spawn (RAY_TREE_BUDGET) */
+    int budget; /* secondary rays and area-light shadow rays this tree may still spend (RAY_TREE_BUDGET) */
 };
+
+/* Each light's shadow factor by the tree's shadow function, called by phong_shade with the tree as its
+ * world. An area light's shadow rays (up to 33 x 33 a hit) are spent from the tree's budget as its
+ * secondary rays are, so that they too stop a deep tree; a point light's one ray is not. */
+static vec3 budgeted_shadow(const void *tree, vec3 point, const struct light *light) {
+    struct tree *t = (struct tree *)tree; /* the tree trace() handed phong_shade, not const there */
+    uint64_t before = stats_thread.shadow_rays;
+    vec3 passed = t->shadow(t->w, point, light);
+    if (area_light_is_area(&light->area)) {
+        uint64_t spent = stats_thread.shadow_rays - before;
+        t->budget = spent >= (uint64_t)t->budget ? 0 : t->budget - (int)spent;
+    }
+    return passed;
+}
 
 static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level, double weight);
 
@@ -77,7 +92,7 @@ static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level,
             m = s->paint(s, &h, point, &painted);
         vec3 facing = hit_facing_normal(&h, r.direction);
         struct phong_surface at = {point, facing, r.direction, m, 1.0 - m->filter - m->transmit};
-        vec3 colour = phong_shade(s, &at, t->shadow, t->w);
+        vec3 colour = phong_shade(s, &at, budgeted_shadow, t);
 
         /* Light through the surface: colour * filter + transmit per channel, refracted only when its
          * grey value passes adc_bailout; the new ray's weight is this ray's times its largest channel. */

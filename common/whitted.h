@@ -10,8 +10,8 @@
  * POV-Ray. A ray that would be of level max_depth + 1 is black, and so is one whose weight (W times
  * reflection, or times the largest channel of colour * filter + transmit) is under the scene's
  * adc_bailout. A crossing between equal indices bends nothing and does not use up a level (POV-Ray's
- * rule); it is followed by a loop, at most RAY_MAX_CROSSINGS times, and one camera ray spawns at most
- * RAY_TREE_BUDGET secondary rays (ray.h). Secondary rays start on the surface itself and accept hits
+ * rule); it is followed by a loop, at most RAY_MAX_CROSSINGS times, and one camera ray spends at most
+ * RAY_TREE_BUDGET secondary rays and area-light shadow rays (ray.h). Secondary rays start on the surface itself and accept hits
  * from ray_t_min(their origin) on. */
 #ifndef WHITTED_WHITTED_H
 #define WHITTED_WHITTED_H

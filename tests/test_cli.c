@@ -1,6 +1,7 @@
 /* test_cli.c: the chapter programs from the outside: options, exit codes, messages for bad input,
  * and no half-written output. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,6 +9,9 @@
 #include <sys/wait.h>
 
 #include "image_test_support.h"
+#include "ray_budget.h"
+#include "ray.h"
+#include "scene.h"
 #include "test_support.h"
 
 /* Writes `text` to a scene file in the test folder and returns its path. */
@@ -100,11 +104,33 @@ Test(cli, the_counters_are_printed) {
     expect_chapter_run(2, arguments, 0, "sphere tests              384000");
 }
 
-Test(cli, no_progress_line_when_stderr_is_not_a_terminal) {
+Test(cli, no_progress_line_for_a_render_shorter_than_the_interval) {
     char command[512], output[8192];
     snprintf(command, sizeof command, "%s --width 64 --height 48 -o " TEST_OUT "/quiet-progress.png", chapter_program(3));
     cr_assert_eq(run_capturing(command, output, sizeof output), 0);
-    cr_assert_null(strstr(output, "rendering:"), "a progress line went to a pipe:\n%s", output);
+    cr_assert_null(strstr(output, "rendering:"), "a progress line for a render of less than 5 s:\n%s", output);
+}
+
+/* A render of chapter 15 that takes a good part of a second, with a line due every 20 ms. */
+#define CLI_SLOW_PATHS "WHITTED_PROGRESS_SECONDS=0.02 %s scenes/15-paths.scene --width 64 --height 64 " \
+                       "--set paths.samples=64 --threads 2 -o " TEST_OUT "/progress.png"
+
+Test(cli, progress_lines_reach_a_pipe_at_every_interval) {
+    char command[512], output[16384];
+    snprintf(command, sizeof command, CLI_SLOW_PATHS, chapter_program(15));
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    /* Lines, not a bar: each ends in a newline, the first ones may come before any block is done. */
+    cr_assert_null(strchr(output, '\r'), "%s", output);
+    const char *line = strstr(output, "rendering: ");
+    cr_assert_not_null(line, "no progress line went to the pipe:\n%s", output);
+    cr_assert(strstr(output, " of 4 blocks after ") != NULL, "%s", output);
+    cr_assert(strstr(output, " s left\n") != NULL || strstr(output, "the time left is known once one is done\n"),
+              "%s", output);
+    cr_assert_not_null(strstr(output, "rendering: done in "), "%s", output);
+    /* --quiet: nothing at all. */
+    snprintf(command, sizeof command, CLI_SLOW_PATHS " --quiet", chapter_program(15));
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    cr_assert_str_eq(output, "");
 }
 
 /* Chapters 10 and 11 on chapter 9's scene (8,786 triangles): what is tested is the line naming the
@@ -117,4 +143,157 @@ Test(cli, stats_adds_the_structure_and_the_predicted_cost) {
                        0, "acceleration: fast BVH, rung 3 simd (binned SAH) over 8786 triangles");
     expect_chapter_run(11, "scenes/09-kdtree.scene --rung 1 --stats --width 64 --height 48 -o " TEST_OUT "/stats.png", 0,
                        "acceleration: BVH (binned SAH) over 8786 triangles");
+}
+
+/* ---- the rays a scene asks for (common/ray_budget.h) -------------------------------------------- */
+
+/* A 640 x 480 picture whose keys multiply: recursive anti-aliasing at depth 6, a lens of 37 rays, a
+ * 33 x 33 area light, max_depth 64. Its only sphere is behind the camera, so that rendering it (at a
+ * smaller size, with --no-limit) takes one ray a lens point. */
+static const char *const multiplying_scene =
+    "camera eye 0 0 5 target 0 0 0 fov 40 aperture 0.1 focal_point 0 0 0 blur_samples 37\n"
+    "image 640 480\n"
+    "max_depth 64\n"
+    "antialias method recursive samples 6\n"
+    "light position 0 5 5 colour 1 1 1 axis1 1 0 0 axis2 0 0 1 samples 33 33\n"
+    "sphere centre 0 0 20 radius 1\n";
+
+/* Fails unless chapter n refuses `scene` (exit 1) with "<scene><where>: the scene asks for up to about
+ * <rays> rays (<factors>), over the limit of 1e+12; pass --no-limit to render it anyway". */
+static void expect_over_budget(int n, const char *scene, const char *where, const char *rays, const char *factors) {
+    char arguments[512], expected[1024];
+    snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/never.png", scene);
+    snprintf(expected, sizeof expected, "%s%s: the scene asks for up to about %s rays (%s), over the limit of 1e+12; "
+             "pass --no-limit to render it anyway\n", scene, where, rays, factors);
+    expect_chapter_run(n, arguments, 1, expected);
+}
+
+Test(budget, a_scene_whose_keys_multiply_past_the_limit_is_refused_naming_them) {
+    const char *scene = scene_file("multiplying.scene", multiplying_scene);
+    expect_over_budget(13, scene, "", "8.2e+14",
+                       "640 x 480 pixels, antialias recursive depth 6: up to 1089 rays a pixel, blur_samples 37, "
+                       "1 light (area light 33 x 33): 1089 shadow rays a hit, max_depth 64: up to 66626 rays a camera ray");
+    /* Chapter 12 draws neither the lens nor the area: the same scene asks for less, still too much. */
+    expect_over_budget(12, scene, "", "4.4e+13",
+                       "640 x 480 pixels, antialias recursive depth 6: up to 1089 rays a pixel, 1 light: 1 shadow ray "
+                       "a hit, max_depth 64: up to 131074 rays a camera ray");
+    /* --quiet does not hide a refusal. */
+    char arguments[512];
+    snprintf(arguments, sizeof arguments, "%s --quiet -o " TEST_OUT "/never.png", scene);
+    expect_chapter_run(13, arguments, 1, "over the limit of 1e+12");
+}
+
+Test(budget, paths_that_multiply_past_the_limit_point_at_the_paths_line) {
+    const char *scene = scene_file("many-paths.scene", "camera eye 0 0 5 target 0 0 0 fov 40\nimage 640 480\n"
+                                                       "paths samples 1048576 bounces 4096\n"
+                                                       "material lamp emission 1 1 1\n"
+                                                       "sphere centre 0 0 0 radius 1 material lamp\n");
+    expect_over_budget(15, scene, ":3", "2.6e+15",
+                       "640 x 480 pixels, paths samples 1048576 bounces 4096 strategy mis: up to 8195 rays a path");
+}
+
+Test(budget, no_limit_renders_it_and_says_it_is_large) {
+    const char *scene = scene_file("multiplying-small.scene", multiplying_scene);
+    char arguments[512], expected[1024];
+    /* 100 x 100 pixels: still over the limit by its keys, one ray a lens point in fact. */
+    snprintf(arguments, sizeof arguments, "%s --width 100 --height 100 --no-limit -o " TEST_OUT "/no-limit.png", scene);
+    snprintf(expected, sizeof expected,
+             "%s: note: the scene asks for up to about 2.7e+13 rays (100 x 100 pixels, antialias recursive depth 6: "
+             "up to 1089 rays a pixel, blur_samples 37, 1 light (area light 33 x 33): 1089 shadow rays a hit, "
+             "max_depth 64: up to 66626 rays a camera ray); this may take a while\n", scene);
+    expect_chapter_run(13, arguments, 0, expected);
+    /* With --quiet, nothing at all. */
+    char command[1024], output[4096];
+    snprintf(command, sizeof command, "%s %s --width 100 --height 100 --no-limit --quiet -o " TEST_OUT "/no-limit.png",
+             chapter_program(13), scene);
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    cr_assert_str_eq(output, "");
+    /* The POV-Ray twin renders nothing here, so it is never refused. */
+    snprintf(arguments, sizeof arguments, "%s --pov " TEST_OUT "/multiplying.pov --quiet", scene);
+    expect_chapter_run(13, arguments, 0, "");
+}
+
+/* Reads scene text as a chapter does (its kinds of shape do not matter here) and returns the bound. */
+static double bound_of(const char *text, int chapter, struct ray_budget *b) {
+    struct scene s;
+    char err[1024];
+    cr_assert(scene_parse("bound.scene", text, NULL, &s, err, sizeof err), "%s", err);
+    scene_drop_unsupported(&s, chapter, NULL);
+    double rays = ray_budget_estimate(&s, chapter, b);
+    scene_free(&s);
+    return rays;
+}
+
+Test(budget, the_bound_multiplies_what_each_chapter_draws) {
+    const char *text = "camera eye 0 0 5 target 0 0 0 fov 40 aperture 0.1 focal_point 0 0 0 blur_samples 7\n"
+                       "image 10 10\nmax_depth 3\nantialias method grid samples 4\n"
+                       "light position 0 5 5 colour 1 1 1\n"
+                       "light position 0 5 5 colour 1 1 1 axis1 1 0 0 axis2 0 0 1 samples 5 5\n";
+    struct ray_budget b;
+    cr_assert_float_eq(bound_of(text, 6, &b), 100.0, 0); /* one ray a pixel, no shadows */
+    cr_assert_float_eq(bound_of(text, 7, &b), 100.0 * 3, 0); /* two point lights' shadow rays */
+    cr_assert_float_eq(bound_of(text, 8, &b), 100.0 * 7 * 3, 0); /* 2^3 - 1 rays a tree */
+    cr_assert_float_eq(bound_of(text, 12, &b), 100.0 * 16 * 7 * 3, 0); /* 4 x 4 camera rays a pixel */
+    cr_assert_float_eq(bound_of(text, 13, &b), 100.0 * 16 * 7 * 7 * 27, 0); /* the lens; 1 + 25 shadow rays */
+    cr_assert_float_eq(b.shadow_per_hit, 26, 0);
+    /* The adaptive methods' worst case, with the rays each block takes beyond its edges (40 x 40 pixels
+     * are 2 x 2 blocks). */
+    const char *adaptive = "camera eye 0 0 5 target 0 0 0 fov 40\nimage 40 40\nmax_depth 1\n"
+                           "antialias method adaptive samples 3\n";
+    cr_assert_float_eq(bound_of(adaptive, 12, &b), 1600.0 * 10 + 2 * 40 + 2 * 40, 0);
+    const char *recursive = "camera eye 0 0 5 target 0 0 0 fov 40\nimage 40 40\nmax_depth 1\n"
+                            "antialias method recursive samples 2\n";
+    cr_assert_float_eq(bound_of(recursive, 12, &b), 1600.0 * (9 - 4) + 1600 + 2 * 40 + 2 * 40 + 4, 0);
+    /* Chapter 15: samples x (bounces + 2 rays and bounces + 1 shadow rays), none for scatter. */
+    const char *paths = "camera eye 0 0 5 target 0 0 0 fov 40\nimage 10 10\npaths samples 4 bounces 10\n";
+    cr_assert_float_eq(bound_of(paths, 15, &b), 100.0 * 4 * 23, 0);
+    const char *scatter = "camera eye 0 0 5 target 0 0 0 fov 40\nimage 10 10\npaths samples 4 bounces 10 "
+                          "strategy scatter\n";
+    cr_assert_float_eq(bound_of(scatter, 15, &b), 100.0 * 4 * 12, 0);
+    cr_assert_eq(b.line, 3);
+}
+
+Test(budget, the_tree_budget_caps_the_bound_and_nothing_overflows) {
+    /* max_depth 64 alone would be 2^64 - 1 rays a tree: the budget holds it to 1 + 65536 rays, each
+     * with its point light's shadow ray. */
+    const char *deep = "camera eye 0 0 5 target 0 0 0 fov 40\nimage 1 1\nmax_depth 64\n"
+                       "light position 0 5 5 colour 1 1 1\n";
+    struct ray_budget b;
+    cr_assert_float_eq(bound_of(deep, 8, &b), 2.0 * (1 + RAY_TREE_BUDGET), 0);
+    /* Every key at its largest: finite, and far over the limit. */
+    static char text[1 << 16];
+    int used = snprintf(text, sizeof text, "camera eye 0 0 5 target 0 0 0 fov 40 aperture 1 focal_point 0 0 0 "
+                        "blur_samples 37\nimage 16384 16384\nmax_depth 64\nantialias method recursive samples 6\n");
+    for (int k = 0; k < 100; k++)
+        used += snprintf(text + used, sizeof text - (size_t)used, "light position 0 5 5 colour 1 1 1 axis1 1 0 0 "
+                         "axis2 0 0 1 samples 33 33\n");
+    double rays = bound_of(text, 14, &b);
+    cr_assert(isfinite(rays) && rays > RAY_BUDGET_LIMIT, "%g", rays);
+    /* The shipped scene that asks for the most stays under the note. */
+    struct scene s;
+    char err[1024];
+    cr_assert(scene_load("scenes/13-distributed.scene", NULL, &s, err, sizeof err), "%s", err);
+    rays = ray_budget_estimate(&s, 13, &b);
+    scene_free(&s);
+    cr_assert(rays > 1e9 && rays < RAY_BUDGET_LARGE, "%g", rays);
+}
+
+/* A deep tree of glass panes lit by a 33 x 33 area light: every hit sends 1089 shadow rays. They are
+ * spent from the tree's budget (RAY_TREE_BUDGET), so four pixels are quick; before, more than 30 s. */
+Test(budget, area_light_shadow_rays_are_spent_from_the_tree_budget, .timeout = 60) {
+    static char text[4096];
+    int used = snprintf(text, sizeof text, "camera eye 0 0 10 target 0 0 0 fov 30\nimage 2 2\n"
+                        "light position 0 10 10 colour 1 1 1 axis1 1 0 0 axis2 0 1 0 samples 33 33\n"
+                        "max_depth 64\nadc_bailout 0\n"
+                        "material glass colour 1 1 1 ambient 0 diffuse 0.5 reflection 0.5 transmit 0.5 ior 1.5\n");
+    for (int k = 0; k < 20; k++)
+        used += snprintf(text + used, sizeof text - (size_t)used, "plane normal 0 0 1 distance %g material glass\n",
+                         -0.5 * k);
+    const char *scene = scene_file("lit-panes.scene", text);
+    char arguments[512];
+    snprintf(arguments, sizeof arguments, "%s --threads 1 -o " TEST_OUT "/lit-panes.png", scene);
+    expect_chapter_run(13, arguments, 0, "their camera ray had spent 65536 already (RAY_TREE_BUDGET: secondary rays "
+                                         "and area-light shadow rays)");
+    /* Every camera ray stops within its budget and one more hit's shadow rays. */
+    expect_chapter_run(13, arguments, 0, "rays (all)                266216");
 }

@@ -116,6 +116,16 @@ Test(io, a_symbolic_link_stays_a_link_and_its_target_gets_the_picture) {
     expect_png(target, 320, 240);
 }
 
+/* Fails unless the files `piped` (what standard output received) and `direct` hold the same bytes. */
+static void expect_same_bytes(const char *piped, const char *direct) {
+    size_t piped_size, direct_size;
+    char *a = read_file(piped, &piped_size), *b = read_file(direct, &direct_size);
+    cr_assert_eq(piped_size, direct_size, "standard output holds %zu bytes, %s %zu", piped_size, direct, direct_size);
+    cr_assert_eq(memcmp(a, b, direct_size), 0);
+    free(a);
+    free(b);
+}
+
 Test(io, dash_writes_the_png_to_standard_output_and_nothing_else) {
     const char *piped = fresh("io-stdout.png"), *log = fresh("io-stdout.log"), *direct = fresh("io-direct.png");
     char command[512], output[4096];
@@ -123,12 +133,7 @@ Test(io, dash_writes_the_png_to_standard_output_and_nothing_else) {
     cr_assert_eq(system(command), 0);
     snprintf(command, sizeof command, "%s -o %s --quiet", chapter_program(2), direct);
     cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
-    size_t piped_size, direct_size;
-    char *a = read_file(piped, &piped_size), *b = read_file(direct, &direct_size);
-    cr_assert_eq(piped_size, direct_size, "standard output holds %zu bytes, the PNG %zu", piped_size, direct_size);
-    cr_assert_eq(memcmp(a, b, direct_size), 0);
-    free(a);
-    free(b);
+    expect_same_bytes(piped, direct);
     char *counters = read_text_file(log);
     cr_assert_not_null(strstr(counters, "sphere tests"), "the counters did not go to standard error:\n%s", counters);
     free(counters);
@@ -181,6 +186,64 @@ Test(io, the_picture_and_the_heat_map_may_not_share_a_file) {
     /* Two names of different files are fine. */
     snprintf(arguments, sizeof arguments, "-o %s --heatmap " TEST_OUT "/io-twice-heat.png --quiet", picture);
     expect_chapter_run(2, arguments, 0, "");
+}
+
+/* Chapter 15's --hdr is a third output with the same rules: a small, quick render of its scene. */
+#define IO_QUICK_PATHS "--width 8 --height 8 --set paths.samples=1"
+
+Test(io, the_linear_radiance_may_not_share_a_file_with_the_picture_or_the_heat_map) {
+    const char *picture = fresh("io-hdr-twice.png"), *heat = fresh("io-hdr-heat.png");
+    char arguments[1024], expected[512];
+    snprintf(arguments, sizeof arguments, IO_QUICK_PATHS " -o %s --hdr %s", picture, picture);
+    snprintf(expected, sizeof expected, "-o and --hdr name the same file ('%s' and '%s'); give two", picture, picture);
+    expect_chapter_run(15, arguments, 2, expected);
+    cr_assert_neq(access(picture, F_OK), 0, "something was written");
+    snprintf(arguments, sizeof arguments, IO_QUICK_PATHS " --heatmap %s --hdr " TEST_OUT "/../test/./io-hdr-heat.png",
+             heat);
+    snprintf(expected, sizeof expected,
+             "--heatmap and --hdr name the same file ('%s' and '" TEST_OUT "/../test/./io-hdr-heat.png'); give two",
+             heat);
+    expect_chapter_run(15, arguments, 2, expected);
+    /* The default picture's name counts too, and so does standard output named twice. */
+    expect_chapter_run(15, IO_QUICK_PATHS " --hdr out/chapter-15.png", 2,
+                       "-o and --hdr name the same file ('out/chapter-15.png' and 'out/chapter-15.png'); give two");
+    expect_chapter_run(15, IO_QUICK_PATHS " -o - --hdr -", 2, "-o and --hdr name the same file ('-' and '-'); give two");
+    /* Under --pov nothing but the twin is written, so nothing is named twice. */
+    snprintf(arguments, sizeof arguments, IO_QUICK_PATHS " --pov " TEST_OUT "/io-hdr.pov --hdr out/chapter-15.png "
+             "--quiet");
+    expect_chapter_run(15, arguments, 0, "");
+}
+
+Test(io, the_linear_radiance_follows_the_rules_of_every_output) {
+    static char arguments[PATH_MAX + 512], name[PATH_MAX + 256];
+    memset(name, 'h', NAME_MAX);
+    name[NAME_MAX] = '\0';
+    snprintf(arguments, sizeof arguments, IO_QUICK_PATHS " --hdr %s", name);
+    char expected[256];
+    snprintf(expected, sizeof expected, "--hdr: the file name is too long (%d bytes; the system allows %d for a path, "
+             "%d for one name, less 10 for the temporary file)", NAME_MAX, PATH_MAX - 1, NAME_MAX);
+    expect_chapter_run(15, arguments, 2, expected);
+    expect_chapter_run(15, IO_QUICK_PATHS " --hdr ''", 2, "--hdr needs a file name");
+    expect_chapter_run(15, IO_QUICK_PATHS " --hdr", 2, "--hdr needs a file name");
+    expect_chapter_run(15, IO_QUICK_PATHS " --hdr " TEST_OUT "/no-such-folder/x.hdr -o " TEST_OUT "/io-hdr.png", 3,
+                       TEST_OUT "/no-such-folder/x.hdr: cannot create: No such file or directory");
+}
+
+Test(io, dash_as_hdr_writes_the_radiance_to_standard_output_and_the_report_to_standard_error) {
+    const char *piped = fresh("io-hdr-stdout.hdr"), *log = fresh("io-hdr-stdout.log"), *direct = fresh("io-hdr.hdr");
+    const char *picture = fresh("io-hdr-picture.png");
+    char command[1024], output[4096];
+    snprintf(command, sizeof command, IO_TIMEOUT " %s " IO_QUICK_PATHS " -o %s --hdr - > %s 2> %s",
+             chapter_program(15), picture, piped, log);
+    cr_assert_eq(system(command), 0);
+    snprintf(command, sizeof command, IO_TIMEOUT " %s " IO_QUICK_PATHS " -o %s --hdr %s --quiet", chapter_program(15),
+             picture, direct);
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    expect_same_bytes(piped, direct);
+    char *report = read_text_file(log);
+    cr_assert_not_null(strstr(report, "linear radiance: standard output\npaths: 1 a pixel"),
+                       "the report did not go to standard error:\n%s", report);
+    free(report);
 }
 
 Test(io, same_file_compares_inodes_and_resolved_names) {

@@ -237,7 +237,7 @@ Test(runaway, without_adc_bailout_a_deep_tree_stops_at_the_ray_budget, .timeout 
     char *err;
     int status = run_hostile(scene, "--threads 1", &err);
     cr_assert_eq(status, 0, "exit %d (it never finished before), stderr:\n%s", status, err);
-    cr_assert_not_null(strstr(err, "secondary rays were not traced: their camera ray had spawned 65536 already"),
+    cr_assert_not_null(strstr(err, "secondary rays were not traced: their camera ray had spent 65536 already"),
                        "%s", err);
     free(err);
 }

@@ -8,6 +8,7 @@
  * file with --hdr (common/path_image.c). The world is chapter 11's fast BVH, the surfaces may be
  * chapter 14's textures, and the random numbers chapter 12's counter-based hash: the picture is the same
  * for any number of threads. */
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,26 +20,17 @@
 #include "fast_bvh.h"
 #include "lens.h"
 #include "mesh_surface.h"
-#include "outfile.h"
 #include "path_image.h"
 #include "path_trace.h"
 #include "plane.h"
 #include "sphere.h"
+#include "text_escape.h"
 #include "texture.h"
 #include "triangle.h"
 
 static struct accel_choice choice = {ACCEL_BVH, true};
-static const char *hdr_path; /* --hdr FILE, or NULL */
 
 static int parse_option(const char *option, const char *value) {
-    if (strcmp(option, "--hdr") == 0) {
-        if (value == NULL || value[0] == '\0' || !outfile_name_fits(value)) {
-            fprintf(stderr, "--hdr needs a file name that fits in a path\n");
-            return -1;
-        }
-        hdr_path = value;
-        return 2;
-    }
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
@@ -52,9 +44,11 @@ int main(int argc, char **argv) {
         .lighting = POV_WHITTED,
         .parse_option = parse_option,
         .options_help = "  --hdr FILE       also write the linear radiance: a Radiance .hdr file, or a Portable\n"
-                        "                   Float Map when FILE ends in .pfm (every float kept whole)\n"
+                        "                   Float Map when FILE ends in .pfm (every float kept whole); - for\n"
+                        "                   standard output (the counters then go to standard error)\n"
                         "  --accel KIND     none, kdtree or bvh (default bvh: chapter 11's fast BVH)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule\n",
+        .output_option = "--hdr",
     };
     struct cli_run run;
     if (!cli_start(&run, &chapter, argc, argv))
@@ -102,6 +96,7 @@ int main(int argc, char **argv) {
         path_world_init(&paths, &w->world, &emitters, &cam, &s->paths);
         struct path_picture picture = {&paths, linear, error, s->width};
         bool report = cli_render_sampled(&run, NULL, &picture, &path_sampler);
+        const char *hdr_path = run.options.chapter_output; /* --hdr FILE, with -o's rules (cli.h) */
         if (run.status == CLI_OK && run.options.pov == NULL && hdr_path != NULL) {
             size_t length = strlen(hdr_path);
             bool pfm = length >= 4 && strcmp(hdr_path + length - 4, ".pfm") == 0;
@@ -110,7 +105,9 @@ int main(int argc, char **argv) {
                 fprintf(stderr, "%s\n", run.err);
                 run.status = CLI_OUTPUT_FAILED;
             } else if (!run.options.quiet) {
-                printf("linear radiance: %s\n", hdr_path);
+                char shown[4 * PATH_MAX];
+                text_escape(strcmp(hdr_path, "-") == 0 ? "standard output" : hdr_path, shown, sizeof shown);
+                printf("linear radiance: %s\n", shown);
             }
         }
         if (report && run.status == CLI_OK) {
