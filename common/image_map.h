@@ -30,9 +30,11 @@ float image_map_decode_srgb(float encoded);
 double image_map_png_gamma(const uint8_t *bytes, size_t size);
 
 /* Reads the image file at `path` into *image as linear red, green, blue and alpha, and notes whether
- * every alpha is 1 (image->opaque: POV-Ray's test for an image that lets no light through). Returns false with
- * the reason in why ("path: cannot open: ...", "path: not a PNG or JPEG image (...)", "path: 70000 x
- * 70000 pixels is too large (at most ...)") and *image empty. */
+ * every alpha is 1 (image->opaque: POV-Ray's test for an image that lets no light through). Before the
+ * decoder sees the bytes, their signature and header are checked. Returns false with the reason in words
+ * in why ("path: cannot open: ...", "path: not a PNG or JPEG image (...)", "path: a JPEG named as a
+ * PNG: ...", "path: truncated: ...", "path: its header declares 100000 x 100000 pixels, more than the
+ * 67108864 an image map may have", "path: a kind of PNG that is not supported (...)") and *image empty. */
 bool image_map_read(const char *path, struct pigment_image *image, char *why, size_t why_size);
 
 /* Looks the image of p up at the texture-space point q, writing red, green, blue and alpha into rgba.

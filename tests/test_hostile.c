@@ -74,8 +74,9 @@ static void make_files(char folder[64]) {
     cr_assert_gt(size, 200, "scenes/textures/grid.png is missing (make builds it)");
     write_bytes(folder, "grid.png", png, size);
     write_bytes(folder, "grid.jpg", png, size); /* a PNG by its bytes */
-    uint8_t *jpeg = (uint8_t *)read_file("scenes/textures/grid.jpg", &size);
-    write_bytes(folder, "photo.png", jpeg, size); /* a JPEG by its bytes */
+    size_t jpeg_size = 0;
+    uint8_t *jpeg = (uint8_t *)read_file("scenes/textures/grid.jpg", &jpeg_size);
+    write_bytes(folder, "photo.png", jpeg, jpeg_size); /* a JPEG by its bytes */
     free(jpeg);
     write_bytes(folder, "cut-header.png", png, 20);  /* the signature and half a chunk header */
     write_bytes(folder, "cut-pixels.png", png, 120); /* a whole header, then the pixels cut short */
