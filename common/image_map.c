@@ -252,9 +252,9 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
             value = gamma > 0.0 ? powf(value, (float)(1.0 / gamma)) : image_map_decode_srgb(value);
             if (grey_levels)
                 value = povray_grey_level(value);
-        }
-        else if (value < 1.0f)
+        } else if (value < 1.0f) {
             image->opaque = false;
+        }
         image->texels[k] = value;
     }
     stbi_image_free(pixels);

@@ -4,7 +4,8 @@
  * decodes an image map under `assumed_gamma 1.0`. The file's numbers are encoded, not light: a PNG
  * with an sRGB chunk, or with neither an sRGB nor a gAMA chunk, and every JPEG, is decoded with the
  * sRGB curve (POV-Ray follows the PNG and W3C recommendations); a PNG with only a gAMA chunk g is
- * decoded as value^(1/g). Alpha is never decoded: it is a share, not light.
+ * decoded as value^(1/g). Alpha is never decoded: it is a share, not light. A greyscale PNG of 8 bits
+ * or fewer is then cut down to whole 255ths of linear light, as POV-Ray stores it (docs/povray.md).
  *
  * Looking up: the point (in texture space) gives (u, v) by the pigment's mapping, planar or spherical,
  * then a pixel by POV-Ray's rules: v runs up the picture while its rows run down, `interpolate 0` takes
