@@ -509,6 +509,7 @@ static bool build_worlds(struct checker *c, const struct scene *s) {
 #define RENDER_CHECK_MAX_AREA_ADAPTIVE 1  /* an area light's adaptive level */
 #define RENDER_CHECK_MAX_PATHS 2          /* paths a pixel */
 #define RENDER_CHECK_MAX_BOUNCES 3        /* bounces a path */
+#define RENDER_CHECK_UNIT_TOLERANCE 1e-9  /* a normalised direction's length differs from 1 by rounding only */
 
 /* Cuts what multiplies the work of chapters 12 to 15 (the antialias samples, the lens's rays, the area
  * lights' grids, the paths and their bounces) to the limits above, keeping every setting valid. */
@@ -560,11 +561,20 @@ static vec3 sampled_colour_at(const void *context, double x, double y) {
 
 /* Draws the small picture of `cam` by the scene's antialias line, lens and area lights (chapters 12 to
  * 14) in the brute-force world and in world k, and checks that they see the same colours and the same
- * number of rays per pixel. */
+ * number of rays per pixel, and that the lens's rays are rays: a finite origin, a unit direction. */
 static bool check_sampled(struct checker *c, const struct scene *s, const struct camera *cam, int k) {
     struct thin_lens lens;
-    if (lens_is_open(&s->lens))
+    if (lens_is_open(&s->lens)) {
         thin_lens_init(&lens, cam, &s->lens, s->antialias.seed);
+        /* Every lens ray through a pixel's centre starts at a finite point and has a unit direction. */
+        for (int p = 0; p < cam->width * cam->height; p++)
+            for (int n = 0; n < lens.samples; n++) {
+                ray r = thin_lens_ray(&lens, p % cam->width + 0.5, p / cam->width + 0.5, n);
+                if (!vec3_is_finite(r.origin) || !(fabs(vec3_length(r.direction) - 1.0) < RENDER_CHECK_UNIT_TOLERANCE))
+                    return broken(c, "lens ray %d of pixel %d starts at (%g %g %g) with direction (%g %g %g)", n, p,
+                                  r.origin.x, r.origin.y, r.origin.z, r.direction.x, r.direction.y, r.direction.z);
+            }
+    }
     vec3 colours[2][RENDER_CHECK_SAMPLED_SIDE * RENDER_CHECK_SAMPLED_SIDE];
     int rays[2][RENDER_CHECK_SAMPLED_SIDE * RENDER_CHECK_SAMPLED_SIDE];
     const int worlds[2] = {WORLD_BRUTE, k};
@@ -587,9 +597,9 @@ static bool check_sampled(struct checker *c, const struct scene *s, const struct
 
 /* Chapter 15: parses the text again (the area lights become emitting triangles of the scene), loads it
  * as chapter 15 does, builds the brute-force world and world k, and traces the paths of the small
- * picture in both with the emitters gathered from the brute-force world. Every pixel must be finite and
- * not negative, and the same in both. A scene refused on the way (an emissive plane) must be refused
- * with a message naming it. */
+ * picture in both with the emitters gathered from the brute-force world. Every pixel must be finite
+ * (not always positive: a scene may ask for a negative background), and the same in both. A scene
+ * refused on the way (an emissive plane) must be refused with a message naming it. */
 static bool check_paths(struct checker *c, const char *name, const char *text, int k) {
     static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
     struct scene s;
@@ -632,7 +642,7 @@ static bool check_paths(struct checker *c, const char *name, const char *text, i
                 path_world_init(&paths, &worlds[w].world, &emitters, &cam, &s.paths);
                 colour[w] = path_pixel(&paths, i, j, NULL);
             }
-            if (!vec3_is_finite(colour[0]) || !(colour[0].x >= 0 && colour[0].y >= 0 && colour[0].z >= 0))
+            if (!vec3_is_finite(colour[0]))
                 ok = broken(c, "path pixel (%d, %d): radiance (%g %g %g)", i, j, colour[0].x, colour[0].y, colour[0].z);
             else if (c->compare_colours && !same_colour(colour[0], colour[1]))
                 ok = broken(c, "path pixel (%d, %d): %s sees (%.17g %.17g %.17g), brute force (%.17g %.17g %.17g)", i, j,

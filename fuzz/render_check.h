@@ -33,7 +33,7 @@
  * the work cut (render_check.c lists the limits), chapters 12 to 14's sampled tracer (the antialias
  * line, the lens, soft shadows of area lights) and chapter 15's path tracer (area lights made emitting
  * rectangles) must see the same colours in the brute-force world and one structure's, chosen by a
- * hash of the text; and every path-traced pixel must be finite and not negative.
+ * hash of the text; and every path-traced pixel must be finite.
  * Returns RENDER_CHECK_PASSED when all hold (a cleanly refused scene passes); RENDER_CHECK_FAILED with
  * the first broken check described in why (why_size bytes); or RENDER_CHECK_KNOWN_DEFECT, without
  * building or tracing anything, when the scene has what triggers a defect being fixed (render_check.c
