@@ -88,7 +88,8 @@ static bool write_chunk(FILE *f, const char *type, const uint8_t *data, uint32_t
     put_32(head, length);
     memcpy(head + 4, type, 4);
     put_32(tail, crc32_update(crc32_update(0, head + 4, 4), data, length));
-    return fwrite(head, 1, 8, f) == 8 && fwrite(data, 1, length, f) == length && fwrite(tail, 1, 4, f) == 4;
+    return fwrite(head, 1, 8, f) == 8 && (length == 0 || fwrite(data, 1, length, f) == length) &&
+           fwrite(tail, 1, 4, f) == 4;
 }
 
 /* A PNG whose image data is one stored (uncompressed) deflate block, with t->chunk before it. */
