@@ -3,7 +3,8 @@
  * Every input is a scene text. The parser must either refuse it with "fuzz.scene:LINE: what is wrong"
  * (or "fuzz.scene: what is wrong"), or accept it and give a scene that keeps the promises the
  * chapters rely on: a size within the limits, a depth of at least 1, finite numbers, positive radii,
- * boxes with min < max, and every material index naming a material. Inputs holding a zero byte are
+ * boxes with min < max, and every material index naming a material; and Part III's lines within
+ * their limits (check_part_three). Inputs holding a zero byte are
  * skipped: scene_read_text refuses those before the parser sees them, so no file could reach it. */
 #include <math.h>
 #include <stdlib.h>
@@ -97,6 +98,52 @@ static void check_scene(const struct scene *s) {
     }
 }
 
+/* The promises of Part III's lines (chapters 12 to 15): every count within the limit its header
+ * states, the lens's numbers finite, every pigment's transform finite with no zero scale, every
+ * material's pigment naming a pigment, emission finite and not negative. */
+static void check_part_three(const struct scene *s) {
+    const struct antialias *a = &s->antialias;
+    int most = a->method == ANTIALIAS_RECURSIVE ? ANTIALIAS_MAX_DEPTH
+               : a->method == ANTIALIAS_ADAPTIVE ? ANTIALIAS_MAX_ADAPTIVE : ANTIALIAS_MAX_SAMPLES;
+    if (a->line != 0 && (a->samples < 1 || a->samples > most || !(a->threshold >= 0.0)))
+        fuzz_abort("accepted antialias samples %d, threshold %g", a->samples, a->threshold);
+    if (!isfinite(s->lens.aperture) || s->lens.aperture < 0.0 || !vec3_is_finite(s->lens.focal_point) ||
+        (s->lens.blur_samples != 7 && s->lens.blur_samples != 19 && s->lens.blur_samples != 37))
+        fuzz_abort("accepted a lens of aperture %g, %d blur samples", s->lens.aperture, s->lens.blur_samples);
+    for (size_t k = 0; k < s->light_count; k++) {
+        const struct area_light *area = &s->lights[k].area;
+        if (area->size1 < 0 || area->size1 > AREA_LIGHT_MAX_SIZE || area->size2 < 0 ||
+            area->size2 > AREA_LIGHT_MAX_SIZE || (area->size1 == 0) != (area->size2 == 0))
+            fuzz_abort("light %zu has an area of %d x %d points", k, area->size1, area->size2);
+        check_finite(area->axis1, "light", k);
+        check_finite(area->axis2, "light", k);
+    }
+    for (size_t k = 0; k < s->pigment_count; k++) {
+        const struct pigment *p = &s->pigments[k];
+        check_finite(p->scale, "pigment", k);
+        check_finite(p->rotate, "pigment", k);
+        check_finite(p->translate, "pigment", k);
+        if (p->scale.x == 0.0 || p->scale.y == 0.0 || p->scale.z == 0.0)
+            fuzz_abort("pigment %zu has a zero scale", k);
+        if ((p->pattern == PIGMENT_IMAGE_MAP) != (p->file != NULL))
+            fuzz_abort("pigment %zu is%s an image map with%s a file", k, p->file != NULL ? " not" : "",
+                       p->file != NULL ? "" : "out");
+    }
+    for (size_t k = 0; k < s->material_count; k++) {
+        const struct material *m = &s->materials[k];
+        if (m->pigment < -1 || m->pigment >= (int)s->pigment_count)
+            fuzz_abort("material %zu has pigment %d of %zu", k, m->pigment, s->pigment_count);
+        check_finite(m->emission, "material", k);
+        if (m->emission.x < 0.0 || m->emission.y < 0.0 || m->emission.z < 0.0)
+            fuzz_abort("material %zu has a negative emission", k);
+    }
+    const struct path_settings *paths = &s->paths;
+    if (paths->samples < 1 || paths->samples > PATH_MAX_SAMPLES || paths->bounces < 0 ||
+        paths->bounces > PATH_MAX_BOUNCES || paths->roulette < 0 || paths->roulette > PATH_MAX_BOUNCES)
+        fuzz_abort("accepted paths samples %d, bounces %d, roulette %d", paths->samples, paths->bounces,
+                   paths->roulette);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (memchr(data, '\0', size) != NULL)
         return 0;
@@ -105,6 +152,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     char err[512] = "";
     if (scene_parse(NAME, text, NULL, &s, err, sizeof err)) {
         check_scene(&s);
+        check_part_three(&s);
         scene_free(&s);
     } else if (!fuzz_message_names(err, NAME)) {
         fuzz_abort("refused with a message that does not start with '" NAME ":': '%s'", err);

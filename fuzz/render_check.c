@@ -1,12 +1,15 @@
-/* render_check.c: a scene text through the whole renderer of chapter 10, every structure against the
- * brute-force loop (the renderer fuzzer's check; not part of any chapter).
+/* render_check.c: a scene text through the whole renderer of chapter 10, then chapters 12 to 15's
+ * sampling, lens, area lights, textures and paths, every structure against the brute-force loop (the
+ * renderer fuzzer's check; not part of any chapter).
  *
  * The fuzzer writes scene text, so what it can reach is whatever a scene file can ask for: any camera,
  * materials, lights, shapes, and meshes placed with any scale, rotation and translation. The mesh
  * files it names are not read (their readers have fuzzers of their own, and a fuzzer must not wander
  * the file system): each `mesh` directive is pointed at one of the tiny meshes below, chosen by its
  * file name so the fuzzer can still pick among them, written once as OBJ files to a folder of our own
- * and loaded by scene_load_meshes as the programs load theirs. */
+ * and loaded by scene_load_meshes as the programs load theirs. The image maps' files likewise: each
+ * pigment's file is one of the tiny images of tiny_images.h, written once to the same folder and read
+ * by texture_load_images as chapter 14 reads them. */
 #include "render_check.h"
 
 #include <limits.h>
@@ -22,9 +25,17 @@
 #include "box.h"
 #include "bvh.h"
 #include "camera.h"
+#include "emitter.h"
 #include "kdtree.h"
+#include "mesh_surface.h"
+#include "path_trace.h"
 #include "plane.h"
+#include "soft_shadow.h"
 #include "sphere.h"
+#include "supersample.h"
+#include "texture.h"
+#include "thin_lens.h"
+#include "tiny_images.h"
 #include "triangle.h"
 #include "whitted.h"
 
@@ -88,13 +99,18 @@ static const struct tiny_mesh tiny_meshes[] = {TINY(triangle), TINY(square), TIN
                                                TINY(awkward)};
 #define TINY_MESH_COUNT (sizeof tiny_meshes / sizeof *tiny_meshes)
 
-/* Which tiny mesh a file name stands for: a hash of the name (FNV-1a), so that every name is one of
- * them and a mutation of the name can pick another. */
-static const struct tiny_mesh *tiny_mesh_for(const char *path) {
+/* FNV-1a of a text: what chooses a tiny mesh, a tiny image or a structure, so that every text stands
+ * for one of them and a mutation of the text can pick another. */
+static uint32_t text_hash(const char *text) {
     uint32_t hash = 2166136261u;
-    for (const unsigned char *c = (const unsigned char *)path; *c != '\0'; c++)
+    for (const unsigned char *c = (const unsigned char *)text; *c != '\0'; c++)
         hash = (hash ^ *c) * 16777619u;
-    return &tiny_meshes[hash % TINY_MESH_COUNT];
+    return hash;
+}
+
+/* Which tiny mesh a file name stands for. */
+static const struct tiny_mesh *tiny_mesh_for(const char *path) {
+    return &tiny_meshes[text_hash(path) % TINY_MESH_COUNT];
 }
 
 /* The folder holding the tiny meshes as OBJ files, written on the first call (a new folder under /tmp
@@ -105,6 +121,10 @@ static void remove_tiny_files(void) {
     char path[96];
     for (size_t k = 0; k < TINY_MESH_COUNT; k++) {
         snprintf(path, sizeof path, "%s/tiny-%zu.obj", tiny_folder, k);
+        remove(path);
+    }
+    for (size_t k = 0; k < TINY_IMAGE_COUNT; k++) {
+        snprintf(path, sizeof path, "%s/%s", tiny_folder, tiny_image_name(k));
         remove(path);
     }
     rmdir(tiny_folder);
@@ -124,39 +144,76 @@ static const char *tiny_mesh_folder(void) {
         if (f == NULL)
             return NULL;
         const struct tiny_mesh *t = &tiny_meshes[k];
-        for (size_t v = 0; v < t->vertex_count; v++)
-            fprintf(f, "v %.17g %.17g %.17g\n", t->vertices[v].x, t->vertices[v].y, t->vertices[v].z);
-        for (size_t face = 0; face < t->face_count; face++)
-            fprintf(f, "f %u %u %u\n", t->faces[face].v[0] + 1, t->faces[face].v[1] + 1, t->faces[face].v[2] + 1);
+        /* Chapter 14 keeps a mesh's texture coordinates and normals: every corner gets a (u, v) from its
+         * x and y, and every corner but those of the first two meshes its direction from the origin as
+         * its normal (the awkward mesh's first corner, at the origin, a zero one). */
+        bool normals = k >= 2;
+        for (size_t v = 0; v < t->vertex_count; v++) {
+            vec3 p = t->vertices[v];
+            fprintf(f, "v %.17g %.17g %.17g\nvt %.17g %.17g\n", p.x, p.y, p.z, p.x * 0.5 + 0.5, p.y * 0.5 + 0.5);
+            if (normals)
+                fprintf(f, "vn %.17g %.17g %.17g\n", p.x, p.y, p.z);
+        }
+        for (size_t face = 0; face < t->face_count; face++) {
+            fprintf(f, "f");
+            for (int c = 0; c < 3; c++)
+                fprintf(f, normals ? " %u/%u/%u" : " %u/%u", t->faces[face].v[c] + 1, t->faces[face].v[c] + 1,
+                        t->faces[face].v[c] + 1);
+            fprintf(f, "\n");
+        }
         if (fclose(f) != 0)
             return NULL;
     }
+    char err[256];
+    if (!tiny_images_write(tiny_folder, err, sizeof err))
+        return NULL;
     return tiny_folder;
 }
 
-/* Points every mesh directive of s at the file of its tiny mesh and loads them all with
- * scene_load_meshes, which places each by its transform and refuses one placed out of range, as for
- * the chapters' programs. Returns its answer, with its message in err; false with a message also when
- * the tiny files cannot be written or memory runs out. */
+/* Which tiny image a pigment's file name stands for. */
+static size_t tiny_image_for(const char *path) { return text_hash(path) % TINY_IMAGE_COUNT; }
+
+/* Replaces the malloc'd path *path by folder/name; false with "out of memory" in err. */
+static bool replace_path(char **path, const char *folder, const char *name, char *err, size_t err_size) {
+    char *joined = malloc(strlen(folder) + strlen(name) + 2);
+    if (joined == NULL) {
+        snprintf(err, err_size, "out of memory");
+        return false;
+    }
+    sprintf(joined, "%s/%s", folder, name);
+    free(*path);
+    *path = joined;
+    return true;
+}
+
+/* Points every mesh directive of s at the file of its tiny mesh and every image map at its tiny image,
+ * and loads them as chapter 14 does: the images with texture_load_images, the meshes with
+ * scene_load_meshes (which places each by its transform and refuses one placed out of range) keeping
+ * their texture coordinates and normals, then mesh_surface_prepare. s's paint hooks are chapter 14's,
+ * so every trace of s is painted. Returns false with the first refusal in err; false with a message
+ * also when the tiny files cannot be written or memory runs out. */
 static bool load_tiny_meshes(struct scene *s, char *err, size_t err_size) {
     const char *folder = tiny_mesh_folder();
     if (folder == NULL) {
         snprintf(err, err_size, "cannot write the tiny meshes under /tmp");
         return false;
     }
+    char name[32];
     for (size_t k = 0; k < s->mesh_count; k++) {
-        struct scene_mesh *sm = &s->meshes[k];
-        size_t which = (size_t)(tiny_mesh_for(sm->path) - tiny_meshes);
-        char *path = malloc(strlen(folder) + 32);
-        if (path == NULL) {
-            snprintf(err, err_size, "out of memory");
+        snprintf(name, sizeof name, "tiny-%zu.obj", (size_t)(tiny_mesh_for(s->meshes[k].path) - tiny_meshes));
+        if (!replace_path(&s->meshes[k].path, folder, name, err, err_size))
             return false;
-        }
-        sprintf(path, "%s/tiny-%zu.obj", folder, which);
-        free(sm->path);
-        sm->path = path;
     }
-    return scene_load_meshes(s, err, err_size);
+    for (size_t k = 0; k < s->pigment_count; k++) {
+        struct pigment *p = &s->pigments[k];
+        if (p->pattern == PIGMENT_IMAGE_MAP &&
+            !replace_path(&p->file, folder, tiny_image_name(tiny_image_for(p->file)), err, err_size))
+            return false;
+    }
+    s->paint = texture_paint;
+    s->shadow_paint = texture_paint_shadow;
+    return texture_load_images(s, err, err_size) && scene_load_meshes(s, err, err_size) &&
+           mesh_surface_prepare(s, err, err_size);
 }
 
 /* ---- known defects ------------------------------------------------------------------------------
@@ -362,6 +419,10 @@ static bool same_colour_channel(double a, double b) {
     return fabs(a - b) <= RENDER_CHECK_COLOUR_TOLERANCE * scale;
 }
 
+static bool same_colour(vec3 a, vec3 b) {
+    return same_colour_channel(a.x, b.x) && same_colour_channel(a.y, b.y) && same_colour_channel(a.z, b.z);
+}
+
 /* Checks one camera ray in every world. */
 static bool check_ray(struct checker *c, const ray *r, int pixel) {
     struct hit brute = hit_nothing(INFINITY);
@@ -388,9 +449,7 @@ static bool check_ray(struct checker *c, const ray *r, int pixel) {
             return broken(c, "pixel %d: %s nearest hit t=%.17g material %d, brute force t=%.17g material %d", pixel,
                           world_names[k], h.t, h.material, brute.t, brute.material);
         vec3 colour = whitted_trace(&c->worlds[k].world, r);
-        bool same_colour = same_colour_channel(colour.x, brute_colour.x) &&
-                           same_colour_channel(colour.y, brute_colour.y) && same_colour_channel(colour.z, brute_colour.z);
-        if (c->compare_colours && !same_colour)
+        if (c->compare_colours && !same_colour(colour, brute_colour))
             return broken(c, "pixel %d: %s sees colour (%.17g %.17g %.17g), brute force (%.17g %.17g %.17g)", pixel,
                           world_names[k], colour.x, colour.y, colour.z, brute_colour.x, brute_colour.y, brute_colour.z);
     }
@@ -432,6 +491,170 @@ static bool build_worlds(struct checker *c, const struct scene *s) {
     if (c->face_t == NULL || c->reported == NULL || c->expected.t == NULL || c->got.t == NULL)
         return broken(c, "out of memory");
     return true;
+}
+
+/* ---- chapters 12 to 15: sampling, lens, area lights, textures, paths ------------------------------
+ *
+ * After chapter 10's checks, the same scene (painted by chapter 14's textures all along) is drawn by
+ * chapters 12 to 14's sampled tracer and by chapter 15's path tracer, in the brute-force world and in
+ * one structure's world chosen by a hash of the text (so that every structure takes its turn over the
+ * inputs), on a picture cut to RENDER_CHECK_SAMPLED_SIDE pixels a side, and the two must agree. Every
+ * count the scene gives that multiplies the work is cut first, so that an input costs milliseconds
+ * whatever it asks for (the limits below: at most about 60,000 rays an input in the sampled tracer). */
+#define RENDER_CHECK_SAMPLED_SIDE 2       /* pixels a side of the sampled and path-traced pictures */
+#define RENDER_CHECK_SAMPLED_DEPTH 2      /* max_depth of the sampled tracer: 3 rays a tree */
+#define RENDER_CHECK_MAX_AA_SAMPLES 2     /* antialias samples: a 2 x 2 grid, recursive depth 2 */
+#define RENDER_CHECK_MAX_BLUR_SAMPLES 7   /* a lens's rays a camera sample: one ring */
+#define RENDER_CHECK_MAX_AREA_SIDE 3      /* an area light's points a side: the middle lines are cut */
+#define RENDER_CHECK_MAX_AREA_ADAPTIVE 1  /* an area light's adaptive level */
+#define RENDER_CHECK_MAX_PATHS 2          /* paths a pixel */
+#define RENDER_CHECK_MAX_BOUNCES 3        /* bounces a path */
+#define RENDER_CHECK_UNIT_TOLERANCE 1e-9  /* a normalised direction's length differs from 1 by rounding only */
+
+/* Cuts what multiplies the work of chapters 12 to 15 (the antialias samples, the lens's rays, the area
+ * lights' grids, the paths and their bounces) to the limits above, keeping every setting valid. */
+static void cut_sampling(struct scene *s) {
+    if (s->antialias.samples > RENDER_CHECK_MAX_AA_SAMPLES)
+        s->antialias.samples = RENDER_CHECK_MAX_AA_SAMPLES;
+    if (s->lens.blur_samples > RENDER_CHECK_MAX_BLUR_SAMPLES)
+        s->lens.blur_samples = RENDER_CHECK_MAX_BLUR_SAMPLES;
+    for (size_t k = 0; k < s->light_count; k++) {
+        struct area_light *a = &s->lights[k].area;
+        a->size1 = a->size1 < RENDER_CHECK_MAX_AREA_SIDE ? a->size1 : RENDER_CHECK_MAX_AREA_SIDE;
+        a->size2 = a->size2 < RENDER_CHECK_MAX_AREA_SIDE ? a->size2 : RENDER_CHECK_MAX_AREA_SIDE;
+        if (a->adaptive != AREA_LIGHT_NOT_ADAPTIVE && a->adaptive > RENDER_CHECK_MAX_AREA_ADAPTIVE)
+            a->adaptive = RENDER_CHECK_MAX_AREA_ADAPTIVE;
+    }
+    s->paths.samples = s->paths.samples < RENDER_CHECK_MAX_PATHS ? s->paths.samples : RENDER_CHECK_MAX_PATHS;
+    s->paths.bounces = s->paths.bounces < RENDER_CHECK_MAX_BOUNCES ? s->paths.bounces : RENDER_CHECK_MAX_BOUNCES;
+    s->paths.roulette = s->paths.roulette < s->paths.bounces ? s->paths.roulette : s->paths.bounces;
+}
+
+/* The structure whose world the sampled tracer and the paths are checked in: a hash of the text. */
+static int structure_for(const char *text) { return WORLD_BRUTE + 1 + (int)(text_hash(text) % (WORLD_COUNT - 1)); }
+
+/* What a sample of the sampled tracer looks through: chapter 13's tracer in one world, through the
+ * lens when the camera has one (as thin_lens_sampler does), else through the pinhole (supersample's). */
+struct sampled_view {
+    const struct world *world;
+    const struct camera *camera;
+    const struct thin_lens *lens; /* NULL for a pinhole */
+};
+
+static vec3 trace_soft(const struct sampled_view *v, const ray *r) {
+    return whitted_trace_shadowed(v->world, r, soft_shadow_filtered);
+}
+
+static vec3 sampled_colour_at(const void *context, double x, double y) {
+    const struct sampled_view *v = context;
+    if (v->lens == NULL) {
+        ray r = camera_ray_through(v->camera, x, y);
+        return trace_soft(v, &r);
+    }
+    vec3 sum = vec3_make(0, 0, 0);
+    for (int k = 0; k < v->lens->samples; k++) {
+        ray r = thin_lens_ray(v->lens, x, y, k);
+        sum = vec3_add(sum, trace_soft(v, &r));
+    }
+    return vec3_scale(sum, 1.0 / v->lens->samples);
+}
+
+/* Draws the small picture of `cam` by the scene's antialias line, lens and area lights (chapters 12 to
+ * 14) in the brute-force world and in world k, and checks that they see the same colours and the same
+ * number of rays per pixel, and that the lens's rays are rays: a finite origin, a unit direction. */
+static bool check_sampled(struct checker *c, const struct scene *s, const struct camera *cam, int k) {
+    struct thin_lens lens;
+    if (lens_is_open(&s->lens)) {
+        thin_lens_init(&lens, cam, &s->lens, s->antialias.seed);
+        /* Every lens ray through a pixel's centre starts at a finite point and has a unit direction. */
+        for (int p = 0; p < cam->width * cam->height; p++)
+            for (int n = 0; n < lens.samples; n++) {
+                ray r = thin_lens_ray(&lens, p % cam->width + 0.5, p / cam->width + 0.5, n);
+                if (!vec3_is_finite(r.origin) || !(fabs(vec3_length(r.direction) - 1.0) < RENDER_CHECK_UNIT_TOLERANCE))
+                    return broken(c, "lens ray %d of pixel %d starts at (%g %g %g) with direction (%g %g %g)", n, p,
+                                  r.origin.x, r.origin.y, r.origin.z, r.direction.x, r.direction.y, r.direction.z);
+            }
+    }
+    vec3 colours[2][RENDER_CHECK_SAMPLED_SIDE * RENDER_CHECK_SAMPLED_SIDE];
+    int rays[2][RENDER_CHECK_SAMPLED_SIDE * RENDER_CHECK_SAMPLED_SIDE];
+    const int worlds[2] = {WORLD_BRUTE, k};
+    for (int w = 0; w < 2; w++) {
+        struct sampled_view view = {&c->worlds[worlds[w]].world, cam, lens_is_open(&s->lens) ? &lens : NULL};
+        struct sample_view sample_view = {sampled_colour_at, &view};
+        supersample_block(&s->antialias, &sample_view, 0, 0, cam->width, cam->height, colours[w], rays[w]);
+    }
+    for (int p = 0; p < cam->width * cam->height; p++) {
+        if (rays[0][p] != rays[1][p])
+            return broken(c, "sampled pixel %d: %s takes %d camera rays, brute force %d", p, world_names[k], rays[1][p],
+                          rays[0][p]);
+        if (c->compare_colours && !same_colour(colours[0][p], colours[1][p]))
+            return broken(c, "sampled pixel %d: %s sees colour (%.17g %.17g %.17g), brute force (%.17g %.17g %.17g)", p,
+                          world_names[k], colours[1][p].x, colours[1][p].y, colours[1][p].z, colours[0][p].x,
+                          colours[0][p].y, colours[0][p].z);
+    }
+    return true;
+}
+
+/* Chapter 15: parses the text again (the area lights become emitting triangles of the scene), loads it
+ * as chapter 15 does, builds the brute-force world and world k, and traces the paths of the small
+ * picture in both with the emitters gathered from the brute-force world. Every pixel must be finite
+ * (not always positive: a scene may ask for a negative background), and the same in both. A scene
+ * refused on the way (an emissive plane) must be refused with a message naming it. */
+static bool check_paths(struct checker *c, const char *name, const char *text, int k) {
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
+    struct scene s;
+    char err[512];
+    if (!scene_parse(name, text, kinds, &s, err, sizeof err))
+        return broken(c, "the scene is refused the second time: %s", err);
+    struct accel_world worlds[2];
+    memset(worlds, 0, sizeof worlds);
+    struct emitter_list emitters = {0};
+    struct camera cam;
+    bool ok = true, built = load_tiny_meshes(&s, err, sizeof err) && emitter_add_area_lights(&s, err, sizeof err) >= 0;
+    if (built) {
+        s.shadow_paint = NULL; /* chapter 15 sets only the paint hook: its shadow rays stop at any surface */
+        cut_sampling(&s);
+        int side_w = s.width < RENDER_CHECK_SAMPLED_SIDE ? s.width : RENDER_CHECK_SAMPLED_SIDE;
+        int side_h = s.height < RENDER_CHECK_SAMPLED_SIDE ? s.height : RENDER_CHECK_SAMPLED_SIDE;
+        built = camera_init(&cam, s.eye, s.target, s.up, s.fov, side_w, side_h, err, sizeof err) &&
+                accel_world_init(&worlds[0], &s, err, sizeof err) && accel_world_init(&worlds[1], &s, err, sizeof err);
+        built = built && (k == WORLD_KD_SEED || k == WORLD_KD_SAH
+                              ? accel_world_use_kdtree(&worlds[1], k == WORLD_KD_SEED ? KD_SPLIT_SEED : KD_SPLIT_SAH,
+                                                       err, sizeof err)
+                              : accel_world_use_bvh(&worlds[1], k == WORLD_BVH_MEDIAN ? BVH_SPLIT_MEDIAN : BVH_SPLIT_SAH,
+                                                    err, sizeof err));
+        if (built && !emitter_list_build(&emitters, &worlds[0], err, sizeof err)) {
+            built = false;
+            size_t n = strlen(name);
+            if (strncmp(err, name, n) != 0 || err[n] != ':')
+                ok = broken(c, "the paths' emitters are refused with a message that does not start with '%s:': %s",
+                            name, err);
+        } else if (!built) {
+            ok = broken(c, "chapter 15's scene cannot be built: %s", err);
+        }
+    } else {
+        ok = broken(c, "chapter 15's scene cannot be loaded: %s", err);
+    }
+    for (int j = 0; built && ok && j < cam.height; j++)
+        for (int i = 0; ok && i < cam.width; i++) {
+            vec3 colour[2];
+            for (int w = 0; w < 2; w++) {
+                struct path_world paths;
+                path_world_init(&paths, &worlds[w].world, &emitters, &cam, &s.paths);
+                colour[w] = path_pixel(&paths, i, j, NULL);
+            }
+            if (!vec3_is_finite(colour[0]))
+                ok = broken(c, "path pixel (%d, %d): radiance (%g %g %g)", i, j, colour[0].x, colour[0].y, colour[0].z);
+            else if (c->compare_colours && !same_colour(colour[0], colour[1]))
+                ok = broken(c, "path pixel (%d, %d): %s sees (%.17g %.17g %.17g), brute force (%.17g %.17g %.17g)", i, j,
+                            world_names[k], colour[1].x, colour[1].y, colour[1].z, colour[0].x, colour[0].y,
+                            colour[0].z);
+        }
+    emitter_list_free(&emitters);
+    accel_world_free(&worlds[0]);
+    accel_world_free(&worlds[1]);
+    scene_free(&s);
+    return ok;
 }
 
 enum render_check_result render_check_scene(const char *name, const char *text, char *why, size_t why_size) {
@@ -481,6 +704,15 @@ enum render_check_result render_check_scene(const char *name, const char *text, 
                 ray r = camera_ray(&cam, i, j);
                 ok = check_ray(&c, &r, j * cam.width + i);
             }
+        /* Chapters 12 to 15 on a smaller picture, with every count that multiplies the work cut. */
+        struct camera small;
+        int k = structure_for(text);
+        s.max_depth = s.max_depth < RENDER_CHECK_SAMPLED_DEPTH ? s.max_depth : RENDER_CHECK_SAMPLED_DEPTH;
+        cut_sampling(&s);
+        int small_w = cam.width < RENDER_CHECK_SAMPLED_SIDE ? cam.width : RENDER_CHECK_SAMPLED_SIDE;
+        int small_h = cam.height < RENDER_CHECK_SAMPLED_SIDE ? cam.height : RENDER_CHECK_SAMPLED_SIDE;
+        if (ok && camera_init(&small, s.eye, s.target, s.up, s.fov, small_w, small_h, err, sizeof err))
+            ok = check_sampled(&c, &s, &small, k) && check_paths(&c, name, text, k);
     } else if (has_picture) {
         ok = false;
     }

@@ -1,5 +1,6 @@
-/* render_check.h: one scene text taken through the whole renderer of chapter 10 and checked, for the
- * renderer fuzzer (fuzz/fuzz_render.c) and for its regression tests (tests/test_fuzz_regressions.c).
+/* render_check.h: one scene text taken through the whole renderer of chapter 10 and the sampled and
+ * path tracers of chapters 12 to 15, and checked, for the renderer fuzzer (fuzz/fuzz_render.c) and for
+ * its regression tests (tests/test_fuzz_regressions.c).
  *
  * Not part of any chapter: the chapters' programs never call it. */
 #ifndef WHITTED_RENDER_CHECK_H
@@ -26,7 +27,13 @@
  * exactly the brute-force loop's answer, and every world's nearest hit and crossings are the
  * brute-force world's; whitted_trace sees the same colour in every world (to
  * RENDER_CHECK_COLOUR_TOLERANCE, render_check.c says why not exactly). The exact checks take only rays
- * starting near the triangles, where exactness is promised (RENDER_CHECK_NEAR_SIZES).
+ * starting near the triangles, where exactness is promised (RENDER_CHECK_NEAR_SIZES). Every trace is
+ * painted by chapter 14's textures (each image map's file replaced by a tiny image made in the same
+ * folder as the meshes). Then, on a picture of at most 2 x 2 pixels with every count that multiplies
+ * the work cut (render_check.c lists the limits), chapters 12 to 14's sampled tracer (the antialias
+ * line, the lens, soft shadows of area lights) and chapter 15's path tracer (area lights made emitting
+ * rectangles) must see the same colours in the brute-force world and one structure's, chosen by a
+ * hash of the text; and every path-traced pixel must be finite.
  * Returns RENDER_CHECK_PASSED when all hold (a cleanly refused scene passes); RENDER_CHECK_FAILED with
  * the first broken check described in why (why_size bytes); or RENDER_CHECK_KNOWN_DEFECT, without
  * building or tracing anything, when the scene has what triggers a defect being fixed (render_check.c

@@ -7,7 +7,8 @@
 #                                    from its seeds only and keeping no corpus (CI)
 #
 # Seeds: the chapters' scenes and the saved fuzz inputs for the scene parser and the renderer; the test
-# meshes (tests/data/meshes), fuzz/seeds/ and the saved inputs for the mesh readers. A crash, a broken
+# meshes (tests/data/meshes), fuzz/seeds/ and the saved inputs for the mesh readers; the tiny images
+# drawn by make fuzz-build (FUZZ_BUILD/seeds/image) and the saved inputs for the image reader. A crash, a broken
 # check (an abort), a leak or an input taking longer than TIMEOUT seconds is saved as a file under
 # out/fuzz/HARNESS/ and named in the summary; the exit status is then 1. A harness stops at its first
 # finding; the others still run.
@@ -18,6 +19,7 @@ SMOKE_RUNS=3000 # inputs per harness in the smoke run: a few seconds each, also 
 TIMEOUT=10      # seconds one input may take; far above any real one (the renderer's are milliseconds)
 SCENE_MAX_LEN=4096 # longest input in bytes: room for a few dozen directives, as in the chapters' scenes
 MESH_MAX_LEN=8192  # the same for mesh files: the test meshes are all smaller
+IMAGE_MAX_LEN=8192 # the same for image files: the tiny images are under 1,000 bytes
 
 smoke=no
 if [ "${1:-}" = --smoke ]; then
@@ -36,16 +38,18 @@ seeds() {
     case $1 in
     scene | render) echo scenes tests/data/fuzz/scene tests/data/fuzz/render ;;
     ply | obj) echo tests/data/meshes fuzz/seeds/ply tests/data/fuzz/ply tests/data/fuzz/obj ;;
+    image) echo "$build/seeds/image" tests/data/fuzz/image ;;
     esac
 }
 
 found=()
-for harness in scene ply obj render; do
+for harness in scene ply obj render image; do
     artifacts=out/fuzz/$harness
     mkdir -p "$artifacts"
     options=(-timeout=$TIMEOUT -artifact_prefix="$artifacts/" -print_final_stats=1)
     case $harness in
     scene | render) options+=(-max_len=$SCENE_MAX_LEN -dict=fuzz/scene.dict) ;;
+    image) options+=(-max_len=$IMAGE_MAX_LEN -dict=fuzz/image.dict) ;;
     *) options+=(-max_len=$MESH_MAX_LEN) ;;
     esac
     folders=()

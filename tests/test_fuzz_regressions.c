@@ -14,8 +14,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "../fuzz/render_check.h"
+#include "../fuzz/tiny_images.h"
+#include "image_map.h"
 #include "mesh.h"
 #include "mesh_load.h"
 #include "scene.h"
@@ -84,6 +87,48 @@ ParameterizedTest(struct input *in, fuzz_regressions, mesh_input_loads_or_is_ref
     } else {
         expect_names_file(err, in->path);
     }
+}
+
+/* ---- the image-map reader ---------------------------------------------------------------------- */
+
+/* Reads the image file at path as chapter 14 does: it must be read, with every texel in [0, 1], or
+ * refused with a message naming the file. */
+static void expect_image_read_or_refused(const char *path, bool must_read) {
+    struct pigment_image image;
+    char why[1024] = "";
+    if (!image_map_read(path, &image, why, sizeof why)) {
+        cr_expect(!must_read, "%s", why);
+        expect_names_file(why, path);
+        return;
+    }
+    cr_expect(image.width >= 1 && image.height >= 1, "%s: %d x %d", path, image.width, image.height);
+    for (size_t k = 0; k < (size_t)image.width * (size_t)image.height * 4; k++)
+        cr_expect(image.texels[k] >= 0.0f && image.texels[k] <= 1.0f, "%s: texel %zu is %g", path, k, image.texels[k]);
+    free(image.texels);
+}
+
+static struct input image_inputs[FUZZ_INPUTS_MAX];
+
+ParameterizedTestParameters(fuzz_regressions, image_input_is_read_or_refused_cleanly) {
+    return cr_make_param_array(struct input, image_inputs, find_inputs("tests/data/fuzz/image/*", image_inputs));
+}
+
+ParameterizedTest(struct input *in, fuzz_regressions, image_input_is_read_or_refused_cleanly) {
+    expect_image_read_or_refused(in->path, false);
+}
+
+/* The image harness's seeds and the renderer check's pictures (fuzz/tiny_images.h) are pictures the
+ * reader takes, of every kind: 8 and 16 bits, 1 to 4 channels, sRGB and gAMA chunks, JPEG. */
+Test(fuzz_regressions, every_tiny_image_is_read) {
+    char folder[] = "/tmp/whitted-tiny-images-XXXXXX", err[512], path[256];
+    cr_assert_not_null(mkdtemp(folder));
+    cr_assert(tiny_images_write(folder, err, sizeof err), "%s", err);
+    for (size_t k = 0; k < TINY_IMAGE_COUNT; k++) {
+        snprintf(path, sizeof path, "%s/%s", folder, tiny_image_name(k));
+        expect_image_read_or_refused(path, true);
+        remove(path);
+    }
+    rmdir(folder);
 }
 
 /* ---- the renderer ----------------------------------------------------------------------------- */
