@@ -42,7 +42,7 @@ void render_use_threads(int n) {
 #define RENDER_PROGRESS_ENV "WHITTED_PROGRESS_SECONDS" /* overrides RENDER_PROGRESS_SECONDS (for tests) */
 
 struct progress {
-    const char *unit;       /* "rows" or "blocks" */
+    const char *unit;       /* "row" or "block" */
     int pieces;
     atomic_int done;        /* pieces finished, counted by the render threads */
     double started, interval;
@@ -57,17 +57,18 @@ static void print_progress(struct progress *p) {
     int done = atomic_load(&p->done);
     double elapsed = clock_seconds() - p->started;
     int percent = (int)(100.0 * done / p->pieces);
+    const char *plural = p->pieces == 1 ? "" : "s";
     if (p->terminal) { /* the bar: a line written over itself, its end padded over a longer one's */
         char left[64] = "time left not known yet";
         if (done > 0)
             snprintf(left, sizeof left, "about %.1f s left", elapsed * (p->pieces - done) / done);
         fprintf(stderr, "\rrendering: %3d%%  %6.1f s elapsed, %-26s", percent, elapsed, left);
     } else if (done == 0) {
-        fprintf(stderr, "rendering: 0%% of %d %s after %.1f s; the time left is known once one is done\n", p->pieces,
-                p->unit, elapsed);
+        fprintf(stderr, "rendering: 0%% of %d %s%s after %.1f s; the time left is known once one is done\n",
+                p->pieces, p->unit, plural, elapsed);
     } else {
-        fprintf(stderr, "rendering: %d%% of %d %s after %.1f s, about %.1f s left\n", percent, p->pieces, p->unit,
-                elapsed, elapsed * (p->pieces - done) / done);
+        fprintf(stderr, "rendering: %d%% of %d %s%s after %.1f s, about %.1f s left\n", percent, p->pieces, p->unit,
+                plural, elapsed, elapsed * (p->pieces - done) / done);
     }
     fflush(stderr);
     p->printed = true;
@@ -173,7 +174,7 @@ void render_image(const struct render_job *job, struct image *img, struct stats 
                  ((img->height + ANTIALIAS_BLOCK - 1) / ANTIALIAS_BLOCK);
     struct progress progress;
     pthread_t reporter;
-    bool reporting = job->progress && progress_start(&progress, &reporter, pieces, job->sampler ? "blocks" : "rows");
+    bool reporting = job->progress && progress_start(&progress, &reporter, pieces, job->sampler ? "block" : "row");
 #ifdef _OPENMP
     int threads = job->threads > 0 ? job->threads : omp_get_max_threads();
 #endif
