@@ -50,6 +50,25 @@ static double shadow_rays(const struct scene *s, double *area) {
     return all;
 }
 
+/* The most rays of one camera ray's tree down to max_depth, counting the shadow rays apart: a tree
+ * whose surfaces neither reflect nor let light through is the camera ray alone, one whose surfaces do
+ * one or the other is a chain of max_depth rays, and only a surface that does both branches it in two
+ * (a refracted ray that turns into a reflected one at total internal reflection stays one ray). */
+static double rays_to_depth(const struct scene *s) {
+    int branches = 0;
+    for (size_t k = 0; k < s->material_count; k++) {
+        const struct material *m = &s->materials[k];
+        int here = (m->reflection > 0.0) + (m->filter > 0.0 || m->transmit > 0.0);
+        if (here > branches)
+            branches = here;
+    }
+    if (branches == 0)
+        return 1.0;
+    if (branches == 1)
+        return s->max_depth;
+    return ldexp(1.0, s->max_depth) - 1.0;
+}
+
 double ray_budget_estimate(const struct scene *s, int chapter, struct ray_budget *b) {
     double pixels = (double)s->width * s->height;
     b->line = 0;
@@ -73,7 +92,7 @@ double ray_budget_estimate(const struct scene *s, int chapter, struct ray_budget
             /* At most 2^max_depth - 1 rays, each with its shadow rays; and the budget holds the secondary
              * rays and the area lights' shadow rays to RAY_TREE_BUDGET, plus the one shading that spends
              * the last of it, each of the 1 + RAY_TREE_BUDGET rays adding its point lights' rays. */
-            double by_depth = (ldexp(1.0, s->max_depth) - 1.0) * b->tree_rays;
+            double by_depth = rays_to_depth(s) * b->tree_rays;
             double by_budget = 1.0 + RAY_TREE_BUDGET + area + point * (1.0 + RAY_TREE_BUDGET);
             b->tree_rays = fmin(by_depth, by_budget);
         }

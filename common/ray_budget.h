@@ -10,7 +10,9 @@
  *                                                      pixel x the lens's blur_samples)
  *          x rays of one camera ray's tree            (the tree's rays x (1 + shadow rays a hit))
  *
- * A tree holds at most 2^max_depth - 1 rays (a reflected and a refracted ray at every hit), and never
+ * A tree holds at most 2^max_depth - 1 rays when a material both reflects and lets light through (a
+ * reflected and a refracted ray at every hit), max_depth rays when each material does one or the other,
+ * and only the camera ray when none does either; never
  * more than the tree's budget allows (RAY_TREE_BUDGET secondary rays, area lights' shadow rays counted
  * against it: whitted.h). A hit sends one shadow ray to each point light and one to each point of an
  * area light's grid (the adaptive rule's worst case: every point). Chapter 15's paths replace all that:
