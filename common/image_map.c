@@ -2,6 +2,7 @@
  * (chapter 14; image_map.h says what and why). */
 #include "image_map.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -143,6 +144,28 @@ static bool png_header(const uint8_t *b, size_t size, long *width, long *height,
     return true;
 }
 
+/* True when the PNG b[0..size) holds every chunk it starts, up to its end chunk (IEND); otherwise false
+ * with why saying where the file was cut short. Each chunk is its length (4 bytes), type (4), data and
+ * CRC (4). */
+static bool png_chunks_whole(const uint8_t *b, size_t size, char *why, size_t why_size) {
+    size_t at = sizeof png_signature;
+    while (at + 8 <= size) {
+        size_t length = big_endian_32(b + at), end = at + 12 + length;
+        bool named = isalpha(b[at + 4]) && isalpha(b[at + 5]) && isalpha(b[at + 6]) && isalpha(b[at + 7]);
+        if (end > size || end < at) {
+            snprintf(why, why_size, "truncated: the file ends inside its %s%.*s%s chunk, %zu bytes short",
+                     named ? "'" : "", named ? 4 : 0, (const char *)b + at + 4, named ? "'" : "unnamed",
+                     end < at ? (size_t)length : end - size);
+            return false;
+        }
+        if (memcmp(b + at + 4, "IEND", 4) == 0)
+            return true;
+        at = end;
+    }
+    snprintf(why, why_size, "truncated: %zu bytes, and no end chunk (IEND) among them", size);
+    return false;
+}
+
 /* Reads a JPEG's size from its frame header (SOF), walking the segments before it; false with why for a
  * file cut short before it, or a kind of JPEG the decoder does not take (only baseline and progressive
  * Huffman-coded JPEGs are: not lossless, hierarchical or arithmetic-coded ones). */
@@ -180,6 +203,53 @@ static bool jpeg_header(const uint8_t *b, size_t size, long *width, long *height
     return false;
 }
 
+#define JPEG_HUFFMAN_MAX_SYMBOLS 256 /* a Huffman table codes at most 256 symbols (one per byte value) */
+
+/* The byte at b[at], or 0 past the end, as the decoder reads a stream that has run out. */
+static int byte_or_zero(const uint8_t *b, size_t size, size_t at) {
+    return at < size ? b[at] : 0;
+}
+
+/* True when every Huffman table (DHT segment) of the JPEG b[0..size) codes at most 256 symbols. The
+ * decoder (stb_image 2.27) adds a table's 16 code counts up without checking and writes past its arrays
+ * when they come to more, so such a file must never reach it. The walk goes from segment to segment as
+ * the decoder does, past each scan's coded data (where 0xff is followed by 0x00, a restart marker or
+ * another 0xff) to the next marker, since a progressive JPEG puts tables between its scans; a table cut
+ * short by the segment's length or the file's end is read on, as the decoder reads it. */
+static bool jpeg_huffman_tables_fit(const uint8_t *b, size_t size) {
+    size_t at = 2; /* after the start-of-image marker */
+    while (at + 1 < size) {
+        if (b[at] != 0xff || b[at + 1] == 0xff) { /* not a marker here: fill bytes, or damage */
+            at++;
+            continue;
+        }
+        int marker = b[at + 1];
+        if (marker == 0xd8 || marker == 0xd9 || (marker >= 0xd0 && marker <= 0xd7) || marker == 0x01 ||
+            marker == 0x00) { /* no length follows */
+            at += 2;
+            continue;
+        }
+        size_t length = (size_t)byte_or_zero(b, size, at + 2) << 8 | (size_t)byte_or_zero(b, size, at + 3);
+        size_t end = at + 2 + length;
+        if (marker == 0xc4) {
+            for (size_t table = at + 4; table < end && table < size;) {
+                size_t symbols = 0;
+                for (size_t k = 1; k <= 16; k++)
+                    symbols += (size_t)byte_or_zero(b, size, table + k);
+                if (symbols > JPEG_HUFFMAN_MAX_SYMBOLS)
+                    return false;
+                table += 17 + symbols;
+            }
+        }
+        at = end < at + 4 ? at + 4 : end;
+        if (marker == 0xda) /* a scan: its coded data runs to the next real marker */
+            while (at + 1 < size && !(b[at] == 0xff && b[at + 1] != 0x00 && b[at + 1] != 0xff &&
+                                      !(b[at + 1] >= 0xd0 && b[at + 1] <= 0xd7)))
+                at++;
+    }
+    return true;
+}
+
 /* Checks the file is a PNG or JPEG whose header declares a size within IMAGE_MAP_MAX_PIXELS, before
  * any decoding; false with why ("path: ...") otherwise. */
 static bool check_header(const char *path, const uint8_t *bytes, size_t size, char *why, size_t why_size) {
@@ -187,10 +257,16 @@ static bool check_header(const char *path, const uint8_t *bytes, size_t size, ch
     long width = 0, height = 0;
     bool ok;
     if (size >= sizeof png_signature && memcmp(bytes, png_signature, sizeof png_signature) == 0)
-        ok = png_header(bytes, size, &width, &height, reason, sizeof reason);
-    else if (size >= sizeof jpeg_signature && memcmp(bytes, jpeg_signature, sizeof jpeg_signature) == 0)
-        ok = jpeg_header(bytes, size, &width, &height, reason, sizeof reason);
-    else {
+        ok = png_header(bytes, size, &width, &height, reason, sizeof reason) &&
+             png_chunks_whole(bytes, size, reason, sizeof reason);
+    else if (size >= sizeof jpeg_signature && memcmp(bytes, jpeg_signature, sizeof jpeg_signature) == 0) {
+        ok = jpeg_huffman_tables_fit(bytes, size);
+        if (!ok)
+            snprintf(reason, sizeof reason, "a damaged JPEG: a Huffman table codes more than %d symbols",
+                     JPEG_HUFFMAN_MAX_SYMBOLS);
+        else
+            ok = jpeg_header(bytes, size, &width, &height, reason, sizeof reason);
+    } else {
         ok = false;
         snprintf(reason, sizeof reason, "not a PNG or JPEG image (its first bytes are neither signature%s)",
                  size >= 2 && memcmp(bytes, "BM", 2) == 0   ? ": a BMP, it seems"

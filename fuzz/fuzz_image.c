@@ -10,9 +10,7 @@
  * own limit, are skipped: the reader would rightly decode them, which costs seconds and gigabytes
  * (a few bytes of JPEG can declare 64 million pixels), and libFuzzer would report that as a timeout or
  * running out of memory. Those declaring more than the reader's limit are run: they must be refused.
- *
- * So are the inputs that trigger a known defect not yet fixed (known_defect below), so that the
- * fuzzer looks past it; delete the test when the reader refuses such files itself. */
+ */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -54,36 +52,7 @@ static const char *write_input(const uint8_t *data, size_t size) {
     return path;
 }
 
-#define JPEG_HUFFMAN_MAX_SYMBOLS 256 /* a JPEG Huffman table codes at most 256 symbols */
-
-/* The known defect: stb_image 2.27 (Debian's) adds up the 16 code counts of a JPEG Huffman table (a
- * DHT segment) without checking that they come to at most 256, and writes the table's code sizes and
- * symbols past its arrays (stbi__build_huffman, stb_image.h line 1990, and the DHT case of
- * stbi__process_marker): memory corruption from a hostile file. True when some DHT segment of the input
- * (any FF C4 marker, its length, then tables of a class byte, 16 counts and the symbols) holds a table
- * of more than 256 symbols. */
-static bool known_defect(const uint8_t *data, size_t size) {
-    if (size < 2 || data[0] != 0xff || data[1] != 0xd8)
-        return false;
-    for (size_t at = 2; at + 4 <= size; at++) {
-        if (data[at] != 0xff || data[at + 1] != 0xc4)
-            continue;
-        size_t end = at + 2 + ((size_t)data[at + 2] << 8 | data[at + 3]), table = at + 4;
-        while (table < end && table < size) { /* stb reads tables while the length lasts, zeros past the end */
-            size_t symbols = 0;
-            for (size_t k = 1; k <= 16 && table + k < size; k++)
-                symbols += data[table + k];
-            if (symbols > JPEG_HUFFMAN_MAX_SYMBOLS)
-                return true;
-            table += 17 + symbols;
-        }
-    }
-    return false;
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-    if (known_defect(data, size))
-        return 0;
     int width, height, channels;
     if (size <= INT32_MAX && stbi_info_from_memory(data, (int)size, &width, &height, &channels)) {
         long pixels = (long)width * height;

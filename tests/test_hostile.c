@@ -79,7 +79,12 @@ static void make_files(char folder[64]) {
     write_bytes(folder, "photo.png", jpeg, jpeg_size); /* a JPEG by its bytes */
     free(jpeg);
     write_bytes(folder, "cut-header.png", png, 20);  /* the signature and half a chunk header */
-    write_bytes(folder, "cut-pixels.png", png, 120); /* a whole header, then the pixels cut short */
+    /* A whole header, then an image data chunk of 1000 bytes cut off after 50: 954 bytes short of its
+     * end (its 1000 bytes and its 4-byte CRC). */
+    uint8_t cut_pixels[33 + 8 + 50] = {0};
+    memcpy(cut_pixels, png, 33);
+    memcpy(cut_pixels + 33, (const uint8_t[]){0, 0, 0x03, 0xe8, 'I', 'D', 'A', 'T'}, 8);
+    write_bytes(folder, "cut-pixels.png", cut_pixels, sizeof cut_pixels);
     uint8_t *changed = malloc(size);
     cr_assert_not_null(changed);
     memcpy(changed, png, size);
@@ -99,6 +104,14 @@ static void make_files(char folder[64]) {
     write_bytes(folder, "cut.jpg", cut_jpeg, sizeof cut_jpeg);
     const uint8_t lossless[] = {0xff, 0xd8, 0xff, 0xc3, 0x00, 0x0b, 8, 0, 16, 0, 16, 1, 1, 0x11, 0, 0xff, 0xd9};
     write_bytes(folder, "lossless.jpg", lossless, sizeof lossless);
+    /* The libFuzzer find: a Huffman table of more than 256 symbols, which stb_image writes past its
+     * arrays on. */
+    size_t huffman_size = 0;
+    uint8_t *huffman =
+        (uint8_t *)read_file("tests/data/fuzz/image/jpeg-huffman-table-of-more-than-256-symbols.jpg", &huffman_size);
+    cr_assert_not_null(huffman);
+    write_bytes(folder, "huffman.jpg", huffman, huffman_size);
+    free(huffman);
 }
 
 /* ---- running a row -------------------------------------------------------------------------------- */
@@ -267,8 +280,8 @@ static const struct hostile image_files[] = {
     REFUSED_IMAGE(14, "bmp.png", "not a PNG or JPEG image (its first bytes are neither signature: a BMP, it seems)"),
     REFUSED_IMAGE(14, "gif.png", "not a PNG or JPEG image (its first bytes are neither signature: a GIF, it seems)"),
     REFUSED_IMAGE(14, "cut-header.png", "truncated: 20 bytes, too few for a PNG's header"),
-    REFUSED_IMAGE(14, "cut-pixels.png",
-                  "truncated or damaged: its pixels cannot be decoded (the decoder says: outofdata)"),
+    REFUSED_IMAGE(14, "cut-pixels.png", "truncated: the file ends inside its 'IDAT' chunk, 954 bytes short"),
+    REFUSED_IMAGE(15, "huffman.jpg", "a damaged JPEG: a Huffman table codes more than 256 symbols"),
     REFUSED_IMAGE(14, "huge.png", "its header declares 100000 x 100000 pixels, more than the 67108864 an image map "
                                   "may have"),
     REFUSED_IMAGE(15, "kind.png", "a kind of PNG that is not supported (colour type 5, bit depth 8, compression 0, "
