@@ -265,6 +265,11 @@ static const struct hostile non_finite[] = {
      "for its emission"},
     {15, VIEW "material e emission 1e18 1e18 1e18\nsphere centre 0 3 0 radius 0.5 material e\n"
               "sphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
+    /* nothing at all gives off light: not a black picture with exit 0, but a reason */
+    {15, VIEW "sphere centre 0 0 0 radius 1\npaths samples 2\n", "", 1,
+     "SCENE: nothing gives off light, so the picture would be black: no material has an emission, no light has an "
+     "area (chapter 15 ignores 1 point light) and the background is black"},
+    {15, VIEW "background 0.2 0.3 0.4\nsphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
 };
 
 Test(hostile, numbers_that_are_in_range_make_nothing_that_is_not_finite, .timeout = 120) { RUN_ROWS(non_finite); }

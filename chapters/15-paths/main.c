@@ -81,6 +81,15 @@ int main(int argc, char **argv) {
         accel_world_destroy(w);
         return cli_fail(&run);
     }
+    /* A scene in which nothing gives off light would draw a black picture: say why instead. */
+    if (emitters.count == 0 && s->background.x == 0.0 && s->background.y == 0.0 && s->background.z == 0.0) {
+        snprintf(run.err, sizeof run.err, "%s: nothing gives off light, so the picture would be black: no material "
+                 "has an emission, no light has an area (chapter 15 ignores %d point light%s) and the background "
+                 "is black", s->path, point_lights, point_lights == 1 ? "" : "s");
+        emitter_list_free(&emitters);
+        accel_world_destroy(w);
+        return cli_fail(&run);
+    }
     struct camera cam;
     float *linear = NULL, *error = NULL;
     if (camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, run.err, sizeof run.err)) {
