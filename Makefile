@@ -330,12 +330,14 @@ compare: all $(BUILD)/compare | deps
 compare-cycles: $(BUILD)/chapter-15 | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/cycles/compare-cycles.sh $(BUILD)
 
-## make references     re-render the reference images on purpose and say what changed
+## make references     re-render the reference images on purpose and say what changed (a picture whose
+##                     pixels are the same is left as it was, byte for byte)
 references: all $(BUILD)/compare
 	tools/bless-references.sh $(BUILD)
 
 ## make gallery        render the gallery of wrong pictures (the faults in tools/gallery/) beside the
-##                     right ones, into docs/gallery/ and docs/gallery.md
+##                     right ones, into docs/gallery/ and docs/gallery.md (pictures whose pixels are the
+##                     same are left as they were)
 gallery: all $(BUILD)/compare
 	tools/gallery.sh $(BUILD)
 
