@@ -173,7 +173,6 @@ static const struct {
     size_t lines;
 } walkthroughs_to_shorten[] = {
     {"docs/08-recursion.md", 533},
-    {"docs/10-bvh.md", 504},
 };
 
 static size_t count_lines(const char *text) {
