@@ -163,7 +163,7 @@ Test(docs, every_walkthrough_from_chapter_2_has_a_build_exercise_with_its_check)
 
 /* A walkthrough is read in one sitting: at most this many lines. What a chapter's reader can do without
  * (the history of its measurements, the steps that got there, its engineering) goes to a page of notes
- * the chapter links, as chapter 11's lab notes (docs/fast-notes.md) and those of chapters 8, 9, 10 and 15. */
+ * the chapter links, as chapter 11's lab notes (docs/fast-notes.md). */
 #define WALKTHROUGH_MAX_LINES 500
 
 static size_t count_lines(const char *text) {
