@@ -166,17 +166,6 @@ Test(docs, every_walkthrough_from_chapter_2_has_a_build_exercise_with_its_check)
  * the chapter links, as chapter 11's lab notes (docs/fast-notes.md). */
 #define WALKTHROUGH_MAX_LINES 500
 
-/* Walkthroughs longer than that today, each with the length it may not grow beyond until it is
- * shortened; a page that fits again must leave this list. */
-static const struct {
-    const char *page;
-    size_t lines;
-} walkthroughs_to_shorten[] = {
-    {"docs/08-recursion.md", 533},
-    {"docs/09-kdtree.md", 653},
-    {"docs/10-bvh.md", 504},
-};
-
 static size_t count_lines(const char *text) {
     size_t lines = 0;
     for (const char *c = text; *c != '\0'; c++)
@@ -190,20 +179,12 @@ Test(docs, every_walkthrough_reads_in_one_sitting) {
     size_t too_long = 0;
     for (size_t k = 0; k < pages.gl_pathc; k++) {
         char *text = read_text_file(pages.gl_pathv[k]);
-        size_t lines = count_lines(text), limit = WALKTHROUGH_MAX_LINES;
+        size_t lines = count_lines(text);
         free(text);
-        for (size_t e = 0; e < sizeof walkthroughs_to_shorten / sizeof walkthroughs_to_shorten[0]; e++) {
-            if (strcmp(pages.gl_pathv[k], walkthroughs_to_shorten[e].page) != 0)
-                continue;
-            limit = walkthroughs_to_shorten[e].lines;
-            cr_expect_gt(lines, WALKTHROUGH_MAX_LINES,
-                         "%s has %zu lines, within %d again: take it off walkthroughs_to_shorten", pages.gl_pathv[k],
-                         lines, WALKTHROUGH_MAX_LINES);
-        }
-        if (lines > limit) {
+        if (lines > WALKTHROUGH_MAX_LINES) {
             too_long++;
-            fprintf(stderr, "%s has %zu lines, more than %zu: move what a reader can do without to a page of notes\n",
-                    pages.gl_pathv[k], lines, limit);
+            fprintf(stderr, "%s has %zu lines, more than %d: move what a reader can do without to a page of notes\n",
+                    pages.gl_pathv[k], lines, WALKTHROUGH_MAX_LINES);
         }
     }
     cr_assert_geq(pages.gl_pathc, 15, "expected the walkthroughs of chapters 1 to 15");

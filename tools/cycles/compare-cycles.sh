@@ -4,7 +4,7 @@
 #
 # Two scenes: the Cornell box of scenes/15-paths.scene with its mirror and glass balls made white (Cycles'
 # glass and ours differ in ways this comparison does not need), at 128 x 128 and 2048 paths a pixel, with
-# Cycles finding the lamp by scattering only (render.py's `scatter`; docs/15-paths.md says why); and
+# Cycles finding the lamp by scattering only (render.py's `scatter`; docs/paths-notes.md says why); and
 # scenes/15-daylight.scene as it is, at 160 x 120 and 512 paths a pixel, Cycles sampling its lights as it
 # does by default. Each renderer draws each scene twice, with seeds 1 and 2: ours into Portable Float
 # Maps, Cycles (tools/cycles/render.py, run headless by `blender -b`) into OpenEXR. tools/cycles/compare.py then measures every block's mean in

@@ -5,7 +5,7 @@
 #       SCENE OUT.exr SAMPLES SEED THREADS [scatter]
 #
 # With `scatter`, no emitter is sampled as a light (each emissive material's Multiple Importance is off):
-# Cycles then finds the emitters only by scattering into them. docs/15-paths.md says why the Cornell box
+# Cycles then finds the emitters only by scattering into them. docs/paths-notes.md says why the Cornell box
 # needs it: Cycles 3.4's sampling of its large lamp comes out about 2 % darker than the exact direct light
 # where the lamp is seen at a grazing angle, while its scattering alone agrees with the exact value.
 #
