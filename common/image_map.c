@@ -250,9 +250,8 @@ static bool jpeg_huffman_tables_fit(const uint8_t *b, size_t size) {
     return true;
 }
 
-/* Checks the file is a PNG or JPEG whose header declares a size within IMAGE_MAP_MAX_PIXELS, before
- * any decoding; false with why ("path: ...") otherwise. */
-static bool check_header(const char *path, const uint8_t *bytes, size_t size, char *why, size_t why_size) {
+bool image_map_check_header(const char *path, const uint8_t *bytes, size_t size, long *declared_width,
+                            long *declared_height, char *why, size_t why_size) {
     char reason[256];
     long width = 0, height = 0;
     bool ok;
@@ -288,6 +287,8 @@ static bool check_header(const char *path, const uint8_t *bytes, size_t size, ch
         snprintf(reason, sizeof reason, "its header declares %ld x %ld pixels, more than the %ld an image map may "
                  "have", width, height, IMAGE_MAP_MAX_PIXELS);
     }
+    *declared_width = width;
+    *declared_height = height;
     if (!ok)
         snprintf(why, why_size, "%s: %s", path, reason);
     return ok;
@@ -297,7 +298,8 @@ static bool check_header(const char *path, const uint8_t *bytes, size_t size, ch
 static bool decode(const char *path, const uint8_t *bytes, size_t size, struct pigment_image *image, char *why,
                    size_t why_size) {
     int width, height, channels;
-    if (!check_header(path, bytes, size, why, why_size))
+    long declared_width, declared_height;
+    if (!image_map_check_header(path, bytes, size, &declared_width, &declared_height, why, why_size))
         return false;
     if (size > INT32_MAX || !stbi_info_from_memory(bytes, (int)size, &width, &height, &channels)) {
         snprintf(why, why_size, "%s: a damaged image: its header cannot be read (the decoder says: %s)", path,

@@ -38,6 +38,15 @@ double image_map_png_gamma(const uint8_t *bytes, size_t size);
  * 67108864 an image map may have", "path: a kind of PNG that is not supported (...)") and *image empty. */
 bool image_map_read(const char *path, struct pigment_image *image, char *why, size_t why_size);
 
+/* The checks image_map_read makes on a file's bytes[0..size) before any decoder sees them: a PNG or
+ * JPEG by its signature and its name (`path`, which messages start with), whole, with a header of a
+ * kind the decoder takes (for a JPEG, Huffman tables of at most 256 symbols, which stb_image would
+ * write past its arrays on) and a declared size within IMAGE_MAP_MAX_PIXELS. Returns true with the
+ * declared size in *declared_width and *declared_height, or false with the reason in why. Needs no
+ * decoder, so it is safe on any bytes. */
+bool image_map_check_header(const char *path, const uint8_t *bytes, size_t size, long *declared_width,
+                            long *declared_height, char *why, size_t why_size);
+
 /* Looks the image of p up at the texture-space point q, writing red, green, blue and alpha into rgba.
  * Returns false (and rgba white, alpha 0) where p shows nothing: outside the one copy of `wrap once`,
  * or at the centre of a spherical map. */
