@@ -304,13 +304,13 @@ static bool slab_case(const char *what, ray r, double expected, char *why, size_
     if (isnan(expected) ? !hit : hit && check_near(entry, expected, GEOMETRY_TOLERANCE))
         return true;
     if (isnan(expected))
-        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.h, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
                  "expected a miss; it said the ray enters at t = %g", what, ray_text, entry);
     else if (!hit)
-        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.h, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
                  "the ray enters at t = %g; it said the ray misses%s", what, ray_text, expected, missed_hint(r));
     else
-        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.h, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
                  "the ray enters at t = %g; it said t = %g%s", what, ray_text, expected, entry,
                  check_near(entry, expected + 2.0, 1e-9) ? ": the exit, not the entry? (swap t0 and t1 when 1/d < 0)"
                  : "");
