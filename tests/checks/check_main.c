@@ -77,6 +77,7 @@ CHECK(check_camera_bottom_right);
 CHECK(check_sphere_in_front);
 CHECK(check_sphere_from_inside);
 CHECK(check_sphere_misses);
+CHECK(check_sphere_open_window);
 CHECK(check_sphere_counted);
 CHECK(check_sphere_normal);
 CHECK(check_triangle_hit);
@@ -165,6 +166,7 @@ const struct check check_list[] = {
     {"2.1", "a sphere in front: the near root", check_sphere_in_front},
     {"2.1", "from inside: the far root", check_sphere_from_inside},
     {"2.1", "misses: beside, behind, beyond t_max", check_sphere_misses},
+    {"2.1", "a root exactly at t_min or t_max is not a hit", check_sphere_open_window},
     {"2.1", "counts one sphere test per call", check_sphere_counted},
     {"2.2", "the unit outward normal", check_sphere_normal},
     {"2.P", "the picture matches the reference", check_picture_2},
