@@ -7,6 +7,18 @@
 # Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
 # below), so a chapter that reaches for a later idea fails to link.
 
+# ---- a student copy (make student) -------------------------------------------------------------
+# The goals that need the model answers or every task done, or that would overwrite the reference files
+# with the student's pictures: a student copy (tools/student.sh leaves .student-copy in it) refuses them
+# with a sentence, and make help there leaves them out.
+NOT_IN_HANDOUT := gallery test-long student references results figures test-accel-long
+ifneq ($(wildcard .student-copy),)
+ifneq ($(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)),)
+$(error make $(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)) is not part of the coursework copy: it needs the model \
+answers or every task done, or it would overwrite the reference pictures. README.md lists your commands)
+endif
+endif
+
 # ---- packages: Debian packages, installed when missing ------------------------------------------
 # Every rule that compiles, and every goal that runs POV-Ray or gnuplot, has `deps` as an order-only
 # prerequisite: before anything is built, tools/build/install-deps.sh installs what this run's goals
@@ -499,5 +511,9 @@ clean:
 
 ## make help           this list (installs nothing)
 help:
-	@awk '/^include / { while ((getline line < $$2) > 0) if (line ~ /^## /) print substr(line, 4); next } \
-	      /^## / { print substr($$0, 4) }' Makefile
+	@awk -v hidden="$(if $(wildcard .student-copy),$(NOT_IN_HANDOUT))" \
+	     'function show(line,    goal) { if (line ~ /^## make /) { goal = line; sub(/^## make /, "", goal); \
+	                                         sub(/[ =].*$$/, "", goal); skip = index(" " hidden " ", " " goal " ") > 0 } \
+	                                     if (!skip) print substr(line, 4) } \
+	      /^include / { while ((getline line < $$2) > 0) if (line ~ /^## /) show(line); next } \
+	      /^## / { show($$0) }' Makefile

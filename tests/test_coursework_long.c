@@ -368,7 +368,7 @@ Test(coursework_long, each_picture_check_needs_exactly_the_tasks_its_program_run
     cr_assert_eq(run(log, "cp -rp Makefile common chapters bench fuzz tools tests reference_images %1$s/ && mkdir -p "
                           "%1$s/scenes %1$s/%2$s && cp -rp scenes/*.scene scenes/models scenes/textures %1$s/scenes/ && cp -rp "
                           "%2$s/common %2$s/chapters %2$s/tools %2$s/checks %2$s/tests %1$s/%2$s/ && "
-                          "for f in $(tools/student.sh --list | cut -d' ' -f2 | sort -u); do "
+                          "for f in $(tools/student.sh --files); do "
                           "awk -f tests/checks/task_trace.awk $f >%1$s/$f || exit 1; done",
                      dir, build()),
                  0, "cannot make the traced copy: see %s", log);
