@@ -124,6 +124,32 @@ done | tar -cf - -T - | tar -xf - -C "$stage"
 for f in $(cd "$stage" && grep -l "$MARKER" common/*.[ch] chapters/*/main.c 2>/dev/null); do
     awk -v tasks="$tasks" -f tools/student_blank.awk "$f" >"$stage/$f"
 done
+# A lecturer's copy gets the model answers whole: every blanked function as the reference has it (the
+# walkthroughs quote only some of them, and some only in part).
+if [ "$answers" = yes ] && [ "$sources_only" = no ]; then
+    {
+        echo "# The model answers"
+        echo
+        echo "Every function blanked in this copy (tasks: $tasks), as the reference has it: each task's own"
+        echo "function, then those that go with it (\"TASK N.K ALSO\"), which would give its answer away."
+        echo "This file is in a lecturer's copy only (\`make student ... ANSWERS=1\`); a hand-out has none."
+        for f in $(marker_files); do
+            awk -v tasks="$tasks" -v file="$f" '
+                function chosen(id) { return tasks == "all" || (tasks != "none" && index(" " tasks " ", " " id " ") > 0) }
+                match($0, /^\/\* TASK [0-9]+\.[0-9]+( ALSO)?: .* \*\/$/) {
+                    id = $3; sub(/:$/, "", id)
+                    if (!chosen(id)) next
+                    what = $0; sub(/^\/\* TASK [0-9.]+( ALSO)?: /, "", what); sub(/ \*\/$/, "", what)
+                    printf "%s\t%s\t%s%s\n", id, file, ($0 ~ / ALSO: / ? "goes with it: " : ""), what
+                    body = 1; next
+                }
+                body { printf "%s\t%s\t\t%s\n", id, file, $0 } body && /^}$/ { body = 0 }' "$f"
+        done | sort -s -t. -k1,1n -k2,2n | awk -F'\t' '
+            $3 != "" { if (open) print "```"; printf "\n## Task %s: %s (`%s`)\n\n```c\n", $1, $3, $2; open = 1; next }
+            { line = $0; sub(/^[^\t]*\t[^\t]*\t\t/, "", line); print line }
+            END { if (open) print "```" }'
+    } >"$stage/docs/model-answers.md"
+fi
 if [ "$answers" = no ] && [ "$sources_only" = no ]; then
     code=$(ls common/*.[ch] chapters/*/main.c tools/*.[ch] bench/*.c tests/*.[ch] scenes/*.scene 2>/dev/null | tr '\n' ' ')
     awk -v copy="$stage" -v files="$code" -v tasks="$tasks" -f tools/student_docs.awk $(ls docs/*.md | grep -vx docs/coursework.md)
