@@ -84,6 +84,7 @@ FNR == 1 { page_lines = 0; previous = FILENAME }
 END { if (NR > 0) rewrite(previous) }
 # Prints a line of the page; a hand-out has no lecturer's guide, so a link to it keeps only its words.
 function emit(text,    words) {
+    gsub(/, see \[[^]]*\]\(coursework\.md[^)]*\)/, "", text) # "(make check-N, see [the kit](coursework.md))"
     while (match(text, /\[[^]]*\]\(coursework\.md[^)]*\)/)) {
         words = substr(text, RSTART + 1, RLENGTH); sub(/\]\(.*$/, "", words)
         text = substr(text, 1, RSTART - 1) words substr(text, RSTART + RLENGTH)
@@ -107,9 +108,8 @@ function rewrite(path,    name) {
         if (gallery && index(line, "The pictures are rendered by `make gallery`") == 1) {
             while (i < page_lines && page[i + 1] != "") i++
             emit("In this student copy the changes that make these pictures are left out: each is a wrong version of")
-            emit("a function you write. The pictures, their symptoms and the checks that catch them (`make check-N`,")
-            emit("see [the coursework kit](coursework.md)) stay, to help you recognise a mistake when your own")
-            emit("picture shows one.")
+            emit("a function you write. The pictures, their symptoms and the checks that catch them (`make check-N`)")
+            emit("stay, to help you recognise a mistake when your own picture shows one.")
             continue
         }
         if (line ~ /^\* \[[^]]*\]\(coursework\.md\)/) { # the list of pages: the guide is not in the copy
