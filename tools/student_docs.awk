@@ -131,7 +131,7 @@ function listing(at,    block, k, variant, lines, n, j, found, path, p, s, stubs
     # A static helper the copy keeps with __attribute__((unused)).
     n = split(block, lines, "\n"); variant = ""
     for (j = 1; j < n; j++) {
-        if (lines[j] ~ /^static / && lines[j] !~ /^static inline /) sub(/^static /, "static __attribute__((unused)) ", lines[j])
+        if (lines[j] ~ /^static /) sub(/^static /, "static __attribute__((unused)) ", lines[j])
         variant = variant lines[j] "\n"
     }
     if (index(corpus, variant) > 0) { print_block(variant); return }
