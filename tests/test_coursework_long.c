@@ -278,11 +278,11 @@ Test(coursework_long, a_fresh_copy_is_a_hand_out_that_builds_and_passes_its_make
                  log);
 
     /* make student again: a file the student changed is kept and named; one the student did not change
-     * is brought back to the kit's version. */
-    char *again = output_of(&status, "echo '/* mine */' >>%1$s/common/sphere.c && echo 'x' >%1$s/docs/README.md && "
-                                     "sed -i \"s|^[0-9a-f]*  docs/README.md$|$(sha1sum <%1$s/docs/README.md | cut -c1-40)  "
-                                     "docs/README.md|\" %1$s/.student-copy && tools/student.sh %1$s all && "
-                                     "tail -n 1 %1$s/common/sphere.c && cmp %1$s/docs/README.md docs/README.md && echo same",
+     * is brought back to the kit's version (docs/seed.md, which a hand-out copies as it is). */
+    char *again = output_of(&status, "echo '/* mine */' >>%1$s/common/sphere.c && echo 'x' >%1$s/docs/seed.md && "
+                                     "sed -i \"s|^[0-9a-f]*  docs/seed.md$|$(sha1sum <%1$s/docs/seed.md | cut -c1-40)  "
+                                     "docs/seed.md|\" %1$s/.student-copy && tools/student.sh %1$s all && "
+                                     "tail -n 1 %1$s/common/sphere.c && cmp %1$s/docs/seed.md docs/seed.md && echo same",
                             dir);
     cr_expect(status == 0 && strstr(again, "kept 1 file(s)") != NULL && strstr(again, "  common/sphere.c\n") != NULL &&
               strstr(again, "/* mine */\n") != NULL && strstr(again, "\nsame\n") != NULL,
