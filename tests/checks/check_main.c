@@ -59,7 +59,7 @@ const struct task check_tasks[] = {
     {"12.P", "chapter 12's picture", "chapters/12-antialias",
      "1.1 2.1 2.2 4.1 5.1 5.2 6.1 6.2 7.1 8.2 10.2 11.1 11.2 12.1 12.2"},
     {"13.1", "POV-Ray's area light: corners, quarters and the adaptive rule", "rectangle in common/soft_shadow.c",
-     "5.1 5.2"},
+     "5.1 5.2 7.1"},
     {"13.2", "the thin lens: a ray from a point of the lens through the focal plane", "thin_lens_ray in common/thin_lens.c",
      ""},
     {"13.P", "chapter 13's picture", "chapters/13-distributed",
@@ -69,7 +69,7 @@ const struct task check_tasks[] = {
     {"14.P", "chapter 14's picture", "chapters/14-textures",
      "1.1 2.1 2.2 4.1 5.1 5.2 6.1 6.2 7.1 8.2 10.2 11.1 11.2 14.1 14.2"},
     {"15.1", "next-event estimation, and its weight against scattering", "path_direct_light in common/path_trace.c", "2.1"},
-    {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "2.2 15.1"},
+    {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "1.1 2.2 15.1"},
     {"15.P", "chapter 15's picture", "chapters/15-paths", "1.1 2.1 2.2 5.1 6.1 8.1 10.2 11.1 11.2 15.1 15.2"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
