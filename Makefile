@@ -7,6 +7,18 @@
 # Every chapter links only the common/ modules introduced by chapters up to its own (MODULES_NN
 # below), so a chapter that reaches for a later idea fails to link.
 
+# ---- a student copy (make student) -------------------------------------------------------------
+# The goals that need the model answers or every task done, or that would overwrite the reference files
+# with the student's pictures: a student copy (tools/student.sh leaves .student-copy in it) refuses them
+# with a sentence, and make help there leaves them out.
+NOT_IN_HANDOUT := gallery test-long student references results figures test-accel-long
+ifneq ($(wildcard .student-copy),)
+ifneq ($(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)),)
+$(error make $(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)) is not part of the coursework copy: it needs the model \
+answers or every task done, or it would overwrite the reference pictures. README.md lists your commands)
+endif
+endif
+
 # ---- packages: Debian packages, installed when missing ------------------------------------------
 # Every rule that compiles, and every goal that runs POV-Ray or gnuplot, has `deps` as an order-only
 # prerequisite: before anything is built, tools/build/install-deps.sh installs what this run's goals
@@ -48,7 +60,9 @@ endif
 # GCC, and saying it keeps it so under -std=gnu11 or on a machine with FMA.
 # -Wno-psabi: GCC notes that 8-float vectors cross a call differently with AVX than without; ours
 # (fast_bvh_packet.c) pass between static functions of one file only, so no such call crosses files.
-CFLAGS = -std=c11 -D_DEFAULT_SOURCE $(DEBUG_INFO) $(OPT) -ffp-contract=off -Wall -Wextra -Werror -Wno-psabi -fopenmp \
+# WERROR: warnings are errors; make check-N builds again with WERROR= to grade code that only warns.
+WERROR = -Werror
+CFLAGS = -std=c11 -D_DEFAULT_SOURCE $(DEBUG_INFO) $(OPT) -ffp-contract=off -Wall -Wextra $(WERROR) -Wno-psabi -fopenmp \
          -Icommon $(STB_CFLAGS)
 LDFLAGS := $(OPT) -fopenmp
 LDLIBS = $(STB_LIBS) -lm
@@ -362,17 +376,19 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(PATH_PROOFS_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-## make check-N        grade chapter N's coursework tasks (1..15): each task, then a scoreboard
+## make check-N        grade chapter N's coursework tasks (1..15): each task, then a scoreboard (code that
+##                     only has compiler warnings is graded, with the warnings shown: tests/checks/grade.sh)
 define check_rule
-check-$(1): $(BUILD)/check | out
+check-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
-	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n >/dev/null && WHITTED_BUILD=$$(BUILD) ./$$(BUILD)/check $(1)
+	tests/checks/grade.sh "$$(MAKE)" $$(BUILD) $(1) $$(BUILD)/check $$(BUILD)/chapter-$$$$n
 endef
 $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call check_rule,$(n))))
 
 ## make check          grade every chapter's coursework tasks
-check: $(BUILD)/check $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS) | out
-	WHITTED_BUILD=$(BUILD) ./$(BUILD)/check all
+check: | out
+	@tests/checks/grade.sh "$(MAKE)" $(BUILD) all $(BUILD)/check \
+	    $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(SCENE_MODELS)
 
 ## make student DIR=d  a student copy with the coursework tasks blanked (TASKS="2.1 5.1": only some), a
 ##                     hand-out without the model answers (ANSWERS=1 keeps them: a lecturer's copy)
@@ -508,5 +524,9 @@ clean:
 
 ## make help           this list (installs nothing)
 help:
-	@awk '/^include / { while ((getline line < $$2) > 0) if (line ~ /^## /) print substr(line, 4); next } \
-	      /^## / { print substr($$0, 4) }' Makefile
+	@awk -v hidden="$(if $(wildcard .student-copy),$(NOT_IN_HANDOUT))" \
+	     'function show(line,    goal) { if (line ~ /^## make /) { goal = line; sub(/^## make /, "", goal); \
+	                                         sub(/[ =].*$$/, "", goal); skip = index(" " hidden " ", " " goal " ") > 0 } \
+	                                     if (!skip) print substr(line, 4) } \
+	      /^include / { while ((getline line < $$2) > 0) if (line ~ /^## /) show(line); next } \
+	      /^## / { show($$0) }' Makefile

@@ -52,6 +52,7 @@ ray camera_ray(const struct camera *cam, int i, int j) {
     return (ray){cam->eye, vec3_normalize(direction)};
 }
 
+/* TASK 1.1 ALSO: the primary ray through any point of the picture (camera_ray at a pixel centre) */
 ray camera_ray_through(const struct camera *cam, double x, double y) {
     double u = 2.0 * x / cam->width - 1.0, v = 1.0 - 2.0 * y / cam->height; /* [-1, 1], v upwards */
     vec3 direction = vec3_add_scaled(cam->forward, cam->right, u * cam->half_width);

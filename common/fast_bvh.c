@@ -290,6 +290,7 @@ static inline unsigned child_pair_hit(const struct fast_bvh_node *n, int h, cons
  * from t_near and exit distances up to t_far. Returns a 4-bit mask that holds every child the exact
  * test would find in the window (and maybe a few grazed ones besides), and the computed entry
  * distances in *entry. */
+/* TASK 11.1 ALSO: the slab tests of all four children at once, in float (rung 6) */
 static inline unsigned child_quad_hit(const struct fast_bvh_node *n, const struct ray_setup *s,
                                       const struct float_setup *f, float t_near, float t_far, float4 *entry) {
     float4 enter = {t_near, t_near, t_near, t_near}, leave = {t_far, t_far, t_far, t_far};

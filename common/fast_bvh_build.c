@@ -474,6 +474,7 @@ static void bin_in_parts(const struct builder *bd, const struct build_range *r, 
 
 /* Looks for the cheapest SAH split of r. Returns false, leaving the prims alone, when a leaf is
  * cheaper or no plane separates the centroids; otherwise partitions r into *left and *right. */
+/* TASK 10.2 ALSO: the binned SAH split, in float (chapter 11's builder) */
 static bool split_sah(struct builder *bd, const struct build_range *r, struct build_range *left,
                       struct build_range *right) {
     struct bin bins[FAST_BVH_BIN_SETS][3][BVH_BINS]; /* [set][axis][slot]; the sets are summed into set 0 */

@@ -62,6 +62,7 @@ static inline AVX2 unsigned lanes8_true(int8v m) { return (unsigned)_mm256_movem
 /* The slab test on all eight children of n at once, in float, as child_quad_hit (fast_bvh.c) on four:
  * for entry distances from t_near and exit distances up to t_far, an 8-bit mask that holds every child
  * the exact test would find in the window, and the computed entry distances in *entry. */
+/* TASK 11.1 ALSO: the slab tests of all eight children at once, in float (rung 8) */
 static inline AVX2 unsigned children_hit8(const struct fast_bvh_node8 *n, const int near[3], const float8 origin[3],
                                           const float8 inverse[3], const struct float_setup *f, float t_near,
                                           float t_far, float8 *entry) {
@@ -103,6 +104,22 @@ static inline AVX2 void prefetch_child8(const struct fast_bvh *b, uint32_t child
         __builtin_prefetch(&b->triangles[child]);
         __builtin_prefetch((const char *)&b->triangles[child] + 64);
     }
+}
+
+/* The children in `hit` (bit k for child k) as slot numbers into order[0 .. hits), in the order the walk
+ * takes them: nearest entry first when `nearest` (children entered at the same distance in slot order),
+ * else in slot order. Returns hits. An insertion sort, as nearest_first's in fast_bvh.c. */
+/* TASK 11.2 ALSO: the children hit, nearest first (rung 8's eight children) */
+static inline int children_in_order8(unsigned hit, const double entry[FAST_BVH_WIDTH_EIGHT], bool nearest,
+                                     int order[FAST_BVH_WIDTH_EIGHT]) {
+    int hits = 0;
+    for (unsigned rest = hit; rest != 0; rest &= rest - 1) {
+        int k = __builtin_ctz(rest), at = hits++;
+        for (; nearest && at > 0 && entry[k] < entry[order[at - 1]]; at--)
+            order[at] = order[at - 1];
+        order[at] = k;
+    }
+    return hits;
 }
 
 /* The walk of fast_bvh.c's traverse on the 8-wide tree, for one query; in_float when f covers the ray
@@ -159,13 +176,8 @@ static inline AVX2 __attribute__((always_inline)) bool traverse8(const struct fa
             boxes += (uint64_t)__builtin_popcount(used);
             /* The children hit, nearest first for the nearest hit (ties in slot order), else in slot
              * order; all but the first put aside, farthest deepest. */
-            int order[FAST_BVH_WIDTH_EIGHT], hits = 0;
-            for (unsigned rest = hit; rest != 0; rest &= rest - 1) {
-                int k = __builtin_ctz(rest), at = hits++;
-                for (; kind == QUERY_CLOSEST && at > 0 && entry[k] < entry[order[at - 1]]; at--)
-                    order[at] = order[at - 1];
-                order[at] = k;
-            }
+            int order[FAST_BVH_WIDTH_EIGHT];
+            int hits = children_in_order8(hit, entry, kind == QUERY_CLOSEST, order);
             if (hits > 0) {
                 for (int i = hits - 1; i > 0; i--) {
                     int k = order[i];

@@ -110,6 +110,7 @@ static inline AVX2 unsigned lanes4d_true(long4 m) { return (unsigned)_mm256_move
 
 /* One axis of children_hit: the slab's entry and exit distances of all eight children, folded into
  * *enter and *leave. */
+/* TASK 11.1 ALSO: one axis of the slab tests of all eight children at once, in float (rung 9) */
 static inline AVX2 __attribute__((always_inline)) void slab(const char *bounds, const struct lean_ray *l, int a,
                                                             float8 *enter, float8 *leave) {
     float8 t0 = (_mm256_load_ps((const float *)(bounds + l->near[a])) - l->origin[a]) * l->inverse[a];
@@ -121,6 +122,7 @@ static inline AVX2 __attribute__((always_inline)) void slab(const char *bounds, 
 
 /* The slab test on all eight children of n, as children_hit8 in fast_bvh_eight.c: a mask holding every
  * child the exact test would find in [t_near, t_far], and the computed entry distances in *entry. */
+/* TASK 11.1 ALSO: the slab tests of all eight children at once, in float (rung 9) */
 static inline AVX2 unsigned children_hit(const struct fast_bvh_node8 *n, const struct lean_ray *l,
                                          const struct float_setup *f, float t_near, float t_far, float8 *entry) {
     float8 enter = broadcast8(t_near), leave = broadcast8(t_far);

@@ -149,6 +149,7 @@ static inline void packet_narrow(struct packet *p, int k) {
 
 /* Rung 8's float test of ray l on all eight children of n (children_hit8 in fast_bvh_eight.c, the same
  * operations): the mask of the children it enters in its window, their entry distances in entry. */
+/* TASK 11.1 ALSO: the slab tests of all eight children at once, in float, for one ray of a packet (rung 10) */
 static inline unsigned lane_hits8(const struct lane *l, const struct fast_bvh_node8 *n, float entry[8]) {
     float8 enter = broadcast8(l->float_min), leave = broadcast8(l->float_max);
     for (int a = 0; a < 3; a++) {
@@ -162,6 +163,7 @@ static inline unsigned lane_hits8(const struct lane *l, const struct fast_bvh_no
 }
 
 /* Rung 6's float test of ray l on the four children of n (child_quad_hit in fast_bvh.c), likewise. */
+/* TASK 11.1 ALSO: the slab tests of all four children at once, in float, for one ray of a packet (rung 10) */
 static inline unsigned lane_hits4(const struct lane *l, const struct fast_bvh_node *n, float entry[4]) {
     const struct float_setup *f = &l->setup;
     float4 enter = {l->float_min, l->float_min, l->float_min, l->float_min};
@@ -206,6 +208,21 @@ static inline void prefetch_subtree(const struct fast_bvh *b, uint32_t child, ui
     int lines = count == 0 && eight ? 4 : 2;
     for (int k = 0; at != NULL && k < lines; k++)
         __builtin_prefetch(at + 64 * k);
+}
+
+/* The children in `entered` (bit c for child c) as slot numbers into order[0 .. hits), nearest key first
+ * (equal keys in slot order). Returns hits. An insertion sort, as nearest_first's in fast_bvh.c. */
+/* TASK 11.2 ALSO: the children entered, nearest first (rung 10's packets) */
+static inline int children_by_key(unsigned entered, const float key[FAST_BVH_WIDTH_EIGHT],
+                                  int order[FAST_BVH_WIDTH_EIGHT]) {
+    int hits = 0;
+    for (unsigned each = entered; each != 0; each &= each - 1) {
+        int c = __builtin_ctz(each), at = hits++;
+        for (; at > 0 && key[c] < key[order[at - 1]]; at--)
+            order[at] = order[at - 1];
+        order[at] = c;
+    }
+    return hits;
 }
 
 /* Walks the tree once for the rays of `lanes`, which p has set up and whose root box test passed, from
@@ -262,13 +279,8 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
                 boxes += (uint64_t)__builtin_popcount(used) * (uint64_t)__builtin_popcount(lanes);
             /* The children entered, nearest first (equal keys in slot order); all but the first put
              * aside, farthest deepest. */
-            int order[FAST_BVH_WIDTH_EIGHT], hits = 0;
-            for (unsigned each = entered; each != 0; each &= each - 1) {
-                int c = __builtin_ctz(each), at = hits++;
-                for (; at > 0 && key[c] < key[order[at - 1]]; at--)
-                    order[at] = order[at - 1];
-                order[at] = c;
-            }
+            int order[FAST_BVH_WIDTH_EIGHT];
+            int hits = children_by_key(entered, key, order);
             if (hits > 0) {
                 for (int i = hits - 1; i > 0; i--) {
                     int c = order[i];

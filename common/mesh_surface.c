@@ -106,6 +106,7 @@ bool mesh_surface_normal(const struct scene_mesh *m, size_t f, vec3 p, vec3 *nor
     return true;
 }
 
+/* TASK 14.2 ALSO: the blended texture coordinates of a point of a face */
 bool mesh_surface_uv(const struct scene_mesh *m, size_t f, vec3 p, struct mesh_uv *uv) {
     const struct mesh_corners *c = &m->corners;
     if (c->uv_faces == NULL)

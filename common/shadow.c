@@ -72,6 +72,7 @@ vec3 shadow_filtered(const void *world, vec3 point, const struct light *light) {
     return shadow_filtered_to(world, point, light->position);
 }
 
+/* TASK 7.1 ALSO: the shadow ray that filters the light through what it crosses */
 vec3 shadow_filtered_to(const void *world, vec3 point, vec3 target) {
     const struct world *w = world;
     double t_min, t_max;

@@ -28,6 +28,7 @@ vec3 supersample_grid(const struct sample_view *view, int i, int j, int n) {
 
 /* Pixel (i, j)'s colour as the mean of n x n samples, one at a random point of each cell of the grid:
  * cell (a, b) takes the numbers 2k and 2k + 1 of the pixel (k = b n + a) under the seed. */
+/* TASK 12.1 ALSO: jittered samples, a random point in each cell of the n x n grid */
 static vec3 jittered(const struct sample_view *view, int i, int j, int n, uint32_t seed) {
     vec3 sum = vec3_make(0, 0, 0);
     for (int b = 0; b < n; b++)

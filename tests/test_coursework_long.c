@@ -69,15 +69,21 @@ static char *quoted_block(const char *intro) {
                            "docs/coursework.md", intro);
 }
 
+/* Makes a new empty folder *dir, /tmp/whitted-coursework-NAME-XXXXXX (outside the repository, as make
+ * student requires), and names its log *log under out/test/. */
+static void new_folder(char dir[static 64], char log[static 80], const char *name) {
+    snprintf(dir, 64, "/tmp/whitted-coursework-%s-XXXXXX", name);
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(log, 80, "out/test/%s.log", strrchr(dir, '/') + 1);
+    remove(log);
+}
+
 /* Makes a student copy of the repository with `tasks` blanked (options: "--answers") in a new folder
  * *dir (outside the repository, as make student requires), its log in *log (under out/test/), and
  * seeds its build with this build's objects, generated models and chapter 14's drawn pictures: older
  * than the blanked files, so that only those are compiled again. */
 static void make_copy(char dir[static 64], char log[static 80], const char *tasks, const char *options) {
-    snprintf(dir, 64, "/tmp/whitted-coursework-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-    snprintf(log, 80, "out/test/%s.log", strrchr(dir, '/') + 1);
-    remove(log);
+    new_folder(dir, log, "copy");
     cr_assert_eq(run(log, "tools/student.sh %s '%s' %s", dir, tasks, options), 0,
                  "make student failed: see %s", log);
     cr_assert_eq(run(log, "mkdir -p %1$s/%2$s && cp -rp %2$s/common %2$s/chapters %2$s/tools %2$s/checks %2$s/tests "
@@ -122,6 +128,92 @@ static void all_but(const char *except, char *out, size_t size) {
         snprintf(out, size, "none");
 }
 
+/* Lines of a blanked body that may stay elsewhere in a hand-out: idioms that say nothing of the answer (a
+ * loop over the three axes, a zero colour, a counter), each found in code that is no task's. Anything
+ * else of a body that the copy holds gives the answer away. */
+static const char *const idioms[] = {
+    "for (int a = 0; a < 3; a++)", "for (int a = 0; a < 3; a++) {", "for (int axis = 0; axis < 3; axis++) {",
+    "for (int a = 0; a < n; a++)", "for (int b = 0; b < n; b++)", "for (int k = 0; k < FAST_BVH_WIDTH; k++) {",
+    "for (int k = 0; k < slots; k++) {", "for (size_t k = 0; k < t->count; k++)",
+    "for (size_t k = 0; k < t->count; k++) {", "for (size_t k = 0; k < s->light_count; k++) {",
+    "return vec3_make(0, 0, 0);", "vec3 sum = vec3_make(0, 0, 0);", "struct hit h = hit_nothing(INFINITY);",
+    "struct material painted;", "const struct world *w = world;", "const struct kd_node *n = &k->nodes[index];",
+    "stats_thread.box_tests++;", "stats_thread.adc_saves++;", "stats_thread.budget_cut++;",
+    "uint32_t n = r->end - r->begin;", "float4 c = centroid_of(&p);", "struct aabb bounds = {b->min, b->max};",
+    "__builtin_memcpy(entry, &enter, sizeof enter);",
+    /* the watertight test of common/triangle.h, which chapter 3 has the student read (docs/coursework.md) */
+    "double inv_det = 1.0 / det;", "if (area.x == 0.0 && area.y == 0.0 && area.z == 0.0)",
+    "if (!(hit_t > t_min && hit_t < t_max))",
+    /* chapter 11's walks, the same idea as 10.3 made 4- and 8-wide, which chapter 11 teaches after it */
+    "uint32_t slivers = (uint32_t)(b->triangle_count - b->tree_count);",
+};
+
+Test(coursework_long, no_line_of_a_blanked_body_is_left_in_a_hand_out, .timeout = 600) {
+    /* Every task blanked: each line of 24 characters or more of a blanked body (a task's, or one that
+     * goes with it), after its signature and but for comments, must appear nowhere in the copy: not in
+     * another function, a figure, a test or a page. */
+    char dir[64], log[80];
+    new_folder(dir, log, "leak");
+    cr_assert_eq(run(log, "tools/student.sh %s all", dir), 0, "make student failed: see %s", log);
+    char allowed[] = "/tmp/whitted-coursework-idioms-XXXXXX";
+    int fd = mkstemp(allowed);
+    cr_assert_geq(fd, 0);
+    FILE *to = fdopen(fd, "w");
+    for (size_t k = 0; k < sizeof idioms / sizeof idioms[0]; k++)
+        fprintf(to, "%s\n", idioms[k]);
+    fclose(to);
+    char *bodies = output_of(NULL,
+        "for f in $(tools/student.sh --files); do "
+        "awk '/^\\/\\* TASK [0-9]+\\.[0-9]+( ALSO)?: .* \\*\\/$/ { signature = 1; next } "
+        "signature { if ($0 ~ /\\{[ \\t]*$/) { signature = 0; body = 1 } next } "
+        "body && /^}$/ { body = 0 } "
+        "body { sub(/^[ \\t]+/, \"\"); if (length($0) >= 24 && $0 !~ /^(\\/\\*|\\*)/) print }' $f; done | "
+        "sort -u | grep -vxF -f %s | wc -l", allowed);
+    cr_expect_gt(atoi(bodies), 100, "only %s lines of blanked bodies to look for", bodies);
+    free(bodies);
+    char *leaks = output_of(NULL,
+        "for f in $(tools/student.sh --files); do "
+        "awk '/^\\/\\* TASK [0-9]+\\.[0-9]+( ALSO)?: .* \\*\\/$/ { id = $3; sub(/:$/, \"\", id); signature = 1; next } "
+        "signature { if ($0 ~ /\\{[ \\t]*$/) { signature = 0; body = 1 } next } "
+        "body && /^}$/ { body = 0 } "
+        "body { sub(/^[ \\t]+/, \"\"); if (length($0) >= 24 && $0 !~ /^(\\/\\*|\\*)/) print id \"\\t\" $0 }' $f; "
+        "done | sort -u | while IFS=\"$(printf '\\t')\" read -r id line; do "
+        "  printf '%%s\\n' \"$line\" | grep -qxF -f %2$s && continue; "
+        "  grep -rlF --exclude-dir=.git -- \"$line\" %1$s | "
+        "  while IFS= read -r file; do printf 'task %%s %%s  in %%s\\n' \"$id\" \"$line\" \"${file#%1$s/}\"; done; "
+        "done", dir, allowed);
+    cr_expect_str_eq(leaks, "", "lines of blanked bodies found in the hand-out (blank what gives the answer away "
+                     "with a /* TASK N.K ALSO: */ marker, or rewrite it):\n%s", leaks);
+    free(leaks);
+    remove(allowed);
+    remove_copy(dir, log);
+}
+
+Test(coursework_long, a_lecturers_copy_holds_every_blanked_function_whole, .timeout = 600) {
+    /* ANSWERS=1, every task blanked: docs/model-answers.md holds each blanked function (a task's, or one
+     * that goes with it) whole, as the reference has it; the lecturer's guide is there, the CI is not. */
+    char dir[64], log[80];
+    new_folder(dir, log, "answers");
+    cr_assert_eq(run(log, "tools/student.sh %s all --answers", dir), 0, "make student ANSWERS=1 failed: see %s", log);
+    int status;
+    char *missing = output_of(&status,
+        "awk 'FNR == NR { answers = answers $0 \"\\n\"; next } "
+        "/^\\/\\* TASK [0-9]+\\.[0-9]+( ALSO)?: .* \\*\\/$/ { body = 1; text = \"\"; functions++; next } "
+        "body { text = text $0 \"\\n\"; if ($0 == \"}\") { body = 0; "
+        "if (!index(answers, text)) print FILENAME \": \" substr(text, 1, index(text, \"(\")) } } "
+        "END { print \"functions=\" functions }' %1$s/docs/model-answers.md $(tools/student.sh --files) && "
+        "ls %1$s/docs/coursework.md && ! ls -d %1$s/.ci %1$s/.github 2>/dev/null", dir);
+    char expected[96];
+    snprintf(expected, sizeof expected, "%s/docs/coursework.md", dir);
+    const char *count = strstr(missing, "functions=");
+    cr_expect(status == 0 && strstr(missing, ": ") == NULL && strstr(missing, expected) != NULL && count != NULL &&
+              atoi(count + strlen("functions=")) >= 28,
+              "the lecturer's copy (status %d): functions missing from docs/model-answers.md, then the count:\n%s",
+              status, missing);
+    free(missing);
+    remove_copy(dir, log);
+}
+
 Test(coursework_long, a_fresh_copy_is_a_hand_out_that_builds_and_passes_its_make_test, .timeout = 1800) {
     char dir[64], log[80];
     make_copy(dir, log, "all", "");
@@ -140,9 +232,8 @@ Test(coursework_long, a_fresh_copy_is_a_hand_out_that_builds_and_passes_its_make
               "the copy's README is not the student's:\n%s", text);
     free(text);
 
-    /* No model answer: no answer file, no line of a blanked body anywhere (the docs included), and the
-     * gallery without its diffs. A line counts when it is 24 characters or more and the blanked copy's
-     * code no longer holds it. */
+    /* No model answer: no answer file, and the gallery without its diffs (no line of a blanked body
+     * anywhere: the next test). */
     static const char *const answers[] = {"tests/exercises/solutions.c", "tests/exercises/solutions.h",
                                           "tests/exercises/test_exercise_proof.c", "tools/gallery", "tests/checks/faults",
                                           "tests/mutants",
@@ -155,17 +246,6 @@ Test(coursework_long, a_fresh_copy_is_a_hand_out_that_builds_and_passes_its_make
         cr_expect_neq(stat(path, &st), 0, "the hand-out holds %s", answers[k]);
     }
     int status;
-    char *leaks = output_of(&status,
-        "for f in $(tools/student.sh --list | cut -d' ' -f2 | sort -u); do "
-        "awk '/^\\/\\* TASK [0-9]+\\.[0-9]+: .* \\*\\/$/ { body = 1; next } body && /^}$/ { body = 0 } "
-        "body { sub(/^[ \\t]+/, \"\"); if (length($0) >= 24) print }' $f; done | sort -u | "
-        "while IFS= read -r line; do "
-        "  grep -rqF -- \"$line\" %1$s/common %1$s/chapters && continue; "
-        "  grep -rlF --exclude-dir=.git --exclude-dir=build --exclude-dir=out -- \"$line\" %1$s | "
-        "  while IFS= read -r file; do printf '%%s  in %%s\\n' \"$line\" \"$file\"; done; "
-        "done", dir);
-    cr_expect_str_eq(leaks, "", "lines of blanked bodies found in the hand-out:\n%s", leaks);
-    free(leaks);
     char *diffs = output_of(NULL, "grep -c '^```diff' %s/docs/gallery.md", dir);
     cr_expect_str_eq(diffs, "0\n", "the hand-out's gallery shows the faults' diffs");
     free(diffs);
@@ -198,11 +278,11 @@ Test(coursework_long, a_fresh_copy_is_a_hand_out_that_builds_and_passes_its_make
                  log);
 
     /* make student again: a file the student changed is kept and named; one the student did not change
-     * is brought back to the kit's version. */
-    char *again = output_of(&status, "echo '/* mine */' >>%1$s/common/sphere.c && echo 'x' >%1$s/docs/README.md && "
-                                     "sed -i \"s|^[0-9a-f]*  docs/README.md$|$(sha1sum <%1$s/docs/README.md | cut -c1-40)  "
-                                     "docs/README.md|\" %1$s/.student-copy && tools/student.sh %1$s all && "
-                                     "tail -n 1 %1$s/common/sphere.c && cmp %1$s/docs/README.md docs/README.md && echo same",
+     * is brought back to the kit's version (docs/seed.md, which a hand-out copies as it is). */
+    char *again = output_of(&status, "echo '/* mine */' >>%1$s/common/sphere.c && echo 'x' >%1$s/docs/seed.md && "
+                                     "sed -i \"s|^[0-9a-f]*  docs/seed.md$|$(sha1sum <%1$s/docs/seed.md | cut -c1-40)  "
+                                     "docs/seed.md|\" %1$s/.student-copy && tools/student.sh %1$s all && "
+                                     "tail -n 1 %1$s/common/sphere.c && cmp %1$s/docs/seed.md docs/seed.md && echo same",
                             dir);
     cr_expect(status == 0 && strstr(again, "kept 1 file(s)") != NULL && strstr(again, "  common/sphere.c\n") != NULL &&
               strstr(again, "/* mine */\n") != NULL && strstr(again, "\nsame\n") != NULL,
@@ -361,14 +441,11 @@ Test(coursework_long, each_picture_check_needs_exactly_the_tasks_its_program_run
     /* A copy of the repository in which every marked function records that it ran
      * (tests/checks/task_trace.awk); each chapter's program then renders its own scene. */
     char dir[64], log[80];
-    snprintf(dir, sizeof dir, "/tmp/whitted-coursework-trace-XXXXXX");
-    cr_assert_not_null(mkdtemp(dir));
-    snprintf(log, sizeof log, "out/test/%s.log", strrchr(dir, '/') + 1);
-    remove(log);
+    new_folder(dir, log, "trace");
     cr_assert_eq(run(log, "cp -rp Makefile common chapters bench fuzz tools tests reference_images %1$s/ && mkdir -p "
                           "%1$s/scenes %1$s/%2$s && cp -rp scenes/*.scene scenes/models scenes/textures %1$s/scenes/ && cp -rp "
                           "%2$s/common %2$s/chapters %2$s/tools %2$s/checks %2$s/tests %1$s/%2$s/ && "
-                          "for f in $(tools/student.sh --list | cut -d' ' -f2 | sort -u); do "
+                          "for f in $(tools/student.sh --files); do "
                           "awk -f tests/checks/task_trace.awk $f >%1$s/$f || exit 1; done",
                      dir, build()),
                  0, "cannot make the traced copy: see %s", log);

@@ -70,7 +70,7 @@ ParameterizedTest(struct fault *f, coursework_proof, every_planted_fault_is_repo
 }
 
 Test(coursework_proof, there_is_a_planted_fault_for_each_new_kind_of_check) {
-    static const char *const kinds[] = {"crashes", "never-returns", "nan", "not-counted", "slivers", "end-margin"};
+    static const char *const kinds[] = {"crashes", "never-returns", "nan", "not-counted", "slivers", "end-margin", "window-closed", "warns"};
     size_t count = find_faults();
     for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++) {
         bool found = false;

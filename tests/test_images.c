@@ -252,3 +252,15 @@ Test(shadows, the_acne_scene_has_no_povray_twin) {
     FILE *twin = fopen(TEST_OUT "/acne.pov", "r");
     cr_assert_null(twin, "a twin was written although POV-Ray cannot draw acne");
 }
+
+/* The grader's picture check of chapter 15 (tests/checks/check_picture.c) renders a smaller picture with
+ * fewer paths, to take a second instead of half a minute; its reference is the reference program's. */
+Test(reference_image, chapter_15_check_picture_matches_its_reference, .timeout = 120) {
+    const char *png = TEST_OUT "/chapter-15-check.png";
+    cr_assert_eq(render_chapter(15, chapter_scene(15), png, "--width 128 --height 128 --set paths.samples=16"), 0);
+    struct image_difference d = compare_png(png, "reference_images/chapter-15-check.png");
+    report_difference("chapter 15's picture check vs reference", &d);
+    cr_assert(regression_passes(&d), "reference_images/chapter-15-check.png is stale: max %d, mean %.4f, within 1: "
+              "%.3f%% (make it again with the command in tests/checks/check_picture.c)", d.max, d.mean,
+              100.0 * d.within_1);
+}

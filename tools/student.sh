@@ -7,6 +7,7 @@
 #   tools/student.sh DIR TASKS --sources-only   (for the kit's tests) rewrite only the files with markers,
 #                                               over whatever DIR holds
 #   tools/student.sh --list                     the marked tasks, one "N.K file what" a line
+#   tools/student.sh --files                    the files with markers (a task's, or one tied to a task)
 #
 # Every file of the repository (what git tracks, plus new files not ignored) goes to DIR; in the C files,
 # the body of each function marked "/* TASK N.K: what */" whose task is chosen becomes a stub
@@ -21,24 +22,45 @@
 set -eu
 cd "$(dirname "$0")/.."
 
+# The files that hold markers: a task's own, or a second one tied to it ("/* TASK N.K ALSO: what */", on a
+# function that would give the task's answer away; it is blanked with the task).
+MARKER='^/\* TASK [0-9][0-9]*\.[0-9][0-9]*\( ALSO\)\{0,1\}: .* \*/$'
+marker_files() {
+    grep -l "$MARKER" common/*.[ch] chapters/*/main.c 2>/dev/null
+}
+
 marked() {
     grep -n '^/\* TASK [0-9][0-9]*\.[0-9][0-9]*: .* \*/$' common/*.[ch] chapters/*/main.c 2>/dev/null |
         sed 's|^\([^:]*\):[0-9]*:/\* TASK \([0-9.]*\): \(.*\) \*/$|\2 \1 \3|' | sort -t. -k1,1n -k2,2n
 }
 
-# The files a hand-out leaves out: model answers, and what proves the kit with them.
+# The files no copy gets: the forge's CI, which runs the authors' whole suite (make test-long needs every
+# task done and the answers), and would fail on every push of a student's copy.
+is_ci() {
+    case $1 in
+    .github/* | .ci/*) return 0 ;;
+    esac
+    return 1
+}
+
+# The files a hand-out leaves out: model answers, what proves the kit with them, and the lecturer's guide.
 is_answer() {
     case $1 in
     tests/exercises/solutions.[ch] | tests/exercises/test_exercise_proof.c) return 0 ;;
     tools/gallery/*.patch | tests/test_gallery.c | tests/mutants/*.patch) return 0 ;;
     tests/checks/faults/* | tests/checks/prove_fault.sh | tests/test_coursework_proof.c) return 0 ;;
     tests/checks/task_trace.awk | tests/test_coursework_long.c) return 0 ;; # they need the reference
+    docs/coursework.md) return 0 ;;
     esac
     return 1
 }
 
 if [ "${1:-}" = "--list" ]; then
     marked
+    exit 0
+fi
+if [ "${1:-}" = "--files" ]; then
+    marker_files
     exit 0
 fi
 dir=""
@@ -76,26 +98,61 @@ if [ -d "$dir" ] && [ -n "$(ls -A "$dir")" ] && [ ! -f "$manifest" ]; then
     exit 2
 fi
 if [ "$sources_only" = yes ]; then
-    files=$(marked | cut -d' ' -f2 | sort -u)
+    files=$(marker_files)
 elif ! files=$(git ls-files --cached --others --exclude-standard 2>/dev/null); then
     echo "tools/student.sh: needs the repository's git history to know which files to copy" >&2
     exit 2
 fi
 
+# The first chosen task's chapter is where the student starts.
+case $tasks in
+all) first=$(marked | head -n 1 | cut -d' ' -f1) ;;
+none) first="" ;;
+*) first=$(marked | cut -d' ' -f1 | while read -r id; do
+       if printf ' %s ' "$tasks" | grep -qF " $id "; then echo "$id"; fi
+   done | head -n 1) ;;
+esac
 # Everything the copy will hold, first in a staging folder: the docs are rewritten from the blanked code.
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 printf '%s\n' "$files" | while IFS= read -r f; do
     [ -f "$f" ] || continue # deleted but not yet committed
+    if is_ci "$f"; then continue; fi
     if [ "$answers" = no ] && is_answer "$f"; then continue; fi
     printf '%s\n' "$f"
 done | tar -cf - -T - | tar -xf - -C "$stage"
-for f in $(cd "$stage" && grep -l '^/\* TASK [0-9][0-9]*\.[0-9][0-9]*: .* \*/$' common/*.[ch] chapters/*/main.c 2>/dev/null); do
+for f in $(cd "$stage" && grep -l "$MARKER" common/*.[ch] chapters/*/main.c 2>/dev/null); do
     awk -v tasks="$tasks" -f tools/student_blank.awk "$f" >"$stage/$f"
 done
+# A lecturer's copy gets the model answers whole: every blanked function as the reference has it (the
+# walkthroughs quote only some of them, and some only in part).
+if [ "$answers" = yes ] && [ "$sources_only" = no ]; then
+    {
+        echo "# The model answers"
+        echo
+        echo "Every function blanked in this copy (tasks: $tasks), as the reference has it: each task's own"
+        echo "function, then those that go with it (\"TASK N.K ALSO\"), which would give its answer away."
+        echo "This file is in a lecturer's copy only (\`make student ... ANSWERS=1\`); a hand-out has none."
+        for f in $(marker_files); do
+            awk -v tasks="$tasks" -v file="$f" '
+                function chosen(id) { return tasks == "all" || (tasks != "none" && index(" " tasks " ", " " id " ") > 0) }
+                match($0, /^\/\* TASK [0-9]+\.[0-9]+( ALSO)?: .* \*\/$/) {
+                    id = $3; sub(/:$/, "", id)
+                    if (!chosen(id)) next
+                    what = $0; sub(/^\/\* TASK [0-9.]+( ALSO)?: /, "", what); sub(/ \*\/$/, "", what)
+                    printf "%s\t%s\t%s%s\n", id, file, ($0 ~ / ALSO: / ? "goes with it: " : ""), what
+                    body = 1; next
+                }
+                body { printf "%s\t%s\t\t%s\n", id, file, $0 } body && /^}$/ { body = 0 }' "$f"
+        done | sort -s -t. -k1,1n -k2,2n | awk -F'\t' '
+            $3 != "" { if (open) print "```"; printf "\n## Task %s: %s (`%s`)\n\n```c\n", $1, $3, $2; open = 1; next }
+            { line = $0; sub(/^[^\t]*\t[^\t]*\t\t/, "", line); print line }
+            END { if (open) print "```" }'
+    } >"$stage/docs/model-answers.md"
+fi
 if [ "$answers" = no ] && [ "$sources_only" = no ]; then
     code=$(ls common/*.[ch] chapters/*/main.c tools/*.[ch] bench/*.c tests/*.[ch] scenes/*.scene 2>/dev/null | tr '\n' ' ')
-    awk -v copy="$stage" -v files="$code" -v tasks="$tasks" -f tools/student_docs.awk docs/*.md
+    awk -v copy="$stage" -v files="$code" -v tasks="$tasks" -f tools/student_docs.awk $(ls docs/*.md | grep -vx docs/coursework.md)
     table=$(marked | while read -r id file what; do
         if [ "$tasks" = all ] || printf ' %s ' "$tasks" | grep -qF " $id "; then
             name=$(awk -v id="$id" 'found { gsub(/__attribute__\(\([^)]*\)\)/, ""); sub(/\(.*$/, ""); sub(/^.*[ *]/, "")
@@ -109,7 +166,12 @@ if [ "$answers" = no ] && [ "$sources_only" = no ]; then
     else
         table="No task is blanked in this copy: every function is the reference's."
     fi
-    awk -v table="$table" '$0 == "@TASKS@" { print table; next } { print }' tools/student_readme.md >"$stage/README.md"
+    chapter=${first%%.*}
+    [ -n "$chapter" ] || chapter=1
+    walkthrough=$(ls docs/"$(printf '%02d' "$chapter")"-*.md | head -n 1)
+    awk -v table="$table" -v chapter="$chapter" -v walkthrough="$walkthrough" '
+        $0 == "@TASKS@" { print table; next }
+        { gsub(/@CHAPTER@/, chapter); gsub(/@WALKTHROUGH@/, walkthrough); print }' tools/student_readme.md >"$stage/README.md"
 fi
 
 # Then into DIR: a file the student changed since this script wrote it (its checksum is not the one
@@ -168,4 +230,9 @@ if [ -s "$lists/kept" ]; then
 fi
 count=$(grep -rl 'TODO (chapter ' "$dir/common" "$dir/chapters" 2>/dev/null | wc -l)
 if [ "$answers" = yes ]; then what="model answers kept (a lecturer's copy)"; else what="model answers left out"; fi
-echo "student copy in $dir: tasks ${tasks}; $count file(s) with blanked functions; $what. Start with: cd $dir && make check-1"
+if [ -n "$first" ]; then
+    start="Start with: cd $dir && make check-${first%%.*}"
+else
+    start="Every function is the reference's: cd $dir && make check grades them all"
+fi
+echo "student copy in $dir: tasks ${tasks}; $count file(s) with blanked functions; $what. $start"

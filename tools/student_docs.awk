@@ -16,6 +16,8 @@
 #    student makes it in their own function, once its task is done.
 #  - The gallery page (docs/gallery.md) loses the diffs of its faults, and the paragraph on the patches
 #    gets one on their absence: each is a wrong version of a task's body, and a hand-out has no patches.
+#  - The lecturer's guide (docs/coursework.md) is not in a hand-out: a link to it keeps only its words, and
+#    its entry in the list of pages (docs/README.md) goes.
 function chosen(id) { return tasks == "all" || (tasks != "none" && index(" " tasks " ", " " id " ") > 0) }
 function read_file(path,    line, text, status) {
     text = ""
@@ -23,12 +25,12 @@ function read_file(path,    line, text, status) {
     close(path)
     return status < 0 ? "" : text
 }
-# The text of the function that follows the marker of task id in text: from the line after the marker
+# The text of the function that follows the marker line `marker` in text: from the line after the marker
 # to the first line that is "}" alone.
-function function_after_marker(text, id,    n, lines, k, body) {
+function function_after_marker(text, marker,    n, lines, k, body) {
     n = split(text, lines, "\n")
     for (k = 1; k <= n; k++)
-        if (index(lines[k], "/* TASK " id ": ") == 1) break
+        if (lines[k] == marker) break
     body = ""
     for (k++; k <= n; k++) {
         body = body lines[k] "\n"
@@ -54,8 +56,8 @@ BEGIN {
         n = split(reference[path], lines, "\n")
         offset = 1
         for (k = 1; k <= n; k++) {
-            if (match(lines[k], /^\/\* TASK [0-9]+\.[0-9]+: .* \*\/$/)) {
-                id = lines[k]; sub(/^\/\* TASK /, "", id); sub(/:.*$/, "", id)
+            if (match(lines[k], /^\/\* TASK [0-9]+\.[0-9]+( ALSO)?: .* \*\/$/)) {
+                id = lines[k]; sub(/^\/\* TASK /, "", id); sub(/( ALSO)?:.*$/, "", id)
                 start = offset
                 end = offset + length(lines[k]) + 1
                 for (j = k + 1; j <= n; j++) {
@@ -64,10 +66,13 @@ BEGIN {
                 }
                 spans++
                 span_file[spans] = path; span_id[spans] = id; span_start[spans] = start; span_end[spans] = end
+                span_marker[spans] = lines[k]
                 name = function_name(lines[k + 1] lines[k + 2])
+                span_name[spans] = name
+                span_also[spans] = lines[k] ~ / ALSO: /
                 task_of_name[name] = task_of_name[name] " " id
-                task_file[id] = path
-                task_name[id] = name
+                name_file[name] = path
+                if (!span_also[spans]) task_name[id] = name
             }
             offset += length(lines[k]) + 1
         }
@@ -77,7 +82,15 @@ FNR == 1 && NR > 1 { rewrite(previous) }
 FNR == 1 { page_lines = 0; previous = FILENAME }
 { page[++page_lines] = $0 }
 END { if (NR > 0) rewrite(previous) }
-function emit(text) { print text > out }
+# Prints a line of the page; a hand-out has no lecturer's guide, so a link to it keeps only its words.
+function emit(text,    words) {
+    gsub(/, see \[[^]]*\]\(coursework\.md[^)]*\)/, "", text) # "(make check-N, see [the kit](coursework.md))"
+    while (match(text, /\[[^]]*\]\(coursework\.md[^)]*\)/)) {
+        words = substr(text, RSTART + 1, RLENGTH); sub(/\]\(.*$/, "", words)
+        text = substr(text, 1, RSTART - 1) words substr(text, RSTART + RLENGTH)
+    }
+    print text > out
+}
 # Writes the page just read (page[1..page_lines], from path) into the copy.
 function rewrite(path,    name) {
     out = copy "/" path
@@ -95,9 +108,12 @@ function rewrite(path,    name) {
         if (gallery && index(line, "The pictures are rendered by `make gallery`") == 1) {
             while (i < page_lines && page[i + 1] != "") i++
             emit("In this student copy the changes that make these pictures are left out: each is a wrong version of")
-            emit("a function you write. The pictures, their symptoms and the checks that catch them (`make check-N`,")
-            emit("see [the coursework kit](coursework.md)) stay, to help you recognise a mistake when your own")
-            emit("picture shows one.")
+            emit("a function you write. The pictures, their symptoms and the checks that catch them (`make check-N`)")
+            emit("stay, to help you recognise a mistake when your own picture shows one.")
+            continue
+        }
+        if (line ~ /^\* \[[^]]*\]\(coursework\.md\)/) { # the list of pages: the guide is not in the copy
+            while (i < page_lines && page[i + 1] ~ /^  /) i++
             continue
         }
         if (line == "```c") { listing(i); continue }
@@ -115,7 +131,7 @@ function listing(at,    block, k, variant, lines, n, j, found, path, p, s, stubs
     # A static helper the copy keeps with __attribute__((unused)).
     n = split(block, lines, "\n"); variant = ""
     for (j = 1; j < n; j++) {
-        if (lines[j] ~ /^static / && lines[j] !~ /^static inline /) sub(/^static /, "static __attribute__((unused)) ", lines[j])
+        if (lines[j] ~ /^static /) sub(/^static /, "static __attribute__((unused)) ", lines[j])
         variant = variant lines[j] "\n"
     }
     if (index(corpus, variant) > 0) { print_block(variant); return }
@@ -130,14 +146,19 @@ function listing(at,    block, k, variant, lines, n, j, found, path, p, s, stubs
             id = span_id[s]
             if (!chosen(id)) continue
             stubs++
-            if (shown[id]) {
-                emit("*(This listing, more of `" task_name[id] "`'s body, is left out: task " id " is yours to write.)*")
+            if (shown[span_marker[s]]) {
+                emit("*(This listing, more of `" span_name[s] "`'s body, is left out: task " id " is yours to write.)*")
                 continue
             }
-            shown[id] = 1
-            stub = function_after_marker(copied[path], id)
-            emit("*In your copy, `" task_name[id] "` is task " id ", which you write (`make check-" int(id) "` grades it):")
-            emit("the listing shows its stub.*")
+            shown[span_marker[s]] = 1
+            stub = function_after_marker(copied[path], span_marker[s])
+            if (span_also[s]) {
+                emit("*In your copy, `" span_name[s] "` goes with task " id ": it computes what the task asks for, so you")
+                emit("write it too (`make check-" int(id) "` grades the task). The listing shows its stub.*")
+            } else {
+                emit("*In your copy, `" span_name[s] "` is task " id ", which you write (`make check-" int(id) "` grades it):")
+                emit("the listing shows its stub.*")
+            }
             emit("")
             print_block(stub)
         }
@@ -163,8 +184,9 @@ function exercise(at,    k, text, last, id, names, n, j, candidate, c, ids, m, n
         m = split(task_of_name[candidate], ids, " ")
         for (c = 1; c <= m; c++) {
             id = ids[c]
-            if (!chosen(id) || (int(id) != chapter && index(text, task_file[id]) == 0)) continue
-            note = "   *In your copy, `" candidate "` (" task_file[id] ") is task " id ", which you write: make this change " \
+            if (!chosen(id) || (int(id) != chapter && index(text, name_file[candidate]) == 0)) continue
+            note = "   *In your copy, `" candidate "` (" name_file[candidate] ") " \
+                   (candidate == task_name[id] ? "is task " id : "goes with task " id) ", which you write: make this change " \
                    "in your own `" candidate "` once `make check-" int(id) "` says " id " is done. Code quoted here, and " \
                    "the numbers, are the reference's.*"
         }

@@ -8,6 +8,8 @@
 
 /* Means and differences are compared within this: far above rounding, far below any mistake. */
 #define ANTIALIAS_TOLERANCE 1e-9
+/* Halvings of [0, 4] that find where a wrong supersample_differ turns false, to 4 / 2^30. */
+#define DIFFER_BISECTIONS 30
 
 /* ---- 12.1 supersample_grid ------------------------------------------------------------------- */
 
@@ -106,13 +108,31 @@ CHECK(check_differ_gamma) {
 
 /* The three channels' differences add up; a negative channel counts as 0. */
 CHECK(check_differ_channels) {
-    double one = pow(0.2, 0.4) - pow(0.1, 0.4); /* 0.1218 */
+    double one = pow(0.2, 0.4) - pow(0.1, 0.4); /* 0.1272 */
     vec3 a = vec3_make(0.2, 0.2, 0.2), b = vec3_make(0.1, 0.1, 0.1);
     check_calling("supersample_differ", "(0.2, 0.2, 0.2) and (0.1, 0.1, 0.1), and (-1, 0, 0) and (0.01, 0, 0)");
     if (!supersample_differ(a, b, 3 * one - 1e-6) || supersample_differ(a, b, 3 * one + 1e-6)) {
+        /* Where the student's answer turns from true to false: the distance their code computes. */
+        double low = 0, high = 4;
+        check_calling("supersample_differ", "(0.2, 0.2, 0.2) and (0.1, 0.1, 0.1), thresholds from 0 to 4");
+        bool at_low = supersample_differ(a, b, low), at_high = supersample_differ(a, b, high);
+        char seen[160];
+        if (at_low && !at_high) {
+            for (int k = 0; k < DIFFER_BISECTIONS; k++) {
+                double middle = 0.5 * (low + high);
+                if (supersample_differ(a, b, middle))
+                    low = middle;
+                else
+                    high = middle;
+            }
+            snprintf(seen, sizeof seen, "your answer turns from true to false at %.4f%s", low,
+                     fabs(low - one) < 1e-3 ? " (one channel's difference: the other two forgotten?)" : "");
+        } else
+            snprintf(seen, sizeof seen, "your answer is %s at threshold 0 and %s at 4, so it measures no distance",
+                     at_low ? "true" : "false", at_high ? "true" : "false");
         snprintf(why, why_size, "supersample_differ((0.2, 0.2, 0.2), (0.1, 0.1, 0.1), t): the distance is the sum of "
-                 "the three channels' differences, 3 x (0.2^0.4 - 0.1^0.4) = %.4f; your answer changes elsewhere",
-                 3 * one);
+                 "the three channels' differences, 3 x (0.2^0.4 - 0.1^0.4) = %.4f, so the answer is true below it and "
+                 "false above it; %s", 3 * one, seen);
         return false;
     }
     if (!supersample_differ(vec3_make(-1, 0, 0), vec3_make(0.01, 0, 0), 0.1)) {

@@ -110,6 +110,41 @@ CHECK(check_sphere_misses) {
                        why, why_size);
 }
 
+/* The window of t is open, t_min < t < t_max: a root exactly at either end is not a hit. A ray that starts
+ * on a sphere's surface (a reflected or refracted ray, or a shadow ray, leaves from one) has a root at
+ * exactly t = 0; with t_min = 0 that root must not count, or the ray finds the surface it leaves. */
+CHECK(check_sphere_open_window) {
+    const struct sphere s = {{0, 0, -5}, 1.0, 0};
+    const ray on_surface = {{0, 0, -4}, {0, 0, -1}};
+    double t = NAN;
+    check_calling("sphere_intersect", "a ray from (0, 0, -4), on the surface of the sphere of radius 1 around "
+                  "(0, 0, -5), down -z, t_min 0, t_max inf");
+    bool hit = sphere_intersect(&s, &on_surface, 0.0, INFINITY, &t);
+    if (!hit || !check_near(t, 2.0, GEOMETRY_TOLERANCE)) {
+        char got[32] = "no hit";
+        if (hit)
+            snprintf(got, sizeof got, "a hit at t = %.1f", t);
+        snprintf(why, why_size, "sphere_intersect: a ray starting on the surface, at (0, 0, -4), with t_min = 0 must "
+                 "leave through the far side at t = 2; your code returned %s%s", got,
+                 hit && t == 0.0 ? ": a root exactly at t_min counted, so the ray hits the surface it starts from (the "
+                                   "window is open, t > t_min and t < t_max, not >= and <=; in chapter 8 the glass "
+                                   "ball's refracted rays would stop where they start)"
+                                 : "");
+        return false;
+    }
+    check_calling("sphere_intersect", "a ray from the origin down -z and the sphere of radius 1 around (0, 0, -5), "
+                  "t_min 1e-9, t_max 4 (exactly its near root)");
+    t = NAN;
+    if (sphere_intersect(&s, &down_z, 1e-9, 4.0, &t)) {
+        snprintf(why, why_size, "sphere_intersect: the sphere of radius 1 around (0, 0, -5) with t_max = 4, exactly its "
+                 "near root, must be a miss (the far root, 6, is beyond t_max too); your code returned a hit at t = "
+                 "%.1f: a root exactly at t_max counted (the window is open, t < t_max, not <=; a shadow ray ending "
+                 "on the light would be blocked by the light's own surface)", t);
+        return false;
+    }
+    return true;
+}
+
 /* One call of sphere_intersect on r, for the counter's check: how much it added to the sphere tests. */
 static uint64_t sphere_tests_of_one_call(const ray *r) {
     const struct sphere s = {{0, 0, -5}, 1.0, 0};
@@ -304,13 +339,13 @@ static bool slab_case(const char *what, ray r, double expected, char *why, size_
     if (isnan(expected) ? !hit : hit && check_near(entry, expected, GEOMETRY_TOLERANCE))
         return true;
     if (isnan(expected))
-        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.h, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
                  "expected a miss; it said the ray enters at t = %g", what, ray_text, entry);
     else if (!hit)
-        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.h, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
                  "the ray enters at t = %g; it said the ray misses%s", what, ray_text, expected, missed_hint(r));
     else
-        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.c, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
+        snprintf(why, why_size, "the slab test (clip_to_slab in aabb.h, via aabb_hit): the box [-1, 1]^3 and %s, %s: "
                  "the ray enters at t = %g; it said t = %g%s", what, ray_text, expected, entry,
                  check_near(entry, expected + 2.0, 1e-9) ? ": the exit, not the entry? (swap t0 and t1 when 1/d < 0)"
                  : "");

@@ -42,33 +42,35 @@ const struct task check_tasks[] = {
     {"8.1", "Snell's refraction and total internal reflection", "whitted_refract in common/whitted.c", ""},
     {"8.2", "the recursion: reflected and refracted rays, bounded depth", "trace in common/whitted.c",
      "4.1 6.1 6.2"},
-    {"8.P", "chapter 8's picture", "chapters/08-recursion", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 8.1 8.2"},
+    {"8.P", "chapter 8's picture", "chapters/08-recursion", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 7.1 8.1 8.2"},
     {"9.1", "the dissertation's split rule", "seed_plane in common/kdtree.c", ""},
     {"9.2", "the surface area heuristic", "sah_plane in common/kdtree.c", ""},
     {"9.3", "front-to-back traversal", "traverse in common/kdtree.c", ""},
-    {"9.P", "chapter 9's picture", "chapters/09-kdtree", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 8.1 8.2 9.2 9.3"},
+    {"9.P", "chapter 9's picture", "chapters/09-kdtree", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 7.1 8.1 8.2 9.2 9.3"},
     {"10.1", "BVH build: the median split", "split_median in common/bvh.c", ""},
     {"10.2", "BVH build: the binned SAH", "split_sah in common/bvh.c", ""},
     {"10.3", "ordered BVH traversal", "traverse in common/bvh.c", "5.1 10.2"},
-    {"10.P", "chapter 10's picture", "chapters/10-bvh", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 8.1 8.2 10.2 10.3"},
+    {"10.P", "chapter 10's picture", "chapters/10-bvh", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 7.1 8.1 8.2 10.2 10.3"},
     {"11.1", "two children's slab tests at once", "child_pair_hit in common/fast_bvh.c", "5.1"},
-    {"11.2", "the children hit, nearest first", "nearest_first in common/fast_bvh.c", "5.1"},
-    {"11.P", "chapter 11's picture", "chapters/11-fast", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 8.1 8.2 11.2"},
+    {"11.2", "the children hit, nearest first", "nearest_first in common/fast_bvh.c", "5.1 10.2 11.1"},
+    {"11.P", "chapter 11's picture", "chapters/11-fast", "1.1 2.1 2.2 4.1 5.1 6.1 6.2 7.1 8.1 8.2 10.2 11.1 11.2"},
     {"12.1", "the box filter over a regular grid", "supersample_grid in common/supersample.c", ""},
     {"12.2", "POV-Ray's colour difference test", "supersample_differ in common/supersample.c", ""},
-    {"12.P", "chapter 12's picture", "chapters/12-antialias", "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.2 11.2 12.1 12.2"},
+    {"12.P", "chapter 12's picture", "chapters/12-antialias",
+     "1.1 2.1 2.2 4.1 5.1 5.2 6.1 6.2 7.1 8.2 10.2 11.1 11.2 12.1 12.2"},
     {"13.1", "POV-Ray's area light: corners, quarters and the adaptive rule", "rectangle in common/soft_shadow.c",
-     "5.1 5.2"},
+     "5.1 5.2 7.1"},
     {"13.2", "the thin lens: a ray from a point of the lens through the focal plane", "thin_lens_ray in common/thin_lens.c",
      ""},
     {"13.P", "chapter 13's picture", "chapters/13-distributed",
-     "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.1 8.2 12.1 12.2 13.1"},
+     "1.1 2.1 2.2 4.1 5.1 5.2 6.1 6.2 7.1 8.1 8.2 12.1 12.2 13.1"},
     {"14.1", "the checker pattern", "checker in common/texture.c", ""},
     {"14.2", "the interpolated normal", "mesh_surface_normal in common/mesh_surface.c", ""},
-    {"14.P", "chapter 14's picture", "chapters/14-textures", "2.1 2.2 4.1 5.1 5.2 6.1 6.2 8.2 11.2 14.1 14.2"},
+    {"14.P", "chapter 14's picture", "chapters/14-textures",
+     "1.1 2.1 2.2 4.1 5.1 5.2 6.1 6.2 7.1 8.2 10.2 11.1 11.2 14.1 14.2"},
     {"15.1", "next-event estimation, and its weight against scattering", "path_direct_light in common/path_trace.c", "2.1"},
-    {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "2.2 15.1"},
-    {"15.P", "chapter 15's picture", "chapters/15-paths", "2.1 2.2 5.1 6.1 8.1 11.2 15.1 15.2"},
+    {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "1.1 2.2 15.1"},
+    {"15.P", "chapter 15's picture", "chapters/15-paths", "1.1 2.1 2.2 5.1 6.1 8.1 10.2 11.1 11.2 15.1 15.2"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -77,6 +79,7 @@ CHECK(check_camera_bottom_right);
 CHECK(check_sphere_in_front);
 CHECK(check_sphere_from_inside);
 CHECK(check_sphere_misses);
+CHECK(check_sphere_open_window);
 CHECK(check_sphere_counted);
 CHECK(check_sphere_normal);
 CHECK(check_triangle_hit);
@@ -165,6 +168,7 @@ const struct check check_list[] = {
     {"2.1", "a sphere in front: the near root", check_sphere_in_front},
     {"2.1", "from inside: the far root", check_sphere_from_inside},
     {"2.1", "misses: beside, behind, beyond t_max", check_sphere_misses},
+    {"2.1", "a root exactly at t_min or t_max is not a hit", check_sphere_open_window},
     {"2.1", "counts one sphere test per call", check_sphere_counted},
     {"2.2", "the unit outward normal", check_sphere_normal},
     {"2.P", "the picture matches the reference", check_picture_2},

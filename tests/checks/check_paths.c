@@ -104,8 +104,9 @@ static bool furnace_holds(const char *strategy, const char *hint, char *why, siz
             snprintf(why, why_size, "inside a closed sphere that glows 0.5 and reflects %g (strategy %s) every pixel "
                      "should converge to 0.5 / (1 - %g) = %.4f, but the picture's mean is %.4f (standard error %.4f): %s%s",
                      rhos[k], strategy, rhos[k], f.expected, f.mean[1], f.error[1], hint,
-                     f.error[1] == 0.0 ? " (every pixel came out the same: do all pixels draw the same random numbers?)"
-                                       : "");
+                     f.error[1] != 0.0 ? ""
+                                       : " (every pixel came out the same, with no noise at all: does radiance return a "
+                                         "constant, such as a stub's black, or do all pixels draw the same random numbers?)");
             return false;
         }
     }
@@ -133,6 +134,12 @@ CHECK(check_pixels_uncorrelated) {
     check_calling("path_pixel", "16 x 16 pixels of a white furnace, 2 paths each");
     if (!path_proof_neighbour_correlation(&correlation, why, why_size))
         return false;
+    if (isnan(correlation)) {
+        snprintf(why, why_size, "every pixel of the furnace came out the same value, so there is no noise at all: "
+                 "radiance returns a constant (a stub?) instead of following random paths that scatter and meet "
+                 "the glowing walls");
+        return false;
+    }
     if (fabs(correlation) < 0.25)
         return true;
     snprintf(why, why_size, "the noise of neighbouring pixels is correlated (%.2f; unrelated noise gives 0 +- 0.07): each "

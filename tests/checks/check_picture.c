@@ -34,6 +34,15 @@ extern char **environ;
  * whose differing pixels are mostly isolated is speckled. */
 #define PICTURE_ISOLATED_NEIGHBOURS 2
 
+/* Chapter 15's picture takes its program 256 paths for each of 256 x 256 pixels, half a minute: its check
+ * renders the same scene at 128 x 128 pixels with 16 paths each, 64 times fewer paths, and compares it
+ * with a reference of that size. The random numbers are keyed by pixel, sample and seed, so the smaller
+ * picture is as exact a test: any change to what a path computes changes it. The reference is made by the
+ * reference program with these options (tests/test_images.c checks that it is current):
+ *   ./build/chapter-15 --width 128 --height 128 --set paths.samples=16 -o reference_images/chapter-15-check.png */
+#define PATHS_CHECK_OPTIONS "--width", "128", "--height", "128", "--set", "paths.samples=16"
+#define PATHS_CHECK_REFERENCE "reference_images/chapter-15-check.png"
+
 static int level_difference(const uint8_t *a, const uint8_t *b) {
     int worst = 0;
     for (int c = 0; c < 3; c++)
@@ -110,16 +119,17 @@ static void describe(const uint8_t *expected, const uint8_t *got, int w, int h, 
         snprintf(out + n, size - (size_t)n, "; it looks %s", symptom);
 }
 
-/* Runs ./BUILD/chapter-NN --quiet -o got_path with its messages in log_path. Returns its wait status, or
- * -1 when it could not be started. */
-static int render(const char *program, const char *got_path, const char *log_path) {
+/* Runs ./BUILD/chapter-NN --quiet -o got_path (with chapter 15's smaller picture's options when paths is
+ * true) with its messages in log_path. Returns its wait status, or -1 when it could not be started. */
+static int render(const char *program, bool paths, const char *got_path, const char *log_path) {
     posix_spawn_file_actions_t files;
     posix_spawn_file_actions_init(&files);
     posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, log_path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
     posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
     char *const args[] = {(char *)program, "--quiet", "-o", (char *)got_path, NULL};
+    char *const paths_args[] = {(char *)program, "--quiet", "-o", (char *)got_path, PATHS_CHECK_OPTIONS, NULL};
     pid_t pid;
-    int started = posix_spawn(&pid, program, &files, NULL, args, environ);
+    int started = posix_spawn(&pid, program, &files, NULL, paths ? paths_args : args, environ);
     posix_spawn_file_actions_destroy(&files);
     int status;
     if (started != 0 || waitpid(pid, &status, 0) != pid)
@@ -134,13 +144,16 @@ static bool picture(int n, char *why, size_t why_size) {
     mkdir("out", 0777);
     mkdir("out/check", 0777);
     snprintf(got_path, sizeof got_path, "out/check/chapter-%02d-got.png", n);
-    snprintf(ref_path, sizeof ref_path, "reference_images/chapter-%02d.png", n);
+    if (n == 15)
+        snprintf(ref_path, sizeof ref_path, "%s", PATHS_CHECK_REFERENCE);
+    else
+        snprintf(ref_path, sizeof ref_path, "reference_images/chapter-%02d.png", n);
     snprintf(panel_path, sizeof panel_path, "out/check/chapter-%02d-expected-got-difference.png", n);
     snprintf(program, sizeof program, "./%s/chapter-%02d", build, n);
     snprintf(log_path, sizeof log_path, "out/check/chapter-%02d.log", n);
     remove(got_path);
-    check_calling(program, "its own scene (its messages go to %s)", log_path);
-    int status = render(program, got_path, log_path);
+    check_calling(program, "its own scene%s (its messages go to %s)", n == 15 ? " at 128 x 128 pixels, 16 paths each" : "", log_path);
+    int status = render(program, n == 15, got_path, log_path);
     if (status == -1) {
         snprintf(why, why_size, "%s could not be started; is it built? make check-%d builds it", program, n);
         return false;

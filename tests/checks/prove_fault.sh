@@ -42,13 +42,22 @@ fi
 # repository, so the patch applies to the copy as plain files (with a new time: make recompiles them).
 (cd "$work" && GIT_CEILING_DIRECTORIES=$(dirname "$PWD") git apply -p1 "$OLDPWD/$patch") ||
     { echo "$patch does not apply" >&2; exit 2; }
-env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS make --no-print-directory -C "$work" SAN=$san "$build/check" >"$work/build.log" 2>&1 ||
-    { cat "$work/build.log" >&2; echo "$patch does not build" >&2; exit 2; }
+# Built and graded as make check-N does (tests/checks/grade.sh): a fault that only makes the compiler warn
+# is graded, with the warnings shown.
+grade() {
+    (cd "$work" && tests/checks/grade.sh "env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS make SAN=$san" "$build" "--task $1" \
+        "$build/check" 2>&1)
+}
 
 status=0
 report=""
 for id in $tasks; do
-    out=$(cd "$work" && WHITTED_BUILD=$build "./$build/check" --task "$id" 2>&1)
+    out=$(grade "$id")
+    if [ $? -eq 2 ]; then
+        printf '%s\n' "$out" >&2
+        echo "$patch does not build" >&2
+        exit 2
+    fi
     report="$report$out
 "
     if echo "$out" | grep -q "^  $id .* done "; then

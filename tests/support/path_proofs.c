@@ -152,7 +152,7 @@ bool path_proof_neighbour_correlation_of(int side, double *correlation, char *er
         }
     free(means);
     double cov = sab / n - sa / n * sb / n, va = saa / n - sa / n * sa / n, vb = sbb / n - sb / n * sb / n;
-    *correlation = va > 0 && vb > 0 ? cov / sqrt(va * vb) : 1.0; /* no spread at all: every pixel alike */
+    *correlation = va > 0 && vb > 0 ? cov / sqrt(va * vb) : NAN; /* no spread at all: every pixel alike */
     return true;
 }
 

@@ -55,7 +55,8 @@ bool path_proof_furnace_capped(double rho, const char *strategy, int bounces, st
 bool path_proof_furnace_passes(const struct furnace_result *r, double errors);
 
 /* The correlation of horizontally neighbouring pixels' values in a furnace of rho 0.5 seen by 16 x 16
- * pixels with 2 paths each: near 0 when each pixel's random numbers are its own. */
+ * pixels with 2 paths each: near 0 when each pixel's random numbers are its own; NaN when the pixels have no
+ * spread at all (every pixel the same value: no noise to correlate). */
 bool path_proof_neighbour_correlation(double *correlation, char *err, size_t err_size);
 
 /* The same on side x side pixels: side (side - 1) pairs, whose correlation, for unrelated noise, is 0 with a

@@ -3,13 +3,18 @@
 #include "sphere.h"
 #include "svg.h"
 
-/* Draws the sphere (centre C, radius 1) and the roots of the quadratic for one ray in the plane z = 0,
- * found with sphere_intersect: the near one from t_min, the far one from just beyond the near one. */
+/* Draws the sphere (centre C, radius 1) and the roots of the quadratic for one ray along +x in the plane
+ * z = 0, as sphere_intersect finds them: the near one from t_min, the far one from just beyond the near
+ * one. The roots drawn are where the ray's horizontal line meets the circle, by Pythagoras (half the
+ * chord is sqrt(r^2 - h^2) at a height h from the centre), and b and c the quadratic's coefficients for
+ * this ray, written out for D = (1, 0, 0): the figure is not a second ray-sphere test (a student copy
+ * blanks sphere_intersect). */
 static void draw_roots(struct svg *s, const struct sphere *ball, vec3 origin, const char *origin_label) {
     ray r = {origin, vec3_make(1, 0, 0)};
-    vec3 oc = vec3_sub(origin, ball->centre);
-    double b = vec3_dot(oc, r.direction), c = vec3_dot(oc, oc) - ball->radius * ball->radius;
-    double near = -b - sqrt(b * b - c), far = -b + sqrt(b * b - c);
+    double along = origin.x - ball->centre.x, height = origin.y - ball->centre.y;
+    double half_chord = sqrt(ball->radius * ball->radius - height * height);
+    double near = -along - half_chord, far = -along + half_chord;
+    double b = along, c = along * along + height * height - ball->radius * ball->radius;
     double hit;
     bool found = sphere_intersect(ball, &r, RAY_T_MIN, INFINITY, &hit);
     svg_point o = {origin.x, origin.y}, d = {1, 0};
@@ -53,14 +58,14 @@ void figure_sphere(FILE *out) {
     draw_roots(&s, &ball, vec3_make(0, 0, 0), "O");
     /* a ray that passes the sphere: the discriminant is negative */
     ray miss = {vec3_make(0, 0, 0), vec3_normalize(vec3_make(5, 1.2, 0))};
-    vec3 oc = vec3_sub(miss.origin, ball.centre);
-    double b = vec3_dot(oc, miss.direction), c = vec3_dot(oc, oc) - 1;
+    /* b^2 - c = r^2 - d^2, d the distance of the centre from the ray's line */
+    double gap = vec3_length(vec3_cross(vec3_sub(ball.centre, miss.origin), miss.direction));
     double t;
     if (!sphere_intersect(&ball, &miss, RAY_T_MIN, INFINITY, &t)) {
         svg_point d = {miss.direction.x, miss.direction.y};
         svg_line(&s, (svg_point){0, 0}, svg_along((svg_point){0, 0}, d, 6.0), SVG_MUTED, SVG_ARROW | SVG_THIN);
         svg_text(&s, svg_along((svg_point){0, 0}, d, 6.0), 8, 5, "start", SVG_MUTED, "b² − c = %.2f < 0: a miss",
-                 b * b - c);
+                 ball.radius * ball.radius - gap * gap);
     }
 
     ball.centre = vec3_make(5, -2.9, 0);
