@@ -371,8 +371,10 @@ static void load_chapter_5_scene(struct scene *s, struct world *w, struct camera
     for (size_t k = 0; k < s->mesh_count; k++) {
         FILE *mesh_file = fopen(s->meshes[k].path, "rb");
         if (mesh_file == NULL) {
+            char missing[512];
+            snprintf(missing, sizeof missing, "%s", s->meshes[k].path);
             scene_free(s);
-            cr_skip_test("%s not found (make models)", s->meshes[k].path);
+            cr_skip_test("%s not found (make models)", missing);
         }
         fclose(mesh_file);
     }
