@@ -142,8 +142,8 @@ static void expect_motion_held_within(const char *what, const struct keyframe *k
         fmax(largest_component(vec3_sub(hull.min, box.min)), largest_component(vec3_sub(box.max, hull.max)));
     double allowed = MOTION_BOX_PAD_FRACTION * object_size(keys, count) * (1 + PAD_ROUNDING);
     cr_log_info("%s: %.4f beyond the sampled hull, %.4f allowed", what, beyond, allowed);
-    cr_expect(too_fast_to_sample || beyond <= allowed, "%s: a side %g beyond the sampled hull, more than %g", what, beyond,
-              allowed);
+    cr_expect(too_fast_to_sample || beyond <= allowed, "%s: a side %g beyond the sampled hull, more than %g", what,
+              beyond, allowed);
 }
 
 static void expect_motion_held(const char *what, const struct keyframe *keys, size_t count, double t0, double t1) {
