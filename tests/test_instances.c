@@ -566,3 +566,15 @@ Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {
     free(read_file(TEST_OUT "/film.mp4", &size));
     cr_assert_gt(size, 1000, "the film has %zu bytes", size);
 }
+
+Test(command_line, a_bad_instance_is_a_bad_scene_with_its_line) {
+    FILE *out = fopen(TEST_OUT "/flat.scene", "w");
+    cr_assert_not_null(out);
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    fprintf(out, "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\nobject b %s/" BUNNY "\n"
+                 "instance b scale 1e-9 1 1e9\n", cwd);
+    fclose(out);
+    expect_chapter_run(16, TEST_OUT "/flat.scene", 1, TEST_OUT "/flat.scene:4: instance of 'b': its transform cannot be "
+                                                      "inverted accurately");
+}
