@@ -578,3 +578,32 @@ Test(command_line, a_bad_instance_is_a_bad_scene_with_its_line) {
     expect_chapter_run(16, TEST_OUT "/flat.scene", 1, TEST_OUT "/flat.scene:4: instance of 'b': its transform cannot be "
                                                       "inverted accurately");
 }
+
+static void spinning_key(size_t k, char *out, size_t size) {
+    double t = (double)k / 999.0;
+    snprintf(out, size, "key x time %.17g translate %.6f 0 0 rotate 0 %.3f 0\n", t, sin(20.0 * t), 3600.0 * t);
+}
+
+Test(two_level, a_thousand_keys_spinning_ten_times_answer_as_brute_force, .timeout = 60) {
+    char *lines = many_lines("object bunny models/bunny.ply\ninstance bunny scale 0.1 0.1 0.1 id x", 1000, 80,
+                             spinning_key);
+    struct scene s;
+    char err[4096];
+    cr_assert(parse_long("scenes/keys.scene", lines, &s, err, sizeof err), "%s", err);
+    free(lines);
+    struct instances *in = instances_create(&s, 0, 0.0, 1.0, err, sizeof err);
+    cr_assert_not_null(in, "%s", err);
+    uint64_t g = 1000;
+    int hits = 0;
+    for (int n = 0; n < 500; n++) {
+        double time = uniform(&g, 0.0, 1.0);
+        ray r = {vec3_make(uniform(&g, -2, 2), uniform(&g, 0, 1), 5), vec3_make(uniform(&g, -0.3, 0.3), 0, -1)};
+        struct hit fast = hit_nothing(INFINITY), slow = hit_nothing(INFINITY);
+        cr_assert_eq(in->hook.closest(in, &r, 1e-9, time, &fast), brute_closest(in, &r, 1e-9, time, &slow));
+        cr_assert(fast.t == slow.t || (isinf(fast.t) && isinf(slow.t)), "ray %d", n);
+        hits += isfinite(fast.t);
+    }
+    cr_assert_gt(hits, 25, "only %d of 500 rays hit the spinning bunny", hits);
+    instances_free(in);
+    scene_free(&s);
+}
