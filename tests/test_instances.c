@@ -10,6 +10,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <stb_image.h>
+
 #include "image_test_support.h"
 #include "instances.h"
 #include "mesh_load.h"
@@ -606,4 +608,61 @@ Test(two_level, a_thousand_keys_spinning_ten_times_answer_as_brute_force, .timeo
     cr_assert_gt(hits, 25, "only %d of 500 rays hit the spinning bunny", hits);
     instances_free(in);
     scene_free(&s);
+}
+
+/* ---- motion blur, analytically ------------------------------------------------------------------ */
+
+/* A white square (ambient light only, so exactly 1 wherever it is seen) 2 units wide and taller than the
+ * picture slides along x at BLUR_SPEED units per unit of clock over a black background, 10 units in front
+ * of the camera, during a shutter of BLUR_SHUTTER. A camera ray through the point x of the plane sees it
+ * for the times t in [0, BLUR_SHUTTER] with |x - (BLUR_START + BLUR_SPEED t)| < 1: the pixel's expected
+ * value is that time's share of the shutter, averaged over the pixel's 16 sample columns. Each pixel
+ * averages 256 samples whose times are random: its value is within 0.5 / 16 (one standard deviation)
+ * of the expectation, and a column's mean over the 32 rows within 0.0055; the test allows 0.03. */
+#define BLUR_SPEED 6.0
+#define BLUR_START (-3.0)
+#define BLUR_SHUTTER 0.5
+#define BLUR_TOLERANCE 0.03
+
+/* The share of the shutter the square covers the plane's point x. */
+static double covered_share(double x) {
+    double enter = (x - 1.0 - BLUR_START) / BLUR_SPEED, leave = (x + 1.0 - BLUR_START) / BLUR_SPEED;
+    double from = fmax(enter, 0.0), to = fmin(leave, BLUR_SHUTTER);
+    return to > from ? (to - from) / BLUR_SHUTTER : 0.0;
+}
+
+Test(motion_blur, a_sliding_square_blurs_by_the_share_of_the_shutter_it_covers, .timeout = 60) {
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    FILE *square = fopen(TEST_OUT "/square.obj", "w"), *out = fopen(TEST_OUT "/blur.scene", "w");
+    cr_assert(square != NULL && out != NULL);
+    fprintf(square, "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0.5 0.5 0\nv -0.5 0.5 0\nf 1 2 3\nf 1 3 4\n");
+    fclose(square);
+    fprintf(out, "camera eye 0 0 10 target 0 0 0 fov 20 shutter %g\nimage 64 32\nbackground 0 0 0\n"
+                 "antialias method grid samples 16\nmaterial white colour 1 1 1 ambient 1 diffuse 0\n"
+                 "object square %s/" TEST_OUT "/square.obj\ninstance square material white scale 2 20 1 id s\n"
+                 "key s time 0 translate %g 0 0\nkey s time 1 translate %g 0 0\n",
+            BLUR_SHUTTER, cwd, BLUR_START, BLUR_START + BLUR_SPEED);
+    fclose(out);
+    cr_assert_eq(render_chapter(16, TEST_OUT "/blur.scene", TEST_OUT "/blur.png", ""), 0);
+    int w, h, channels;
+    uint8_t *pixels = stbi_load(TEST_OUT "/blur.png", &w, &h, &channels, 3);
+    cr_assert(pixels != NULL && w == 64 && h == 32);
+    double half_width = tan(10.0 * M_PI / 180.0) * 64.0 / 32.0, worst = 0.0;
+    int blurred = 0;
+    for (int i = 0; i < w; i++) {
+        double expected = 0.0, seen = 0.0;
+        for (int a = 0; a < 16; a++) { /* the grid's sample columns; a ray meets the plane at 10 px half_width */
+            double px = 2.0 * (i + (a + 0.5) / 16.0) / w - 1.0;
+            expected += covered_share(10.0 * px * half_width) / 16.0;
+        }
+        for (int j = 0; j < h; j++)
+            seen += pixels[3 * (j * w + i)] / 255.0 / h;
+        worst = fmax(worst, fabs(seen - expected));
+        cr_assert(fabs(seen - expected) <= BLUR_TOLERANCE, "column %d: %.4f, expected %.4f", i, seen, expected);
+        blurred += expected > 0.1 && expected < 0.9;
+    }
+    cr_assert_gt(blurred, 8, "the profile is not a ramp: %d columns between 0.1 and 0.9", blurred);
+    printf("motion blur: largest column error %.4f over %d blurred columns\n", worst, blurred);
+    free(pixels);
 }
