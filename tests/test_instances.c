@@ -666,3 +666,12 @@ Test(motion_blur, a_sliding_square_blurs_by_the_share_of_the_shutter_it_covers, 
     printf("motion blur: largest column error %.4f over %d blurred columns\n", worst, blurred);
     free(pixels);
 }
+
+Test(command_line, stats_count_both_levels_and_the_memory_of_an_instance) {
+    expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0, "  instance nodes ");
+    expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0, "  node visits ");
+    expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0,
+                       "instances: 41 of 2 objects (1 moving), 1.808e+05 triangles instanced from 8786");
+    expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0, " bytes (with its keys and "
+                                                                                          "its share of the top level)");
+}
