@@ -189,6 +189,22 @@ Test(instance_lines, are_dropped_with_a_note_before_chapter_16) {
     scene_free(&s);
 }
 
+Test(instance_lines, chapter_16_ignores_pigments_paths_and_emission_as_chapter_13_does) {
+    struct scene s;
+    char err[512], note[512] = "";
+    cr_assert(parse_scene_lines("x.scene", "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\n",
+                                "pigment p checker colour 1 0 0 colour2 0 1 0\nmaterial m pigment p emission 1 1 1\n"
+                                "paths samples 4\nobject a models/bunny.ply\ninstance a material m",
+                                test_every_kind, &s, err, sizeof err), "%s", err);
+    FILE *out = fmemopen(note, sizeof note, "w");
+    scene_drop_unsupported(&s, 16, out);
+    fclose(out);
+    cr_assert_str_eq(note, "x.scene: chapter 16 ignores 1 pigment, the emission of 1 material, the paths line (chapter 16 "
+                           "is built on chapter 13's tracer)\n");
+    cr_assert(s.instance_count == 1 && s.pigment_count == 0 && s.materials[1].pigment == -1);
+    scene_free(&s);
+}
+
 /* ---- the two-level queries against brute force -------------------------------------------------- */
 
 /* splitmix64: reproducible random numbers. */
