@@ -173,34 +173,35 @@ Test(instance_lines, a_million_instances_are_read_and_one_more_than_the_limit_re
     free(over);
 }
 
-Test(instance_lines, are_dropped_with_a_note_before_chapter_16) {
+/* Parses `head` and `lines` as x.scene, lets chapter `chapter` drop what it does not draw, and expects
+ * its note to be `expected`; returns the scene (free it with scene_free). */
+static struct scene dropped_by(int chapter, const char *head, const char *lines, const char *expected) {
     struct scene s;
     char err[512], note[512] = "";
-    cr_assert(parse_scene_lines("x.scene", "camera eye 0 1 6 target 0 0 0 fov 40 shutter 0.5\nimage 8 8\n",
+    cr_assert(parse_scene_lines("x.scene", head, lines, test_every_kind, &s, err, sizeof err), "%s", err);
+    FILE *out = fmemopen(note, sizeof note, "w");
+    scene_drop_unsupported(&s, chapter, out);
+    fclose(out);
+    cr_assert_str_eq(note, expected);
+    return s;
+}
+
+Test(instance_lines, are_dropped_with_a_note_before_chapter_16) {
+    struct scene s = dropped_by(15, "camera eye 0 1 6 target 0 0 0 fov 40 shutter 0.5\nimage 8 8\n",
                                 "object a models/bunny.ply\nobject b models/bunny.ply\ninstance a id i\ninstance b\n"
                                 "key i time 0",
-                                test_every_kind, &s, err, sizeof err), "%s", err);
-    FILE *out = fmemopen(note, sizeof note, "w");
-    scene_drop_unsupported(&s, 15, out);
-    fclose(out);
-    cr_assert_str_eq(note, "x.scene: chapter 15 ignores 2 objects, 2 instances, the camera's shutter (not introduced "
-                           "yet)\n");
+                                "x.scene: chapter 15 ignores 2 objects, 2 instances, the camera's shutter (not introduced "
+                                "yet)\n");
     cr_assert(s.object_count == 0 && s.instance_count == 0 && s.shutter == 0.0);
     scene_free(&s);
 }
 
 Test(instance_lines, chapter_16_ignores_pigments_paths_and_emission_as_chapter_13_does) {
-    struct scene s;
-    char err[512], note[512] = "";
-    cr_assert(parse_scene_lines("x.scene", "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\n",
+    struct scene s = dropped_by(16, "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\n",
                                 "pigment p checker colour 1 0 0 colour2 0 1 0\nmaterial m pigment p emission 1 1 1\n"
                                 "paths samples 4\nobject a models/bunny.ply\ninstance a material m",
-                                test_every_kind, &s, err, sizeof err), "%s", err);
-    FILE *out = fmemopen(note, sizeof note, "w");
-    scene_drop_unsupported(&s, 16, out);
-    fclose(out);
-    cr_assert_str_eq(note, "x.scene: chapter 16 ignores 1 pigment, the emission of 1 material, the paths line (chapter 16 "
-                           "is built on chapter 13's tracer)\n");
+                                "x.scene: chapter 16 ignores 1 pigment, the emission of 1 material, the paths line "
+                                "(chapter 16 is built on chapter 13's tracer)\n");
     cr_assert(s.instance_count == 1 && s.pigment_count == 0 && s.materials[1].pigment == -1);
     scene_free(&s);
 }
