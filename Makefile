@@ -119,7 +119,7 @@ scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 ## make all            build every chapter (build/chapter-NN), build/compare, build/figures and the models
 ##                     (what a plain `make` does)
 all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(BUILD)/compare $(BUILD)/figures \
-     $(SCENE_MODELS) $(SCENE_TEXTURES)
+     $(BUILD)/assemble $(SCENE_MODELS) $(SCENE_TEXTURES)
 
 # ---- compiling ---------------------------------------------------------------------------------
 $(BUILD)/common/%.o: common/%.c | $(BUILD)/common deps
@@ -199,6 +199,10 @@ $(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
 
 $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
+# The render farm's tile assembler (tools/farm/assemble.c, docs/farm.md).
+$(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUILD)/common/outfile.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # The tests that take a minute or more run in make test-long, not make test: Criterion's "suite/test"
