@@ -31,7 +31,7 @@ endif
 DEPS_NEEDS := build $(strip \
     $(if $(filter test test-long test-sanitize test-accel-long %run-tests %run-accel-long,$(MAKECMDGOALS)),test) \
     $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter compare-cycles,$(MAKECMDGOALS)),cycles) \
-    $(if $(filter results,$(MAKECMDGOALS)),results))
+    $(if $(filter results,$(MAKECMDGOALS)),results) $(if $(filter test-farm test-long,$(MAKECMDGOALS)),farm))
 
 # stb from the system, or else unpacked into .deps/ by install-deps.sh on a machine without root
 # (linked statically from there, so the programs need nothing from .deps/ at run time). These are
@@ -111,7 +111,7 @@ SCENE_FILES := $(if $(CHAPTER_SCENES),$(shell awk '$$1 == "mesh" { print substr(
                         $(CHAPTER_SCENES)))
 scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
-.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
+.PHONY: deps all chapters exercises test test-long test-farm test-sanitize test-accel-long references compare compare-cycles gallery figures \
         clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
@@ -276,6 +276,14 @@ test: | deps
 ##                     docs' commands, the largest differential tests
 test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(BUILD)/inset $(MODELS_TEAPOT) | deps
 	$(RUN_TESTS) --filter '$(LONG_TESTS_PATTERN)'
+	$(MAKE) --no-print-directory test-farm
+
+## make test-farm      a Slurm cluster of one node started on this machine (munged, slurmctld and slurmd in a
+##                     temporary folder, stopped afterwards): chapter 13's picture rendered as a job array of
+##                     tiles and joined, byte for byte the picture of one machine (docs/farm.md; make
+##                     test-long runs it; installs slurm-wlm and munge when missing)
+test-farm: $(BUILD)/chapter-13 $(BUILD)/assemble | deps
+	WHITTED_BUILD=$(BUILD) tools/farm/test-one-node.sh
 
 ## make test-sanitize  make test's suite built with AddressSanitizer and UndefinedBehaviorSanitizer,
 ##                     into build/san (make test-long SAN=1: the long one too)

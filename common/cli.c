@@ -374,13 +374,14 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
         return false;
     }
     if (!o->quiet) {
-        char shown[4 * PATH_MAX], part[96] = "";
+        char shown[4 * PATH_MAX], size[128];
         text_escape(strcmp(o->output, "-") == 0 ? "standard output" : o->output, shown, sizeof shown);
         if (tiled)
-            snprintf(part, sizeof part, ", the tile at column %d, row %d of the %d x %d picture,", window.left,
-                     window.top, s->width, s->height);
-        printf("chapter %d (%s): wrote %s (%d x %d%s) in %.3f s\n", ch->number, ch->title, shown, window.width,
-               window.height, part, run->render_seconds);
+            snprintf(size, sizeof size, "the %d x %d tile at column %d, row %d of the %d x %d picture", window.width,
+                     window.height, window.left, window.top, s->width, s->height);
+        else
+            snprintf(size, sizeof size, "%d x %d", s->width, s->height);
+        printf("chapter %d (%s): wrote %s (%s) in %.3f s\n", ch->number, ch->title, shown, size, run->render_seconds);
         if (o->heatmap != NULL) {
             text_escape(o->heatmap, shown, sizeof shown);
             printf("heat-map: %s\n", shown);

@@ -131,7 +131,7 @@ Test(tile, a_tile_outside_the_picture_or_cutting_adaptive_blocks_is_a_usage_erro
                        "block of 32 x 32 pixels, so a tile must be made of whole blocks: X and Y multiples of 32, X + W "
                        "and Y + H too or the picture's edge (80, 60)");
     expect_chapter_run(12, "--set antialias.method=adaptive --width 80 --height 60 --tile 32 32 48 28 -o out/test/t.png",
-                       0, "the tile at column 32, row 32 of the 80 x 60 picture");
+                       0, "(the 48 x 28 tile at column 32, row 32 of the 80 x 60 picture)");
 }
 
 /* Writes a width x height PNG of one colour at `path`. */
