@@ -282,7 +282,7 @@ test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(B
 ##                     temporary folder, stopped afterwards): chapter 13's picture rendered as a job array of
 ##                     tiles and joined, byte for byte the picture of one machine (docs/farm.md; make
 ##                     test-long runs it; installs slurm-wlm and munge when missing)
-test-farm: $(BUILD)/chapter-13 $(BUILD)/assemble | deps
+test-farm: $(BUILD)/chapter-13 $(BUILD)/assemble $(if $(wildcard chapters/16-*),$(BUILD)/chapter-16) | deps
 	WHITTED_BUILD=$(BUILD) tools/farm/test-one-node.sh
 
 ## make test-sanitize  make test's suite built with AddressSanitizer and UndefinedBehaviorSanitizer,

@@ -101,6 +101,14 @@ Test(tile, chapter_15s_paths_tiles_join_into_the_picture, .timeout = 60) {
     expect_tiles_join_into_the_picture("paths", 15, "scenes/15-paths.scene", "--set paths.samples=4", 40, 30, 17, 11);
 }
 
+Test(tile, chapter_16s_moving_instances_tiles_join_into_the_picture, .timeout = 120) {
+    if (access("chapters/16-instances", F_OK) != 0)
+        cr_skip_test("chapter 16 is not in this copy");
+    /* each sample's time in the shutter is hashed from its point, as the lens's rays are */
+    expect_tiles_join_into_the_picture("motion", 16, "scenes/16-instances.scene", "--set antialias.samples=2", 64, 40,
+                                       23, 17);
+}
+
 Test(tile, a_tiles_heat_map_is_the_tile_with_its_bar) {
     const char *folder = fresh_folder("heatmap");
     char png[300], heat[300], words[700], err[512];

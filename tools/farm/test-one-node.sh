@@ -3,7 +3,8 @@
 # temporary folder (munged with a key made there, slurmctld and slurmd on localhost with a generated
 # slurm.conf, as the current user), renders chapter 13's picture on it as a job array of tiles
 # (tools/farm/farm.sh), joins them and checks that the picture is byte for byte the one this machine
-# renders alone; then stops the daemons and removes the folder, also when a step fails. Needs Debian's
+# renders alone (and, where chapter 16 is built, that its frames rendered as a job array are the files
+# one machine writes); then stops the daemons and removes the folder, also when a step fails. Needs Debian's
 # slurm-wlm and munge (make test-farm installs them: tools/build/install-deps.sh farm).
 # Exit status: 0 the pictures are identical, 1 not, or a step failed (its log is printed).
 set -u
@@ -11,6 +12,7 @@ repo=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$repo"
 build=${WHITTED_BUILD:-build}
 tile_size=(128 96) # 4 x 4 tiles of chapter 13's 400 x 300 picture, whole 32 x 32 blocks, smaller at the edges
+frames=3           # chapter 16's animation, where it is built: 3 frames of 160 x 100 pixels
 
 for tool in munged slurmctld slurmd sbatch sinfo; do
     command -v "$tool" >/dev/null || { echo "test-farm: $tool is missing (tools/build/install-deps.sh farm)" >&2; exit 1; }
@@ -40,7 +42,7 @@ fail() { # fail WHAT: says what failed, prints the daemons' logs, and exits (sto
 }
 
 # munge: a key of 1024 random bytes, readable by its owner alone, and a socket of this folder's.
-mkdir -p "$work/munge" "$work/socket" "$work/log" "$work/state" "$work/spool"
+mkdir -p "$work/munge" "$work/socket" "$work/log" "$work/state" "$work/spool" "$work/one-machine"
 chmod 700 "$work/munge"
 head -c 1024 /dev/urandom >"$work/munge/munge.key" && chmod 400 "$work/munge/munge.key"
 munged --force --key-file="$work/munge/munge.key" --socket="$work/socket/munge.socket" \
@@ -100,6 +102,18 @@ tools/farm/farm.sh --tile-size "${tile_size[@]}" --dir "$work/farm" -o "$work/fa
 farmed=$(date +%s.%N)
 cmp "$work/one-machine.png" "$work/farm.png" || fail "the farm's picture differs from the one machine's"
 tiles=$(ls "$work"/farm/tile-*.png | wc -l)
+# Chapter 16's animation, where it is built: its frames as a job array, each the file one machine writes.
+if [ -x "$build/chapter-16" ]; then
+    frame_words=(--width 160 --height 100 --frames "$frames")
+    "$build/chapter-16" --quiet "${frame_words[@]}" -o "$work/one-machine/frame.png" || fail "chapter 16's frames"
+    tools/farm/farm.sh --frames "$frames" --dir "$work/frames" -- "$build/chapter-16" --width 160 --height 100 ||
+        fail "farm.sh --frames"
+    for ((k = 1; k <= frames; k++)); do
+        name=$(printf 'frame-%04d.png' "$k")
+        cmp "$work/one-machine/$name" "$work/frames/$name" || fail "the farm's $name differs from the one machine's"
+    done
+    echo "test-farm: passed: chapter 16's $frames frames rendered by a Slurm job array are the files one machine writes"
+fi
 awk -v tiles="$tiles" -v farm="$(awk -v a="$alone" -v b="$farmed" 'BEGIN { print b - a }')" \
     -v alone="$(awk -v a="$started" -v b="$alone" 'BEGIN { print b - a }')" 'BEGIN {
     printf "test-farm: passed: %d tiles rendered by a Slurm job array (%.1f s from submitting to joining) ", tiles, farm
