@@ -111,7 +111,7 @@ SCENE_FILES := $(if $(CHAPTER_SCENES),$(shell awk '$$1 == "mesh" { print substr(
                         $(CHAPTER_SCENES)))
 scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
-.PHONY: deps all chapters exercises test test-long test-farm test-sanitize test-accel-long references compare compare-cycles gallery figures \
+.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
         clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
@@ -282,6 +282,7 @@ test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(B
 ##                     temporary folder, stopped afterwards): chapter 13's picture rendered as a job array of
 ##                     tiles and joined, byte for byte the picture of one machine (docs/farm.md; make
 ##                     test-long runs it; installs slurm-wlm and munge when missing)
+.PHONY: test-farm
 test-farm: $(BUILD)/chapter-13 $(BUILD)/assemble $(if $(wildcard chapters/16-*),$(BUILD)/chapter-16) | deps
 	WHITTED_BUILD=$(BUILD) tools/farm/test-one-node.sh
 

@@ -63,16 +63,16 @@ struct render_job {
     struct render_window window;
 };
 
-/* Renders every pixel of job->window (every pixel when it has width 0) of `img` (and of job->heatmap),
- * which must already have the camera's size, and adds all threads' counters into *total. The window
- * must lie within the picture (the caller's precondition). Each pixel is stored as soon as it is finished, in the 8 bits
- * the PNG keeps, so no frame of doubles is ever held. Cannot fail. */
-void render_image(const struct render_job *job, struct image *img, struct stats *total);
-
 /* Whether `window` of a width x height picture, rendered by `job`, draws exactly the pixels the whole
  * picture has there: always, unless the job's sampler says the edges of its blocks matter; then only when
  * the window starts on the grid of ANTIALIAS_BLOCK pixels and ends on it or at the picture's edge. */
 bool render_window_is_exact(const struct render_job *job, struct render_window window, int width, int height);
+
+/* Renders every pixel of job->window (every pixel when it has width 0) of `img` (and of job->heatmap),
+ * which must already have the camera's size, and adds all threads' counters into *total. The window
+ * must lie within the picture (the caller's precondition). Each pixel is stored as soon as it is
+ * finished, in the 8 bits the PNG keeps, so no frame of doubles is ever held. Cannot fail. */
+void render_image(const struct render_job *job, struct image *img, struct stats *total);
 
 /* Returns the traversal cost counted so far by the calling thread: node visits plus box, sphere,
  * triangle and plane tests. The difference before and after a ray is that ray's cost. */
