@@ -280,8 +280,8 @@ test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(B
 
 ## make test-farm      a Slurm cluster of one node started on this machine (munged, slurmctld and slurmd in a
 ##                     temporary folder, stopped afterwards): chapter 13's picture rendered as a job array of
-##                     tiles and joined, byte for byte the picture of one machine (docs/farm.md; make
-##                     test-long runs it; installs slurm-wlm and munge when missing)
+##                     tiles and joined, byte for byte the picture of one machine, and chapter 16's frames
+##                     (docs/farm.md; make test-long runs it; installs slurm-wlm and munge when missing)
 .PHONY: test-farm
 test-farm: $(BUILD)/chapter-13 $(BUILD)/assemble $(if $(wildcard chapters/16-*),$(BUILD)/chapter-16) | deps
 	WHITTED_BUILD=$(BUILD) tools/farm/test-one-node.sh

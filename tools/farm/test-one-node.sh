@@ -102,11 +102,17 @@ tools/farm/farm.sh --tile-size "${tile_size[@]}" --dir "$work/farm" -o "$work/fa
 farmed=$(date +%s.%N)
 cmp "$work/one-machine.png" "$work/farm.png" || fail "the farm's picture differs from the one machine's"
 tiles=$(ls "$work"/farm/tile-*.png | wc -l)
+awk -v tiles="$tiles" -v farm="$(awk -v a="$alone" -v b="$farmed" 'BEGIN { print b - a }')" \
+    -v alone="$(awk -v a="$started" -v b="$alone" 'BEGIN { print b - a }')" 'BEGIN {
+    printf "test-farm: passed: %d tiles rendered by a Slurm job array (%.1f s from submitting to joining) ", tiles, farm
+    printf "joined into the very picture one machine renders alone (%.1f s)\n", alone }'
+
 # Chapter 16's animation, where it is built: its frames as a job array, each the file one machine writes.
 if [ -x "$build/chapter-16" ]; then
-    frame_words=(--width 160 --height 100 --frames "$frames")
-    "$build/chapter-16" --quiet "${frame_words[@]}" -o "$work/one-machine/frame.png" || fail "chapter 16's frames"
-    tools/farm/farm.sh --frames "$frames" --dir "$work/frames" -- "$build/chapter-16" --width 160 --height 100 ||
+    size=(--width 160 --height 100)
+    "$build/chapter-16" --quiet "${size[@]}" --frames "$frames" -o "$work/one-machine/frame.png" ||
+        fail "chapter 16 did not render its frames"
+    tools/farm/farm.sh --frames "$frames" --dir "$work/frames" -- "$build/chapter-16" "${size[@]}" ||
         fail "farm.sh --frames"
     for ((k = 1; k <= frames; k++)); do
         name=$(printf 'frame-%04d.png' "$k")
@@ -114,7 +120,3 @@ if [ -x "$build/chapter-16" ]; then
     done
     echo "test-farm: passed: chapter 16's $frames frames rendered by a Slurm job array are the files one machine writes"
 fi
-awk -v tiles="$tiles" -v farm="$(awk -v a="$alone" -v b="$farmed" 'BEGIN { print b - a }')" \
-    -v alone="$(awk -v a="$started" -v b="$alone" 'BEGIN { print b - a }')" 'BEGIN {
-    printf "test-farm: passed: %d tiles rendered by a Slurm job array (%.1f s from submitting to joining) ", tiles, farm
-    printf "joined into the very picture one machine renders alone (%.1f s)\n", alone }'
