@@ -74,8 +74,8 @@ Test(tile, one_ray_a_pixel_tiles_join_into_the_picture, .timeout = 60) {
     expect_tiles_join_into_the_picture("one-ray", 8, chapter_scene(8), "", 70, 50, 23, 17);
 }
 
-Test(tile, chapter_11s_packets_tiles_join_into_the_picture, .timeout = 60) {
-    expect_tiles_join_into_the_picture("packets", 11, chapter_scene(11), "--rung packet", 70, 50, 21, 13);
+Test(tile, chapter_11s_packets_tiles_join_into_the_picture, .timeout = 120) {
+    expect_tiles_join_into_the_picture("packets", 11, chapter_scene(11), "--rung packet", 70, 50, 30, 19);
 }
 
 Test(tile, grid_jitter_and_recursive_tiles_of_any_size_join_into_the_picture, .timeout = 120) {
