@@ -109,6 +109,46 @@ Test(tile, chapter_16s_moving_instances_tiles_join_into_the_picture, .timeout = 
                                        23, 17);
 }
 
+/* Reads a Portable Float Map as chapter 15 writes it: its size and its floats, rows from the bottom up. */
+static float *read_pfm(const char *path, int *width, int *height) {
+    size_t size;
+    char *bytes = read_file(path, &size);
+    int header = 0;
+    cr_assert_eq(sscanf(bytes, "PF\n%d %d\n-1.0\n%n", width, height, &header), 2, "%s: not a PFM", path);
+    size_t floats = 3 * (size_t)*width * (size_t)*height;
+    cr_assert_eq(size, (size_t)header + 4 * floats, "%s: %zu bytes", path, size);
+    float *values = malloc(4 * floats);
+    cr_assert_not_null(values);
+    memcpy(values, bytes + header, 4 * floats); /* little-endian, as this machine */
+    free(bytes);
+    return values;
+}
+
+Test(tile, chapter_15s_radiance_of_a_tile_is_the_whole_pictures_there, .timeout = 60) {
+    const char *folder = fresh_folder("radiance");
+    char png[300], pfm[300], words[700];
+    int width, height, tile_width, tile_height;
+    snprintf(png, sizeof png, "%s/whole.png", folder);
+    snprintf(pfm, sizeof pfm, "%s/whole.pfm", folder);
+    snprintf(words, sizeof words, "--quiet --width 40 --height 30 --set paths.samples=2 --hdr %s", pfm);
+    cr_assert_eq(render_chapter(15, "scenes/15-paths.scene", png, words), 0);
+    float *whole = read_pfm(pfm, &width, &height);
+    snprintf(png, sizeof png, "%s/tile.png", folder);
+    snprintf(pfm, sizeof pfm, "%s/tile.pfm", folder);
+    snprintf(words, sizeof words, "--quiet --width 40 --height 30 --set paths.samples=2 --tile 7 11 19 13 --hdr %s",
+             pfm);
+    cr_assert_eq(render_chapter(15, "scenes/15-paths.scene", png, words), 0);
+    float *tile = read_pfm(pfm, &tile_width, &tile_height);
+    cr_assert(width == 40 && height == 30 && tile_width == 19 && tile_height == 13);
+    for (int row = 0; row < tile_height; row++) { /* the tile's row from the top, the whole's row 11 + row */
+        const float *ours = &tile[3 * (size_t)(tile_height - 1 - row) * (size_t)tile_width];
+        const float *theirs = &whole[3 * ((size_t)(height - 1 - (11 + row)) * (size_t)width + 7)];
+        cr_expect_eq(memcmp(ours, theirs, 3 * (size_t)tile_width * sizeof *ours), 0, "row %d of the tile", row);
+    }
+    free(whole);
+    free(tile);
+}
+
 Test(tile, a_tiles_heat_map_is_the_tile_with_its_bar) {
     const char *folder = fresh_folder("heatmap");
     char png[300], heat[300], words[700], err[512];
