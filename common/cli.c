@@ -296,13 +296,18 @@ static void write_twin(struct cli_run *run) {
 }
 
 /* Writes `window` of img as a PNG at `path`, with the heat-map's colour bar of `bar` under it when bar is
- * not NULL. Returns false with the reason in err. */
-static bool write_window(const struct image *img, struct render_window window, const struct heatmap_scale *bar,
+ * not NULL: img itself when it is the window with room for the bar under it, else a copy. Returns false
+ * with the reason in err. */
+static bool write_window(struct image *img, struct render_window window, const struct heatmap_scale *bar,
                          const char *path, char *err, size_t err_size) {
-    if (bar == NULL && window.width == img->width && window.height == img->height)
-        return image_write_png(img, path, err, err_size);
-    struct image out;
     int bar_rows = bar != NULL ? heatmap_bar_height(window.width, window.height) : 0;
+    if (window.left == 0 && window.top == 0 && window.width == img->width &&
+        window.height + bar_rows == img->height) {
+        if (bar != NULL)
+            heatmap_draw_bar_on(img, window.height, bar);
+        return image_write_png(img, path, err, err_size);
+    }
+    struct image out;
     if (!image_create(&out, window.width, window.height + bar_rows)) {
         snprintf(err, err_size, "out of memory for a %d x %d picture to write to %s", window.width,
                  window.height + bar_rows, path);
@@ -351,7 +356,9 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
         run->status = CLI_OUTPUT_FAILED;
         return false;
     }
-    if (o->heatmap != NULL && !image_create(&heatmap, s->width, s->height)) {
+    /* The heat-map of the whole picture has room for its bar; a tile's is copied out with its own. */
+    int bar_rows = tiled ? 0 : heatmap_bar_height(s->width, s->height);
+    if (o->heatmap != NULL && !image_create(&heatmap, s->width, s->height + bar_rows)) {
         image_free(&img);
         complain("out of memory for the heat-map");
         run->status = CLI_OUTPUT_FAILED;
