@@ -226,6 +226,13 @@ Test(assemble, joins_tiles_and_refuses_overlaps_gaps_and_tiles_past_the_edge) {
     expect_assemble(folder, "tile-0-0.png --at 5 0 tile-10-0.png", 1,
                     "assemble: tile-0-0.png and tile-10-0.png overlap: both hold pixel (5, 0)");
     expect_assemble(folder, "odd.png", 2, "assemble: odd.png: the name does not end in tile-X-Y.png; give it as --at X Y odd.png");
-    expect_assemble(folder, "tile-0-0.png tile-20-0.png", 1, "assemble: tile-20-0.png: cannot read image");
+    expect_assemble(folder, "tile-0-0.png tile-20-0.png", 1, "assemble: tile-20-0.png: cannot open: No such file or directory");
+    char junk[300];
+    snprintf(junk, sizeof junk, "%s/tile-0-16.png", folder);
+    FILE *f = fopen(junk, "w");
+    cr_assert_not_null(f);
+    fputs("not a picture\n", f);
+    fclose(f);
+    expect_assemble(folder, "tile-0-16.png", 1, "assemble: tile-0-16.png: cannot read image");
     expect_assemble(folder, "--size 0 4 tile-0-0.png", 2, "assemble: --size needs two whole numbers W H from 1 to 16384");
 }

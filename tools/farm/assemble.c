@@ -183,6 +183,13 @@ int main(int argc, char **argv) {
     bool sized = width > 0;
     for (int k = 0; k < count && status == 0; k++) {
         struct tile *t = &tiles[k];
+        FILE *probe = fopen(t->path, "rb"); /* for the system's reason: stb's own says less */
+        if (probe == NULL) {
+            fprintf(stderr, "assemble: %s: cannot open: %s\n", t->path, strerror(errno));
+            status = 1;
+            break;
+        }
+        fclose(probe);
         t->rgb = image_read_rgb(t->path, &t->width, &t->height, err, sizeof err);
         if (t->rgb == NULL) {
             fprintf(stderr, "assemble: %s\n", err);
