@@ -31,7 +31,7 @@ endif
 DEPS_NEEDS := build $(strip \
     $(if $(filter test test-long test-sanitize test-accel-long %run-tests %run-accel-long,$(MAKECMDGOALS)),test) \
     $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter compare-cycles,$(MAKECMDGOALS)),cycles) \
-    $(if $(filter results,$(MAKECMDGOALS)),results))
+    $(if $(filter results,$(MAKECMDGOALS)),results) $(if $(filter test-farm test-long,$(MAKECMDGOALS)),farm))
 
 # stb from the system, or else unpacked into .deps/ by install-deps.sh on a machine without root
 # (linked statically from there, so the programs need nothing from .deps/ at run time). These are
@@ -120,7 +120,7 @@ scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 ## make all            build every chapter (build/chapter-NN), build/compare, build/figures and the models
 ##                     (what a plain `make` does)
 all: $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) $(BUILD)/compare $(BUILD)/figures \
-     $(SCENE_MODELS) $(SCENE_TEXTURES)
+     $(BUILD)/assemble $(SCENE_MODELS) $(SCENE_TEXTURES)
 
 # ---- compiling ---------------------------------------------------------------------------------
 $(BUILD)/common/%.o: common/%.c | $(BUILD)/common deps
@@ -202,6 +202,10 @@ $(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,
 $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
+# The render farm's tile assembler (tools/farm/assemble.c, docs/farm.md).
+$(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
 # The tests that take a minute or more run in make test-long, not make test: Criterion's "suite/test"
 # patterns (`run-tests --filter`). Those that build patched copies of the tree (the gallery's faults,
 # the coursework kit's student copy, the mutants), the results' quick run, the docs' commands run in a
@@ -273,6 +277,15 @@ test: | deps
 ##                     docs' commands, the largest differential tests
 test-long: all $(BUILD)/run-tests $(BUILD)/check $(MUTANTS) $(BUILD)/measure $(BUILD)/inset $(MODELS_TEAPOT) | deps
 	$(RUN_TESTS) --filter '$(LONG_TESTS_PATTERN)'
+	$(MAKE) --no-print-directory test-farm
+
+## make test-farm      a Slurm cluster of one node started on this machine (munged, slurmctld and slurmd in a
+##                     temporary folder, stopped afterwards): chapter 13's picture rendered as a job array of
+##                     tiles and joined, byte for byte the picture of one machine, and chapter 16's frames
+##                     (docs/farm.md; make test-long runs it; installs slurm-wlm and munge when missing)
+.PHONY: test-farm
+test-farm: $(BUILD)/chapter-13 $(BUILD)/assemble $(if $(wildcard chapters/16-*),$(BUILD)/chapter-16) | deps
+	WHITTED_BUILD=$(BUILD) tools/farm/test-one-node.sh
 
 ## make test-sanitize  make test's suite built with AddressSanitizer and UndefinedBehaviorSanitizer,
 ##                     into build/san (make test-long SAN=1: the long one too)

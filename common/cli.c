@@ -46,6 +46,9 @@ static void print_usage(FILE *out, const struct chapter *ch, const char *program
             "  --height N       override the scene's image height\n"
             "  --pov FILE       write the scene's POV-Ray twin to FILE instead of rendering\n"
             "  --heatmap FILE   also write the work done per pixel as a picture\n"
+            "  --tile X Y W H   render only the W x H pixels from column X, row Y of the picture\n"
+            "                   (0 0 at its top left), written as a W x H picture: a render\n"
+            "                   farm's tile, the same pixels as the whole picture's\n"
             "  --threads N      render on N threads, and build on them where the chapter\n"
             "                   builds in parallel (chapter 11); default: all cores\n"
             "  --set PATH=VALUE change one value of the scene, e.g. max_depth=1, camera.fov=30,\n"
@@ -74,6 +77,18 @@ static bool option_int(const char *name, const char *text, int lo, int hi, int *
     }
     *out = (int)value;
     return true;
+}
+
+/* Reads --tile's four numbers from the `count` words at `words`: X and Y from 0, W and H from 1. */
+static bool option_tile(int count, char **words, struct render_window *tile) {
+    if (count < 4) {
+        complain("--tile needs four whole numbers X Y W H: the tile's left column, top row, width and height");
+        return false;
+    }
+    return option_int("--tile X", words[0], 0, IMAGE_MAX_SIDE - 1, &tile->left) &&
+           option_int("--tile Y", words[1], 0, IMAGE_MAX_SIDE - 1, &tile->top) &&
+           option_int("--tile W", words[2], 1, IMAGE_MAX_SIDE, &tile->width) &&
+           option_int("--tile H", words[3], 1, IMAGE_MAX_SIDE, &tile->height);
 }
 
 /* Fills *o from the command line. Returns CLI_OK, CLI_USAGE on an error (message printed), or -1 when
@@ -119,6 +134,11 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
                 o->heatmap = value;
             else
                 o->chapter_output = value;
+        } else if (strcmp(arg, "--tile") == 0) {
+            if (!option_tile(argc - k - 1, argv + k + 1, &o->tile))
+                return CLI_USAGE;
+            k += 4;
+            takes_value = false;
         } else if (strcmp(arg, "--set") == 0) {
             if (value == NULL || strchr(value, '=') == NULL) {
                 complain("--set needs PATH=VALUE, e.g. --set max_depth=1");
@@ -157,6 +177,11 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
         }
         if (takes_value)
             k++;
+    }
+    if (o->pov != NULL && o->tile.width > 0) {
+        complain("--tile renders part of the picture, --pov writes the scene's POV-Ray twin instead of "
+                 "rendering; give one of them");
+        return CLI_USAGE;
     }
     if (o->pov == NULL) { /* with --pov nothing but the twin is written */
         const char *names[] = {"-o", "--heatmap", ch->output_option};
@@ -230,6 +255,14 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
         s->width = o->width;
     if (o->height > 0)
         s->height = o->height;
+    const struct render_window *t = &o->tile;
+    if (t->width > 0 && (t->left + t->width > s->width || t->top + t->height > s->height)) {
+        complain("--tile %d %d %d %d: the tile reaches past the %d x %d picture (its columns %d to %d, rows %d to "
+                 "%d; the picture's 0 to %d, 0 to %d)", t->left, t->top, t->width, t->height, s->width, s->height,
+                 t->left, t->left + t->width - 1, t->top, t->top + t->height - 1, s->width - 1, s->height - 1);
+        run->status = CLI_USAGE;
+        return false;
+    }
     scene_drop_unsupported(s, ch->number, o->quiet ? NULL : stderr);
     return o->pov != NULL || within_budget(run);
 }
@@ -262,9 +295,35 @@ static void write_twin(struct cli_run *run) {
     }
 }
 
+/* Writes `window` of img as a PNG at `path`, with the heat-map's colour bar of `bar` under it when bar is
+ * not NULL: img itself when it is the window with room for the bar under it, else a copy. Returns false
+ * with the reason in err. */
+static bool write_window(struct image *img, struct render_window window, const struct heatmap_scale *bar,
+                         const char *path, char *err, size_t err_size) {
+    int bar_rows = bar != NULL ? heatmap_bar_height(window.width, window.height) : 0;
+    if (window.left == 0 && window.top == 0 && window.width == img->width &&
+        window.height + bar_rows == img->height) {
+        if (bar != NULL)
+            heatmap_draw_bar_on(img, window.height, bar);
+        return image_write_png(img, path, err, err_size);
+    }
+    struct image out;
+    if (!image_create(&out, window.width, window.height + bar_rows)) {
+        snprintf(err, err_size, "out of memory for a %d x %d picture to write to %s", window.width,
+                 window.height + bar_rows, path);
+        return false;
+    }
+    image_copy_rect(&out, img, window.left, window.top, window.width, window.height);
+    if (bar != NULL)
+        heatmap_draw_bar_on(&out, window.height, bar);
+    bool written = image_write_png(&out, path, err, err_size);
+    image_free(&out);
+    return written;
+}
+
 /* Renders and writes the picture (and the heat-map), its pixels sampled by `sampler` (NULL: one ray
- * through each centre); prints where they went and the counters. Returns false with run->status set
- * when the camera or an output fails. */
+ * through each centre), only the --tile rectangle of them when one is given; prints where they went and
+ * the counters. Returns false with run->status set when the camera, the tile or an output fails. */
 static bool render_and_write(struct cli_run *run, render_trace_fn trace, const void *world,
                              const struct render_sampler *sampler) {
     const struct chapter *ch = run->chapter;
@@ -277,14 +336,29 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
         run->status = CLI_BAD_INPUT;
         return false;
     }
+    bool tiled = o->tile.width > 0;
+    struct render_window window = tiled ? o->tile : (struct render_window){0, 0, s->width, s->height};
     struct image img, heatmap = {0};
+    struct render_job job = {.camera = &cam, .trace = trace, .world = world, .threads = o->threads,
+                             .progress = !o->quiet,
+                             .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = sampler,
+                             .antialias = &s->antialias, .lens = &s->lens, .window = window};
+    if (!render_window_is_exact(&job, window, s->width, s->height)) {
+        complain("--tile %d %d %d %d: the scene's antialias method compares each pixel with its neighbours in "
+                 "its block of %d x %d pixels, so a tile must be made of whole blocks: X and Y multiples of %d, "
+                 "X + W and Y + H too or the picture's edge (%d, %d)", window.left, window.top, window.width,
+                 window.height, ANTIALIAS_BLOCK, ANTIALIAS_BLOCK, ANTIALIAS_BLOCK, s->width, s->height);
+        run->status = CLI_USAGE;
+        return false;
+    }
     if (!image_create(&img, s->width, s->height)) {
         complain("out of memory for a %d x %d image", s->width, s->height);
         run->status = CLI_OUTPUT_FAILED;
         return false;
     }
-    if (o->heatmap != NULL &&
-        !image_create(&heatmap, s->width, s->height + heatmap_bar_height(s->width, s->height))) {
+    /* The heat-map of the whole picture has room for its bar; a tile's is copied out with its own. */
+    int bar_rows = tiled ? 0 : heatmap_bar_height(s->width, s->height);
+    if (o->heatmap != NULL && !image_create(&heatmap, s->width, s->height + bar_rows)) {
         image_free(&img);
         complain("out of memory for the heat-map");
         run->status = CLI_OUTPUT_FAILED;
@@ -292,18 +366,13 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
     }
     if (!o->output_given)
         mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
-    struct render_job job = {.camera = &cam, .trace = trace, .world = world, .threads = o->threads,
-                             .progress = !o->quiet,
-                             .heatmap = o->heatmap != NULL ? &heatmap : NULL, .sampler = sampler,
-                             .antialias = &s->antialias, .lens = &s->lens};
     double started = clock_seconds();
     render_image(&job, &img, &run->total);
     run->render_seconds = clock_seconds() - started;
-    bool written = image_write_png(&img, o->output, err, sizeof err);
-    if (written && o->heatmap != NULL) {
-        heatmap_draw_bar_on(&heatmap, s->height, sampler != NULL ? sampler->heatmap : &heatmap_cost_scale);
-        written = image_write_png(&heatmap, o->heatmap, err, sizeof err);
-    }
+    bool written = write_window(&img, window, NULL, o->output, err, sizeof err);
+    if (written && o->heatmap != NULL)
+        written = write_window(&heatmap, window, sampler != NULL ? sampler->heatmap : &heatmap_cost_scale,
+                               o->heatmap, err, sizeof err);
     image_free(&img);
     image_free(&heatmap);
     if (!written) {
@@ -312,10 +381,14 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
         return false;
     }
     if (!o->quiet) {
-        char shown[4 * PATH_MAX];
+        char shown[4 * PATH_MAX], size[128];
         text_escape(strcmp(o->output, "-") == 0 ? "standard output" : o->output, shown, sizeof shown);
-        printf("chapter %d (%s): wrote %s (%d x %d) in %.3f s\n", ch->number, ch->title, shown, s->width,
-               s->height, run->render_seconds);
+        if (tiled)
+            snprintf(size, sizeof size, "the %d x %d tile at column %d, row %d of the %d x %d picture", window.width,
+                     window.height, window.left, window.top, s->width, s->height);
+        else
+            snprintf(size, sizeof size, "%d x %d", s->width, s->height);
+        printf("chapter %d (%s): wrote %s (%s) in %.3f s\n", ch->number, ch->title, shown, size, run->render_seconds);
         if (o->heatmap != NULL) {
             text_escape(o->heatmap, shown, sizeof shown);
             printf("heat-map: %s\n", shown);

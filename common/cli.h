@@ -18,7 +18,13 @@
  * `--heatmap FILE` works in every chapter: it writes how much work each pixel's camera ray cost
  * (node visits, box and shape tests, including those of its shadow and secondary rays) as a picture,
  * on one fixed colour scale so that pictures of different chapters can be set side by side. In
- * chapter 12 it shows how many camera rays each pixel took instead, on a scale of its own. */
+ * chapter 12 it shows how many camera rays each pixel took instead, on a scale of its own.
+ *
+ * `--tile X Y W H` works in every chapter too: it renders only the rectangle [X, X + W) x [Y, Y + H) of
+ * the picture, through the whole picture's camera, and writes it (and the heat-map) as a W x H picture:
+ * the pixels the whole picture has there, so that tiles rendered apart (on the machines of a render
+ * farm, tools/farm/) join into the very picture one machine draws. A rectangle outside the picture, or
+ * one that cuts the blocks of a sampler whose blocks' edges matter (render.h), is a command-line error. */
 #ifndef WHITTED_CLI_H
 #define WHITTED_CLI_H
 
@@ -69,6 +75,7 @@ struct cli_options {
     bool quiet;
     bool stats;        /* --stats: the chapter's detailed report too */
     bool no_limit;     /* --no-limit: render even a scene over RAY_BUDGET_LIMIT (ray_budget.h) */
+    struct render_window tile; /* --tile X Y W H: render only that rectangle of the picture (width 0: all) */
     const char *sets[SCENE_SET_MAX]; /* --set PATH=VALUE changes to the scene, in order */
     int set_count;
 };

@@ -29,6 +29,12 @@ void image_free(struct image *img) {
     img->width = img->height = 0;
 }
 
+void image_copy_rect(struct image *to, const struct image *from, int left, int top, int width, int height) {
+    for (int y = 0; y < height; y++)
+        memcpy(&to->rgb[3 * (size_t)y * (size_t)to->width],
+               &from->rgb[3 * ((size_t)(top + y) * (size_t)from->width + (size_t)left)], 3 * (size_t)width);
+}
+
 uint8_t image_quantize(double v) {
     if (!(v > 0.0)) /* also catches NaN */
         return 0;

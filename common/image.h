@@ -40,6 +40,11 @@ static inline void image_set(struct image *img, int i, int j, vec3 colour) {
     pixel[2] = image_quantize(colour.z);
 }
 
+/* Copies the rectangle [left, left + width) x [top, top + height) of `from` into the top-left corner of
+ * `to` (a tile of a picture into a picture of its own); the rectangle must fit in both (the caller's
+ * precondition). */
+void image_copy_rect(struct image *to, const struct image *from, int left, int top, int width, int height);
+
 /* Writes the image as an 8-bit RGB PNG at `path` through outfile.h: to a temporary file renamed over
  * `path` only when complete, so a failure never leaves a half-written image ("-" is standard output; a
  * FIFO or device is written directly). Returns false and writes "path: reason" into err on failure. */

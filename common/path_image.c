@@ -53,7 +53,14 @@ double path_image_noise(const float *linear, const float *error, int width, int 
     return values > 0 ? errors / values : 0.0;
 }
 
-const struct render_sampler path_sampler = {render_paths, &heatmap_cost_scale};
+void path_image_keep_window(float *linear, int width, struct render_window window) {
+    for (int y = 0; y < window.height; y++) /* row y lands at or before where it was: memmove keeps it whole */
+        memmove(&linear[3 * (size_t)y * (size_t)window.width],
+                &linear[3 * ((size_t)(window.top + y) * (size_t)width + (size_t)window.left)],
+                3 * (size_t)window.width * sizeof *linear);
+}
+
+const struct render_sampler path_sampler = {render_paths, &heatmap_cost_scale, NULL};
 
 /* stb_image_write hands its output to this callback piece by piece; we append it to the file. */
 static void write_to_file(void *context, void *data, int size) { outfile_write(context, data, (size_t)size); }

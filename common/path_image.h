@@ -36,6 +36,10 @@ extern const struct render_sampler path_sampler;
  * over the mean of their values (0 for a black picture). */
 double path_image_noise(const float *linear, const float *error, int width, int height);
 
+/* Moves the linear pixels of `window` of a frame `width` pixels wide (3 floats a pixel) to the front of
+ * `linear`, row after row: the frame of the window alone (a tile's, for its HDR file). */
+void path_image_keep_window(float *linear, int width, struct render_window window);
+
 /* Returns the display value of one linear channel: clipped to [0, 1], then the sRGB curve. NaN gives 0. */
 double path_image_display(double linear);
 

@@ -141,9 +141,9 @@ static void progress_stop(struct progress *p, pthread_t thread) {
     }
 }
 
-/* Renders row j of img, one ray through each pixel centre. */
-static void render_row(const struct render_job *job, struct image *img, int j) {
-    for (int i = 0; i < img->width; i++) {
+/* Renders row j of the window, one ray through each pixel centre. */
+static void render_row(const struct render_job *job, struct image *img, struct render_window w, int j) {
+    for (int i = w.left; i < w.left + w.width; i++) {
         ray r = camera_ray(job->camera, i, j);
         uint64_t cost_before = render_thread_cost();
         stats_thread.primary_rays++;
@@ -153,25 +153,49 @@ static void render_row(const struct render_job *job, struct image *img, int j) {
             image_set(job->heatmap, i, j, heatmap_colour(cost > UINT32_MAX ? UINT32_MAX : (uint32_t)cost));
         }
     }
-    stats_thread.pixels += (uint64_t)img->width;
+    stats_thread.pixels += (uint64_t)w.width;
     stats_thread.camera_rays_max = 1;
 }
 
-/* Renders block number `block` (counted along the rows of blocks) with the job's sampler. */
-static void render_block(const struct render_job *job, struct image *img, int block) {
-    int across = (img->width + ANTIALIAS_BLOCK - 1) / ANTIALIAS_BLOCK;
-    int left = block % across * ANTIALIAS_BLOCK, top = block / across * ANTIALIAS_BLOCK;
-    int right = left + ANTIALIAS_BLOCK < img->width ? left + ANTIALIAS_BLOCK : img->width;
-    int bottom = top + ANTIALIAS_BLOCK < img->height ? top + ANTIALIAS_BLOCK : img->height;
-    job->sampler->block(job, img, left, top, right, bottom);
+/* The blocks of the picture's grid (ANTIALIAS_BLOCK pixels a side from its top-left corner) that the
+ * window meets: `across` by `down` of them, the first being column `column`, row `row` of the grid. */
+struct block_span {
+    int column, row, across, down;
+};
+
+static struct block_span blocks_met(struct render_window w) {
+    int column = w.left / ANTIALIAS_BLOCK, row = w.top / ANTIALIAS_BLOCK;
+    return (struct block_span){column, row, (w.left + w.width - 1) / ANTIALIAS_BLOCK - column + 1,
+                               (w.top + w.height - 1) / ANTIALIAS_BLOCK - row + 1};
+}
+
+/* Renders the part within the window of block number `block` of those it meets (counted along their
+ * rows) with the job's sampler. */
+static void render_block(const struct render_job *job, struct image *img, struct render_window w, int block) {
+    struct block_span span = blocks_met(w);
+    int left = (span.column + block % span.across) * ANTIALIAS_BLOCK;
+    int top = (span.row + block / span.across) * ANTIALIAS_BLOCK;
+    int right = left + ANTIALIAS_BLOCK < w.left + w.width ? left + ANTIALIAS_BLOCK : w.left + w.width;
+    int bottom = top + ANTIALIAS_BLOCK < w.top + w.height ? top + ANTIALIAS_BLOCK : w.top + w.height;
+    job->sampler->block(job, img, left > w.left ? left : w.left, top > w.top ? top : w.top, right, bottom);
+}
+
+bool render_window_is_exact(const struct render_job *job, struct render_window window, int width, int height) {
+    if (job->sampler == NULL || job->sampler->block_edges_matter == NULL || !job->sampler->block_edges_matter(job))
+        return true;
+    int right = window.left + window.width, bottom = window.top + window.height;
+    return window.left % ANTIALIAS_BLOCK == 0 && window.top % ANTIALIAS_BLOCK == 0 &&
+           (right % ANTIALIAS_BLOCK == 0 || right == width) && (bottom % ANTIALIAS_BLOCK == 0 || bottom == height);
 }
 
 void render_image(const struct render_job *job, struct image *img, struct stats *total) {
-    /* The work is shared out in pieces: rows, or the sampler's blocks. */
-    int pieces = img->height;
+    struct render_window w = job->window;
+    if (w.width == 0)
+        w = (struct render_window){0, 0, img->width, img->height};
+    /* The work is shared out in pieces: the window's rows, or the sampler's blocks it meets. */
+    int pieces = w.height;
     if (job->sampler != NULL)
-        pieces = ((img->width + ANTIALIAS_BLOCK - 1) / ANTIALIAS_BLOCK) *
-                 ((img->height + ANTIALIAS_BLOCK - 1) / ANTIALIAS_BLOCK);
+        pieces = blocks_met(w).across * blocks_met(w).down;
     struct progress progress;
     pthread_t reporter;
     bool reporting = job->progress && progress_start(&progress, &reporter, pieces, job->sampler ? "block" : "row");
@@ -185,9 +209,9 @@ void render_image(const struct render_job *job, struct image *img, struct stats 
 #pragma omp for schedule(dynamic, 1)
         for (int piece = 0; piece < pieces; piece++) {
             if (job->sampler == NULL)
-                render_row(job, img, piece);
+                render_row(job, img, w, w.top + piece);
             else
-                render_block(job, img, piece);
+                render_block(job, img, w, piece);
             if (reporting)
                 atomic_fetch_add(&progress.done, 1);
         }

@@ -34,6 +34,15 @@ typedef void (*render_block_fn)(const struct render_job *job, struct image *img,
 struct render_sampler {
     render_block_fn block;
     const struct heatmap_scale *heatmap; /* the scale of what `block` draws into the heat-map */
+    /* Optional (NULL: never): whether a pixel's colour depends on where the edges of its block are, as
+     * with POV-Ray's adaptive rule, which compares a pixel with its neighbours in the block. Then a
+     * window (below) draws the whole picture's pixels only when it is made of whole blocks. */
+    bool (*block_edges_matter)(const struct render_job *job);
+};
+
+/* A rectangle of the camera's picture: pixels [left, left + width) x [top, top + height). */
+struct render_window {
+    int left, top, width, height;
 };
 
 struct render_job {
@@ -48,11 +57,21 @@ struct render_job {
     const struct render_sampler *sampler; /* optional (NULL): one ray through each pixel centre */
     const struct antialias *antialias;    /* the sampler's settings (the scene's antialias line) */
     const struct lens *lens;              /* the camera's lens, for chapter 13's sampler */
+    /* The pixels to render (a tile of the picture: the --tile option); width 0: the whole picture. The
+     * others are left as they are. A pixel's samples depend only on the pixel, the sample and the
+     * seed, so a window's pixels are those of the whole picture (see render_window_is_exact). */
+    struct render_window window;
 };
 
-/* Renders every pixel of `img` (and of job->heatmap), which must already have the camera's size, and
- * adds all threads' counters into *total. Each pixel is stored as soon as it is finished, in the 8 bits
- * the PNG keeps, so no frame of doubles is ever held. Cannot fail. */
+/* Whether `window` of a width x height picture, rendered by `job`, draws exactly the pixels the whole
+ * picture has there: always, unless the job's sampler says the edges of its blocks matter; then only when
+ * the window starts on the grid of ANTIALIAS_BLOCK pixels and ends on it or at the picture's edge. */
+bool render_window_is_exact(const struct render_job *job, struct render_window window, int width, int height);
+
+/* Renders every pixel of job->window (every pixel when it has width 0) of `img` (and of job->heatmap),
+ * which must already have the camera's size, and adds all threads' counters into *total. The window
+ * must lie within the picture (the caller's precondition). Each pixel is stored as soon as it is
+ * finished, in the 8 bits the PNG keeps, so no frame of doubles is ever held. Cannot fail. */
 void render_image(const struct render_job *job, struct image *img, struct stats *total);
 
 /* Returns the traversal cost counted so far by the calling thread: node visits (with chapter 16's

@@ -246,4 +246,9 @@ static void render_block(const struct render_job *job, struct image *img, int le
     supersample_render_view(job, &view, img, left, top, right, bottom);
 }
 
-const struct render_sampler supersample_sampler = {render_block, &supersample_ray_scale};
+bool supersample_block_edges_matter(const struct render_job *job) {
+    return job->antialias->method == ANTIALIAS_ADAPTIVE;
+}
+
+const struct render_sampler supersample_sampler = {render_block, &supersample_ray_scale,
+                                                   supersample_block_edges_matter};

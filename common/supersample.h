@@ -62,6 +62,11 @@ uint64_t supersample_block(const struct antialias *a, const struct sample_view *
 void supersample_render_view(const struct render_job *job, const struct sample_view *view, struct image *img, int left,
                              int top, int right, int bottom);
 
+/* Whether the edges of a render block change its pixels under the job's antialias line (render.h's
+ * block_edges_matter): only with the adaptive method, whose rule looks at a pixel's neighbours in its
+ * block and traces those outside it again instead. Every other method samples each pixel by itself. */
+bool supersample_block_edges_matter(const struct render_job *job);
+
 /* The renderer's way of sampling (render.h) with the scene's antialias line; its heat-map shows how
  * many camera rays each pixel took, on supersample_ray_scale. */
 extern const struct render_sampler supersample_sampler;

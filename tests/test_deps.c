@@ -30,7 +30,7 @@ Test(deps, the_installer_names_what_each_target_needs) {
     cr_assert_eq(run_logged("tools/build/install-deps.sh build test compare results video", log), 0);
     cr_assert_eq(run_logged("tools/build/install-deps.sh everything", log), 2);
     cr_assert(file_contains(log, "install-deps.sh: unknown need 'everything' (build, test, compare, cycles, results, "
-                                 "bench, profile, fuzz, web, test-web or video)"));
+                                 "bench, profile, fuzz, web, test-web, farm or video)"));
 }
 
 Test(deps, without_root_and_without_stb_make_chapter_1_fetches_stb_and_renders, .timeout = 300) {

@@ -184,7 +184,7 @@ ParameterizedTest(struct page *page, doc_commands, every_command_runs_as_written
              "cp -rp --parents Makefile common chapters tools tests/support bench fuzz docs %s/ && cp -p scenes/*.scene %s/scenes/ && "
              "cp -rp scenes/models scenes/textures %s/scenes/ && "
              "for b in build build/san; do [ -d $b/common ] || continue; mkdir -p %s/$b && "
-             "cp -rp $b/common $b/chapters $b/tools %s/$b/ && cp -p $b/chapter-* $b/compare %s/$b/ && { [ ! -e $b/inset ] || cp -p $b/inset %s/$b/; }; "
+             "cp -rp $b/common $b/chapters $b/tools %s/$b/ && cp -p $b/chapter-* $b/compare $b/assemble %s/$b/ && { [ ! -e $b/inset ] || cp -p $b/inset %s/$b/; }; "
              "done >>%s 2>&1",
              dir, dir, dir, dir, dir, dir, dir, dir, log);
     cr_assert_eq(system(copy), 0, "could not copy the repository (see %s)", log);

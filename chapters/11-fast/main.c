@@ -169,7 +169,7 @@ int main(int argc, char **argv) {
     struct accel_world *w = prepare(&run.scene, run.options.pov != NULL, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
-    static const struct render_sampler in_packets = {render_in_packets, &heatmap_cost_scale};
+    static const struct render_sampler in_packets = {render_in_packets, &heatmap_cost_scale, NULL};
     bool packets = choice.kind == ACCEL_BVH && rung == FAST_BVH_RUNG_PACKET;
     if (cli_render_sampled(&run, whitted_trace, &w->world, packets ? &in_packets : NULL))
         accel_report(w, &run.total, run.options.stats);

@@ -106,10 +106,18 @@ int main(int argc, char **argv) {
         struct path_picture picture = {&paths, linear, error, s->width};
         bool report = cli_render_sampled(&run, NULL, &picture, &path_sampler);
         const char *hdr_path = run.options.chapter_output; /* --hdr FILE, with -o's rules (cli.h) */
+        /* With --tile, only the tile was rendered: its frame is written, and the noise is its own. */
+        struct render_window tile = run.options.tile;
+        if (tile.width == 0)
+            tile = (struct render_window){0, 0, s->width, s->height};
+        if (run.status == CLI_OK && run.options.pov == NULL) {
+            path_image_keep_window(linear, s->width, tile);
+            path_image_keep_window(error, s->width, tile);
+        }
         if (run.status == CLI_OK && run.options.pov == NULL && hdr_path != NULL) {
             size_t length = strlen(hdr_path);
             bool pfm = length >= 4 && strcmp(hdr_path + length - 4, ".pfm") == 0;
-            if (!(pfm ? path_image_write_pfm : path_image_write_hdr)(linear, s->width, s->height, hdr_path, run.err,
+            if (!(pfm ? path_image_write_pfm : path_image_write_hdr)(linear, tile.width, tile.height, hdr_path, run.err,
                                                                      sizeof run.err)) {
                 fprintf(stderr, "%s\n", run.err);
                 run.status = CLI_OUTPUT_FAILED;
@@ -122,7 +130,7 @@ int main(int argc, char **argv) {
         if (report && run.status == CLI_OK) {
             printf("paths: %d a pixel (%s, seed %u); noise: a pixel's standard error is %.1f%% of the mean; "
                    "%.0f paths and %.0f rays a second\n", s->paths.samples, path_strategy_name(s->paths.strategy),
-                   (unsigned)s->paths.seed, 100 * path_image_noise(linear, error, s->width, s->height),
+                   (unsigned)s->paths.seed, 100 * path_image_noise(linear, error, tile.width, tile.height),
                    run.total.primary_rays / run.render_seconds,
                    (run.total.primary_rays + run.total.shadow_rays + run.total.reflected_rays +
                     run.total.refracted_rays) / run.render_seconds);

@@ -3,7 +3,7 @@
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
 #   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, cycles, results, bench,
-#                                             profile, fuzz, web, test-web, video
+#                                             profile, fuzz, web, test-web, farm, video
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
 #   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test and
@@ -18,6 +18,7 @@
 #            a package of their own, libclang-rt-N-dev for clang N): make fuzz
 #   web      Emscripten (emscripten, with Debian's clang, LLVM and binaryen), to compile the chapters to
 #            WebAssembly: make web and make serve
+#   farm     build + Slurm (slurm-wlm) and MUNGE (munge), for the one-node cluster of make test-farm
 #   test-web web + headless Chromium (chromium), its WebDriver (chromium-driver) and Selenium for the
 #            system's Python (python3-selenium, so the test runs with /usr/bin/python3): make test-web
 #   video    build + ffmpeg: chapter 16's --video, which makes a film of its frames
@@ -52,7 +53,7 @@ want() { # want PACKAGE: add it to the list once
 }
 for need in "${needs[@]}"; do
     case $need in
-    build | test | compare | cycles | results | bench | profile | video)
+    build | test | compare | cycles | results | bench | profile | farm | video)
         have_command gcc || want gcc
         have_command pkg-config || want pkg-config
         have_stb || want libstb-dev
@@ -73,6 +74,10 @@ for need in "${needs[@]}"; do
         [ -e /usr/include/embree3/rtcore.h ] || want libembree-dev
         ;;&
     profile) have_command valgrind || want valgrind ;;
+    farm)
+        have_command slurmctld || want slurm-wlm
+        have_command munged || want munge
+        ;;
     bench) ;;
     fuzz)
         if ! have_command clang; then
@@ -91,7 +96,7 @@ for need in "${needs[@]}"; do
         ;;
     build | web) ;;
     *)
-        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench, profile, fuzz, web, test-web or video)" >&2
+        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench, profile, fuzz, web, test-web, farm or video)" >&2
         exit 2
         ;;
     esac

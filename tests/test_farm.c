@@ -1,0 +1,238 @@
+/* test_farm.c: the render farm's pieces on one machine, without Slurm: every chapter's --tile draws
+ * exactly the whole picture's pixels, whatever samples them (one ray, the antialias methods, the lens and
+ * area lights, the paths, chapter 11's packets), so that tiles joined by build/assemble are the very
+ * picture; the tile's errors; and assemble's refusals. (make test-farm runs the same on a one-node Slurm
+ * cluster: tools/farm/test-one-node.sh.) */
+#include <criterion/criterion.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "image.h"
+#include "image_test_support.h"
+#include "test_support.h"
+
+#define FARM_OUT TEST_OUT "/farm"
+#define FARM_LOG_SIZE 4096
+
+/* The build folder's assemble program. */
+static const char *assemble_program(void) {
+    static char path[256];
+    const char *build = getenv("WHITTED_BUILD");
+    snprintf(path, sizeof path, "%s/assemble", build != NULL ? build : "build");
+    return path;
+}
+
+/* Makes the folder FARM_OUT/name, empty, and returns its path. */
+static const char *fresh_folder(const char *name) {
+    static char path[256];
+    char command[600], log[FARM_LOG_SIZE];
+    snprintf(path, sizeof path, FARM_OUT "/%s", name);
+    snprintf(command, sizeof command, "rm -rf '%s' && mkdir -p '%s'", path, path);
+    cr_assert_eq(run_capturing(command, log, sizeof log), 0, "%s", log);
+    return path;
+}
+
+/* Renders chapter n's `scene` at width x height (with the words `extra`) whole, and again as tiles of
+ * tile_w x tile_h from the top-left corner (smaller at the right and bottom edges), each a program run of
+ * its own; joins the tiles with build/assemble and expects the very file of the whole picture (both are
+ * written by one PNG writer, so equal pixels make equal bytes). */
+static void expect_tiles_join_into_the_picture(const char *name, int n, const char *scene, const char *extra,
+                                                int width, int height, int tile_w, int tile_h) {
+    const char *folder = fresh_folder(name);
+    char words[512], whole[300], joined[300], command[8192], log[FARM_LOG_SIZE];
+    snprintf(whole, sizeof whole, "%s/whole.png", folder);
+    snprintf(words, sizeof words, "--width %d --height %d --quiet %s", width, height, extra);
+    cr_assert_eq(render_chapter(n, scene, whole, words), 0, "%s: the whole picture", name);
+    int length = snprintf(command, sizeof command, "%s -o %s/joined.png", assemble_program(), folder);
+    for (int y = 0; y < height; y += tile_h)
+        for (int x = 0; x < width; x += tile_w) {
+            char tile[300], tile_words[700];
+            int w = x + tile_w < width ? tile_w : width - x, h = y + tile_h < height ? tile_h : height - y;
+            snprintf(tile, sizeof tile, "%s/tile-%d-%d.png", folder, x, y);
+            snprintf(tile_words, sizeof tile_words, "%s --tile %d %d %d %d", words, x, y, w, h);
+            cr_assert_eq(render_chapter(n, scene, tile, tile_words), 0, "%s: the tile at %d %d", name, x, y);
+            struct image tile_picture = {0};
+            char err[512];
+            tile_picture.rgb = image_read_rgb(tile, &tile_picture.width, &tile_picture.height, err, sizeof err);
+            cr_assert_not_null(tile_picture.rgb, "%s", err);
+            cr_expect(tile_picture.width == w && tile_picture.height == h, "%s: the tile is %d x %d, not %d x %d",
+                      tile, tile_picture.width, tile_picture.height, w, h);
+            image_free(&tile_picture);
+            length += snprintf(command + length, sizeof command - (size_t)length, " %s", tile);
+        }
+    cr_assert_eq(run_capturing(command, log, sizeof log), 0, "%s", log);
+    snprintf(joined, sizeof joined, "%s/joined.png", folder);
+    snprintf(command, sizeof command, "cmp %s %s", whole, joined);
+    cr_expect_eq(run_capturing(command, log, sizeof log), 0, "%s: the joined tiles differ from the whole picture: %s",
+                 name, log);
+}
+
+Test(tile, one_ray_a_pixel_tiles_join_into_the_picture, .timeout = 60) {
+    expect_tiles_join_into_the_picture("one-ray", 8, chapter_scene(8), "", 70, 50, 23, 17);
+}
+
+Test(tile, chapter_11s_packets_tiles_join_into_the_picture, .timeout = 120) {
+    expect_tiles_join_into_the_picture("packets", 11, chapter_scene(11), "--rung packet", 70, 50, 30, 19);
+}
+
+Test(tile, grid_jitter_and_recursive_tiles_of_any_size_join_into_the_picture, .timeout = 120) {
+    expect_tiles_join_into_the_picture("grid", 12, chapter_scene(12), "--set antialias.method=grid", 72, 54, 25, 19);
+    expect_tiles_join_into_the_picture("jitter", 12, chapter_scene(12), "--set antialias.method=jitter", 72, 54, 25,
+                                       19);
+    expect_tiles_join_into_the_picture("recursive", 12, chapter_scene(12), "--set antialias.method=recursive", 72, 54,
+                                       25, 19);
+}
+
+Test(tile, adaptive_tiles_of_whole_blocks_join_into_the_picture, .timeout = 60) {
+    /* POV-Ray's adaptive rule looks at neighbours in the block: tiles of whole 32 x 32 blocks */
+    expect_tiles_join_into_the_picture("adaptive", 12, chapter_scene(12), "--set antialias.method=adaptive", 90, 70,
+                                       64, 32);
+}
+
+Test(tile, chapter_13s_lens_and_area_lights_tiles_join_into_the_picture, .timeout = 120) {
+    expect_tiles_join_into_the_picture("lens", 13, "scenes/13-focus.scene", "", 60, 45, 22, 16);
+    expect_tiles_join_into_the_picture("area-lights", 13, chapter_scene(13), "", 80, 60, 32, 32);
+}
+
+Test(tile, chapter_15s_paths_tiles_join_into_the_picture, .timeout = 60) {
+    expect_tiles_join_into_the_picture("paths", 15, "scenes/15-paths.scene", "--set paths.samples=4", 40, 30, 17, 11);
+}
+
+Test(tile, chapter_16s_moving_instances_tiles_join_into_the_picture, .timeout = 120) {
+    if (access("chapters/16-instances", F_OK) != 0)
+        cr_skip_test("chapter 16 is not in this copy");
+    /* each sample's time in the shutter is hashed from its point, as the lens's rays are */
+    expect_tiles_join_into_the_picture("motion", 16, "scenes/16-instances.scene", "--set antialias.samples=2", 64, 40,
+                                       23, 17);
+}
+
+/* Reads a Portable Float Map as chapter 15 writes it: its size and its floats, rows from the bottom up. */
+static float *read_pfm(const char *path, int *width, int *height) {
+    size_t size;
+    char *bytes = read_file(path, &size);
+    int header = 0;
+    cr_assert_eq(sscanf(bytes, "PF\n%d %d\n-1.0\n%n", width, height, &header), 2, "%s: not a PFM", path);
+    size_t floats = 3 * (size_t)*width * (size_t)*height;
+    cr_assert_eq(size, (size_t)header + 4 * floats, "%s: %zu bytes", path, size);
+    float *values = malloc(4 * floats);
+    cr_assert_not_null(values);
+    memcpy(values, bytes + header, 4 * floats); /* little-endian, as this machine */
+    free(bytes);
+    return values;
+}
+
+Test(tile, chapter_15s_radiance_of_a_tile_is_the_whole_pictures_there, .timeout = 60) {
+    const char *folder = fresh_folder("radiance");
+    char png[300], pfm[300], words[700];
+    int width, height, tile_width, tile_height;
+    snprintf(png, sizeof png, "%s/whole.png", folder);
+    snprintf(pfm, sizeof pfm, "%s/whole.pfm", folder);
+    snprintf(words, sizeof words, "--quiet --width 40 --height 30 --set paths.samples=2 --hdr %s", pfm);
+    cr_assert_eq(render_chapter(15, "scenes/15-paths.scene", png, words), 0);
+    float *whole = read_pfm(pfm, &width, &height);
+    snprintf(png, sizeof png, "%s/tile.png", folder);
+    snprintf(pfm, sizeof pfm, "%s/tile.pfm", folder);
+    snprintf(words, sizeof words, "--quiet --width 40 --height 30 --set paths.samples=2 --tile 7 11 19 13 --hdr %s",
+             pfm);
+    cr_assert_eq(render_chapter(15, "scenes/15-paths.scene", png, words), 0);
+    float *tile = read_pfm(pfm, &tile_width, &tile_height);
+    cr_assert(width == 40 && height == 30 && tile_width == 19 && tile_height == 13);
+    for (int row = 0; row < tile_height; row++) { /* the tile's row from the top, the whole's row 11 + row */
+        const float *ours = &tile[3 * (size_t)(tile_height - 1 - row) * (size_t)tile_width];
+        const float *theirs = &whole[3 * ((size_t)(height - 1 - (11 + row)) * (size_t)width + 7)];
+        cr_expect_eq(memcmp(ours, theirs, 3 * (size_t)tile_width * sizeof *ours), 0, "row %d of the tile", row);
+    }
+    free(whole);
+    free(tile);
+}
+
+Test(tile, a_tiles_heat_map_is_the_tile_with_its_bar) {
+    const char *folder = fresh_folder("heatmap");
+    char png[300], heat[300], words[700], err[512];
+    snprintf(png, sizeof png, "%s/tile.png", folder);
+    snprintf(heat, sizeof heat, "%s/heat.png", folder);
+    snprintf(words, sizeof words, "--quiet --width 200 --height 150 --tile 20 30 100 60 --heatmap %s", heat);
+    cr_assert_eq(render_chapter(10, chapter_scene(10), png, words), 0);
+    int width, height;
+    uint8_t *rgb = image_read_rgb(heat, &width, &height, err, sizeof err);
+    cr_assert_not_null(rgb, "%s", err);
+    cr_expect_eq(width, 100);
+    cr_expect_gt(height, 60, "the colour bar is under the tile's 60 rows");
+    free(rgb);
+}
+
+Test(tile, a_tile_outside_the_picture_or_cutting_adaptive_blocks_is_a_usage_error) {
+    expect_chapter_run(2, "--width 64 --height 48 --tile 40 0 30 10", 2,
+                       "--tile 40 0 30 10: the tile reaches past the 64 x 48 picture (its columns 40 to 69, rows 0 to "
+                       "9; the picture's 0 to 63, 0 to 47)");
+    expect_chapter_run(2, "--tile 0 0 0 10", 2, "--tile W needs a whole number from 1 to 16384, got '0'");
+    expect_chapter_run(2, "--tile 0 0 10", 2,
+                       "--tile needs four whole numbers X Y W H: the tile's left column, top row, width and height");
+    expect_chapter_run(2, "--tile 0 0 8 8 --pov out/test/x.pov", 2,
+                       "--tile renders part of the picture, --pov writes the scene's POV-Ray twin instead of "
+                       "rendering; give one of them");
+    expect_chapter_run(12, "--set antialias.method=adaptive --width 80 --height 60 --tile 16 0 32 32", 2,
+                       "--tile 16 0 32 32: the scene's antialias method compares each pixel with its neighbours in its "
+                       "block of 32 x 32 pixels, so a tile must be made of whole blocks: X and Y multiples of 32, X + W "
+                       "and Y + H too or the picture's edge (80, 60)");
+    expect_chapter_run(12, "--set antialias.method=adaptive --width 80 --height 60 --tile 32 32 48 28 -o out/test/t.png",
+                       0, "(the 48 x 28 tile at column 32, row 32 of the 80 x 60 picture)");
+}
+
+/* Writes a width x height PNG of one colour at `path`. */
+static void write_plain_png(const char *path, int width, int height) {
+    struct image img;
+    char err[512];
+    cr_assert(image_create(&img, width, height));
+    cr_assert(image_write_png(&img, path, err, sizeof err), "%s", err);
+    image_free(&img);
+}
+
+/* Runs assemble with `arguments` in `folder` and expects exit `status` and `message` among what it
+ * prints, and no picture written unless it succeeded. */
+static void expect_assemble(const char *folder, const char *arguments, int status, const char *message) {
+    char command[1024], log[FARM_LOG_SIZE], here[512];
+    cr_assert_not_null(getcwd(here, sizeof here));
+    snprintf(command, sizeof command, "cd %s && rm -f out.png && %s/%s -o out.png %s", folder, here,
+             assemble_program(), arguments);
+    int got = run_capturing(command, log, sizeof log);
+    cr_expect_eq(got, status, "assemble %s: exit %d, not %d: %s", arguments, got, status, log);
+    cr_expect(strstr(log, message) != NULL, "assemble %s printed\n%s\nnot\n%s", arguments, log, message);
+    char out[300];
+    snprintf(out, sizeof out, "%s/out.png", folder);
+    cr_expect_eq(access(out, F_OK) == 0, status == 0, "assemble %s: the picture %s", arguments,
+                 status == 0 ? "is missing" : "was written although it failed");
+}
+
+Test(assemble, joins_tiles_and_refuses_overlaps_gaps_and_tiles_past_the_edge) {
+    const char *folder = fresh_folder("assemble");
+    const char *names[] = {"tile-0-0.png", "tile-10-0.png", "tile-0-8.png", "tile-10-8.png", "odd.png"};
+    int sizes[][2] = {{10, 8}, {6, 8}, {10, 4}, {6, 4}, {10, 8}};
+    for (int k = 0; k < 5; k++) {
+        char path[300];
+        snprintf(path, sizeof path, "%s/%s", folder, names[k]);
+        write_plain_png(path, sizes[k][0], sizes[k][1]);
+    }
+    expect_assemble(folder, "tile-0-0.png tile-10-0.png tile-0-8.png tile-10-8.png", 0, "");
+    expect_assemble(folder, "--size 16 12 tile-0-0.png tile-10-0.png tile-0-8.png --at 10 8 odd.png", 1,
+                    "assemble: odd.png: the 10 x 8 tile at column 10, row 8 reaches past the 16 x 12 picture");
+    expect_assemble(folder, "--size 16 12 tile-0-0.png tile-10-0.png tile-0-8.png", 1,
+                    "assemble: a gap: no tile holds pixel (10, 8) of the 16 x 12 picture");
+    expect_assemble(folder, "tile-0-0.png tile-10-0.png tile-0-8.png --at 8 8 tile-10-8.png", 1,
+                    "assemble: tile-0-8.png and tile-10-8.png overlap: both hold pixel (8, 8)");
+    expect_assemble(folder, "tile-0-0.png --at 5 0 tile-10-0.png", 1,
+                    "assemble: tile-0-0.png and tile-10-0.png overlap: both hold pixel (5, 0)");
+    expect_assemble(folder, "odd.png", 2, "assemble: odd.png: the name does not end in tile-X-Y.png; give it as --at X Y odd.png");
+    expect_assemble(folder, "tile-0-0.png tile-20-0.png", 1, "assemble: tile-20-0.png: cannot open: No such file or directory");
+    char junk[300];
+    snprintf(junk, sizeof junk, "%s/tile-0-16.png", folder);
+    FILE *f = fopen(junk, "w");
+    cr_assert_not_null(f);
+    fputs("not a picture\n", f);
+    fclose(f);
+    expect_assemble(folder, "tile-0-16.png", 1, "assemble: tile-0-16.png: cannot read image");
+    expect_assemble(folder, "--size 0 4 tile-0-0.png", 2, "assemble: --size needs two whole numbers W H from 1 to 16384");
+}

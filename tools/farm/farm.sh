@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# farm.sh: renders one picture as tiles, or an animation's frames, as a Slurm job array on a cluster
+# (tools/farm/render.sbatch), waits for it, and joins the tiles into the picture (build/assemble).
+#
+#   tools/farm/farm.sh [options] -- PROGRAM [ARGS...]
+#
+#   --tile-size W H   tiles of W x H pixels (default 64 64); with an adaptive antialias line, multiples
+#                     of 32 (the chapter refuses tiles that cut its blocks)
+#   --size W H        the picture's size as PROGRAM ARGS render it (default: asked of PROGRAM, by
+#                     rendering its top-left pixel, or block, alone)
+#   --frames N        render the N frames of chapter 16's animation instead, one task a frame, to
+#                     DIR/frame-NNNN.png
+#   --dir DIR         where the pieces and the logs go, a folder every node sees (default out/farm)
+#   -o PICTURE        the joined picture (default DIR/picture.png)
+#   --sbatch WORD     one more word for sbatch, e.g. --sbatch --partition=gpu (repeatable)
+#
+# PROGRAM ARGS is a chapter's command line, e.g. build/chapter-13 scenes/13-distributed.scene; run from
+# the repository's folder (the tasks start there too). Exit status: 0 the picture or the frames are
+# there, 1 a task or the assembly failed, 2 a bad command line.
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+assemble=${WHITTED_ASSEMBLE:-$here/../../${WHITTED_BUILD:-build}/assemble}
+
+fail() { echo "farm.sh: $*" >&2; exit "${2:-2}"; }
+whole() { [[ $1 =~ ^[0-9]+$ ]] && [ "$1" -ge 1 ] || fail "$2 needs whole numbers from 1, got '$1'"; }
+
+tile_w=64 tile_h=64 width= height= frames= dir=out/farm picture= extra=()
+while [ $# -gt 0 ]; do
+    case $1 in
+    --tile-size) [ $# -ge 3 ] || fail "--tile-size needs W H"; whole "$2" --tile-size; whole "$3" --tile-size
+        tile_w=$2 tile_h=$3; shift 3 ;;
+    --size) [ $# -ge 3 ] || fail "--size needs W H"; whole "$2" --size; whole "$3" --size
+        width=$2 height=$3; shift 3 ;;
+    --frames) [ $# -ge 2 ] || fail "--frames needs N"; whole "$2" --frames; frames=$2; shift 2 ;;
+    --dir) [ $# -ge 2 ] || fail "--dir needs a folder"; dir=$2; shift 2 ;;
+    -o) [ $# -ge 2 ] || fail "-o needs a file name"; picture=$2; shift 2 ;;
+    --sbatch) [ $# -ge 2 ] || fail "--sbatch needs a word"; extra+=("$2"); shift 2 ;;
+    --) shift; break ;;
+    *) fail "unknown option '$1' (the program's command line comes after --)" ;;
+    esac
+done
+[ $# -ge 1 ] || fail "usage: farm.sh [--tile-size W H] [--size W H] [--frames N] [--dir DIR] [-o PICTURE] -- PROGRAM [ARGS...]"
+command -v sbatch >/dev/null || fail "sbatch is not installed: this runs on a Slurm cluster (Debian's slurm-wlm)" 1
+mkdir -p "$dir/logs" || fail "cannot make $dir" 1
+picture=${picture:-$dir/picture.png}
+
+submit() { # submit COUNT MODE ARGS...: the job array of COUNT tasks, waited for
+    local count=$1
+    shift
+    echo "farm.sh: submitting $count tasks ($1) to Slurm" >&2
+    sbatch --wait --quiet --array=0-$((count - 1)) --chdir="$PWD" --output="$dir/logs/%A_%a.log" \
+        "${extra[@]+"${extra[@]}"}" "$here/render.sbatch" "$@" ||
+        fail "the job array failed: the logs are in $dir/logs" 1
+}
+
+if [ -n "$frames" ]; then
+    submit "$frames" frames "$dir" "$frames" "$@"
+    echo "farm.sh: $frames frames in $dir" >&2
+    exit 0
+fi
+if [ -z "$width" ]; then # the picture's size: what PROGRAM says when it renders its top-left pixel
+    # (or, with an adaptive antialias line, its top-left block of 32 x 32 pixels)
+    said=$("$@" --tile 0 0 1 1 -o /dev/null 2>&1) || said=$("$@" --tile 0 0 32 32 -o /dev/null 2>&1) ||
+        fail "$* could not render its top-left corner: $said; give --size W H" 1
+    size=$(printf '%s\n' "$said" | sed -n 's/.* of the \([0-9]*\) x \([0-9]*\) picture.*/\1 \2/p' | head -n 1)
+    [ -n "$size" ] || fail "could not read the picture's size from: $said; give --size W H" 1
+    read -r width height <<<"$size"
+fi
+across=$(((width + tile_w - 1) / tile_w)) down=$(((height + tile_h - 1) / tile_h))
+rm -f "$dir"/tile-*-*.png
+submit $((across * down)) tiles "$dir" "$tile_w" "$tile_h" "$width" "$height" "$@"
+tiles=()
+for ((y = 0; y < height; y += tile_h)); do
+    for ((x = 0; x < width; x += tile_w)); do tiles+=("$dir/tile-$x-$y.png"); done
+done
+"$assemble" --size "$width" "$height" -o "$picture" "${tiles[@]}" || fail "the tiles could not be joined" 1
+echo "farm.sh: $across x $down tiles joined into $picture ($width x $height)" >&2
