@@ -78,7 +78,8 @@ static int write_forest(FILE *f, long count, const char *models) {
     fprintf(f, "# Chapter 16's forest, written by tools/models/forest.c (make bench): %ld instances, %ld of\n"
                "# the 349,872-triangle teapot and %ld of the 3,674-triangle bunny, on a %ld x %ld grid.\n",
             count, teapots, count - teapots, side, side);
-    fprintf(f, "camera eye %.4f %.4f %.4f  target 0 0 0  fov 40\n", -0.55 * extent, 0.12 * extent, -0.55 * extent);
+    fprintf(f, "camera eye %.4f %.4f %.4f  target 0 %.4f 0  fov 40\n", -0.52 * extent, 0.025 * extent, -0.52 * extent,
+            -0.03 * extent);
     fprintf(f, "image 800 600\nbackground 0.55 0.7 0.9\n");
     fprintf(f, "light position %.4f %.4f %.4f  colour 1 1 1\n", 0.3 * extent, extent, -0.6 * extent);
     fprintf(f, "material ground colour 0.45 0.5 0.35 ambient 0.15 diffuse 0.7\n"
