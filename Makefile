@@ -69,7 +69,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap ray_budget cli
+MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens instance_syntax pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap ray_budget cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
 MODULES_04 := $(MODULES_03) plane
