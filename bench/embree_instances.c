@@ -48,7 +48,7 @@ static bool forest_build(RTCDevice device, const struct instance_scene *s, struc
     bool made = true;
     double start = processor_ms();
     for (size_t k = 0; made && k < s->object_count; k++) {
-        f->objects[k] = embree_ref_mesh_scene(device, &s->objects[k]);
+        f->objects[k] = embree_ref_mesh_scene(device, s->objects[k]);
         made = f->objects[k] != NULL;
         if (made)
             rtcCommitScene(f->objects[k]);

@@ -24,7 +24,7 @@ struct instance_pixel {
 /* A scene of instances: object_count meshes in their own space, and instance_count placements, each of
  * one object by one transform (object space to world). */
 struct instance_scene {
-    const struct mesh *objects;
+    const struct mesh *const *objects;
     size_t object_count;
     const uint32_t *instance_object;     /* the object of each instance, < object_count */
     const struct transform *to_world;    /* the transform of each instance */
