@@ -12,9 +12,7 @@
  *
  * Ours: chapter 16's instances (instances.h), a BVH per object (chapter 11's at its default rung) and
  * the top-level BVH over the instances' world boxes; its row also gives top- and bottom-level node
- * visits and triangle tests per ray, and the heap the instance layer holds per instance (the scene's
- * instance records, the transforms and the top level: the heap in use, as malloc counts it, after the
- * top level is built less before, plus the instance lines' records). Embree: embree_instances.c, one
+ * visits and triangle tests per ray (Embree does not count them). Embree: embree_instances.c, one
  * scene per object and one RTC_GEOMETRY_TYPE_INSTANCE per instance. Both report for every pixel the
  * instance hit first and whether it is in shadow; the two frames are compared pixel by pixel, and a
  * checksum of each (FNV-1a over the pixels' instance numbers and shadows) is printed, so that a reader
@@ -23,13 +21,13 @@
  * frame only: its hit point, computed from a float distance on an instance placed by a float transform
  * hundreds of units from the origin, lies some 1e-4 off the surface, and a shadow ray leaving it at a
  * grazing angle meets that same surface again beyond SHADOW_T_MIN (with a margin ten times larger for
- * Embree alone, they fall from about 650 to about 50 of 480,000 pixels). The last line is the process's peak resident memory
- * (getrusage), from which make bench-instances, running each tracer alone (--only) on the forest and on
- * a forest of two instances, finds the memory each holds per instance.
+ * Embree alone, they fall from about 650 to about 50 of 480,000 pixels). The last line is the
+ * process's peak resident memory (getrusage), from which make bench-instances, running each tracer
+ * alone (--only) on the forest and on a forest of two instances, finds the memory each holds per
+ * instance.
  *
  * Exit status: 0; 1 for a scene that cannot be read or traced; 2 for a bad command line. */
 #include <inttypes.h>
-#include <malloc.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -137,7 +135,6 @@ struct result {
     double objects_ms, top_ms, frame_ms;
     double rays;                         /* camera and shadow rays */
     double top_visits, bottom_visits, triangle_tests; /* ours only: per frame */
-    double bytes_per_instance;           /* ours only */
     double instanced_triangles;          /* the triangles of every instance's object, summed */
     long hits, shadowed;
     uint64_t checksum;
@@ -172,7 +169,6 @@ static void print_row(const char *label, const struct result *r, const struct re
     print_number(7, ours ? r->top_visits / r->rays : NAN, 1);
     print_number(7, ours ? r->bottom_visits / r->rays : NAN, 1);
     print_number(7, ours ? r->triangle_tests / r->rays : NAN, 1);
-    print_number(8, ours ? r->bytes_per_instance : NAN, 0);
     bool ratios = embree != NULL && embree->done && r != embree;
     print_number(7, ratios ? r->frame_ms / embree->frame_ms : NAN, 2);
     print_number(7, ratios ? (r->objects_ms + r->top_ms) / (embree->objects_ms + embree->top_ms) : NAN, 2);
@@ -240,9 +236,6 @@ static bool ours_frame(struct scene *s, const struct camera *cam, vec3 light, in
             r->bottom_visits = (double)stats_thread.node_visits;
             r->triangle_tests = (double)stats_thread.triangle_tests;
         }
-        /* the instance layer: what instances.h holds per instance, and the instance line's own record */
-        r->bytes_per_instance = ((double)in->info.instance_bytes + (double)(in->count * sizeof *s->instances)) /
-                                (double)in->count;
         r->instanced_triangles = in->info.instanced_triangles;
         instances_free(in);
     }
@@ -261,8 +254,9 @@ int main(int argc, char **argv) {
                 usage();
             repeats = (int)n;
         } else if (strcmp(argv[a], "--size") == 0) {
-            if (sscanf(argv[a + 1], "%dx%d", &width, &height) != 2 || width < 1 || height < 1 ||
-                width > BENCH_MAX_SIDE || height > BENCH_MAX_SIDE)
+            int used = 0;
+            if (sscanf(argv[a + 1], "%dx%d%n", &width, &height, &used) != 2 || argv[a + 1][used] != '\0' ||
+                width < 1 || height < 1 || width > BENCH_MAX_SIDE || height > BENCH_MAX_SIDE)
                 usage();
         } else if (strcmp(argv[a], "--only") == 0) {
             run_ours = strcmp(argv[a + 1], "ours") == 0;
@@ -320,7 +314,7 @@ int main(int argc, char **argv) {
         if (ok) {
             embree = (struct result){.done = true, .objects_ms = times.objects_ms, .top_ms = times.top_ms,
                                      .frame_ms = times.frame_ms, .top_visits = NAN, .bottom_visits = NAN,
-                                     .triangle_tests = NAN, .bytes_per_instance = NAN,
+                                     .triangle_tests = NAN,
                                      .instanced_triangles = forest.instanced_triangles};
             summarise(embree_pixels, pixel_count, &embree);
         }
@@ -337,19 +331,24 @@ int main(int argc, char **argv) {
     printf("%s: %zu instances of %zu objects (%.0f triangles instanced), %dx%d, 1 thread, best of %d:\n", argv[a],
            s.instance_count, s.object_count, ours.done ? ours.instanced_triangles : embree.instanced_triangles,
            cam.width, cam.height, repeats);
-    printf("  %-14s %10s %9s %9s %7s %7s %7s %7s %8s %7s %7s %7s %7s  %-16s\n", "tracer", "objects ms", "top ms",
-           "frame ms", "Mrays/s", "top/ray", "bot/ray", "tri/ray", "B/inst", "frame/E", "build/E", "hits",
-           "shadow", "checksum");
+    printf("  %-14s %10s %9s %9s %7s %7s %7s %7s %7s %7s %7s %7s  %-16s\n", "tracer", "objects ms", "top ms",
+           "frame ms", "Mrays/s", "top/ray", "bot/ray", "tri/ray", "frame/E", "build/E", "hits", "shadow",
+           "checksum");
     if (ours.done)
         print_row("ours", &ours, &embree);
     if (embree.done)
         print_row("Embree 3", &embree, NULL);
     if (ours.done && embree.done) {
-        long differ = 0;
-        for (size_t k = 0; k < pixel_count; k++)
-            differ += ours_pixels[k].instance != embree_pixels[k].instance ||
-                      ours_pixels[k].shadowed != embree_pixels[k].shadowed;
-        printf("  pixels where ours and Embree differ (instance or shadow): %ld of %zu\n", differ, pixel_count);
+        long instance_differs = 0, embree_shadow_only = 0, ours_shadow_only = 0;
+        for (size_t k = 0; k < pixel_count; k++) {
+            const struct instance_pixel *o = &ours_pixels[k], *e = &embree_pixels[k];
+            instance_differs += o->instance != e->instance;
+            embree_shadow_only += o->instance == e->instance && e->shadowed && !o->shadowed;
+            ours_shadow_only += o->instance == e->instance && o->shadowed && !e->shadowed;
+        }
+        printf("  of %zu pixels, ours and Embree see another instance on %ld; the same, but in shadow in Embree's "
+               "frame alone on %ld, in ours alone on %ld\n", pixel_count, instance_differs, embree_shadow_only,
+               ours_shadow_only);
     }
     struct rusage usage;
     if (getrusage(RUSAGE_SELF, &usage) == 0)
