@@ -122,18 +122,22 @@ $(BUILD)/bench_instances: $(BENCH_INSTANCES_OBJECTS) $(addprefix $(BUILD)/common
 ## make bench-instances chapter 16's instances (a BVH per object, one over the instances) against Embree
 ##                     3's (rtcNewGeometry(RTC_GEOMETRY_TYPE_INSTANCE)) on the forest: 10,000 instanced
 ##                     teapots and bunnies, 1.75 billion triangles (installs libembree-dev first); then
-##                     each one's memory per instance: the peak RSS of the forest less that of a forest
-##                     of two instances (the same objects), over the difference in instances
-bench-instances: $(BENCH_MODELS) $(BENCH_FOREST) $(BENCH_FOREST_BASE) | deps
+##                     chapter 16 renders it, and the memory per instance of each: the peak RSS with the
+##                     forest less that with a forest of two instances of the same objects, over N - 2
+bench-instances: $(BENCH_MODELS) $(BENCH_FOREST) $(BENCH_FOREST_BASE) $(BUILD)/peak_rss $(BUILD)/chapter-16 | deps
 	tools/build/install-deps.sh bench
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_instances
 	$(BUILD)/bench_instances $(BENCH_FOREST)
-	@instances=$$(grep -c '^instance ' $(BENCH_FOREST)); \
-	for tracer in ours embree; do \
-	    full=$$($(BUILD)/bench_instances --only $$tracer --repeats 1 $(BENCH_FOREST) | awk '/^  peak RSS/ { print $$3 }'); \
-	    base=$$($(BUILD)/bench_instances --only $$tracer --repeats 1 $(BENCH_FOREST_BASE) | awk '/^  peak RSS/ { print $$3 }'); \
-	    [ -n "$$full" ] && [ -n "$$base" ] || exit 1; \
-	    awk -v tracer=$$tracer -v full=$$full -v base=$$base -v n=$$instances 'BEGIN { \
-	        printf "  %-8s peak RSS %7.1f MB with %d instances, %7.1f MB with 2: %6.0f bytes per instance\n", \
-	               tracer, full / 1024, n, base / 1024, (full - base) * 1024 / (n - 2) }'; \
+	$(BUILD)/chapter-16 $(BENCH_FOREST) --threads 1 -o $(BENCH_MEMORY_DIR)/forest.png
+	@n=$$(grep -c '^instance ' $(BENCH_FOREST)); \
+	echo "memory per instance: peak RSS with the forest's $$n instances less that with 2, over $$n - 2:"; \
+	for run in "chapter 16, 800x600, 1 thread:$(BUILD)/chapter-16 --threads 1 --quiet -o $(BENCH_MEMORY_DIR)/memory.png" \
+	           "ours, the two levels alone:$(BUILD)/bench_instances --only ours --repeats 1" \
+	           "Embree 3:$(BUILD)/bench_instances --only embree --repeats 1"; do \
+	    label=$${run%%:*}; command=$${run#*:}; \
+	    full=$$($(BUILD)/peak_rss --kilobytes $$command $(BENCH_FOREST)) && \
+	    base=$$($(BUILD)/peak_rss --kilobytes $$command $(BENCH_FOREST_BASE)) || exit 1; \
+	    awk -v label="$$label" -v full=$$full -v base=$$base -v n=$$n 'BEGIN { \
+	        printf "  %-30s %7.1f MB with %d, %6.1f MB with 2: %5.0f bytes per instance\n", \
+	               label, full / 1024, n, base / 1024, (full - base) * 1024 / (n - 2) }'; \
 	done

@@ -21,10 +21,9 @@
  * frame only: its hit point, computed from a float distance on an instance placed by a float transform
  * hundreds of units from the origin, lies some 1e-4 off the surface, and a shadow ray leaving it at a
  * grazing angle meets that same surface again beyond SHADOW_T_MIN (with a margin ten times larger for
- * Embree alone, they fall from about 650 to about 50 of 480,000 pixels). The last line is the
- * process's peak resident memory (getrusage), from which make bench-instances, running each tracer
- * alone (--only) on the forest and on a forest of two instances, finds the memory each holds per
- * instance.
+ * Embree alone, they fall from about 650 to about 50 of 480,000 pixels). make bench-instances runs
+ * each tracer alone (--only) under bench/peak_rss.c, on the forest and on a forest of two instances of
+ * the same objects, to find the memory each holds per instance.
  *
  * Exit status: 0; 1 for a scene that cannot be read or traced; 2 for a bad command line. */
 #include <inttypes.h>
@@ -34,7 +33,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 
 #include "camera.h"
 #include "clock.h"
@@ -350,9 +348,6 @@ int main(int argc, char **argv) {
                "frame alone on %ld, in ours alone on %ld\n", pixel_count, instance_differs, embree_shadow_only,
                ours_shadow_only);
     }
-    struct rusage usage;
-    if (getrusage(RUSAGE_SELF, &usage) == 0)
-        printf("  peak RSS %ld kB\n", usage.ru_maxrss);
     free(ours_pixels);
     free(embree_pixels);
     forest_free(&forest);
