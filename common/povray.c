@@ -192,7 +192,7 @@ static void write_pose_part(FILE *out, const struct scene_instance *in, size_t i
         shape_write_vector(out, *(const vec3 *)((const char *)pose + offset));
         return;
     }
-    fprintf(out, "I%zu%c(clamp(clock, %.17g, %.17g))", index, letter, in->keys[0].time,
+    fprintf(out, "I%zu%c(min(max(clock, %.17g), %.17g))", index, letter, in->keys[0].time,
             in->keys[in->key_count - 1].time);
 }
 
