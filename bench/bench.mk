@@ -121,7 +121,7 @@ $(BUILD)/bench_instances: $(BENCH_INSTANCES_OBJECTS) $(addprefix $(BUILD)/common
 
 ## make bench-instances chapter 16's instances (a BVH per object, one over the instances) against Embree
 ##                     3's (rtcNewGeometry(RTC_GEOMETRY_TYPE_INSTANCE)) on the forest: 10,000 instanced
-##                     teapots and bunnies, 1.75 billion triangles (installs libembree-dev first); then
+##                     teapots and bunnies, 1.77 billion triangles (installs libembree-dev first); then
 ##                     chapter 16 renders it, and the memory per instance of each: the peak RSS with the
 ##                     forest less that with a forest of two instances of the same objects, over N - 2
 bench-instances: $(BENCH_MODELS) $(BENCH_FOREST) $(BENCH_FOREST_BASE) $(BUILD)/peak_rss $(BUILD)/chapter-16 | deps
