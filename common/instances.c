@@ -18,6 +18,7 @@
  * (scene_meshes.c), for the same reason: boxes in float, areas in float. */
 #define INSTANCES_MAX_COORD TRIANGLE_MAX_COORD
 #define INSTANCES_MIN_SIZE 1e-18
+#define INSTANCES_MESH_ERROR_SIZE 4352 /* the longest message of a mesh reader kept: a whole path and the reason */
 
 static struct pose pose_of(const struct scene_pose *p) { return (struct pose){p->scale, p->rotate, p->translate}; }
 
@@ -121,8 +122,11 @@ static struct aabb instance_box(const struct instances *in, size_t k, double t0,
 /* Loads object k's mesh (once) and builds its tree. */
 static bool load_object(struct instances *in, struct scene *s, size_t k, char *err, size_t err_size) {
     struct scene_object *o = &s->objects[k];
-    if (o->mesh.vertices == NULL && !mesh_load(o->path, &o->mesh, err, err_size))
+    char why[INSTANCES_MESH_ERROR_SIZE];
+    if (o->mesh.vertices == NULL && !mesh_load(o->path, &o->mesh, why, sizeof why)) {
+        snprintf(err, err_size, "%s:%d: object '%s': %s", s->path, o->line, o->name, why);
         return false;
+    }
     for (size_t v = 0; v < o->mesh.vertex_count; v++)
         if (!(fabs(o->mesh.vertices[v].x) <= INSTANCES_MAX_COORD && fabs(o->mesh.vertices[v].y) <= INSTANCES_MAX_COORD &&
               fabs(o->mesh.vertices[v].z) <= INSTANCES_MAX_COORD)) {
@@ -366,19 +370,22 @@ static bool crossing_query(const void *structure, const ray *r, double t_min, do
 
 void instances_report(const struct instances *in, FILE *out, bool detailed) {
     const struct instances_info *i = &in->info;
-    size_t per_instance = sizeof(struct instance) + 2 * sizeof(struct aabb);
-    size_t keys = 0;
+    size_t keys = 0, top = in->top != NULL ? in->top->node_count * sizeof(struct instance_bvh_node) +
+                                              in->top->instance_count * sizeof(uint32_t) : 0;
     for (size_t k = 0; k < in->count; k++)
         keys += in->items[k].key_count * sizeof(struct keyframe);
+    /* each instance: its record, its world box, its place in the list of those outside the tree */
+    size_t each = sizeof(struct instance) + sizeof(struct aabb) + sizeof(size_t);
+    double per_instance = in->count > 0 ? (double)(each * in->count + keys + top) / (double)in->count : 0.0;
     fprintf(out, "instances: %zu of %zu object%s (%zu moving), %.4g triangles instanced from %zu\n", i->instances,
             i->objects, i->objects == 1 ? "" : "s", i->moving, i->instanced_triangles, i->object_triangles);
     fprintf(out, "  objects' meshes and trees   %.1f MB, built in %.1f ms\n", (double)i->object_bytes / 1e6,
             i->object_build_ms);
-    fprintf(out, "  per instance                %zu bytes and the top level's share (keys: %zu bytes in all)\n",
-            per_instance, keys);
+    fprintf(out, "  per instance                %.0f bytes (with its keys and its share of the top level)\n",
+            per_instance);
     fprintf(out, "  top level                   %s in %.2f ms\n", i->refits > 0 ? "last refitted or built" : "built",
             i->top_build_ms);
     if (detailed)
-        fprintf(out, "  top level SAH cost          %.3f (%.3f when last built); %zu rebuilds, %zu refits\n",
+        fprintf(out, "  top level SAH cost          %.3f (%.3f when last built); %zu builds, %zu refits\n",
                 i->top_sah_cost, i->top_sah_cost_built, i->rebuilds, i->refits);
 }
