@@ -1,4 +1,4 @@
-# bench/bench.mk: the acceleration benchmarks of chapters 9, 10 and 11. A GNU make fragment included from
+# bench/bench.mk: the acceleration benchmarks of chapters 9, 10, 11 and 16. A GNU make fragment included from
 # the top-level Makefile, which defines CC, BUILD, CFLAGS, LDFLAGS, LDLIBS and the rule that makes
 # $(BUILD)/common/%.o from common/%.c.
 #
@@ -7,7 +7,9 @@
 #   make bench-memory  peak memory of chapters 10 and 11 (rungs 1 to 9) per triangle, on a teapot of about
 #                      4 million triangles made by tools/models/teapot.c into out/bench/; rung 10 builds
 #                      rung 8's tree and holds nothing per triangle of its own, so its peak is rung 8's
-#   make bench         every benchmark: bench-accel, then bench-memory
+#   make bench-instances chapter 16's two-level BVH against Embree 3's instances on the forest (10,000
+#                      instanced teapots and bunnies, written by tools/models/forest.c into out/bench/)
+#   make bench         every benchmark: bench-accel, then bench-memory, then bench-instances
 #   make bench-profile instructions, cache misses and mispredicted branches per ray for rungs 1, 5 to 9
 #                      and Embree on the teapot frame (bench/profile.sh, under valgrind: ten minutes or so)
 #
@@ -31,10 +33,10 @@ BENCH_OBJECTS := $(patsubst bench/%.c,$(BUILD)/bench/$(BENCH_VARIANT)/%.o,$(BENC
 BENCH_CFLAGS := $(if $(BENCH_EMBREE),-DWHITTED_EMBREE)
 BENCH_LDLIBS := $(if $(BENCH_EMBREE),-lembree3)
 
-.PHONY: bench bench-accel bench-memory bench-profile
+.PHONY: bench bench-accel bench-memory bench-profile bench-instances
 
-## make bench          every benchmark: make bench-accel, then make bench-memory
-bench: bench-accel bench-memory
+## make bench          every benchmark: make bench-accel, then make bench-memory, then make bench-instances
+bench: bench-accel bench-memory bench-instances
 
 ## make bench-accel    the kd-tree, the BVH and chapter 11's rungs against Intel Embree 3, on the big
 ##                     teapot and the bunny (installs libembree-dev first)
@@ -97,3 +99,45 @@ bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_
 	done; \
 	$(BUILD)/peak_rss $$triangles "chapter 11, --accel none (scene and gather)" $(BUILD)/chapter-11 \
 	    $(BENCH_MEMORY_SCENE) --threads 1 --quiet --accel none --width 1 --height 1 -o $(BENCH_MEMORY_DIR)/memory.png
+
+# ---- instances: chapter 16's forest against Embree's instances ----------------------------------
+BENCH_FOREST := $(BENCH_MEMORY_DIR)/forest.scene
+# The same two objects placed twice: the baseline of the memory per instance.
+BENCH_FOREST_BASE := $(BENCH_MEMORY_DIR)/forest-2.scene
+BENCH_INSTANCES_OBJECTS := $(addprefix $(BUILD)/bench/embree/,bench_instances.o embree_instances.o embree_ref.o)
+
+# The forests name the models as seen from out/bench/.
+$(BENCH_FOREST): $(MODELS_FOREST)
+	@mkdir -p $(@D)
+	$(MODELS_FOREST) --models ../../scenes/models $@
+
+$(BENCH_FOREST_BASE): $(MODELS_FOREST)
+	@mkdir -p $(@D)
+	$(MODELS_FOREST) --instances 2 --models ../../scenes/models $@
+
+# Only made by bench-instances, after Embree is installed (BENCH_VARIANT is then embree).
+$(BUILD)/bench_instances: $(BENCH_INSTANCES_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(MODULES_16)))
+	$(CC) $(LDFLAGS) $(filter %.o,$^) -o $@ $(LDLIBS) -lembree3
+
+## make bench-instances chapter 16's instances (a BVH per object, one over the instances) against Embree
+##                     3's (rtcNewGeometry(RTC_GEOMETRY_TYPE_INSTANCE)) on the forest: 10,000 instanced
+##                     teapots and bunnies, 1.77 billion triangles (installs libembree-dev first); then
+##                     chapter 16 renders it, and the memory per instance of each: the peak RSS with the
+##                     forest less that with a forest of two instances of the same objects, over N - 2
+bench-instances: $(BENCH_MODELS) $(BENCH_FOREST) $(BENCH_FOREST_BASE) $(BUILD)/peak_rss $(BUILD)/chapter-16 | deps
+	tools/build/install-deps.sh bench
+	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) $(BUILD)/bench_instances
+	$(BUILD)/bench_instances $(BENCH_FOREST)
+	$(BUILD)/chapter-16 $(BENCH_FOREST) --threads 1 -o $(BENCH_MEMORY_DIR)/forest.png
+	@n=$$(grep -c '^instance ' $(BENCH_FOREST)); \
+	echo "memory per instance: peak RSS with the forest's $$n instances less that with 2, over $$n - 2:"; \
+	for run in "chapter 16, 800x600, 1 thread:$(BUILD)/chapter-16 --threads 1 --quiet -o $(BENCH_MEMORY_DIR)/memory.png" \
+	           "ours, the two levels alone:$(BUILD)/bench_instances --only ours --repeats 1" \
+	           "Embree 3:$(BUILD)/bench_instances --only embree --repeats 1"; do \
+	    label=$${run%%:*}; command=$${run#*:}; \
+	    full=$$($(BUILD)/peak_rss --kilobytes $$command $(BENCH_FOREST)) && \
+	    base=$$($(BUILD)/peak_rss --kilobytes $$command $(BENCH_FOREST_BASE)) || exit 1; \
+	    awk -v label="$$label" -v full=$$full -v base=$$base -v n=$$n 'BEGIN { \
+	        printf "  %-30s %7.1f MB with %d, %6.1f MB with 2: %5.0f bytes per instance\n", \
+	               label, full / 1024, n, base / 1024, (full - base) * 1024 / (n - 2) }'; \
+	done

@@ -20,14 +20,14 @@
 
 #include "camera.h"
 #include "clock.h"
+#include "embree_ref.h"
 #include "mesh.h"
 
-/* Also declared in bench_accel.c (the benchmark has no header of its own). */
+/* Also declared in bench_accel.c (which does without Embree's header). */
 bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet, int repeats,
                       double *build_ms, double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
 
-/* A scene holding m as one triangle geometry, not yet committed (built). NULL on failure. */
-static RTCScene new_scene(RTCDevice device, const struct mesh *m) {
+RTCScene embree_ref_mesh_scene(RTCDevice device, const struct mesh *m) {
     RTCScene scene = rtcNewScene(device);
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (scene == NULL || geometry == NULL)
@@ -52,7 +52,7 @@ static RTCScene new_scene(RTCDevice device, const struct mesh *m) {
     return scene;
 }
 
-static void set_ray(struct RTCRay *out, vec3 origin, vec3 direction, double t_min, double t_max) {
+void embree_ref_set_ray(struct RTCRay *out, vec3 origin, vec3 direction, double t_min, double t_max) {
     out->org_x = (float)origin.x;
     out->org_y = (float)origin.y;
     out->org_z = (float)origin.z;
@@ -73,7 +73,7 @@ static unsigned char shadow_code(RTCScene scene, struct RTCIntersectContext *con
     vec3 to_light = vec3_sub(light, point);
     double distance = vec3_length(to_light);
     struct RTCRay shadow;
-    set_ray(&shadow, point, vec3_scale(to_light, 1.0 / distance), SHADOW_T_MIN, distance - SHADOW_T_MIN);
+    embree_ref_set_ray(&shadow, point, vec3_scale(to_light, 1.0 / distance), SHADOW_T_MIN, distance - SHADOW_T_MIN);
     rtcOccluded1(scene, context, &shadow);
     return shadow.tfar == -INFINITY ? 2 : 1; /* Embree marks an occluded ray with tfar = -inf */
 }
@@ -139,7 +139,7 @@ static double trace_frame(RTCScene scene, const struct camera *cam, vec3 light, 
         for (int i = 0; i < cam->width; i++) {
             ray r = camera_ray(cam, i, j);
             struct RTCRayHit hit;
-            set_ray(&hit.ray, r.origin, r.direction, RAY_T_MIN, INFINITY);
+            embree_ref_set_ray(&hit.ray, r.origin, r.direction, RAY_T_MIN, INFINITY);
             hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             hit.hit.primID = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(scene, &context, &hit);
@@ -165,7 +165,7 @@ bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light
     *build_ms = INFINITY;
     *frame_ms = INFINITY;
     for (int k = 0; k < repeats; k++) {
-        RTCScene scene = new_scene(device, m);
+        RTCScene scene = embree_ref_mesh_scene(device, m);
         if (scene == NULL) {
             snprintf(err, err_size, "embree: could not make the scene (error %d)", (int)rtcGetDeviceError(device));
             rtcReleaseDevice(device);

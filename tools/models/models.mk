@@ -12,9 +12,13 @@
 #              it stands in (N = 74: 349,872 triangles)
 # teapot-5k-uv: teapot-5k's triangles with each patch's (u, v) and averaged normals at the corners,
 #              seam vertices one per patch (chapter 14's textured teapot)
+#
+# $(MODELS_FOREST) (tools/models/forest.c) writes chapter 16's forest scene of instanced teapots and
+# bunnies; make bench makes it into out/bench/ (bench/bench.mk), it is not kept in scenes/.
 
 MODELS_DIR := scenes/models
 MODELS_TEAPOT := build/teapot
+MODELS_FOREST := build/forest
 MODELS_TEAPOT_CFLAGS := -std=c11 -D_DEFAULT_SOURCE -O2 -Wall -Wextra -Werror
 MODELS_GENERATED := $(MODELS_DIR)/teapot-5k.ply $(MODELS_DIR)/teapot-346k.ply $(MODELS_DIR)/teapot-5k-uv.ply
 
@@ -24,6 +28,10 @@ MODELS_GENERATED := $(MODELS_DIR)/teapot-5k.ply $(MODELS_DIR)/teapot-346k.ply $(
 models: $(MODELS_GENERATED) $(MODELS_DIR)/bunny.ply
 
 $(MODELS_TEAPOT): tools/models/teapot.c
+	@mkdir -p $(@D)
+	$(CC) $(MODELS_TEAPOT_CFLAGS) $< -o $@ -lm
+
+$(MODELS_FOREST): tools/models/forest.c
 	@mkdir -p $(@D)
 	$(CC) $(MODELS_TEAPOT_CFLAGS) $< -o $@ -lm
 
