@@ -247,57 +247,57 @@ static double conductor_pdf(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     return microfacet_ggx_visible_pdf(wo, h, usable_alpha(l->alpha)) / (4.0 * vec3_dot(wo, h));
 }
 
-/* The dielectric in a frame where wo is outside (wo.z > 0): both directions turned over when the path
- * comes from inside, which changes no dot product and no |z|. */
-static vec3 dielectric_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
-    vec3 zero = vec3_make(0.0, 0.0, 0.0);
+/* A dielectric's pair of directions, seen in the frame where wo is outside (wo.z > 0): both turned over
+ * when the path comes from inside, which changes no dot product and no |z|; with the microfacet normal
+ * that joins them (the half vector for a reflection, the generalised one for a refraction). */
+struct dielectric_pair {
+    vec3 wo, wi, m;
+    struct sides s;
+    bool reflected;
+};
+
+/* Fills *p for wo and wi, or returns false when no microfacet joins them. */
+static bool dielectric_pair_of(const struct microfacet_lobe *l, vec3 wo, vec3 wi, struct dielectric_pair *p) {
     if (wo.z == 0.0 || wi.z == 0.0)
-        return zero;
-    struct sides s = sides_of(l, wo);
+        return false;
+    p->s = sides_of(l, wo);
+    p->wo = wo.z < 0.0 ? vec3_neg(wo) : wo;
+    p->wi = wo.z < 0.0 ? vec3_neg(wi) : wi;
+    p->reflected = p->wi.z > 0.0;
+    if (!p->reflected)
+        return refraction_half_vector(p->wo, p->wi, p->s, &p->m);
+    vec3 h = vec3_add(p->wo, p->wi);
+    if (!(vec3_length(h) > 0.0))
+        return false;
+    p->m = vec3_normalize(h);
+    return true;
+}
+
+static vec3 dielectric_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
+    struct dielectric_pair p;
+    if (!dielectric_pair_of(l, wo, wi, &p))
+        return vec3_make(0.0, 0.0, 0.0);
     double alpha = usable_alpha(l->alpha);
-    if (wo.z < 0.0) {
-        wo = vec3_neg(wo);
-        wi = vec3_neg(wi);
-    }
-    if (wi.z > 0.0) {
-        vec3 h = vec3_add(wo, wi);
-        if (!(vec3_length(h) > 0.0))
-            return zero;
-        h = vec3_normalize(h);
-        double f = dielectric_fresnel(wo, h, s) * microfacet_ggx_d(h, alpha) * microfacet_ggx_g2(wo, wi, alpha) /
-                   (4.0 * wo.z * wi.z);
+    double shape = microfacet_ggx_d(p.m, alpha) * microfacet_ggx_g2(p.wo, p.wi, alpha);
+    double fresnel = dielectric_fresnel(p.wo, p.m, p.s);
+    if (p.reflected) {
+        double f = fresnel * shape / (4.0 * p.wo.z * p.wi.z);
         return vec3_make(f, f, f);
     }
-    vec3 m;
-    if (!refraction_half_vector(wo, wi, s, &m))
-        return zero;
-    double transmitted = 1.0 - dielectric_fresnel(wo, m, s);
-    double f = transmitted * microfacet_ggx_d(m, alpha) * microfacet_ggx_g2(wo, wi, alpha) *
-               refraction_jacobian(wo, wi, m, s) * fabs(vec3_dot(wo, m)) / fabs(wo.z * wi.z);
+    double f = (1.0 - fresnel) * shape * refraction_jacobian(p.wo, p.wi, p.m, p.s) * vec3_dot(p.wo, p.m) /
+               fabs(p.wo.z * p.wi.z);
     return vec3_scale(l->tint, f);
 }
 
 static double dielectric_pdf(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
-    if (wo.z == 0.0 || wi.z == 0.0)
+    struct dielectric_pair p;
+    if (!dielectric_pair_of(l, wo, wi, &p))
         return 0.0;
-    struct sides s = sides_of(l, wo);
-    double alpha = usable_alpha(l->alpha);
-    if (wo.z < 0.0) {
-        wo = vec3_neg(wo);
-        wi = vec3_neg(wi);
-    }
-    if (wi.z > 0.0) {
-        vec3 h = vec3_add(wo, wi);
-        if (!(vec3_length(h) > 0.0))
-            return 0.0;
-        h = vec3_normalize(h);
-        return microfacet_ggx_visible_pdf(wo, h, alpha) / (4.0 * vec3_dot(wo, h)) * dielectric_fresnel(wo, h, s);
-    }
-    vec3 m;
-    if (!refraction_half_vector(wo, wi, s, &m))
-        return 0.0;
-    return microfacet_ggx_visible_pdf(wo, m, alpha) * refraction_jacobian(wo, wi, m, s) *
-           (1.0 - dielectric_fresnel(wo, m, s));
+    double visible = microfacet_ggx_visible_pdf(p.wo, p.m, usable_alpha(l->alpha));
+    double fresnel = dielectric_fresnel(p.wo, p.m, p.s);
+    if (p.reflected)
+        return visible / (4.0 * vec3_dot(p.wo, p.m)) * fresnel;
+    return visible * refraction_jacobian(p.wo, p.wi, p.m, p.s) * (1.0 - fresnel);
 }
 
 /* Returns wo refracted through the facet m (wo . m > 0) from index s.near into s.far, or false under
