@@ -11,7 +11,7 @@
 # The goals that need the model answers or every task done, or that would overwrite the reference files
 # with the student's pictures: a student copy (tools/student.sh leaves .student-copy in it) refuses them
 # with a sentence, and make help there leaves them out.
-NOT_IN_HANDOUT := gallery test-long student references results figures test-accel-long
+NOT_IN_HANDOUT := gallery test-long student references results figures test-accel-long rough-energy
 ifneq ($(wildcard .student-copy),)
 ifneq ($(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)),)
 $(error make $(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)) is not part of the coursework copy: it needs the model \
