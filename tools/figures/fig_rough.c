@@ -13,6 +13,7 @@
 #define PROFILE_WIDTH 4.6
 #define SEEN_FROM_DEGREES 72.0  /* the eye's angle from the normal in the third panel */
 #define RAY_STEP 1e-9           /* a ray leaves its facet by this much before it can be blocked */
+#define PARALLEL 1e-15          /* a ray and a facet closer to parallel than this never cross */
 
 /* In the figure's plane, x along the surface and y along its normal: z of the local frame is y here. */
 static svg_point plane_of(vec3 w) { return (svg_point){w.x, w.z}; }
@@ -63,7 +64,7 @@ static void distribution_panel(struct svg *s, svg_point p) {
 static double crossing(svg_point o, svg_point d, svg_point a, svg_point b) {
     svg_point e = svg_minus(b, a), f = svg_minus(a, o);
     double det = d.x * (-e.y) - d.y * (-e.x);
-    if (fabs(det) < 1e-15)
+    if (fabs(det) < PARALLEL)
         return INFINITY;
     double t = (f.x * (-e.y) - f.y * (-e.x)) / det, u = (d.x * f.y - d.y * f.x) / det;
     return t > RAY_STEP && u >= 0.0 && u <= 1.0 ? t : INFINITY;
