@@ -11,7 +11,7 @@
 # The goals that need the model answers or every task done, or that would overwrite the reference files
 # with the student's pictures: a student copy (tools/student.sh leaves .student-copy in it) refuses them
 # with a sentence, and make help there leaves them out.
-NOT_IN_HANDOUT := gallery test-long student references results figures test-accel-long
+NOT_IN_HANDOUT := gallery test-long student references results figures test-accel-long rough-energy
 ifneq ($(wildcard .student-copy),)
 ifneq ($(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)),)
 $(error make $(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)) is not part of the coursework copy: it needs the model \
@@ -85,7 +85,7 @@ MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture
 MODULES_15 := $(MODULES_14) sampling emitter bsdf path_trace path_image
 MODULES_16 := $(MODULES_15) transform keyframes instance_bvh instances shutter
-MODULES_17 := $(MODULES_16)
+MODULES_17 := $(MODULES_16) microfacet
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths 16-instances
 # (with the modules of the chapters being written, so that their tests link before the chapter does)
@@ -112,8 +112,8 @@ SCENE_FILES := $(if $(CHAPTER_SCENES),$(shell awk '$$1 == "mesh" { print substr(
                         $(CHAPTER_SCENES)))
 scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
-.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
-        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16,chapter-$(n) check-$(n))
+MODULES_16 := $(MODULES_15) transform keyframes instance_bvh instances shutter
+MODULES_17 := $(MODULES_16) microfacet
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
@@ -224,7 +224,7 @@ $(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUIL
 # Chapter 11's agreement with POV-Ray is long too: its scene and its reference picture are chapter
 # 10's, whose agreement make test checks, and make test holds chapter 11's picture to that reference.
 # make test and make test-long together run every test once; CI runs both (.ci/run).
-LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
+LONG_TESTS := gallery/every_fault_is_caught_by_the_grader microfacet_long/* \
               coursework/the_grader_ends_every_run_with_a_scoreboard_of_every_task \
               coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_grades_* coursework_long/* \
               results/the_quick_mode_runs_every_experiment_and_draws_every_plot_and_table \
@@ -371,6 +371,16 @@ references: all $(BUILD)/compare
 ##                     same are left as they were)
 gallery: all $(BUILD)/compare
 	tools/gallery.sh $(BUILD)
+
+# Chapter 17's plot of the light a rough conductor loses against its roughness: the table of
+# tools/rough_energy.c (microfacet.c's numerical integral) drawn by tools/rough-energy.gp.
+$(BUILD)/rough-energy: $(BUILD)/tools/rough_energy.o $(addprefix $(BUILD)/common/,microfacet.o bsdf.o sampling.o sample_hash.o)
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
+## make rough-energy   redraw chapter 17's plot of energy loss against roughness (docs/images/17-energy-loss.*)
+rough-energy: $(BUILD)/rough-energy
+	./$(BUILD)/rough-energy > docs/images/17-energy-loss.txt
+	gnuplot -e "data='docs/images/17-energy-loss.txt'; output='docs/images/17-energy-loss.svg'" tools/rough-energy.gp
 
 # The walkthroughs' figures: tools/figures/ draws them as SVG with the chapters' own functions, into
 # docs/figures/ (tests/test_figures.c checks that the committed ones are what it draws now).

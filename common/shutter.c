@@ -54,4 +54,4 @@ static void render_block(const struct render_job *job, struct image *img, int le
     supersample_render_view(job, &view, img, left, top, right, bottom);
 }
 
-const struct render_sampler shutter_sampler = {render_block, &supersample_ray_scale};
+const struct render_sampler shutter_sampler = {render_block, &supersample_ray_scale, supersample_block_edges_matter};
