@@ -42,27 +42,28 @@ static void sin_cos_degrees(double degrees, double *s, double *c) {
     *c = cos(radians);
 }
 
-/* Turns p about x, then y, then z, by the angles whose sines and cosines are given. */
-static vec3 turn_point(vec3 p, double sx, double cx, double sy, double cy, double sz, double cz) {
-    p = (vec3){p.x, p.y * cx - p.z * sx, p.y * sx + p.z * cx}; /* about x: (y, z) turn */
-    p = (vec3){p.z * sy + p.x * cy, p.y, p.z * cy - p.x * sy}; /* about y: (z, x) turn */
-    return (vec3){p.x * cz - p.y * sz, p.x * sz + p.y * cz, p.z}; /* about z: (x, y) turn */
+struct mesh_turn mesh_turn_from_degrees(vec3 rotate_degrees) {
+    struct mesh_turn t;
+    sin_cos_degrees(rotate_degrees.x, &t.sx, &t.cx);
+    sin_cos_degrees(rotate_degrees.y, &t.sy, &t.cy);
+    sin_cos_degrees(rotate_degrees.z, &t.sz, &t.cz);
+    return t;
+}
+
+vec3 mesh_turn_point(const struct mesh_turn *t, vec3 p) {
+    p = (vec3){p.x, p.y * t->cx - p.z * t->sx, p.y * t->sx + p.z * t->cx}; /* about x: (y, z) turn */
+    p = (vec3){p.z * t->sy + p.x * t->cy, p.y, p.z * t->cy - p.x * t->sy}; /* about y: (z, x) turn */
+    return (vec3){p.x * t->cz - p.y * t->sz, p.x * t->sz + p.y * t->cz, p.z}; /* about z: (x, y) turn */
 }
 
 void mesh_transform(struct mesh *m, double scale, vec3 rotate_degrees, vec3 translate) {
-    double sx, cx, sy, cy, sz, cz;
-    sin_cos_degrees(rotate_degrees.x, &sx, &cx);
-    sin_cos_degrees(rotate_degrees.y, &sy, &cy);
-    sin_cos_degrees(rotate_degrees.z, &sz, &cz);
+    struct mesh_turn turn = mesh_turn_from_degrees(rotate_degrees);
     for (size_t k = 0; k < m->vertex_count; k++)
-        m->vertices[k] = vec3_add(turn_point(vec3_scale(m->vertices[k], scale), sx, cx, sy, cy, sz, cz), translate);
+        m->vertices[k] = vec3_add(mesh_turn_point(&turn, vec3_scale(m->vertices[k], scale)), translate);
 }
 
 void mesh_corners_turn(struct mesh_corners *c, vec3 rotate_degrees) {
-    double sx, cx, sy, cy, sz, cz;
-    sin_cos_degrees(rotate_degrees.x, &sx, &cx);
-    sin_cos_degrees(rotate_degrees.y, &sy, &cy);
-    sin_cos_degrees(rotate_degrees.z, &sz, &cz);
+    struct mesh_turn turn = mesh_turn_from_degrees(rotate_degrees);
     for (size_t k = 0; k < c->normal_count; k++)
-        c->normals[k] = turn_point(c->normals[k], sx, cx, sy, cy, sz, cz);
+        c->normals[k] = mesh_turn_point(&turn, c->normals[k]);
 }

@@ -54,6 +54,19 @@ void mesh_corners_free(struct mesh_corners *c);
  * normal's direction alone). */
 void mesh_corners_turn(struct mesh_corners *c, vec3 rotate_degrees);
 
+/* The sines and cosines of a `rotate <x, y, z>` in degrees (exact at multiples of 90 degrees, so that
+ * quarter turns move coordinates without rounding). Chapter 16's transforms (transform.c) use the same
+ * numbers in the same order, so that an instance's vertices round as a written-out mesh's do. */
+struct mesh_turn {
+    double sx, cx, sy, cy, sz, cz;
+};
+
+/* Returns the sines and cosines of the rotation by rotate_degrees about x, then y, then z. */
+struct mesh_turn mesh_turn_from_degrees(vec3 rotate_degrees);
+
+/* Returns p turned about x, then y, then z (POV-Ray's order and sense) by the angles of t. */
+vec3 mesh_turn_point(const struct mesh_turn *t, vec3 p);
+
 /* Applies, in this order, a uniform scale, rotations about x, y then z by `rotate_degrees` (POV-Ray's
  * `rotate <x, y, z>` order and sense), and a translation to every vertex. */
 void mesh_transform(struct mesh *m, double scale, vec3 rotate_degrees, vec3 translate);
