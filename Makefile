@@ -84,7 +84,7 @@ MODULES_12 := $(MODULES_11) sample_hash supersample
 MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture
 MODULES_15 := $(MODULES_14) sampling emitter bsdf path_trace path_image
-MODULES_16 := $(MODULES_15) transform
+MODULES_16 := $(MODULES_15) transform keyframes
 MODULES_17 := $(MODULES_16)
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths

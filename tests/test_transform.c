@@ -9,18 +9,8 @@
 #include <string.h>
 
 #include "mesh.h"
-#include "sample_hash.h"
 #include "transform.h"
-
-/* Reproducible random numbers: the k-th number of stream `stream`, uniform in [lo, hi). */
-static double uniform(uint32_t stream, uint32_t k, double lo, double hi) {
-    return lo + (hi - lo) * sample_hash_unit(k, stream, 0, 16);
-}
-
-static vec3 uniform_vec3(uint32_t stream, uint32_t k, double lo, double hi) {
-    return vec3_make(uniform(stream, 3 * k, lo, hi), uniform(stream, 3 * k + 1, lo, hi),
-                     uniform(stream, 3 * k + 2, lo, hi));
-}
+#include "uniform.h"
 
 /* Returns mesh_transform's image of p (a one-vertex mesh). */
 static vec3 mesh_place(vec3 p, double scale, vec3 rotate, vec3 translate) {
