@@ -71,6 +71,7 @@ const struct task check_tasks[] = {
     {"15.1", "next-event estimation, and its weight against scattering", "path_direct_light in common/path_trace.c", "2.1"},
     {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "1.1 2.2 15.1"},
     {"15.P", "chapter 15's picture", "chapters/15-paths", "1.1 2.1 2.2 5.1 6.1 8.1 10.2 11.1 11.2 15.1 15.2"},
+    {"16.3", "the box of a moving object over a stretch of the shutter", "stretch_box in common/keyframes.c", ""},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -160,6 +161,9 @@ CHECK(check_furnace_light);
 CHECK(check_furnace_mis);
 CHECK(check_strategies_agree);
 CHECK(check_picture_15);
+CHECK(check_motion_box_translation);
+CHECK(check_motion_box_turn);
+CHECK(check_motion_box_keys_and_shutter);
 
 const struct check check_list[] = {
     {"1.1", "the top-left pixel's ray", check_camera_top_left},
@@ -248,6 +252,9 @@ const struct check check_list[] = {
     {"15.2", "the white furnace by MIS: no light counted twice", check_furnace_mis},
     {"15.2", "light, scattering and MIS converge to one picture", check_strategies_agree},
     {"15.P", "the picture matches the reference", check_picture_15},
+    {"16.3", "a box sliding and growing: every position held, none far beyond", check_motion_box_translation},
+    {"16.3", "an arm turning 90 degrees: its middle position held too", check_motion_box_turn},
+    {"16.3", "three keys, a shutter across the middle one, a shutter of no length", check_motion_box_keys_and_shutter},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
 
@@ -389,7 +396,7 @@ int main(int argc, char **argv) {
     else if (argc == 2 && has_tasks(atoi(argv[1])))
         chapter = atoi(argv[1]);
     else {
-        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..15; make check-N runs it)\n", argv[0]);
+        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..16; make check-N runs it)\n", argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);
