@@ -69,7 +69,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap ray_budget cli
+MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens instance_syntax pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap ray_budget cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -84,10 +84,10 @@ MODULES_12 := $(MODULES_11) sample_hash supersample
 MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture
 MODULES_15 := $(MODULES_14) sampling emitter bsdf path_trace path_image
-MODULES_16 := $(MODULES_15) transform keyframes
+MODULES_16 := $(MODULES_15) transform keyframes instance_bvh instances shutter
 MODULES_17 := $(MODULES_16)
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths
+            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths 16-instances
 # (with the modules of the chapters being written, so that their tests link before the chapter does)
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))) $(MODULES_17))
 
@@ -106,13 +106,14 @@ SCENE_TEXTURES := scenes/textures/globe.png scenes/textures/grid.png scenes/text
 # (None, and no awk reading standard input, in a copy without scenes/.)
 CHAPTER_SCENES := $(wildcard scenes/[0-9][0-9]-*.scene)
 SCENE_FILES := $(if $(CHAPTER_SCENES),$(shell awk '$$1 == "mesh" { print substr(FILENAME, 8, 2) ":scenes/" $$2 } \
+                            $$1 == "object" { print substr(FILENAME, 8, 2) ":scenes/" $$3 } \
                             $$1 == "pigment" { for (k = 3; k < NF; k++) if ($$k == "file") \
                                                    print substr(FILENAME, 8, 2) ":scenes/" $$(k + 1) }' \
                         $(CHAPTER_SCENES)))
 scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
 .PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
-        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
+        clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
@@ -153,7 +154,7 @@ $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 # ---- running chapters --------------------------------------------------------------------------
 # chapter-N for N = 1..15: explicit rules (GNU make skips pattern rules for phony targets). The program's
 # rule makes the models and pictures the chapter's scenes name first.
-## make chapter-N      build chapter N (1..15) and render its scene to out/chapter-NN.png
+## make chapter-N      build chapter N (1..16) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -161,7 +162,7 @@ chapter-$(1): | out
 	    echo "chapter $(1) is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16,$(eval $(call run_chapter_rule,$(n))))
 
 ## make chapters       build and render every written chapter
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
@@ -379,14 +380,14 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(PATH_PROOFS_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-## make check-N        grade chapter N's coursework tasks (1..15): each task, then a scoreboard (code that
+## make check-N        grade chapter N's coursework tasks (1..16): each task, then a scoreboard (code that
 ##                     only has compiler warnings is graded, with the warnings shown: tests/checks/grade.sh)
 define check_rule
 check-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
 	tests/checks/grade.sh "$$(MAKE)" $$(BUILD) $(1) $$(BUILD)/check $$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call check_rule,$(n))))
+$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16,$(eval $(call check_rule,$(n))))
 
 ## make check          grade every chapter's coursework tasks
 check: | out

@@ -39,6 +39,8 @@ struct parser {
     size_t err_size;
     struct name_index *materials; /* material name -> its index in scene.materials */
     struct name_index *pigments;  /* pigment name -> its index in scene.pigments */
+    struct name_index *objects;   /* object name -> its index in scene.objects */
+    struct name_index *ids;       /* instance id -> its index in scene.instances */
 };
 
 /* Writes "name:line: message" into the error buffer and returns false, so callers can
@@ -179,14 +181,15 @@ static bool material_reference(const struct parser *p, const struct scene *s,
 }
 
 static bool parse_camera(const struct parser *p, struct scene *s, char **tok, int n, bool *seen) {
-    enum { EYE, TARGET, UP, FOV, LENS }; /* then the lens keys (lens.h) */
-    struct key_spec specs[LENS + LENS_KEY_COUNT] = {{"eye", 3}, {"target", 3}, {"up", 3}, {"fov", 1}};
+    enum { EYE, TARGET, UP, FOV, LENS, SHUTTER = LENS + LENS_KEY_COUNT }; /* the lens keys (lens.h) */
+    struct key_spec specs[SHUTTER + 1] = {{"eye", 3}, {"target", 3}, {"up", 3}, {"fov", 1}};
     memcpy(specs + LENS, lens_keys, sizeof lens_keys);
+    specs[SHUTTER] = (struct key_spec){"shutter", 1};
     static const int required[] = {EYE, TARGET, FOV, -1};
     struct key_values kv, lens_kv;
     if (*seen)
         return fail(p, "a second camera (a scene has one)");
-    if (!parse_keys(p, "camera", tok, n, specs, LENS + LENS_KEY_COUNT, &kv) ||
+    if (!parse_keys(p, "camera", tok, n, specs, SHUTTER + 1, &kv) ||
         !require_keys(p, "camera", specs, &kv, required))
         return false;
     s->eye = key_vec3(&kv, EYE);
@@ -200,6 +203,9 @@ static bool parse_camera(const struct parser *p, struct scene *s, char **tok, in
         return fail(p, "%s", why);
     key_values_slice(&kv, LENS, LENS_KEY_COUNT, &lens_kv);
     if (!lens_make(&lens_kv, s->eye, &s->lens, why, sizeof why))
+        return fail(p, "%s", why);
+    s->shutter = kv.present[SHUTTER] ? kv.number[SHUTTER][0] : 0.0;
+    if (!instance_shutter_valid(s->shutter, why, sizeof why))
         return fail(p, "%s", why);
     *seen = true;
     return true;
@@ -412,6 +418,114 @@ static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int 
     return true;
 }
 
+/* Reads a name for an object or an instance's id: not empty, short enough, not taken in `index`. */
+static bool parse_name(const struct parser *p, const char *what, const char *name, const struct name_index *index) {
+    if (strlen(name) >= SCENE_NAME_MAX)
+        return fail(p, "%s name longer than %d characters", what, SCENE_NAME_MAX - 1);
+    if (name_index_find(index, name) >= 0)
+        return fail(p, "%s '%s' is already defined", what, name);
+    return true;
+}
+
+/* The object line (chapter 16): `object NAME FILE [smooth on|off]`. */
+static bool parse_object(const struct parser *p, struct scene *s, char **tok, int n) {
+    static const struct key_spec specs[] = {{"smooth", 0}};
+    struct key_values kv;
+    if (n < 2)
+        return fail(p, "object needs a name and a file name");
+    if (!parse_name(p, "object", tok[0], p->objects) || !parse_keys(p, "object", tok + 2, n - 2, specs, 1, &kv))
+        return false;
+    if (s->object_count == SCENE_OBJECT_MAX)
+        return fail(p, "more than %d object lines", SCENE_OBJECT_MAX);
+    int smooth = SCENE_SMOOTH_FILE;
+    if (kv.present[0]) {
+        if (strcmp(kv.word[0], "on") != 0 && strcmp(kv.word[0], "off") != 0)
+            return fail(p, "object smooth must be on or off, got '%s'", kv.word[0]);
+        smooth = strcmp(kv.word[0], "on") == 0 ? SCENE_SMOOTH_ON : SCENE_SMOOTH_OFF;
+    }
+    struct scene_object *object = grow(&s->objects, &s->object_count, sizeof *object);
+    if (object == NULL || !name_index_add(p->objects, tok[0], (int)(s->object_count - 1)))
+        return fail(p, "out of memory");
+    snprintf(object->name, sizeof object->name, "%s", tok[0]);
+    object->path = resolve_path(p->name, tok[1]);
+    if (object->path == NULL)
+        return fail(p, "out of memory");
+    object->smooth = smooth;
+    object->line = p->line;
+    return true;
+}
+
+/* The instance line (chapter 16): `instance NAME [material M] [scale X Y Z] [rotate X Y Z]
+ * [translate X Y Z] [id LABEL]`. */
+static bool parse_instance(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { MATERIAL = INSTANCE_POSE_KEY_COUNT, ID };
+    struct key_spec specs[ID + 1];
+    memcpy(specs, instance_pose_keys, sizeof instance_pose_keys);
+    specs[MATERIAL] = (struct key_spec){"material", 0};
+    specs[ID] = (struct key_spec){"id", 0};
+    struct key_values kv;
+    int material;
+    if (n < 1)
+        return fail(p, "instance needs the name of an object");
+    int object = name_index_find(p->objects, tok[0]);
+    if (object < 0)
+        return fail(p, "unknown object '%s' (define it with an object line first)", tok[0]);
+    if (!parse_keys(p, "instance", tok + 1, n - 1, specs, ID + 1, &kv) ||
+        !material_reference(p, s, &kv, MATERIAL, &material) ||
+        (kv.present[ID] && !parse_name(p, "instance id", kv.word[ID], p->ids)))
+        return false;
+    if (s->instance_count == SCENE_INSTANCE_MAX)
+        return fail(p, "more than %d instance lines", SCENE_INSTANCE_MAX);
+    struct scene_pose identity = instance_pose_identity(), pose;
+    char why[256];
+    if (!instance_pose_make(&kv, &identity, &pose, why, sizeof why))
+        return fail(p, "instance of '%s': %s", tok[0], why);
+    struct scene_instance *instance = grow(&s->instances, &s->instance_count, sizeof *instance);
+    if (instance == NULL ||
+        (kv.present[ID] && !name_index_add(p->ids, kv.word[ID], (int)(s->instance_count - 1))))
+        return fail(p, "out of memory");
+    instance->object = object;
+    instance->material = material;
+    if (kv.present[ID])
+        snprintf(instance->id, sizeof instance->id, "%s", kv.word[ID]);
+    instance->pose = pose;
+    instance->line = p->line;
+    return true;
+}
+
+/* The key line (chapter 16): `key LABEL time T [scale X Y Z] [rotate X Y Z] [translate X Y Z]`, a pose
+ * of the instance with id LABEL; what it does not give is the instance line's. */
+static bool parse_key(const struct parser *p, struct scene *s, char **tok, int n) {
+    enum { TIME = INSTANCE_POSE_KEY_COUNT };
+    struct key_spec specs[TIME + 1];
+    memcpy(specs, instance_pose_keys, sizeof instance_pose_keys);
+    specs[TIME] = (struct key_spec){"time", 1};
+    static const int required[] = {TIME, -1};
+    struct key_values kv;
+    if (n < 1)
+        return fail(p, "key needs the id of an instance");
+    int found = name_index_find(p->ids, tok[0]);
+    if (found < 0)
+        return fail(p, "unknown instance id '%s' (give an instance line 'id %s' first)", tok[0], tok[0]);
+    if (!parse_keys(p, "key", tok + 1, n - 1, specs, TIME + 1, &kv) || !require_keys(p, "key", specs, &kv, required))
+        return false;
+    struct scene_instance *instance = &s->instances[found];
+    if (instance->key_count == SCENE_KEY_MAX)
+        return fail(p, "more than %d keys for instance '%s'", SCENE_KEY_MAX, tok[0]);
+    struct scene_key key = {kv.number[TIME][0], instance->pose, p->line};
+    char why[256];
+    bool has_previous = instance->key_count > 0;
+    if (!instance_key_time_valid(key.time, has_previous ? instance->keys[instance->key_count - 1].time : 0.0,
+                                 has_previous, why, sizeof why) ||
+        !instance_pose_make(&kv, &instance->pose, &key.pose, why, sizeof why))
+        return fail(p, "key of '%s': %s", tok[0], why);
+    struct scene_key *slot = grow(&instance->keys, &instance->key_count, sizeof *slot);
+    if (slot == NULL)
+        return fail(p, "out of memory");
+    *slot = key;
+    return true;
+}
+
 /* The antialias line (antialias.h): a scene has at most one. */
 static bool parse_antialias(const struct parser *p, struct scene *s, char **tok, int n) {
     struct key_values kv;
@@ -556,6 +670,12 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
         return parse_mesh(p, s, args, count);
     if (strcmp(directive, "antialias") == 0)
         return parse_antialias(p, s, args, count);
+    if (strcmp(directive, "object") == 0)
+        return parse_object(p, s, args, count);
+    if (strcmp(directive, "instance") == 0)
+        return parse_instance(p, s, args, count);
+    if (strcmp(directive, "key") == 0)
+        return parse_key(p, s, args, count);
     if (strcmp(directive, "paths") == 0)
         return parse_paths(p, s, args, count);
     for (size_t k = 0; k < s->kind_count; k++)
@@ -591,15 +711,19 @@ bool scene_parse(const char *name, const char *text, const struct shape_kind *co
         snprintf(err, err_size, "%s: more than %d kinds of shape", name, SCENE_KIND_MAX);
         return false;
     }
-    struct name_index materials, pigments;
+    struct name_index materials, pigments, objects, ids;
     name_index_init(&materials);
     name_index_init(&pigments);
-    struct parser p = {name, 0, err, err_size, &materials, &pigments};
+    name_index_init(&objects);
+    name_index_init(&ids);
+    struct parser p = {name, 0, err, err_size, &materials, &pigments, &objects, &ids};
     char *copy = malloc(strlen(text) + 1);
     if (copy == NULL || !scene_defaults(s, name) || !name_index_add(&materials, "default", 0)) {
         free(copy);
         name_index_free(&materials);
         name_index_free(&pigments);
+        name_index_free(&objects);
+        name_index_free(&ids);
         scene_free(s);
         snprintf(err, err_size, "%s: out of memory", name);
         return false;
@@ -623,6 +747,8 @@ bool scene_parse(const char *name, const char *text, const struct shape_kind *co
     free(copy);
     name_index_free(&materials);
     name_index_free(&pigments);
+    name_index_free(&objects);
+    name_index_free(&ids);
     if (ok && !camera_seen)
         ok = (snprintf(err, err_size, "%s: no camera line (a scene needs one)", name), false);
     if (ok && !image_seen)
@@ -705,8 +831,25 @@ static void drop_meshes(struct scene *s) {
     s->mesh_count = 0;
 }
 
+/* Frees the objects and instances of s (with their keys) and forgets them. */
+static void drop_instances(struct scene *s) {
+    for (size_t k = 0; k < s->object_count; k++) {
+        free(s->objects[k].path);
+        free(s->objects[k].mesh.vertices);
+        free(s->objects[k].mesh.faces);
+    }
+    for (size_t k = 0; k < s->instance_count; k++)
+        free(s->instances[k].keys);
+    free(s->objects);
+    free(s->instances);
+    s->objects = NULL;
+    s->instances = NULL;
+    s->object_count = s->instance_count = 0;
+}
+
 void scene_free(struct scene *s) {
     drop_meshes(s);
+    drop_instances(s);
     drop_pigments(s);
     free(s->path);
     free(s->materials);
@@ -787,6 +930,16 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         size_t used = strlen(what);
         snprintf(what + used, sizeof what - used, "%sthe paths line", used == 0 ? "" : ", ");
         s->paths = path_settings_default();
+    }
+    if (chapter < INSTANCE_CHAPTER) {
+        note_count(what, sizeof what, s->object_count, "object", "objects");
+        note_count(what, sizeof what, s->instance_count, "instance", "instances");
+        drop_instances(s);
+        if (s->shutter > 0.0) {
+            size_t used = strlen(what);
+            snprintf(what + used, sizeof what - used, "%sthe camera's shutter", used == 0 ? "" : ", ");
+            s->shutter = 0.0;
+        }
     }
     if (what[0] != '\0' && note != NULL) {
         char path[4 * 1024];

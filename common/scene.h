@@ -14,6 +14,7 @@
 
 #include "antialias.h"
 #include "area_light.h"
+#include "instance_syntax.h"
 #include "lens.h"
 #include "mesh.h"
 #include "path_settings.h"
@@ -59,6 +60,27 @@ struct scene_mesh {
     struct mesh_corners corners; /* the file's normals and (u, v), world space; chapter 14 only (mesh.h) */
 };
 
+/* An `object` line (chapter 16): a mesh defined once in its own space, drawn only where an `instance`
+ * line places it. */
+struct scene_object {
+    char name[SCENE_NAME_MAX];
+    char *path;          /* resolved relative to the scene file's folder; owned */
+    int smooth;          /* SCENE_SMOOTH_FILE, _OFF or _ON, as the mesh line's */
+    int line;
+    struct mesh mesh;    /* object space; empty until loaded (instances.h) */
+};
+
+/* An `instance` line (chapter 16) with the `key` lines that move it. */
+struct scene_instance {
+    int object;          /* index into scene.objects */
+    int material;
+    char id[SCENE_NAME_MAX]; /* its label for key lines; "" without one */
+    struct scene_pose pose;  /* the instance line's own pose, used when it has no keys */
+    struct scene_key *keys;  /* in increasing time; owned; NULL when key_count is 0 */
+    size_t key_count;
+    int line;
+};
+
 /* How chapter 14 draws a mesh (the mesh line's `smooth` key): with the file's normals when it has them
  * (no key), flat whatever the file says (off), or smooth, averaging the faces' normals at each vertex
  * when the file has none (on). */
@@ -101,11 +123,14 @@ struct scene {
     double adc_bailout;   /* secondary rays weighing less are not traced (POV-Ray's adc_bailout), 0..1 */
     struct antialias antialias; /* camera rays per pixel (chapter 12); method NONE without the line */
     struct path_settings paths; /* how chapter 15 traces paths; the defaults without the line */
+    double shutter;       /* the camera's exposure in clock units, 0..1 (chapter 16); 0: no motion blur */
 
     struct material *materials; size_t material_count; /* materials[0] is "default" */
     struct light *lights;       size_t light_count;
     struct scene_mesh *meshes;  size_t mesh_count;
     struct pigment *pigments;   size_t pigment_count; /* the pigment lines (chapter 14 draws them) */
+    struct scene_object *objects;     size_t object_count;   /* the object lines (chapter 16) */
+    struct scene_instance *instances; size_t instance_count; /* the instance lines with their keys */
     scene_paint_fn paint;       /* set by chapter 14 (texture.h); NULL: plain materials, flat triangles */
     scene_paint_fn shadow_paint; /* chapter 14: the same for a surface a shadow ray crosses (shadow.c);
                                   * NULL: a shadow is filtered by the material's plain colour */
@@ -146,7 +171,8 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
  * with the triangles), before chapter 12 the antialias line, before chapter 13 the area of area lights
  * (each becomes a point light at its centre) and the camera's lens (a pinhole again), and before chapter
  * 14 the pigments (every material is then its plain colour), before chapter 15 the paths line and the
- * materials' emission, so that chapter `chapter` can read any
+ * materials' emission, before chapter 16 the objects, instances (with their keys) and the camera's
+ * shutter, so that chapter `chapter` can read any
  * scene file and draw what it knows. If something was removed, prints one line to `note` (when not
  * NULL) saying what was ignored, e.g.
  * "scene.txt: chapter 2 ignores 3 triangles, 1 plane (not introduced yet)". */

@@ -33,6 +33,20 @@ struct world_accel {
                          world_hit_visitor visit, void *context);
 };
 
+/* Instances of objects, each placed by its own transform and perhaps moving (chapter 16; instances.h),
+ * seen through two queries at a time on the scene's clock. */
+struct world_instances {
+    const void *structure;
+    /* the nearest instance surface with t_min < t < h->t at clock time `time`, kept in *h as
+     * world_closest keeps any hit (world-space normal, the instance's material and object number, the
+     * face within its object); returns true when *h was replaced */
+    bool (*closest)(const void *structure, const ray *r, double t_min, double time, struct hit *h);
+    /* every instance face crossed with t_min < t < t_max at `time`, passed to visit with the instance's
+     * material until visit returns false; returns false when it did */
+    bool (*for_each_crossing)(const void *structure, const ray *r, double t_min, double t_max, double time,
+                              shape_crossing_visitor visit, void *context);
+};
+
 /* The shapes of one kind as the world searches them. */
 struct world_shapes {
     const struct shape_kind *kind; /* its ray queries (shape.h) */
@@ -45,6 +59,9 @@ struct world {
     const struct scene *scene;
     struct aabb *mesh_bounds;        /* one box per scene mesh (world_mesh_cull_bounds); owned */
     const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
+    const struct world_instances *instances; /* chapter 16's instances; NULL: none */
+    double time;                     /* the clock time the queries see the instances at (chapter 16): each
+                                      * camera sample traces through its own copy of the world */
     /* The kinds of shape the queries visit, in this order: those with bounding boxes (spheres, boxes:
      * few, and a near hit shortens the ray before the meshes' boxes are tested), the triangles with the
      * meshes, then those without bounds (planes), which no box can turn away. Kinds without shapes are
@@ -85,13 +102,13 @@ int world_object_number(const struct scene *s, const struct shape_list *list, si
 int world_mesh_object_number(const struct scene *s, size_t index);
 
 /* Finds the nearest surface with t_min < t < h->t along r among all shapes, kind by kind in the order
- * of struct world, and keeps it in *h (with the object's number in h->object).
+ * of struct world (the instances after the triangles), and keeps it in *h (with the object's number in h->object).
  * Returns true when *h was replaced. Without w->accel, a mesh whose bounding box r misses within
  * (t_min, h->t) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);
 
 /* Calls visit(context, t, material) for every crossing of a surface by r with t_min < t < t_max: both
- * crossings of a sphere or box, each triangle, each plane. Stops as soon as visit returns false.
+ * crossings of a sphere or box, each triangle (an instance's too), each plane. Stops as soon as visit returns false.
  * Used for shadows (chapters 7 and 8). Without w->accel, a mesh whose bounding box r misses within
  * (t_min, t_max) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 typedef shape_crossing_visitor world_crossing_visitor;

@@ -68,6 +68,10 @@ compare_one() {
 
 for n in "${chapters[@]}"; do
     n=$(printf '%02d' "$((10#$n))")
+    if [ "$n" = 16 ]; then # POV-Ray 3.7 has no motion blur: the frame at its clock, shutter closed
+        compare_one 16 chapter-16 --set camera.shutter=0
+        continue
+    fi
     compare_one "$n" "chapter-$n"
     if [ "$n" = 12 ]; then
         compare_one 12 chapter-12-grid-3 --set antialias.method=grid --set antialias.samples=3

@@ -17,7 +17,7 @@
 #define REGRESSION_MIN_WITHIN_1 0.9995 /* at most 1 pixel in 2000 more than 1 level off */
 #define REGRESSION_MAX_MEAN 0.01       /* levels, averaged over all channels of all pixels */
 
-/* Returns the scene file of chapter n (1..13), e.g. "scenes/02-sphere.scene". */
+/* Returns the scene file of chapter n (1..16), e.g. "scenes/02-sphere.scene". */
 const char *chapter_scene(int n);
 
 /* Returns the program of chapter n in the build under test, e.g. "build/chapter-02". */

@@ -1,0 +1,206 @@
+/* Chapter 16, instances: many objects from a few meshes, some of them moving, on a two-level BVH, with
+ * animation and motion blur.
+ *
+ * An object line defines a mesh once; each instance line places it with its own transform and material
+ * (common/instances.h): one chapter-11 BVH per object, a BVH over the instances' boxes above them, and
+ * each ray carried into an instance's object space and its hit carried back. Key lines move an instance
+ * over the clock; --frames N renders N frames from clock 0 to 1, refitting or rebuilding the top level
+ * between them, and the camera's shutter blurs what moves during a frame (common/shutter.h). Everything
+ * else is chapter 13's: the antialias line, area lights and lens, chapter 11's fast BVH for the scene's
+ * own triangles, the same threads. */
+#include <errno.h>
+#include <limits.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "accel_fast_bvh.h"
+#include "box.h"
+#include "cli.h"
+#include "fast_bvh.h"
+#include "instances.h"
+#include "plane.h"
+#include "shutter.h"
+#include "soft_shadow.h"
+#include "sphere.h"
+#include "triangle.h"
+#include "whitted.h"
+
+#define FRAMES_MAX 100000     /* --frames: the most frames one run renders */
+#define VIDEO_FRAME_RATE "24" /* frames a second of --video's film */
+
+extern char **environ;
+
+static struct {
+    long frames;   /* --frames N: 0 without it (one picture at clock 0) */
+    long frame;    /* --frame K: only frame K of the N; 0 for all */
+    bool video;    /* --video */
+    enum instances_update update;
+} animation = {0, 0, false, INSTANCES_AUTO};
+
+/* Reads a whole number from lo to hi for `option`, or says why not. */
+static bool read_count(const char *option, const char *value, long lo, long hi, long *out) {
+    char *end = NULL;
+    errno = 0;
+    long n = value != NULL ? strtol(value, &end, 10) : 0;
+    if (value == NULL || end == value || *end != '\0' || errno == ERANGE || n < lo || n > hi) {
+        fprintf(stderr, "%s needs a whole number from %ld to %ld, got '%s'\n", option, lo, hi, value != NULL ? value : "");
+        return false;
+    }
+    *out = n;
+    return true;
+}
+
+static int parse_option(const char *option, const char *value) {
+    if (strcmp(option, "--frames") == 0)
+        return read_count(option, value, 1, FRAMES_MAX, &animation.frames) ? 2 : -1;
+    if (strcmp(option, "--frame") == 0)
+        return read_count(option, value, 1, FRAMES_MAX, &animation.frame) ? 2 : -1;
+    if (strcmp(option, "--video") == 0)
+        return animation.video = true, 1;
+    if (strcmp(option, "--refit") == 0)
+        return animation.update = INSTANCES_REFIT, 1;
+    if (strcmp(option, "--rebuild") == 0)
+        return animation.update = INSTANCES_REBUILD, 1;
+    return 0;
+}
+
+/* What chapter 16 traces: chapter 13's tracer, soft shadows and all. */
+static vec3 trace_soft(const void *world, const ray *r) {
+    return whitted_trace_shadowed(world, r, soft_shadow_filtered);
+}
+
+/* Checks the animation options against each other; prints why not and returns false. */
+static bool animation_options_valid(const struct cli_options *o) {
+    const char *problem = NULL;
+    if (animation.frame > 0 && animation.frames == 0)
+        problem = "--frame K needs --frames N";
+    else if (animation.frame > animation.frames)
+        problem = "--frame K must be at most --frames N";
+    else if (animation.video && (animation.frames < 2 || animation.frame > 0))
+        problem = "--video needs --frames N (at least 2) and all of them (no --frame)";
+    else if (animation.frames > 0 && strcmp(o->output, "-") == 0)
+        problem = "--frames writes one file a frame: -o - (standard output) cannot take them";
+    if (problem != NULL)
+        fprintf(stderr, "%s\n", problem);
+    return problem == NULL;
+}
+
+/* Writes into name[size] the file of frame k (1-based): `output` with "-kkkk" before its ".png" (or at
+ * its end). Returns false when it does not fit. */
+static bool frame_file(const char *output, long k, char *name, size_t size) {
+    size_t length = strlen(output);
+    size_t stem = length >= 4 && strcmp(output + length - 4, ".png") == 0 ? length - 4 : length;
+    int written = snprintf(name, size, "%.*s-%04ld%s", (int)stem, output, k, output + stem);
+    return written > 0 && (size_t)written < size;
+}
+
+/* Runs ffmpeg over the frames (the output's name with -%04d) into the output's name with .mp4 for .png.
+ * Returns false with the reason in err. */
+static bool make_video(const char *output, char *err, size_t err_size) {
+    char pattern[PATH_MAX], film[PATH_MAX];
+    size_t length = strlen(output);
+    size_t stem = length >= 4 && strcmp(output + length - 4, ".png") == 0 ? length - 4 : length;
+    if (snprintf(pattern, sizeof pattern, "%.*s-%%04d%s", (int)stem, output, output + stem) >= (int)sizeof pattern ||
+        snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film)
+        return (snprintf(err, err_size, "%s: the film's name is too long", output), false);
+    char *args[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", VIDEO_FRAME_RATE, "-i", pattern,
+                    "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", film, NULL};
+    pid_t child;
+    int status = 0;
+    if (posix_spawnp(&child, "ffmpeg", NULL, NULL, args, environ) != 0)
+        return (snprintf(err, err_size, "--video: cannot run ffmpeg (install it: tools/build/install-deps.sh video)"),
+                false);
+    if (waitpid(child, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        return (snprintf(err, err_size, "--video: ffmpeg failed making %s", film), false);
+    printf("chapter 16 (instances): wrote %s\n", film);
+    return true;
+}
+
+/* Renders the frames asked for: frame k of N at clock (k - 1) / (N - 1), its top level moved there. */
+static int render_frames(struct cli_run *run, struct accel_world *w, struct instances *in) {
+    const char *output = run->options.output;
+    long first = animation.frame > 0 ? animation.frame : 1, last = animation.frame > 0 ? animation.frame : animation.frames;
+    static char name[PATH_MAX];
+    for (long k = first; k <= last && run->status == CLI_OK; k++) {
+        double clock = animation.frames == 1 ? 0.0 : (double)(k - 1) / (double)(animation.frames - 1);
+        if (!frame_file(output, k, name, sizeof name)) {
+            fprintf(stderr, "%s: the name of frame %ld is too long\n", output, k);
+            return CLI_USAGE;
+        }
+        if (in != NULL && !instances_set_interval(in, clock, clock + run->scene.shutter, animation.update, run->err,
+                                                  sizeof run->err)) {
+            fprintf(stderr, "%s\n", run->err);
+            return CLI_OUTPUT_FAILED;
+        }
+        w->world.time = clock;
+        run->options.output = name;
+        run->total = (struct stats){0};
+        if (cli_render_sampled(run, trace_soft, &w->world, &shutter_sampler) && run->options.stats && in != NULL)
+            instances_report(in, stdout, true);
+    }
+    if (run->status == CLI_OK && animation.video && !make_video(output, run->err, sizeof run->err)) {
+        fprintf(stderr, "%s\n", run->err);
+        return CLI_OUTPUT_FAILED;
+    }
+    return run->status;
+}
+
+int main(int argc, char **argv) {
+    /* The kinds of shape chapter 16 draws: every kind so far (chapter 5's), and the instances beside them. */
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
+    static const struct chapter chapter = {
+        .number = 16,
+        .title = "instances",
+        .default_scene = "scenes/16-instances.scene",
+        .kinds = kinds,
+        .lighting = POV_WHITTED,
+        .parse_option = parse_option,
+        .options_help = "  --frames N       render N frames (1 to 100000) at clock 0 .. 1, to the output's\n"
+                        "                   name with -0001, -0002, ... before .png\n"
+                        "  --frame K        only frame K (1 .. N) of the N\n"
+                        "  --video          with --frames: also make a film of them with ffmpeg (.mp4)\n"
+                        "  --refit          between frames, refit the top level's boxes (keep its tree)\n"
+                        "  --rebuild        between frames, build the top level anew\n"
+                        "                   (default: refit until the tree's SAH cost has grown by a\n"
+                        "                   quarter over a fresh build's, then rebuild)\n"
+                        "  (the camera's shutter key blurs what moves, e.g. --set camera.shutter=0)\n",
+    };
+    struct cli_run run;
+    if (!cli_start(&run, &chapter, argc, argv))
+        return cli_finish(&run);
+    if (!animation_options_valid(&run.options)) {
+        run.status = CLI_USAGE;
+        return cli_finish(&run);
+    }
+    if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
+        return cli_fail(&run);
+    render_use_threads(run.options.threads);
+    static const struct accel_choice choice = {ACCEL_BVH, true};
+    struct accel_world *w =
+        accel_world_create_at_rung(&run.scene, &choice, FAST_BVH_RUNG_DEFAULT, run.err, sizeof run.err);
+    if (w == NULL)
+        return cli_fail(&run);
+    struct instances *in = NULL;
+    if (run.scene.instance_count > 0) {
+        in = instances_create(&run.scene, world_mesh_object_number(&run.scene, run.scene.mesh_count), 0.0,
+                              run.scene.shutter, run.err, sizeof run.err);
+        if (in == NULL) {
+            accel_world_destroy(w);
+            return cli_fail(&run);
+        }
+        w->world.instances = &in->hook;
+    }
+    if (animation.frames > 0 && run.options.pov == NULL) {
+        run.status = render_frames(&run, w, in);
+    } else if (cli_render_sampled(&run, trace_soft, &w->world, &shutter_sampler)) {
+        accel_report(w, &run.total, run.options.stats);
+        if (in != NULL)
+            instances_report(in, stdout, run.options.stats);
+    }
+    instances_free(in);
+    accel_world_destroy(w);
+    return cli_finish(&run);
+}
