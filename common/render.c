@@ -19,7 +19,7 @@
 
 uint64_t render_thread_cost(void) {
     const struct stats *s = &stats_thread;
-    return s->node_visits + s->box_tests + s->sphere_tests + s->triangle_tests + s->plane_tests;
+    return s->node_visits + s->instance_node_visits + s->box_tests + s->sphere_tests + s->triangle_tests + s->plane_tests;
 }
 
 void render_use_threads(int n) {

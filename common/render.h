@@ -55,8 +55,9 @@ struct render_job {
  * the PNG keeps, so no frame of doubles is ever held. Cannot fail. */
 void render_image(const struct render_job *job, struct image *img, struct stats *total);
 
-/* Returns the traversal cost counted so far by the calling thread: node visits plus box, sphere,
- * triangle and plane tests. The difference before and after a ray is that ray's cost. */
+/* Returns the traversal cost counted so far by the calling thread: node visits (with chapter 16's
+ * instances, of both levels) plus box, sphere, triangle and plane tests. The difference before and
+ * after a ray is that ray's cost. */
 uint64_t render_thread_cost(void);
 
 /* Makes every parallel part of the program use n threads: the pixel loop (unless a job names its own)

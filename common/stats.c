@@ -22,6 +22,7 @@ void stats_add(struct stats *into, const struct stats *from) {
     into->plane_tests += from->plane_tests;
     into->box_tests += from->box_tests;
     into->node_visits += from->node_visits;
+    into->instance_node_visits += from->instance_node_visits;
     into->adc_saves += from->adc_saves;
     into->crossings_capped += from->crossings_capped;
     into->budget_cut += from->budget_cut;
@@ -54,6 +55,7 @@ void stats_print(FILE *out, const struct stats *s) {
     print_counter(out, "plane tests", s->plane_tests);
     print_counter(out, "box tests", s->box_tests);
     print_counter(out, "node visits", s->node_visits);
+    print_counter(out, "instance nodes", s->instance_node_visits); /* the top level (chapter 16) */
     print_counter(out, "adc saves", s->adc_saves);
     print_counter(out, "crossings capped", s->crossings_capped);
     print_counter(out, "budget cuts", s->budget_cut);
@@ -73,6 +75,7 @@ void stats_print(FILE *out, const struct stats *s) {
     print_ratio(out, "plane tests", s->plane_tests, pixels);
     print_ratio(out, "box tests", s->box_tests, pixels);
     print_ratio(out, "node visits", s->node_visits, pixels);
+    print_ratio(out, "instance nodes", s->instance_node_visits, pixels);
 }
 
 void stats_warn_limits(FILE *out, const struct stats *s) {

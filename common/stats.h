@@ -28,6 +28,8 @@ struct stats {
     uint64_t plane_tests;
     uint64_t box_tests;      /* box primitives and bounding boxes (chapter 5 on) */
     uint64_t node_visits;    /* kd-tree or BVH nodes visited (chapters 9 and 10) */
+    uint64_t instance_node_visits; /* top-level nodes visited, over instances (chapter 16); their objects' own
+                                      trees' nodes count in node_visits */
     /* Chapter 8's limits (docs/08-recursion.md, "Ray trees that cannot run away"): */
     uint64_t adc_saves;          /* secondary rays not traced, their weight being under adc_bailout */
     uint64_t crossings_capped;   /* rays stopped after RAY_MAX_CROSSINGS pass-throughs */
