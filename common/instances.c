@@ -18,6 +18,7 @@
  * (scene_meshes.c), for the same reason: boxes in float, areas in float. */
 #define INSTANCES_MAX_COORD TRIANGLE_MAX_COORD
 #define INSTANCES_MIN_SIZE 1e-18
+#define INSTANCES_MESH_ERROR_SIZE 4352 /* the longest message of a mesh reader kept: a whole path and the reason */
 
 static struct pose pose_of(const struct scene_pose *p) { return (struct pose){p->scale, p->rotate, p->translate}; }
 
@@ -121,8 +122,11 @@ static struct aabb instance_box(const struct instances *in, size_t k, double t0,
 /* Loads object k's mesh (once) and builds its tree. */
 static bool load_object(struct instances *in, struct scene *s, size_t k, char *err, size_t err_size) {
     struct scene_object *o = &s->objects[k];
-    if (o->mesh.vertices == NULL && !mesh_load(o->path, &o->mesh, err, err_size))
+    char why[INSTANCES_MESH_ERROR_SIZE];
+    if (o->mesh.vertices == NULL && !mesh_load(o->path, &o->mesh, why, sizeof why)) {
+        snprintf(err, err_size, "%s:%d: object '%s': %s", s->path, o->line, o->name, why);
         return false;
+    }
     for (size_t v = 0; v < o->mesh.vertex_count; v++)
         if (!(fabs(o->mesh.vertices[v].x) <= INSTANCES_MAX_COORD && fabs(o->mesh.vertices[v].y) <= INSTANCES_MAX_COORD &&
               fabs(o->mesh.vertices[v].z) <= INSTANCES_MAX_COORD)) {

@@ -58,6 +58,10 @@ CHAPTER_IMAGE_TESTS(14, chapter_14_textures)
  * at 256 paths a pixel it takes some seconds, so this test is one of make test-long's. */
 Test(reference_image, chapter_15_paths_matches_its_reference, .timeout = 300) { check_reference(15); }
 
+/* Chapter 16 draws motion blur, which POV-Ray 3.7 does not: its twin is compared on a frame without it
+ * (tests/test_instances.c); its own picture, blur and all, is held to its reference. */
+Test(reference_image, chapter_16_instances_matches_its_reference, .timeout = 120) { check_reference(16); }
+
 /* ---- acceleration changes the work, never the picture ------------------------------------------ */
 
 /* Renders `scene` with chapter n and the extra options, and asserts the picture equals `expected`. */

@@ -1,0 +1,559 @@
+/* test_instances.c: chapter 16's instances: the scene lines and their errors, the two-level queries
+ * against brute force over every instance and triangle, the instanced picture against the same scene
+ * written out in world space and drawn by chapter 11, refit against rebuild, the time of a sample,
+ * thread counts, the twin against POV-Ray, and the hostile cases. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "image_test_support.h"
+#include "instances.h"
+#include "mesh_load.h"
+#include "scene.h"
+#include "shutter.h"
+#include "stats.h"
+#include "test_support.h"
+#include "triangle.h"
+
+#define BUNNY "scenes/models/bunny.ply"
+#define HEAD "camera eye 0 1 6 target 0 0.5 0 fov 40\nimage 64 48\nmaterial red colour 1 0 0\n"
+
+/* ---- the lines ------------------------------------------------------------------------------------ */
+
+Test(instance_lines, are_read_with_their_keys_poses_and_shutter) {
+    struct scene s;
+    char err[512];
+    cr_assert(parse_scene_lines("scenes/inline.scene", "camera eye 0 1 6 target 0 0 0 fov 40 shutter 0.25\nimage 8 8\n"
+                                "material red colour 1 0 0\n",
+                                "object bunny models/bunny.ply smooth on\n"
+                                "instance bunny material red scale 1 2 3 rotate 10 20 30 translate 4 5 6 id b\n"
+                                "instance bunny\n"
+                                "key b time 0.5 translate 1 0 0\n"
+                                "key b time 1 scale 2 2 2",
+                                test_every_kind, &s, err, sizeof err), "%s", err);
+    cr_assert_eq(s.shutter, 0.25);
+    cr_assert_eq(s.object_count, 1);
+    cr_assert_str_eq(s.objects[0].path, "scenes/models/bunny.ply");
+    cr_assert_eq(s.objects[0].smooth, SCENE_SMOOTH_ON);
+    cr_assert_eq(s.instance_count, 2);
+    const struct scene_instance *a = &s.instances[0], *b = &s.instances[1];
+    cr_assert_eq(a->material, 1);
+    cr_assert_str_eq(a->id, "b");
+    cr_assert(a->pose.scale.y == 2 && a->pose.rotate.z == 30 && a->pose.translate.x == 4);
+    cr_assert_eq(a->key_count, 2);
+    /* what a key leaves out is the instance line's */
+    cr_assert(a->keys[0].time == 0.5 && a->keys[0].pose.translate.x == 1 && a->keys[0].pose.scale.z == 3);
+    cr_assert(a->keys[1].pose.scale.x == 2 && a->keys[1].pose.translate.y == 5 && a->keys[1].pose.rotate.x == 10);
+    cr_assert_eq(a->keys[1].line, 8);
+    cr_assert(b->material == 0 && b->key_count == 0 && b->pose.scale.x == 1 && b->id[0] == '\0');
+    scene_free(&s);
+}
+
+Test(instance_lines, errors_name_the_file_line_and_what_is_wrong) {
+    struct {
+        const char *lines, *message;
+    } cases[] = {
+        {"instance bunyn", "x.scene:4: unknown object 'bunyn' (define it with an object line first)"},
+        {"object bunny models/bunny.ply\nobject bunny models/bunny.ply", "x.scene:5: object 'bunny' is already defined"},
+        {"object", "x.scene:4: object needs a name and a file name"},
+        {"object b f smooth maybe", "x.scene:4: object smooth must be on or off, got 'maybe'"},
+        {"object bunny models/bunny.ply\ninstance bunny id a\ninstance bunny id a",
+         "x.scene:6: instance id 'a' is already defined"},
+        {"object bunny models/bunny.ply\ninstance bunny scale 0 1 1",
+         "x.scene:5: instance of 'bunny': scale is 0 1 1; each factor's size must be between 1e-09 and 1e+09 (a zero "
+         "scale flattens the object)"},
+        {"object bunny models/bunny.ply\ninstance bunny scale 1 1e10 1",
+         "x.scene:5: instance of 'bunny': scale is 1 10000000000 1; each factor's size must be between 1e-09 and 1e+09 "
+         "(a zero scale flattens the object)"},
+        {"object bunny models/bunny.ply\ninstance bunny rotate 0 1e7 0",
+         "x.scene:5: instance of 'bunny': rotate is (0, 10000000, 0); it must stay within -1e+06 .. 1e+06"},
+        {"object bunny models/bunny.ply\ninstance bunny translate 0 0 1e19",
+         "x.scene:5: instance of 'bunny': translate is (0, 0, 1e+19); it must stay within -1e+18 .. 1e+18"},
+        {"object bunny models/bunny.ply\ninstance bunny material glass",
+         "x.scene:5: unknown material 'glass' (define it with a material line first)"},
+        {"object bunny models/bunny.ply\ninstance bunny id b\nkey c time 0",
+         "x.scene:6: unknown instance id 'c' (give an instance line 'id c' first)"},
+        {"object bunny models/bunny.ply\ninstance bunny id b\nkey b translate 1 0 0", "x.scene:6: key needs 'time'"},
+        {"object bunny models/bunny.ply\ninstance bunny id b\nkey b time 1.5",
+         "x.scene:6: key of 'b': key time must be between 0 and 1, got 1.5"},
+        {"object bunny models/bunny.ply\ninstance bunny id b\nkey b time 0.5\nkey b time 0.2",
+         "x.scene:7: key of 'b': key time 0.2 is not after the instance's previous key's (0.5): keys go in increasing "
+         "time"},
+        {"object bunny models/bunny.ply\ninstance bunny id b\nkey b time 0.5\nkey b time 0.5",
+         "x.scene:7: key of 'b': key time 0.5 is not after the instance's previous key's (0.5): keys go in increasing "
+         "time"},
+        {"object bunny models/bunny.ply\ninstance bunny id b\nkey b time 1 scale 1 0 1",
+         "x.scene:6: key of 'b': scale is 1 0 1; each factor's size must be between 1e-09 and 1e+09 (a zero scale "
+         "flattens the object)"},
+        {"instance", "x.scene:4: instance needs the name of an object"},
+        {"object bunny models/bunny.ply\ninstance bunny id b\ninstance b", "x.scene:6: unknown object 'b' (define it "
+         "with an object line first)"},
+        {"key", "x.scene:4: key needs the id of an instance"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++)
+        expect_scene_refused("x.scene", HEAD, cases[k].lines, test_every_kind, cases[k].message);
+    expect_scene_refused("x.scene", "camera eye 0 1 6 target 0 0 0 fov 40 shutter 2\n", "image 8 8",
+                         test_every_kind, "x.scene:1: camera shutter must be between 0 and 1 (clock units), got 2");
+}
+
+/* parse_scene_lines for texts longer than it takes: HEAD, then `lines`, as the scene file `name`. */
+static bool parse_long(const char *name, const char *lines, struct scene *s, char *err, size_t err_size) {
+    char *text = malloc(strlen(HEAD) + strlen(lines) + 2);
+    cr_assert_not_null(text);
+    sprintf(text, "%s%s\n", HEAD, lines);
+    bool parsed = scene_parse(name, text, test_every_kind, s, err, err_size);
+    free(text);
+    return parsed;
+}
+
+/* Expects parse_long to refuse `lines` with exactly `message`. */
+static void expect_long_refused(const char *lines, const char *message) {
+    struct scene s;
+    char err[512] = "";
+    bool parsed = parse_long("x.scene", lines, &s, err, sizeof err);
+    if (parsed)
+        scene_free(&s);
+    cr_assert(!parsed);
+    cr_assert_str_eq(err, message);
+}
+
+/* Returns "FIRST\n" followed by `count` lines made by line(k, buffer, size), without the last newline. */
+static char *many_lines(const char *first, size_t count, size_t line_size, void (*line)(size_t k, char *out, size_t size)) {
+    char *text = malloc(strlen(first) + 1 + count * line_size + 1), *at = text;
+    cr_assert_not_null(text);
+    at += sprintf(at, "%s\n", first);
+    for (size_t k = 0; k < count; k++) {
+        line(k, at, line_size);
+        at += strlen(at);
+    }
+    at[-1] = '\0';
+    return text;
+}
+
+static void key_line(size_t k, char *out, size_t size) {
+    snprintf(out, size, "key b time %.17g translate %zu 0 0\n", (double)k / 2048.0, k);
+}
+
+Test(instance_lines, take_a_thousand_keys_and_refuse_one_more_than_the_limit) {
+    const char *first = "object bunny models/bunny.ply\ninstance bunny id b";
+    char *most = many_lines(first, SCENE_KEY_MAX, 64, key_line), *over = many_lines(first, SCENE_KEY_MAX + 1, 64, key_line);
+    struct scene s;
+    char err[512];
+    cr_assert(parse_long("x.scene", most, &s, err, sizeof err), "%s", err);
+    cr_assert_eq(s.instances[0].key_count, SCENE_KEY_MAX);
+    cr_assert_eq(s.instances[0].keys[999].pose.translate.x, 999);
+    scene_free(&s);
+    /* HEAD's 3 lines, the object and the instance: key k is on line 6 + k */
+    expect_long_refused(over, "x.scene:1030: more than 1024 keys for instance 'b'");
+    free(most);
+    free(over);
+}
+
+static void instance_line(size_t k, char *out, size_t size) {
+    snprintf(out, size, "instance t translate %zu 0 0\n", k % 1000);
+}
+
+Test(instance_lines, a_million_instances_are_read_and_one_more_than_the_limit_refused, .timeout = 120) {
+    char *most = many_lines("object t models/bunny.ply", SCENE_INSTANCE_MAX, 40, instance_line);
+    struct scene s;
+    char err[512];
+    cr_assert(parse_long("x.scene", most, &s, err, sizeof err), "%s", err);
+    cr_assert_eq(s.instance_count, SCENE_INSTANCE_MAX);
+    scene_free(&s);
+    free(most);
+    char *over = many_lines("object t models/bunny.ply", SCENE_INSTANCE_MAX + 1, 40, instance_line);
+    /* HEAD's 3 lines and the object: instance k is on line 5 + k */
+    expect_long_refused(over, "x.scene:1048581: more than 1048576 instance lines");
+    free(over);
+}
+
+Test(instance_lines, are_dropped_with_a_note_before_chapter_16) {
+    struct scene s;
+    char err[512], note[512] = "";
+    cr_assert(parse_scene_lines("x.scene", "camera eye 0 1 6 target 0 0 0 fov 40 shutter 0.5\nimage 8 8\n",
+                                "object a models/bunny.ply\nobject b models/bunny.ply\ninstance a id i\ninstance b\n"
+                                "key i time 0",
+                                test_every_kind, &s, err, sizeof err), "%s", err);
+    FILE *out = fmemopen(note, sizeof note, "w");
+    scene_drop_unsupported(&s, 15, out);
+    fclose(out);
+    cr_assert_str_eq(note, "x.scene: chapter 15 ignores 2 objects, 2 instances, the camera's shutter (not introduced "
+                           "yet)\n");
+    cr_assert(s.object_count == 0 && s.instance_count == 0 && s.shutter == 0.0);
+    scene_free(&s);
+}
+
+/* ---- the two-level queries against brute force -------------------------------------------------- */
+
+/* splitmix64: reproducible random numbers. */
+static uint64_t next_random(uint64_t *state) {
+    uint64_t z = (*state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+static double uniform(uint64_t *state, double lo, double hi) {
+    return lo + (hi - lo) * (double)(next_random(state) >> 11) * 0x1p-53;
+}
+
+/* A scene of 24 instances of the bunny and of a small tetrahedron soup, stretched, turned, mirrored and
+ * overlapping, three of them moving. */
+static const char *const FOREST =
+    "object bunny models/bunny.ply\n"
+    "object teapot models/teapot-5k.ply\n"
+    "instance bunny scale 0.1 0.1 0.1 translate 0 0 0\n"
+    "instance bunny scale 0.1 0.3 0.1 rotate 10 20 30 translate 0.4 0 0.2\n"
+    "instance bunny scale -0.1 0.1 0.1 rotate 0 90 0 translate -0.5 0.1 0\n"
+    "instance teapot scale 0.2 0.2 0.2 rotate 0 45 0 translate 1 0 -1\n"
+    "instance teapot scale 0.3 0.1 0.2 rotate 90 0 0 translate -1 0.5 -1 material red\n"
+    "instance teapot scale 0.2 0.2 0.2 translate 0 0 0 material red\n" /* overlaps the first bunny */
+    "instance bunny scale 0.1 0.1 0.1 translate 0 0 0\n"              /* the first again: equal t, lower wins */
+    "instance teapot scale 0.15 0.15 0.15 translate -1 0 1 id m1\n"
+    "key m1 time 0 translate -1 0 1\nkey m1 time 1 translate 1 0 1 rotate 0 180 0\n"
+    "instance bunny scale 0.08 0.08 0.08 id m2\n"
+    "key m2 time 0.2 rotate 0 0 0 translate 0 1 0\nkey m2 time 0.6 rotate 90 0 45 translate 0 1 0.5\n"
+    "key m2 time 0.9 scale 0.2 0.05 0.1 translate 0.5 0.5 0\n"
+    "instance bunny scale 0.05 0.05 0.05 id m3\nkey m3 time 0.5 translate 0 0.2 1.5\n";
+
+/* Parses FOREST (with more instances, `extra`) and builds its instances over [t0, t1]. */
+static struct instances *forest(struct scene *s, const char *extra, double t0, double t1) {
+    char err[4096];
+    char *lines = malloc(strlen(FOREST) + strlen(extra) + 1);
+    sprintf(lines, "%s%s", FOREST, extra);
+    cr_assert(parse_scene_lines("scenes/forest.scene", HEAD, lines, test_every_kind, s, err, sizeof err), "%s", err);
+    free(lines);
+    struct instances *in = instances_create(s, 100, t0, t1, err, sizeof err);
+    cr_assert_not_null(in, "%s", err);
+    return in;
+}
+
+/* The brute-force nearest hit: every instance in order, every face in order, the ray carried into each
+ * instance's space as instances.c carries it; the first of equal t wins. */
+static bool brute_closest(const struct instances *in, const ray *r, double t_min, double time, struct hit *h) {
+    bool found = false;
+    for (size_t k = 0; k < in->count; k++) {
+        struct transform to_world, to_object;
+        if (!instances_transform_at(in, k, time, &to_world, &to_object))
+            continue;
+        ray local = {transform_point(&to_object, r->origin), transform_vector(&to_object, r->direction)};
+        const struct mesh *m = &in->scene->objects[in->items[k].object].mesh;
+        for (size_t f = 0; f < m->face_count; f++) {
+            const uint32_t *c = m->faces[f].v;
+            double t, u, v;
+            if (triangle_intersect(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], &local, t_min, h->t, &t, &u,
+                                   &v)) {
+                h->t = t;
+                h->object = in->first_object + (int)k;
+                h->face = (int)f;
+                h->normal = vec3_normalize(transform_normal(&to_object, triangle_normal(m->vertices[c[0]],
+                                                                                        m->vertices[c[1]],
+                                                                                        m->vertices[c[2]])));
+                found = true;
+            }
+        }
+    }
+    return found;
+}
+
+/* Collects crossings' t for comparison. */
+struct crossing_list {
+    double t[4096];
+    int material[4096];
+    size_t count;
+};
+
+static bool collect(void *context, double t, int material) {
+    struct crossing_list *l = context;
+    if (l->count < 4096) {
+        l->t[l->count] = t;
+        l->material[l->count] = material;
+    }
+    l->count++;
+    return true;
+}
+
+static int by_t(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void brute_crossings(const struct instances *in, const ray *r, double t_min, double t_max, double time,
+                            struct crossing_list *l) {
+    for (size_t k = 0; k < in->count; k++) {
+        struct transform to_world, to_object;
+        if (!instances_transform_at(in, k, time, &to_world, &to_object))
+            continue;
+        ray local = {transform_point(&to_object, r->origin), transform_vector(&to_object, r->direction)};
+        const struct mesh *m = &in->scene->objects[in->items[k].object].mesh;
+        for (size_t f = 0; f < m->face_count; f++) {
+            const uint32_t *c = m->faces[f].v;
+            double t, u, v;
+            if (triangle_intersect(m->vertices[c[0]], m->vertices[c[1]], m->vertices[c[2]], &local, t_min, t_max, &t, &u,
+                                   &v))
+                collect(l, t, in->items[k].material);
+        }
+    }
+}
+
+/* A random ray: from a point around the forest towards a point of an instance's box (so most hit), at a
+ * random time in [t0, t1]. */
+static ray random_ray(uint64_t *g, const struct instances *in, double *time, double t0, double t1) {
+    size_t k = next_random(g) % in->count;
+    struct aabb b = in->items[k].in_tree ? in->boxes[k] : (struct aabb){{-1, -1, -1}, {1, 1, 1}};
+    vec3 to = vec3_make(uniform(g, b.min.x, b.max.x), uniform(g, b.min.y, b.max.y), uniform(g, b.min.z, b.max.z));
+    vec3 from = vec3_make(uniform(g, -4, 4), uniform(g, -1, 4), uniform(g, -4, 4));
+    double length = uniform(g, 0.01, 100.0); /* directions of any length: t is the same in both spaces */
+    *time = uniform(g, t0, t1);
+    return (ray){from, vec3_scale(vec3_normalize(vec3_sub(to, from)), length)};
+}
+
+Test(two_level, nearest_hits_and_crossings_equal_brute_force_exactly, .timeout = 120) {
+    struct scene s;
+    double t0 = 0.1, t1 = 0.7;
+    struct instances *in = forest(&s, "", t0, t1);
+    uint64_t g = 16;
+    int hits = 0;
+    for (int n = 0; n < 3000; n++) {
+        double time;
+        ray r = random_ray(&g, in, &time, t0, t1);
+        struct hit fast = hit_nothing(INFINITY), slow = hit_nothing(INFINITY);
+        bool a = in->hook.closest(in->hook.structure, &r, 1e-9, time, &fast);
+        bool b = brute_closest(in, &r, 1e-9, time, &slow);
+        cr_assert_eq(a, b, "ray %d: two levels %s, brute force %s", n, a ? "hit" : "missed", b ? "hit" : "missed");
+        hits += a;
+        if (!a)
+            continue;
+        cr_assert(fast.t == slow.t, "ray %d: t %.17g against %.17g", n, fast.t, slow.t);
+        cr_assert_eq(fast.object, slow.object, "ray %d", n);
+        cr_assert_eq(fast.face, slow.face, "ray %d", n);
+        cr_assert(fast.normal.x == slow.normal.x && fast.normal.y == slow.normal.y && fast.normal.z == slow.normal.z);
+        if (n % 10 == 0) {
+            static struct crossing_list x, y;
+            x.count = y.count = 0;
+            double t_max = fast.t * uniform(&g, 0.5, 3.0);
+            in->hook.for_each_crossing(in->hook.structure, &r, 1e-9, t_max, time, collect, &x);
+            brute_crossings(in, &r, 1e-9, t_max, time, &y);
+            cr_assert_eq(x.count, y.count, "ray %d: %zu crossings against %zu", n, x.count, y.count);
+            qsort(x.t, x.count, sizeof x.t[0], by_t);
+            qsort(y.t, y.count, sizeof y.t[0], by_t);
+            for (size_t k = 0; k < x.count && k < 4096; k++)
+                cr_assert(x.t[k] == y.t[k], "ray %d crossing %zu", n, k);
+        }
+    }
+    cr_assert_gt(hits, 1500, "only %d of 3000 rays hit", hits);
+    instances_free(in);
+    scene_free(&s);
+}
+
+Test(two_level, a_refitted_top_level_stays_valid_and_answers_as_a_rebuilt_one, .timeout = 60) {
+    struct scene s, s2;
+    struct instances *refitted = forest(&s, "", 0.0, 0.1);
+    struct instances *rebuilt = forest(&s2, "", 0.0, 0.1);
+    char err[256], why[256];
+    uint64_t g = 35;
+    for (int frame = 1; frame <= 5; frame++) {
+        double t0 = frame / 5.0 * 0.9, t1 = t0 + 0.1;
+        cr_assert(instances_set_interval(refitted, t0, t1, INSTANCES_REFIT, err, sizeof err), "%s", err);
+        cr_assert(instances_set_interval(rebuilt, t0, t1, INSTANCES_REBUILD, err, sizeof err), "%s", err);
+        cr_assert(instance_bvh_is_valid(refitted->top, refitted->boxes, refitted->count, why, sizeof why),
+                  "frame %d: %s", frame, why);
+        for (int n = 0; n < 300; n++) {
+            double time;
+            ray r = random_ray(&g, refitted, &time, t0, t1);
+            struct hit a = hit_nothing(INFINITY), b = hit_nothing(INFINITY);
+            cr_assert_eq(refitted->hook.closest(refitted, &r, 1e-9, time, &a),
+                         rebuilt->hook.closest(rebuilt, &r, 1e-9, time, &b));
+            cr_assert(a.t == b.t || (isinf(a.t) && isinf(b.t)));
+            cr_assert_eq(a.object, b.object);
+        }
+    }
+    cr_assert_eq(refitted->info.refits, 5);
+    instances_free(refitted);
+    instances_free(rebuilt);
+    scene_free(&s);
+    scene_free(&s2);
+}
+
+Test(two_level, refuses_transforms_it_cannot_carry_rays_through) {
+    struct scene s;
+    char err[4096];
+    struct {
+        const char *lines, *message;
+    } cases[] = {
+        {"object bunny models/bunny.ply\ninstance bunny scale 1e-9 1 1e9",
+         "scenes/x.scene:5: instance of 'bunny': its transform cannot be inverted accurately (its scale factors differ "
+         "by more than the tracer can carry rays through)"},
+        {"object bunny models/bunny.ply\ninstance bunny id a\nkey a time 0\nkey a time 1 scale -1 1 1",
+         "scenes/x.scene:7: instance of 'bunny': a scale factor changes sign since the previous key, so it passes "
+         "through zero (a flat object) in between"},
+        {"object bunny models/bunny.ply\ninstance bunny scale 1e9 1e9 1e9 translate 1e18 0 0",
+         "scenes/x.scene:5: instance of 'bunny': placed out of range (coordinates must stay within -1e18 .. 1e18 and "
+         "the object at least 1e-18 across)"},
+        {"object self x.scene\ninstance self", "scenes/x.scene:4: object 'self': scenes/x.scene: no faces"},
+        {"object none models/no-such-mesh.ply\ninstance none",
+         "scenes/x.scene:4: object 'none': scenes/models/no-such-mesh.ply: "},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        cr_assert(parse_scene_lines("scenes/x.scene", HEAD, cases[k].lines, test_every_kind, &s, err, sizeof err), "%s",
+                  err);
+        /* the scene's own file as a mesh: it does not exist as scenes/x.scene, so write it for this case */
+        FILE *self = k == 3 ? fopen("scenes/x.scene", "w") : NULL;
+        if (self != NULL) {
+            fputs(HEAD, self);
+            fclose(self);
+        }
+        struct instances *in = instances_create(&s, 0, 0.0, 0.0, err, sizeof err);
+        if (k == 3)
+            remove("scenes/x.scene");
+        cr_expect_null(in, "case %zu was accepted", k);
+        instances_free(in);
+        cr_expect(strncmp(err, cases[k].message, strlen(cases[k].message)) == 0, "case %zu: '%s'", k, err);
+        scene_free(&s);
+    }
+}
+
+/* ---- the time of a sample ----------------------------------------------------------------------- */
+
+Test(shutter, a_samples_time_depends_only_on_its_point_and_seed_and_stays_in_the_shutter) {
+    cr_assert_eq(shutter_time(0.25, 0.0, 3.5, 7.25, 9), 0.25);
+    double sum = 0.0;
+    for (int k = 0; k < 10000; k++) {
+        double x = k % 100 + 0.5, y = k / 100 + 0.5;
+        double t = shutter_time(0.5, 0.25, x, y, 7);
+        cr_assert(t >= 0.5 && t < 0.75, "%.17g", t);
+        cr_assert_eq(t, shutter_time(0.5, 0.25, x, y, 7));
+        sum += t;
+    }
+    cr_assert_float_eq(sum / 10000, 0.625, 0.005); /* uniform over the shutter */
+    cr_assert_neq(shutter_time(0.5, 0.25, 1.5, 1.5, 7), shutter_time(0.5, 0.25, 1.5, 1.5, 8));
+}
+
+/* ---- pictures ----------------------------------------------------------------------------------- */
+
+/* Writes a scene of instances of the bunny and the teapot (no motion) to `path`, with every instance
+ * either as an instance line, or with its triangles written out in world space (by the transform's
+ * transform_point) into one OBJ file drawn as a mesh line. */
+static void write_forest_scene(const char *path, bool written_out) {
+    static const struct {
+        const char *object;
+        struct scene_pose pose;
+    } placed[] = {
+        {BUNNY, {{0.12, 0.12, 0.12}, {0, 30, 0}, {-1.2, 0, 0}}},
+        {BUNNY, {{0.1, 0.2, 0.1}, {0, -60, 10}, {1.0, 0, -0.5}}},
+        {"scenes/models/teapot-5k.ply", {{0.25, 0.25, 0.25}, {0, 200, 0}, {0.1, 0, 0.6}}},
+        {"scenes/models/teapot-5k.ply", {{0.2, 0.3, -0.2}, {15, 45, 0}, {-0.3, 0.3, -1.5}}},
+    };
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    FILE *out = fopen(path, "w");
+    cr_assert_not_null(out);
+    fprintf(out, "camera eye 0 1.6 4.5 target 0 0.4 0 fov 40\nimage 160 120\nbackground 0.3 0.4 0.6\n"
+                 "light position -4 6 5\nmaterial clay colour 0.8 0.5 0.3 phong 0.3\n"
+                 "plane normal 0 1 0 distance 0\n");
+    size_t count = sizeof placed / sizeof placed[0];
+    if (!written_out) {
+        fprintf(out, "object bunny %s/%s\nobject teapot %s/scenes/models/teapot-5k.ply\n", cwd, BUNNY, cwd);
+        for (size_t k = 0; k < count; k++) {
+            const struct scene_pose *p = &placed[k].pose;
+            fprintf(out, "instance %s material clay scale %.17g %.17g %.17g rotate %.17g %.17g %.17g translate %.17g %.17g %.17g\n",
+                    strcmp(placed[k].object, BUNNY) == 0 ? "bunny" : "teapot", p->scale.x, p->scale.y, p->scale.z, p->rotate.x,
+                    p->rotate.y, p->rotate.z, p->translate.x, p->translate.y, p->translate.z);
+        }
+        fclose(out);
+        return;
+    }
+    char obj[1100];
+    snprintf(obj, sizeof obj, "%s.obj", path);
+    FILE *mesh = fopen(obj, "w");
+    cr_assert_not_null(mesh);
+    size_t first = 1;
+    for (size_t k = 0; k < count; k++) {
+        struct mesh m;
+        char err[512];
+        cr_assert(mesh_load(placed[k].object, &m, err, sizeof err), "%s", err);
+        const struct scene_pose *p = &placed[k].pose;
+        struct transform t = transform_from_pose(p->scale, p->rotate, p->translate);
+        for (size_t v = 0; v < m.vertex_count; v++) {
+            vec3 w = transform_point(&t, m.vertices[v]);
+            fprintf(mesh, "v %.17g %.17g %.17g\n", w.x, w.y, w.z);
+        }
+        for (size_t f = 0; f < m.face_count; f++)
+            fprintf(mesh, "f %zu %zu %zu\n", first + m.faces[f].v[0], first + m.faces[f].v[1], first + m.faces[f].v[2]);
+        first += m.vertex_count;
+        mesh_free(&m);
+    }
+    fclose(mesh);
+    fprintf(out, "mesh %s/%s material clay\n", cwd, obj);
+    fclose(out);
+}
+
+/* The tolerance of the instanced picture against the written-out one: the two intersect the same
+ * triangles, one in object space (the ray carried by the inverse transform), one in world space (the
+ * vertices carried by the transform), so each t and normal differ by a few units in the last place.
+ * That moves a shade by far less than a level, except where a ray grazes an edge or a shadow ray a
+ * silhouette and the two roundings fall on either side: such pixels are allowed, at most 0.1 % of them. */
+#define WRITTEN_OUT_MIN_WITHIN_1 0.999
+
+Test(pictures, the_instanced_forest_draws_the_written_out_forest_of_chapter_11, .timeout = 120) {
+    write_forest_scene(TEST_OUT "/forest-instanced.scene", false);
+    write_forest_scene(TEST_OUT "/forest-written.scene", true);
+    cr_assert_eq(render_chapter(16, TEST_OUT "/forest-instanced.scene", TEST_OUT "/forest-instanced.png", ""), 0);
+    cr_assert_eq(render_chapter(11, TEST_OUT "/forest-written.scene", TEST_OUT "/forest-written.png", ""), 0);
+    struct image_difference d = compare_png(TEST_OUT "/forest-instanced.png", TEST_OUT "/forest-written.png");
+    report_difference("instanced vs written out", &d);
+    cr_assert_geq(d.within_1, WRITTEN_OUT_MIN_WITHIN_1, "within 1: %.4f%%, max %d", 100 * d.within_1, d.max);
+}
+
+Test(pictures, refit_and_rebuild_draw_the_same_frames, .timeout = 120) {
+    const char *scene = chapter_scene(16);
+    cr_assert_eq(render_chapter(16, scene, TEST_OUT "/refit.png", "--frames 3 --width 96 --height 60 --refit"), 0);
+    cr_assert_eq(render_chapter(16, scene, TEST_OUT "/rebuild.png", "--frames 3 --width 96 --height 60 --rebuild"), 0);
+    for (int k = 1; k <= 3; k++) {
+        char a[256], b[256];
+        snprintf(a, sizeof a, TEST_OUT "/refit-%04d.png", k);
+        snprintf(b, sizeof b, TEST_OUT "/rebuild-%04d.png", k);
+        struct image_difference d = compare_png(a, b);
+        cr_assert_eq(d.max, 0, "frame %d differs by %d levels", k, d.max);
+    }
+    /* and the frames differ: the teapot moves */
+    struct image_difference d = compare_png(TEST_OUT "/refit-0001.png", TEST_OUT "/refit-0003.png");
+    cr_assert_gt(d.max, 50);
+}
+
+Test(pictures, one_frame_of_the_farm_is_the_same_frame_of_the_whole_run, .timeout = 120) {
+    const char *scene = chapter_scene(16);
+    cr_assert_eq(render_chapter(16, scene, TEST_OUT "/one.png", "--frames 3 --frame 2 --width 96 --height 60"), 0);
+    cr_assert_eq(render_chapter(16, scene, TEST_OUT "/all.png", "--frames 3 --width 96 --height 60"), 0);
+    struct image_difference d = compare_png(TEST_OUT "/one-0002.png", TEST_OUT "/all-0002.png");
+    cr_assert_eq(d.max, 0);
+}
+
+Test(pictures, are_the_same_for_any_thread_count, .timeout = 120) {
+    const char *scene = chapter_scene(16);
+    cr_assert_eq(render_chapter(16, scene, TEST_OUT "/threads-1.png", "--threads 1 --width 120 --height 75"), 0);
+    cr_assert_eq(render_chapter(16, scene, TEST_OUT "/threads-3.png", "--threads 3 --width 120 --height 75"), 0);
+    struct image_difference d = compare_png(TEST_OUT "/threads-1.png", TEST_OUT "/threads-3.png");
+    cr_assert_eq(d.max, 0);
+}
+
+Test(pictures, the_twin_of_a_frame_without_blur_agrees_with_povray, .timeout = 300) {
+    struct image_difference d =
+        variant_against_povray(16, "camera eye 0 3.2 8.5  target 0 0.4 -2.5  fov 42  shutter 0.12",
+                               "camera eye 0 3.2 8.5  target 0 0.4 -2.5  fov 42", "chapter-16-no-blur", 1);
+    report_difference("chapter 16 (no blur) vs POV-Ray", &d);
+    cr_assert(image_difference_agrees(&d), "within 2: %.3f%%, mean %.4f", 100 * d.within_2, d.mean);
+    cr_assert_geq(d.within_1, 0.9999, "within 1: %.4f%%", 100 * d.within_1);
+}
+
+Test(command_line, animation_options_are_checked) {
+    expect_chapter_run(16, "--frame 2", 2, "--frame K needs --frames N");
+    expect_chapter_run(16, "--frames 2 --frame 3", 2, "--frame K must be at most --frames N");
+    expect_chapter_run(16, "--frames 0", 2, "--frames needs a whole number from 1 to 100000, got '0'");
+    expect_chapter_run(16, "--video", 2, "--video needs --frames N (at least 2) and all of them (no --frame)");
+    expect_chapter_run(16, "--frames 2 -o -", 2, "--frames writes one file a frame");
+}
