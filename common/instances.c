@@ -371,19 +371,22 @@ static bool crossing_query(const void *structure, const ray *r, double t_min, do
 
 void instances_report(const struct instances *in, FILE *out, bool detailed) {
     const struct instances_info *i = &in->info;
-    size_t per_instance = sizeof(struct instance) + 2 * sizeof(struct aabb);
-    size_t keys = 0;
+    size_t keys = 0, top = in->top != NULL ? in->top->node_count * sizeof(struct instance_bvh_node) +
+                                              in->top->instance_count * sizeof(uint32_t) : 0;
     for (size_t k = 0; k < in->count; k++)
         keys += in->items[k].key_count * sizeof(struct keyframe);
+    /* each instance: its record, its world box, its place in the list of those outside the tree */
+    size_t each = sizeof(struct instance) + sizeof(struct aabb) + sizeof(size_t);
+    double per_instance = in->count > 0 ? (double)(each * in->count + keys + top) / (double)in->count : 0.0;
     fprintf(out, "instances: %zu of %zu object%s (%zu moving), %.4g triangles instanced from %zu\n", i->instances,
             i->objects, i->objects == 1 ? "" : "s", i->moving, i->instanced_triangles, i->object_triangles);
     fprintf(out, "  objects' meshes and trees   %.1f MB, built in %.1f ms\n", (double)i->object_bytes / 1e6,
             i->object_build_ms);
-    fprintf(out, "  per instance                %zu bytes and the top level's share (keys: %zu bytes in all)\n",
-            per_instance, keys);
+    fprintf(out, "  per instance                %.0f bytes (with its keys and its share of the top level)\n",
+            per_instance);
     fprintf(out, "  top level                   %s in %.2f ms\n", i->refits > 0 ? "last refitted or built" : "built",
             i->top_build_ms);
     if (detailed)
-        fprintf(out, "  top level SAH cost          %.3f (%.3f when last built); %zu rebuilds, %zu refits\n",
+        fprintf(out, "  top level SAH cost          %.3f (%.3f when last built); %zu builds, %zu refits\n",
                 i->top_sah_cost, i->top_sah_cost_built, i->rebuilds, i->refits);
 }

@@ -61,12 +61,11 @@ struct instances_info {
     size_t object_triangles;      /* triangles of all objects, each counted once */
     double instanced_triangles;   /* triangles of all instances: what writing them out would hold */
     size_t object_bytes;          /* the objects' meshes and bottom-level trees */
-    size_t instance_bytes;        /* the instances, their keys, boxes and the top-level tree */
     double object_build_ms;       /* building the bottom level */
     double top_build_ms;          /* the last build or refit of the top level */
     double top_sah_cost;          /* the top level's SAH cost now, and right after it was last built */
     double top_sah_cost_built;
-    size_t rebuilds, refits;      /* of the top level, since it was made */
+    size_t rebuilds, refits;      /* builds (the first included) and refits of the top level */
 };
 
 struct instances {

@@ -154,10 +154,10 @@ bool world_closest(const struct world *w, const ray *r, double t_min, struct hit
     for (size_t k = 0; k < w->bounded_count; k++)
         found |= closest_of_kind(&w->bounded[k], r, t_min, h);
     found |= closest_triangle(w, r, t_min, h);
-    if (w->instances != NULL)
-        found |= w->instances->closest(w->instances->structure, r, t_min, w->time, h);
     for (size_t k = 0; k < w->unbounded_count; k++)
         found |= closest_of_kind(&w->unbounded[k], r, t_min, h);
+    if (w->instances != NULL) /* chapter 16 */
+        found |= w->instances->closest(w->instances->structure, r, t_min, w->time, h);
     return found;
 }
 
@@ -222,10 +222,9 @@ void world_for_each_crossing(const struct world *w, const ray *r, double t_min, 
             return;
     if (!cross_triangles(w, r, t_min, t_max, visit, context))
         return;
-    if (w->instances != NULL &&
-        !w->instances->for_each_crossing(w->instances->structure, r, t_min, t_max, w->time, visit, context))
-        return;
     for (size_t k = 0; k < w->unbounded_count; k++)
         if (!cross_kind(&w->unbounded[k], r, t_min, t_max, visit, context))
             return;
+    if (w->instances != NULL) /* chapter 16 */
+        w->instances->for_each_crossing(w->instances->structure, r, t_min, t_max, w->time, visit, context);
 }

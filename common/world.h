@@ -102,7 +102,7 @@ int world_object_number(const struct scene *s, const struct shape_list *list, si
 int world_mesh_object_number(const struct scene *s, size_t index);
 
 /* Finds the nearest surface with t_min < t < h->t along r among all shapes, kind by kind in the order
- * of struct world (the instances after the triangles), and keeps it in *h (with the object's number in h->object).
+ * of struct world (chapter 16's instances last), and keeps it in *h (with the object's number in h->object).
  * Returns true when *h was replaced. Without w->accel, a mesh whose bounding box r misses within
  * (t_min, h->t) is not tested, and its face count is added to stats_thread.triangle_tests_culled. */
 bool world_closest(const struct world *w, const ray *r, double t_min, struct hit *h);

@@ -27,10 +27,10 @@ Test(deps, the_installer_names_what_each_target_needs) {
      * unknown need is a usage error, exit 2, with a message naming the valid ones. */
     const char *log = "out/test/deps-needs.log";
     remove(log);
-    cr_assert_eq(run_logged("tools/build/install-deps.sh build test compare results", log), 0);
+    cr_assert_eq(run_logged("tools/build/install-deps.sh build test compare results video", log), 0);
     cr_assert_eq(run_logged("tools/build/install-deps.sh everything", log), 2);
     cr_assert(file_contains(log, "install-deps.sh: unknown need 'everything' (build, test, compare, cycles, results, "
-                                 "bench, profile, fuzz, web or test-web)"));
+                                 "bench, profile, fuzz, web, test-web or video)"));
 }
 
 Test(deps, without_root_and_without_stb_make_chapter_1_fetches_stb_and_renders, .timeout = 300) {

@@ -557,3 +557,12 @@ Test(command_line, animation_options_are_checked) {
     expect_chapter_run(16, "--video", 2, "--video needs --frames N (at least 2) and all of them (no --frame)");
     expect_chapter_run(16, "--frames 2 -o -", 2, "--frames writes one file a frame");
 }
+
+Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {
+    remove(TEST_OUT "/film.mp4");
+    cr_assert_eq(render_chapter(16, chapter_scene(16), TEST_OUT "/film.png", "--frames 4 --video --width 64 --height 40"),
+                 0);
+    size_t size = 0;
+    free(read_file(TEST_OUT "/film.mp4", &size));
+    cr_assert_gt(size, 1000, "the film has %zu bytes", size);
+}

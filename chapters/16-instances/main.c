@@ -111,7 +111,7 @@ static bool make_video(const char *output, char *err, size_t err_size) {
     pid_t child;
     int status = 0;
     if (posix_spawnp(&child, "ffmpeg", NULL, NULL, args, environ) != 0)
-        return (snprintf(err, err_size, "--video: cannot run ffmpeg (install it: tools/build/install-deps.sh video)"),
+        return (snprintf(err, err_size, "--video: cannot run ffmpeg (install it with tools/build/install-deps.sh video)"),
                 false);
     if (waitpid(child, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
         return (snprintf(err, err_size, "--video: ffmpeg failed making %s", film), false);

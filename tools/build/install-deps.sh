@@ -3,7 +3,7 @@
 # is missing. Called by the Makefile before every build; safe to run any number of times.
 #
 #   tools/build/install-deps.sh [NEED...]     NEED: build (the default), test, compare, cycles, results, bench,
-#                                             profile, fuzz, web, test-web
+#                                             profile, fuzz, web, test-web, video
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
 #   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test and
@@ -20,6 +20,7 @@
 #            WebAssembly: make web and make serve
 #   test-web web + headless Chromium (chromium), its WebDriver (chromium-driver) and Selenium for the
 #            system's Python (python3-selenium, so the test runs with /usr/bin/python3): make test-web
+#   video    build + ffmpeg: chapter 16's --video, which makes a film of its frames
 #
 # How it installs: as root with apt-get; otherwise with `sudo apt-get` when sudo needs no password.
 # Without either (a lab machine), the only library the chapters need, stb, is fetched into .deps/ with
@@ -51,7 +52,7 @@ want() { # want PACKAGE: add it to the list once
 }
 for need in "${needs[@]}"; do
     case $need in
-    build | test | compare | cycles | results | bench | profile)
+    build | test | compare | cycles | results | bench | profile | video)
         have_command gcc || want gcc
         have_command pkg-config || want pkg-config
         have_stb || want libstb-dev
@@ -66,6 +67,7 @@ for need in "${needs[@]}"; do
         have_command gnuplot || want gnuplot-nox
         ;;
     compare) have_command povray || want povray ;;
+    video) have_command ffmpeg || want ffmpeg ;;
     cycles) have_command blender || want blender ;;
     bench | profile)
         [ -e /usr/include/embree3/rtcore.h ] || want libembree-dev
@@ -89,7 +91,7 @@ for need in "${needs[@]}"; do
         ;;
     build | web) ;;
     *)
-        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench, profile, fuzz, web or test-web)" >&2
+        echo "install-deps.sh: unknown need '$need' (build, test, compare, cycles, results, bench, profile, fuzz, web, test-web or video)" >&2
         exit 2
         ;;
     esac
