@@ -78,6 +78,8 @@ const struct task check_tasks[] = {
     {"16.2", "refitting the top level: the same tree, its boxes from the leaves up", "instance_bvh_refit in "
      "common/instance_bvh.c", "5.1"},
     {"16.3", "the box of a moving object over a stretch of the shutter", "stretch_box in common/keyframes.c", ""},
+    {"16.P", "chapter 16's picture", "chapters/16-instances",
+     "1.1 4.1 5.1 6.1 6.2 7.1 8.2 10.2 11.1 11.2 12.1 16.1 16.3"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -175,6 +177,7 @@ CHECK(check_refit_keeps_the_tree);
 CHECK(check_motion_box_translation);
 CHECK(check_motion_box_turn);
 CHECK(check_motion_box_keys_and_shutter);
+CHECK(check_picture_16);
 
 const struct check check_list[] = {
     {"1.1", "the top-left pixel's ray", check_camera_top_left},
@@ -271,6 +274,7 @@ const struct check check_list[] = {
     {"16.3", "a box sliding and growing: every position held, none far beyond", check_motion_box_translation},
     {"16.3", "an arm turning 90 degrees: its middle position held too", check_motion_box_turn},
     {"16.3", "three keys, a shutter across the middle one, a shutter of no length", check_motion_box_keys_and_shutter},
+    {"16.P", "the picture matches the reference", check_picture_16},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
 
