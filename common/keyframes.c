@@ -6,6 +6,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdbool.h>
 
 #include "transform.h"
 
@@ -38,10 +39,12 @@ struct pose keyframes_pose_at(const struct keyframe *keys, size_t count, double 
     return pose_between(&keys[low].pose, &keys[high].pose, f);
 }
 
-/* Returns the box of the object box placed by the pose at `time`. */
-static struct aabb box_at(const struct keyframe *keys, size_t count, struct aabb object_box, double time) {
+/* Returns the box of the object box placed by the pose at `time`, or by that pose without its
+ * translation when `translated` is false. */
+static struct aabb box_at(const struct keyframe *keys, size_t count, struct aabb object_box, double time,
+                          bool translated) {
     struct pose p = keyframes_pose_at(keys, count, time);
-    struct transform t = transform_from_pose(p.scale, p.rotate, p.translate);
+    struct transform t = transform_from_pose(p.scale, p.rotate, translated ? p.translate : vec3_make(0, 0, 0));
     return transform_box(&t, object_box);
 }
 
@@ -52,6 +55,23 @@ static double sum_abs(vec3 v) { return fabs(v.x) + fabs(v.y) + fabs(v.z); }
 static double radius_about_origin(struct aabb box) {
     return vec3_length(vec3_max(vec3_make(fabs(box.min.x), fabs(box.min.y), fabs(box.min.z)),
                                 vec3_make(fabs(box.max.x), fabs(box.max.y), fabs(box.max.z))));
+}
+
+/* Returns the union of box_at at steps + 1 evenly spaced times from start to end. */
+static struct aabb sampled_box(const struct keyframe *keys, size_t count, struct aabb object_box, double start,
+                               double end, int steps, bool translated) {
+    struct aabb box = aabb_empty();
+    for (int k = 0; k <= steps; k++)
+        box = aabb_union(box, box_at(keys, count, object_box, k == steps ? end : start + k * ((end - start) / steps),
+                                     translated));
+    return box;
+}
+
+/* Returns how many steps over `duration` keep half a step's movement at `speed` within
+ * MOTION_BOX_PAD_FRACTION of `size`: at least 1; more than MOTION_BOX_STEPS_MAX means too many. */
+static double steps_for(double speed, double duration, double size) {
+    double steps = size > 0.0 ? ceil(speed * duration / (2.0 * MOTION_BOX_PAD_FRACTION * size)) : 1.0;
+    return steps >= 1.0 ? steps : 1.0;
 }
 
 /* Returns the box of the object over [start, end] (start < end), during which the pose moves linearly
@@ -71,22 +91,30 @@ static struct aabb stretch_box(const struct keyframe *keys, size_t count, struct
     /* Linear motion takes each number's extremes at the ends of the stretch. */
     double largest_scale = fmax(largest_abs(from->scale), largest_abs(to->scale));
     double size = largest_scale * radius; /* the object's radius in the world */
-    double speed = vec3_length(rate.translate) + sum_abs(rate.rotate) * RADIANS_PER_DEGREE * size +
-                   largest_abs(rate.scale) * radius;
-
-    /* Enough steps that half a step's movement is about MOTION_BOX_PAD_FRACTION of the size. */
-    double wanted = size > 0.0 ? ceil(speed * (end - start) / (2.0 * MOTION_BOX_PAD_FRACTION * size)) : 1.0;
-    int steps = wanted >= MOTION_BOX_STEPS_MAX ? MOTION_BOX_STEPS_MAX : wanted >= 1.0 ? (int)wanted : 1;
-    double step = (end - start) / steps;
-
-    struct aabb box = aabb_empty();
-    for (int k = 0; k <= steps; k++)
-        box = aabb_union(box, box_at(keys, count, object_box, k == steps ? end : start + k * step));
-
+    double moving = vec3_length(rate.translate); /* the speed the translation gives every point */
+    double turning = sum_abs(rate.rotate) * RADIANS_PER_DEGREE * size + largest_abs(rate.scale) * radius;
     double angles = fmax(sum_abs(from->rotate), sum_abs(to->rotate)) * RADIANS_PER_DEGREE;
     double translation = fmax(vec3_length(from->translate), vec3_length(to->translate));
     double rounding = MOTION_BOX_ROUNDING * DBL_EPSILON * (translation + (1.0 + angles) * size);
-    return aabb_pad(box, speed * step / 2.0 + rounding);
+
+    double steps = steps_for(moving + turning, end - start, size);
+    if (steps <= MOTION_BOX_STEPS_MAX) {
+        struct aabb box = sampled_box(keys, count, object_box, start, end, (int)steps, true);
+        return aabb_pad(box, (moving + turning) * ((end - start) / steps) / 2.0 + rounding);
+    }
+    /* Too fast to follow so: the translation apart. A point is its translation (on a line, inside the
+     * box of the path's ends) plus the object turned and scaled (inside the box of that motion alone,
+     * sampled as above, or, turning too fast for that as well, within `size` of the origin), so it is
+     * inside the sum of the two boxes. */
+    struct pose a = keyframes_pose_at(keys, count, start), b = keyframes_pose_at(keys, count, end);
+    struct aabb path = aabb_grow(aabb_grow(aabb_empty(), a.translate), b.translate);
+    struct aabb turned = {{-size, -size, -size}, {size, size, size}};
+    steps = steps_for(turning, end - start, size);
+    if (steps <= MOTION_BOX_STEPS_MAX)
+        turned = aabb_pad(sampled_box(keys, count, object_box, start, end, (int)steps, false),
+                          turning * ((end - start) / steps) / 2.0);
+    struct aabb sum = {vec3_add(path.min, turned.min), vec3_add(path.max, turned.max)};
+    return aabb_pad(sum, rounding);
 }
 
 struct aabb keyframes_motion_box(const struct keyframe *keys, size_t count, struct aabb object_box, double t0,
@@ -95,7 +123,7 @@ struct aabb keyframes_motion_box(const struct keyframe *keys, size_t count, stru
           object_box.min.z <= object_box.max.z))
         return aabb_empty();
     double radius = radius_about_origin(object_box);
-    struct aabb box = box_at(keys, count, object_box, t0);
+    struct aabb box = box_at(keys, count, object_box, t0, true);
     /* The clock in count + 1 stretches: before the first key (held), between each two keys (linear),
      * after the last (held). Each one's part of [t0, t1] that is longer than an instant adds its box. */
     for (size_t k = 0; k <= count; k++) {

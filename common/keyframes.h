@@ -27,17 +27,20 @@ struct keyframe {
 
 /* The motion box pads the boxes at its sampled times by the most a point can move between two of them
  * (keyframes_motion_box). It samples each stretch of linear motion often enough that this padding is
- * at most this fraction of the object's radius in the world (its size: the largest |scale| times its
- * radius about its own origin), so the box is never much looser than the motion itself... */
+ * at most this fraction of the object's size in the world (the largest |scale| times its radius about
+ * its own origin), so the box is never much looser than the motion itself... */
 #define MOTION_BOX_PAD_FRACTION (1.0 / 32.0)
 
-/* ...unless that would take more than this many steps for one stretch between keys (an object turning
- * many times within the shutter): then the steps stay at this many and the padding grows. */
-#define MOTION_BOX_STEPS_MAX 1024
+/* ...unless that would take more than this many steps for one stretch between keys (an object moving
+ * more than eight times its size, or turning more than about 1.3 turns, within the stretch): then the
+ * translation is taken apart from the turning and scaling (keyframes_motion_box), which costs no
+ * steps however far it goes. */
+#define MOTION_BOX_STEPS_MAX 128
 
-/* And by this many DBL_EPSILONs of the pose's size (|translate| plus the object's radius in the world,
- * times one plus the angles in radians): room for the roundings of the pose, the sines and cosines
- * and the transform, which make the computed point at a time differ from the exact motion. */
+/* Every stretch's box is padded by this many DBL_EPSILONs of the pose's size more (|translate| plus
+ * the object's radius in the world times one plus the angles in radians): room for the roundings of
+ * the pose, the sines and cosines and the transform, which make the computed point at a time differ
+ * from the exact motion. */
 #define MOTION_BOX_ROUNDING 64.0
 
 /* Returns the pose at `time` of the `count` (>= 1) keys, which are in increasing time: linear in each
@@ -57,8 +60,12 @@ struct pose keyframes_pose_at(const struct keyframe *keys, size_t count, double 
  * time, angles in radians (each turn about one axis moves a point at most its angular rate times its
  * distance from the axis, and turns keep lengths), and a point at a time between two samples is
  * within half a step of one of them. n is chosen so that the padding is about MOTION_BOX_PAD_FRACTION
- * of the object's size (at most MOTION_BOX_STEPS_MAX), and MOTION_BOX_ROUNDING more is added for the
- * roundings. An empty object_box gives the empty box. */
+ * of the object's size. Where that would take more than MOTION_BOX_STEPS_MAX steps, a point is taken
+ * as its translation (on a line: inside the box of the stretch's two ends) plus the object turned and
+ * scaled (inside that motion's own box, sampled and padded as above without the translation's speed,
+ * or, turning too fast for that as well, within the size of the origin, |R S p| <= largest |scale| * r),
+ * and the stretch's box is the sum of those two boxes. Everything is padded by MOTION_BOX_ROUNDING
+ * more for the roundings. An empty object_box gives the empty box. */
 struct aabb keyframes_motion_box(const struct keyframe *keys, size_t count, struct aabb object_box, double t0,
                                  double t1);
 
