@@ -198,9 +198,17 @@ struct instances *instances_create(struct scene *s, int first_object, double t0,
     }
     double started = clock_seconds();
     bool ok = true;
+    bool *placed = calloc(s->object_count + 1, sizeof *placed); /* an object no instance places is not loaded */
+    if (placed == NULL) {
+        instances_free(in);
+        return (snprintf(err, err_size, "out of memory"), NULL);
+    }
+    for (size_t n = 0; n < in->count; n++)
+        placed[s->instances[n].object] = true;
     for (size_t k = 0; ok && k < s->object_count; k++)
-        if (ok && s->instance_count > 0) /* an object no instance places is not loaded */
+        if (placed[k])
             ok = load_object(in, s, k, err, err_size);
+    free(placed);
     in->info.object_build_ms = 1e3 * (clock_seconds() - started);
     for (size_t k = 0; ok && k < in->count; k++) {
         ok = place(in, k, err, err_size);

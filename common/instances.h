@@ -12,7 +12,12 @@
  *
  * Per frame the top level is either refitted (the same tree, its boxes recomputed bottom-up) or rebuilt.
  * All queries are safe from several threads at once and add to the calling thread's counters:
- * instance_node_visits for the top level, node_visits, box_tests and triangle_tests for the bottom. */
+ * instance_node_visits for the top level, node_visits, box_tests and triangle_tests for the bottom.
+ *
+ * Instance k is object number first_object + k (hit.object), so chapter 8's interior list tells two
+ * glass instances of one object apart. A camera that starts inside a transparent instance is not
+ * looked for (interior_at_point knows the scene's own shapes only): its first crossing is taken as an
+ * entry. */
 #ifndef WHITTED_INSTANCES_H
 #define WHITTED_INSTANCES_H
 
@@ -84,8 +89,8 @@ struct instances {
     struct instances_info info;
 };
 
-/* Loads every object's mesh of scene s (once, with the mesh readers of scene_load_meshes) and builds
- * its tree, then places every instance (its keys checked: each pose's transform invertible within
+/* Loads the mesh of every object of scene s that an instance places (once, with the mesh readers of
+ * scene_load_meshes; objects no instance places are left unloaded) and builds its tree, then places every instance (its keys checked: each pose's transform invertible within
  * TRANSFORM_CONDITION_MAX, no scale changing sign between keys, the placed object inside the range a
  * mesh may be placed in) and builds the top level over the interval [t0, t1]. Instance k's hits carry
  * object number first_object + k. Returns the instances (free with instances_free) or NULL with

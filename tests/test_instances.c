@@ -10,6 +10,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <stb_image.h>
+
 #include "image_test_support.h"
 #include "instances.h"
 #include "mesh_load.h"
@@ -565,4 +567,111 @@ Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {
     size_t size = 0;
     free(read_file(TEST_OUT "/film.mp4", &size));
     cr_assert_gt(size, 1000, "the film has %zu bytes", size);
+}
+
+Test(command_line, a_bad_instance_is_a_bad_scene_with_its_line) {
+    FILE *out = fopen(TEST_OUT "/flat.scene", "w");
+    cr_assert_not_null(out);
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    fprintf(out, "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\nobject b %s/" BUNNY "\n"
+                 "instance b scale 1e-9 1 1e9\n", cwd);
+    fclose(out);
+    expect_chapter_run(16, TEST_OUT "/flat.scene", 1, TEST_OUT "/flat.scene:4: instance of 'b': its transform cannot be "
+                                                      "inverted accurately");
+}
+
+static void spinning_key(size_t k, char *out, size_t size) {
+    double t = (double)k / 999.0;
+    snprintf(out, size, "key x time %.17g translate %.6f 0 0 rotate 0 %.3f 0\n", t, sin(20.0 * t), 3600.0 * t);
+}
+
+Test(two_level, a_thousand_keys_spinning_ten_times_answer_as_brute_force, .timeout = 60) {
+    char *lines = many_lines("object bunny models/bunny.ply\ninstance bunny scale 0.1 0.1 0.1 id x", 1000, 80,
+                             spinning_key);
+    struct scene s;
+    char err[4096];
+    cr_assert(parse_long("scenes/keys.scene", lines, &s, err, sizeof err), "%s", err);
+    free(lines);
+    struct instances *in = instances_create(&s, 0, 0.0, 1.0, err, sizeof err);
+    cr_assert_not_null(in, "%s", err);
+    uint64_t g = 1000;
+    int hits = 0;
+    for (int n = 0; n < 500; n++) {
+        double time = uniform(&g, 0.0, 1.0);
+        ray r = {vec3_make(uniform(&g, -2, 2), uniform(&g, 0, 1), 5), vec3_make(uniform(&g, -0.3, 0.3), 0, -1)};
+        struct hit fast = hit_nothing(INFINITY), slow = hit_nothing(INFINITY);
+        cr_assert_eq(in->hook.closest(in, &r, 1e-9, time, &fast), brute_closest(in, &r, 1e-9, time, &slow));
+        cr_assert(fast.t == slow.t || (isinf(fast.t) && isinf(slow.t)), "ray %d", n);
+        hits += isfinite(fast.t);
+    }
+    cr_assert_gt(hits, 25, "only %d of 500 rays hit the spinning bunny", hits);
+    instances_free(in);
+    scene_free(&s);
+}
+
+/* ---- motion blur, analytically ------------------------------------------------------------------ */
+
+/* A white square (ambient light only, so exactly 1 wherever it is seen) 2 units wide and taller than the
+ * picture slides along x at BLUR_SPEED units per unit of clock over a black background, 10 units in front
+ * of the camera, during a shutter of BLUR_SHUTTER. A camera ray through the point x of the plane sees it
+ * for the times t in [0, BLUR_SHUTTER] with |x - (BLUR_START + BLUR_SPEED t)| < 1: the pixel's expected
+ * value is that time's share of the shutter, averaged over the pixel's 16 sample columns. Each pixel
+ * averages 256 samples whose times are random: its value is within 0.5 / 16 (one standard deviation)
+ * of the expectation, and a column's mean over the 32 rows within 0.0055; the test allows 0.03. */
+#define BLUR_SPEED 6.0
+#define BLUR_START (-3.0)
+#define BLUR_SHUTTER 0.5
+#define BLUR_TOLERANCE 0.03
+
+/* The share of the shutter the square covers the plane's point x. */
+static double covered_share(double x) {
+    double enter = (x - 1.0 - BLUR_START) / BLUR_SPEED, leave = (x + 1.0 - BLUR_START) / BLUR_SPEED;
+    double from = fmax(enter, 0.0), to = fmin(leave, BLUR_SHUTTER);
+    return to > from ? (to - from) / BLUR_SHUTTER : 0.0;
+}
+
+Test(motion_blur, a_sliding_square_blurs_by_the_share_of_the_shutter_it_covers, .timeout = 60) {
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    FILE *square = fopen(TEST_OUT "/square.obj", "w"), *out = fopen(TEST_OUT "/blur.scene", "w");
+    cr_assert(square != NULL && out != NULL);
+    fprintf(square, "v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0.5 0.5 0\nv -0.5 0.5 0\nf 1 2 3\nf 1 3 4\n");
+    fclose(square);
+    fprintf(out, "camera eye 0 0 10 target 0 0 0 fov 20 shutter %g\nimage 64 32\nbackground 0 0 0\n"
+                 "antialias method grid samples 16\nmaterial white colour 1 1 1 ambient 1 diffuse 0\n"
+                 "object square %s/" TEST_OUT "/square.obj\ninstance square material white scale 2 20 1 id s\n"
+                 "key s time 0 translate %g 0 0\nkey s time 1 translate %g 0 0\n",
+            BLUR_SHUTTER, cwd, BLUR_START, BLUR_START + BLUR_SPEED);
+    fclose(out);
+    cr_assert_eq(render_chapter(16, TEST_OUT "/blur.scene", TEST_OUT "/blur.png", ""), 0);
+    int w, h, channels;
+    uint8_t *pixels = stbi_load(TEST_OUT "/blur.png", &w, &h, &channels, 3);
+    cr_assert(pixels != NULL && w == 64 && h == 32);
+    double half_width = tan(10.0 * M_PI / 180.0) * 64.0 / 32.0, worst = 0.0;
+    int blurred = 0;
+    for (int i = 0; i < w; i++) {
+        double expected = 0.0, seen = 0.0;
+        for (int a = 0; a < 16; a++) { /* the grid's sample columns; a ray meets the plane at 10 px half_width */
+            double px = 2.0 * (i + (a + 0.5) / 16.0) / w - 1.0;
+            expected += covered_share(10.0 * px * half_width) / 16.0;
+        }
+        for (int j = 0; j < h; j++)
+            seen += pixels[3 * (j * w + i)] / 255.0 / h;
+        worst = fmax(worst, fabs(seen - expected));
+        cr_assert(fabs(seen - expected) <= BLUR_TOLERANCE, "column %d: %.4f, expected %.4f", i, seen, expected);
+        blurred += expected > 0.1 && expected < 0.9;
+    }
+    cr_assert_gt(blurred, 8, "the profile is not a ramp: %d columns between 0.1 and 0.9", blurred);
+    printf("motion blur: largest column error %.4f over %d blurred columns\n", worst, blurred);
+    free(pixels);
+}
+
+Test(command_line, stats_count_both_levels_and_the_memory_of_an_instance) {
+    expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0, "  instance nodes ");
+    expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0, "  node visits ");
+    expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0,
+                       "instances: 41 of 2 objects (1 moving), 1.808e+05 triangles instanced from 8786");
+    expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0, " bytes (with its keys and "
+                                                                                          "its share of the top level)");
 }

@@ -106,6 +106,9 @@ static bool make_video(const char *output, char *err, size_t err_size) {
     if (snprintf(pattern, sizeof pattern, "%.*s-%%04d%s", (int)stem, output, output + stem) >= (int)sizeof pattern ||
         snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film)
         return (snprintf(err, err_size, "%s: the film's name is too long", output), false);
+#ifdef __EMSCRIPTEN__ /* the browser's build runs no other program */
+    return (snprintf(err, err_size, "--video: the browser cannot run ffmpeg"), false);
+#else
     char *args[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", VIDEO_FRAME_RATE, "-i", pattern,
                     "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", film, NULL};
     pid_t child;
@@ -117,6 +120,7 @@ static bool make_video(const char *output, char *err, size_t err_size) {
         return (snprintf(err, err_size, "--video: ffmpeg failed making %s", film), false);
     printf("chapter 16 (instances): wrote %s\n", film);
     return true;
+#endif
 }
 
 /* Renders the frames asked for: frame k of N at clock (k - 1) / (N - 1), its top level moved there. */
