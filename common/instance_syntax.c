@@ -9,6 +9,12 @@ enum { POSE_SCALE, POSE_ROTATE, POSE_TRANSLATE };
 
 const struct key_spec instance_pose_keys[INSTANCE_POSE_KEY_COUNT] = {{"scale", 3}, {"rotate", 3}, {"translate", 3}};
 
+bool instance_chapter_draws(int chapter, int introduced) {
+    if (chapter == INSTANCE_CHAPTER && introduced > INSTANCE_BASE_CHAPTER && introduced < INSTANCE_CHAPTER)
+        return false;
+    return chapter >= introduced;
+}
+
 struct scene_pose instance_pose_identity(void) {
     return (struct scene_pose){{1, 1, 1}, {0, 0, 0}, {0, 0, 0}};
 }

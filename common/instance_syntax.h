@@ -16,6 +16,7 @@
 #include "vec3.h"
 
 #define INSTANCE_CHAPTER 16        /* the chapter that draws them */
+#define INSTANCE_BASE_CHAPTER 13   /* the chapter it is built on: chapter 13's tracer and sampler */
 #define SCENE_OBJECT_MAX 4096      /* object lines in one scene */
 #define SCENE_INSTANCE_MAX 1048576 /* instance lines in one scene: a million fit */
 #define SCENE_KEY_MAX 1024         /* key lines of one instance */
@@ -25,6 +26,11 @@
 #define INSTANCE_SCALE_MAX 1e9
 /* The largest angle, in degrees: its sine and cosine still have all their digits' worth of meaning. */
 #define INSTANCE_ANGLE_MAX 1e6
+
+/* Whether chapter `chapter` draws what chapter `introduced` brought in: every later chapter does, but
+ * chapter 16 is chapter 13's Whitted tracer with instances and time, without chapter 14's pigments and
+ * chapter 15's paths and emission (it reads them, and says it ignores them). Cannot fail. */
+bool instance_chapter_draws(int chapter, int introduced);
 
 /* Where an instance is at one time: scale (per axis), rotate (degrees about x, y, z), translate. */
 struct scene_pose {

@@ -45,8 +45,13 @@ enum instances_update {
                         * times the cost of the last tree built: then rebuild */
 };
 
-/* The rule INSTANCES_AUTO follows (measured in docs/16-instances.md): a refit is kept while its SAH cost
- * stays within this factor of a fresh build's. */
+/* The rule INSTANCES_AUTO follows: a refit is kept while its SAH cost stays within this factor of the
+ * last build's. Measured on 2000 bunnies each wandering across an 80-unit square over 11 frames (160 x
+ * 100 pixels, two cores): refitted only, the top level's SAH cost grew from 19.9 to 759 and the run took
+ * 1.3 to 1.8 s; rebuilt every frame it stayed at 23 +- 1, in 0.6 to 0.9 s; by this rule, 0.54 to 0.57 s.
+ * A build costs little beside a frame (0.03 ms for the 41 instances of the chapter's scene, 52 ms for
+ * 10,000, 3.7 s for a million), and a tree whose cost has grown by a quarter costs every ray of the frame
+ * about that much more at the top level, so the rule rebuilds as soon as the growth is worth one. */
 #define INSTANCES_REBUILD_GROWTH 1.25
 
 /* One placed object. */

@@ -7,6 +7,7 @@
 
 #include "antialias.h"
 #include "area_light.h"
+#include "instance_syntax.h"
 #include "lens.h"
 #include "path_settings.h"
 #include "ray.h"
@@ -72,7 +73,7 @@ static double rays_to_depth(const struct scene *s) {
 double ray_budget_estimate(const struct scene *s, int chapter, struct ray_budget *b) {
     double pixels = (double)s->width * s->height;
     b->line = 0;
-    if (chapter >= PATH_CHAPTER) {
+    if (instance_chapter_draws(chapter, PATH_CHAPTER)) {
         const struct path_settings *p = &s->paths;
         double shadows = p->strategy == PATH_SCATTER ? 0.0 : p->bounces + 1.0;
         b->per_pixel = p->samples;
@@ -124,7 +125,7 @@ void ray_budget_describe(const struct ray_budget *b, const struct scene *s, int 
     if (out_size > 0)
         out[0] = '\0';
     append(out, out_size, &used, "%d x %d pixels", s->width, s->height);
-    if (chapter >= PATH_CHAPTER) {
+    if (instance_chapter_draws(chapter, PATH_CHAPTER)) {
         append(out, out_size, &used, ", paths samples %d bounces %d strategy %s: up to %.0f rays a path",
                s->paths.samples, s->paths.bounces, path_strategy_name(s->paths.strategy), b->tree_rays);
         return;

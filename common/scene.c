@@ -909,14 +909,14 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         snprintf(what + used, sizeof what - used, "%sthe area of %zu light%s", used == 0 ? "" : ", ", areas,
                  areas == 1 ? "" : "s");
     }
-    if (chapter < TEXTURE_CHAPTER && s->pigment_count > 0) {
+    if (!instance_chapter_draws(chapter, TEXTURE_CHAPTER) && s->pigment_count > 0) {
         note_count(what, sizeof what, s->pigment_count, "pigment", "pigments");
         drop_pigments(s);
         for (size_t k = 0; k < s->material_count; k++)
             s->materials[k].pigment = -1;
     }
     size_t emitting = 0;
-    for (size_t k = 0; chapter < PATH_CHAPTER && k < s->material_count; k++)
+    for (size_t k = 0; !instance_chapter_draws(chapter, PATH_CHAPTER) && k < s->material_count; k++)
         if (s->materials[k].emission.x > 0.0 || s->materials[k].emission.y > 0.0 || s->materials[k].emission.z > 0.0) {
             s->materials[k].emission = vec3_make(0, 0, 0);
             emitting++;
@@ -926,7 +926,7 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         snprintf(what + used, sizeof what - used, "%sthe emission of %zu material%s", used == 0 ? "" : ", ", emitting,
                  emitting == 1 ? "" : "s");
     }
-    if (chapter < PATH_CHAPTER && s->paths.line != 0) {
+    if (!instance_chapter_draws(chapter, PATH_CHAPTER) && s->paths.line != 0) {
         size_t used = strlen(what);
         snprintf(what + used, sizeof what - used, "%sthe paths line", used == 0 ? "" : ", ");
         s->paths = path_settings_default();
@@ -944,6 +944,7 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
     if (what[0] != '\0' && note != NULL) {
         char path[4 * 1024];
         text_escape(s->path, path, sizeof path); /* the path comes from the command line */
-        fprintf(note, "%s: chapter %d ignores %s (not introduced yet)\n", path, chapter, what);
+        fprintf(note, "%s: chapter %d ignores %s (%s)\n", path, chapter, what,
+                chapter == INSTANCE_CHAPTER ? "chapter 16 is built on chapter 13's tracer" : "not introduced yet");
     }
 }

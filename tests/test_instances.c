@@ -15,6 +15,7 @@
 #include "image_test_support.h"
 #include "instances.h"
 #include "mesh_load.h"
+#include "povray.h"
 #include "scene.h"
 #include "shutter.h"
 #include "stats.h"
@@ -173,19 +174,36 @@ Test(instance_lines, a_million_instances_are_read_and_one_more_than_the_limit_re
     free(over);
 }
 
-Test(instance_lines, are_dropped_with_a_note_before_chapter_16) {
+/* Parses `head` and `lines` as x.scene, lets chapter `chapter` drop what it does not draw, and expects
+ * its note to be `expected`; returns the scene (free it with scene_free). */
+static struct scene dropped_by(int chapter, const char *head, const char *lines, const char *expected) {
     struct scene s;
     char err[512], note[512] = "";
-    cr_assert(parse_scene_lines("x.scene", "camera eye 0 1 6 target 0 0 0 fov 40 shutter 0.5\nimage 8 8\n",
+    cr_assert(parse_scene_lines("x.scene", head, lines, test_every_kind, &s, err, sizeof err), "%s", err);
+    FILE *out = fmemopen(note, sizeof note, "w");
+    scene_drop_unsupported(&s, chapter, out);
+    fclose(out);
+    cr_assert_str_eq(note, expected);
+    return s;
+}
+
+Test(instance_lines, are_dropped_with_a_note_before_chapter_16) {
+    struct scene s = dropped_by(15, "camera eye 0 1 6 target 0 0 0 fov 40 shutter 0.5\nimage 8 8\n",
                                 "object a models/bunny.ply\nobject b models/bunny.ply\ninstance a id i\ninstance b\n"
                                 "key i time 0",
-                                test_every_kind, &s, err, sizeof err), "%s", err);
-    FILE *out = fmemopen(note, sizeof note, "w");
-    scene_drop_unsupported(&s, 15, out);
-    fclose(out);
-    cr_assert_str_eq(note, "x.scene: chapter 15 ignores 2 objects, 2 instances, the camera's shutter (not introduced "
-                           "yet)\n");
+                                "x.scene: chapter 15 ignores 2 objects, 2 instances, the camera's shutter (not introduced "
+                                "yet)\n");
     cr_assert(s.object_count == 0 && s.instance_count == 0 && s.shutter == 0.0);
+    scene_free(&s);
+}
+
+Test(instance_lines, chapter_16_ignores_pigments_paths_and_emission_as_chapter_13_does) {
+    struct scene s = dropped_by(16, "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\n",
+                                "pigment p checker colour 1 0 0 colour2 0 1 0\nmaterial m pigment p emission 1 1 1\n"
+                                "paths samples 4\nobject a models/bunny.ply\ninstance a material m",
+                                "x.scene: chapter 16 ignores 1 pigment, the emission of 1 material, the paths line "
+                                "(chapter 16 is built on chapter 13's tracer)\n");
+    cr_assert(s.instance_count == 1 && s.pigment_count == 0 && s.materials[1].pigment == -1);
     scene_free(&s);
 }
 
@@ -674,4 +692,32 @@ Test(command_line, stats_count_both_levels_and_the_memory_of_an_instance) {
                        "instances: 41 of 2 objects (1 moving), 1.808e+05 triangles instanced from 8786");
     expect_chapter_run(16, "--stats --width 40 --height 25 -o " TEST_OUT "/stats.png", 0, " bytes (with its keys and "
                                                                                           "its share of the top level)");
+}
+
+Test(pictures, the_last_frame_of_an_animation_agrees_with_povray_at_its_clock, .timeout = 120) {
+    char cwd[1024], command[4096], output[4096];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    FILE *out = fopen(TEST_OUT "/moving.scene", "w");
+    cr_assert_not_null(out);
+    fprintf(out, "camera eye 0 1.6 4.5 target 0 0.4 0 fov 40\nimage 160 120\nbackground 0.3 0.4 0.6\n"
+                 "light position -4 6 5\nmaterial clay colour 0.8 0.5 0.3 phong 0.3\nplane normal 0 1 0 distance 0\n"
+                 "object bunny %s/" BUNNY "\ninstance bunny material clay scale 0.1 0.1 0.1 id b\n"
+                 "key b time 0 translate -1 0 0\nkey b time 0.5 translate 0 0.5 0 rotate 0 90 0 scale 0.1 0.15 0.1\n"
+                 "key b time 1 translate 1 0 -1 rotate 0 200 30\n", cwd);
+    fclose(out);
+    cr_assert_eq(render_chapter(16, TEST_OUT "/moving.scene", TEST_OUT "/moving.png", "--frames 5 --frame 4"), 0);
+    snprintf(command, sizeof command, "%s " TEST_OUT "/moving.scene --quiet --pov " TEST_OUT "/moving.pov",
+             chapter_program(16));
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    /* frame 4 of 5 is clock 0.75: POV-Ray's frames 1 .. 5 over clock 0 .. 1, only the fourth rendered */
+    snprintf(command, sizeof command, "povray +I" TEST_OUT "/moving.pov +O" TEST_OUT "/moving-povray.png +W160 +H120 "
+             POVRAY_OPTIONS " +KFI1 +KFF5 +KI0 +KF1 +SF4 +EF4 +FN8");
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    struct image_difference d = compare_png(TEST_OUT "/moving-0004.png", TEST_OUT "/moving-povray4.png");
+    report_difference("frame 4 of 5 vs POV-Ray", &d);
+    cr_assert(image_difference_agrees(&d), "within 2: %.3f%%, mean %.4f", 100 * d.within_2, d.mean);
+    cr_assert_geq(d.within_1, 0.9999, "within 1: %.4f%%", 100 * d.within_1);
+    /* and the frame is not the first: the bunny moved */
+    cr_assert_eq(render_chapter(16, TEST_OUT "/moving.scene", TEST_OUT "/still.png", "--frames 5 --frame 1"), 0);
+    cr_assert_gt(compare_png(TEST_OUT "/still-0001.png", TEST_OUT "/moving-0004.png").max, 50);
 }
