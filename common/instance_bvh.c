@@ -177,6 +177,7 @@ void instance_bvh_free(struct instance_bvh *b) {
 
 /* ==== refitting =============================================================================== */
 
+/* TASK 16.2: refitting the top level: the same tree, its boxes from the leaves up */
 void instance_bvh_refit(struct instance_bvh *b, const struct aabb *boxes) {
     /* Children come after their parents in nodes[], so going backwards meets every child before its
      * parent: one pass from the last node to the root recomputes every box from below. */

@@ -284,6 +284,7 @@ struct closest_search {
 
 /* Tests instance k for a hit nearer than the best; among hits at exactly the same t, the lowest
  * instance wins, as in a loop over the instances in order. */
+/* TASK 16.1: the ray carried into an instance, its hit carried back */
 static void closest_in_instance(struct closest_search *q, size_t k, double t_min) {
     const struct instances *in = q->in;
     struct transform to_world, to_object;

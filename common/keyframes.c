@@ -10,7 +10,7 @@
 
 #include "transform.h"
 
-static const double RADIANS_PER_DEGREE = M_PI / 180.0;
+#define RADIANS_PER_DEGREE (M_PI / 180.0)
 
 /* Returns a + f (b - a) for each of the nine numbers. */
 static struct pose pose_between(const struct pose *a, const struct pose *b, double f) {
@@ -77,6 +77,7 @@ static double steps_for(double speed, double duration, double size) {
 /* Returns the box of the object over [start, end] (start < end), during which the pose moves linearly
  * from `from` to `to` (the same pose for a stretch that holds), `radius` being the object box's radius
  * about its origin. keyframes.h gives the reasoning. */
+/* TASK 16.3: the box of a moving object over a stretch of the shutter */
 static struct aabb stretch_box(const struct keyframe *keys, size_t count, struct aabb object_box, double radius,
                                const struct pose *from, const struct pose *to, double from_time, double to_time,
                                double start, double end) {

@@ -159,7 +159,7 @@ static struct page pages[] = {
     {"docs/09-kdtree.md"}, {"docs/povray.md"},      {"docs/scene-format.md"}, {"docs/gallery.md"},
     {"docs/seed.md"},      {"docs/10-bvh.md"},     {"docs/fuzzing.md"},     {"docs/11-fast.md"},
     {"docs/12-antialias.md"}, {"docs/13-distributed.md"}, {"docs/14-textures.md"}, {"docs/15-paths.md"},
-    {"docs/kdtree-notes.md"},
+    {"docs/kdtree-notes.md"}, {"docs/16-instances.md"},
 };
 
 ParameterizedTestParameters(doc_commands, every_command_runs_as_written) {

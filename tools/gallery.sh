@@ -73,11 +73,16 @@ build_fault() { # build_fault PATCH NN
 }
 
 # Renders with program $1 the fault's scene and args into $2.
+# Args with --frames N --frame K (chapter 16) write one frame, PNG's name with -KKKK before .png: it is
+# moved to PNG.
 render() { # render PROGRAM PATCH PNG
-    local scene args
+    local scene args frame
     scene=$(field "$2" Scene)
     args=$(field "$2" Args)
-    eval "\"\$1\" \"\$scene\" ${args} \"\${size[@]}\" --quiet -o \"\$3\""
+    eval "\"\$1\" \"\$scene\" ${args} \"\${size[@]}\" --quiet -o \"\$3\"" || return 1
+    for frame in "${3%.png}"-[0-9][0-9][0-9][0-9].png; do
+        [ ! -e "$frame" ] || mv "$frame" "$3"
+    done
 }
 
 # Whether pictures a and b pass the reference-image rule (tests/support/image_test_support.h): at least

@@ -44,7 +44,8 @@ extern const struct check check_list[];
 extern const size_t check_count;
 
 /* The checks of each file, in check_list order (check_geometry.c, check_shading.c, check_accel.c,
- * check_antialias.c, check_distributed.c, check_textures.c, check_paths.c, check_picture.c); defined with CHECK()
+ * check_antialias.c, check_distributed.c, check_textures.c, check_paths.c, check_instances.c,
+ * check_picture.c); defined with CHECK()
  * below. */
 #define CHECK(fn) bool fn(char *why, size_t why_size)
 
@@ -76,6 +77,15 @@ const char *check_vec_text(vec3 v, char buffer[static 64]);
  * output ("sphere tests"). */
 bool check_counted_once(uint64_t added, const char *function, const char *what, const char *shown, char *why,
                         size_t why_size);
+
+/* Parses `text`, the check's own scene, as the file check.scene with the shapes of `kinds`, into *s, and
+ * makes its world *w. Returns false with the reason in why when either fails (a framework problem, not
+ * the student's: the message says so), and then leaves nothing to free; else free both when done. */
+struct scene;
+struct world;
+struct shape_kind;
+bool check_scene_world(const char *text, const struct shape_kind *const *kinds, struct scene *s, struct world *w,
+                       char *why, size_t why_size);
 
 /* "a ray from (0, 0, 5) along (0, 0, -1)", for a check's messages. */
 const char *check_ray_text(const ray *r, char buffer[static 160]);

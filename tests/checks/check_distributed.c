@@ -20,19 +20,12 @@
  * the reason in why when the check's own scene does not parse. */
 static bool share_at_origin(const char *lines, vec3 *share, unsigned long *rays, char *why, size_t why_size) {
     static const struct shape_kind *const kinds[] = {&box_kind, NULL};
-    char text[1024], err[512];
+    char text[1024];
     snprintf(text, sizeof text, "camera eye 0 0 5  target 0 0 0  fov 40\nimage 8 8\n%s\n", lines);
     struct scene s;
     struct world w;
-    if (!scene_parse("check.scene", text, kinds, &s, err, sizeof err)) {
-        snprintf(why, why_size, "the check's own scene did not parse (a framework problem, not your task): %s", err);
+    if (!check_scene_world(text, kinds, &s, &w, why, why_size))
         return false;
-    }
-    if (!world_init(&w, &s, err, sizeof err)) {
-        snprintf(why, why_size, "world_init failed: %s", err);
-        scene_free(&s);
-        return false;
-    }
     stats_reset_thread();
     *share = soft_shadow_filtered(&w, vec3_make(0, 0, 0), &s.lights[0]);
     *rays = (unsigned long)stats_thread.shadow_rays;

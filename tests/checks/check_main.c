@@ -17,6 +17,8 @@
 #include <string.h>
 
 #include "check.h"
+#include "scene.h"
+#include "world.h"
 
 /* Which tasks exist: what the student writes, where, and what it needs. A picture check N.P needs
  * exactly the tasks chapter N's program runs on its own scene (tests/test_coursework.c proves it, by
@@ -71,6 +73,13 @@ const struct task check_tasks[] = {
     {"15.1", "next-event estimation, and its weight against scattering", "path_direct_light in common/path_trace.c", "2.1"},
     {"15.2", "the path: emission, scattering, Russian roulette", "radiance in common/path_trace.c", "1.1 2.2 15.1"},
     {"15.P", "chapter 15's picture", "chapters/15-paths", "1.1 2.1 2.2 5.1 6.1 8.1 10.2 11.1 11.2 15.1 15.2"},
+    {"16.1", "the ray carried into an instance, its hit carried back", "closest_in_instance in common/instances.c",
+     "5.1 10.2 11.1 11.2"},
+    {"16.2", "refitting the top level: the same tree, its boxes from the leaves up", "instance_bvh_refit in "
+     "common/instance_bvh.c", "5.1"},
+    {"16.3", "the box of a moving object over a stretch of the shutter", "stretch_box in common/keyframes.c", ""},
+    {"16.P", "chapter 16's picture", "chapters/16-instances",
+     "1.1 4.1 5.1 6.1 6.2 7.1 8.2 10.2 11.1 11.2 12.1 16.1 16.3"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -160,6 +169,15 @@ CHECK(check_furnace_light);
 CHECK(check_furnace_mis);
 CHECK(check_strategies_agree);
 CHECK(check_picture_15);
+CHECK(check_instance_distance);
+CHECK(check_instance_normal);
+CHECK(check_refit_holds_the_moved_boxes);
+CHECK(check_refit_finds_every_instance);
+CHECK(check_refit_keeps_the_tree);
+CHECK(check_motion_box_translation);
+CHECK(check_motion_box_turn);
+CHECK(check_motion_box_keys_and_shutter);
+CHECK(check_picture_16);
 
 const struct check check_list[] = {
     {"1.1", "the top-left pixel's ray", check_camera_top_left},
@@ -248,6 +266,15 @@ const struct check check_list[] = {
     {"15.2", "the white furnace by MIS: no light counted twice", check_furnace_mis},
     {"15.2", "light, scattering and MIS converge to one picture", check_strategies_agree},
     {"15.P", "the picture matches the reference", check_picture_15},
+    {"16.1", "a ray along the stretch: t is the same in both spaces", check_instance_distance},
+    {"16.1", "the normal of a stretched slope: the inverse transpose", check_instance_normal},
+    {"16.2", "boxes moved, one far away: the refitted tree holds them all", check_refit_holds_the_moved_boxes},
+    {"16.2", "a ray through each moved box reaches its instance", check_refit_finds_every_instance},
+    {"16.2", "all moved together: the same tree, each box moved with them", check_refit_keeps_the_tree},
+    {"16.3", "a box sliding and growing: every position held, none far beyond", check_motion_box_translation},
+    {"16.3", "an arm turning 90 degrees: its middle position held too", check_motion_box_turn},
+    {"16.3", "three keys, a shutter across the middle one, a shutter of no length", check_motion_box_keys_and_shutter},
+    {"16.P", "the picture matches the reference", check_picture_16},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
 
@@ -278,6 +305,21 @@ const char *check_ray_text(const ray *r, char buffer[static 160]) {
     char o[64], d[64];
     snprintf(buffer, 160, "a ray from %s along %s", check_vec_text(r->origin, o), check_vec_text(r->direction, d));
     return buffer;
+}
+
+bool check_scene_world(const char *text, const struct shape_kind *const *kinds, struct scene *s, struct world *w,
+                       char *why, size_t why_size) {
+    char err[512];
+    if (!scene_parse("check.scene", text, kinds, s, err, sizeof err)) {
+        snprintf(why, why_size, "the check's own scene did not parse (a framework problem, not your task): %s", err);
+        return false;
+    }
+    if (!world_init(w, s, err, sizeof err)) {
+        snprintf(why, why_size, "world_init failed: %s", err);
+        scene_free(s);
+        return false;
+    }
+    return true;
 }
 
 static int chapter_of(const char *id) { return atoi(id); }
@@ -389,7 +431,7 @@ int main(int argc, char **argv) {
     else if (argc == 2 && has_tasks(atoi(argv[1])))
         chapter = atoi(argv[1]);
     else {
-        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..15; make check-N runs it)\n", argv[0]);
+        fprintf(stderr, "usage: %s N | all | --task N.K | --needs N.K | --list   (N = 1..16; make check-N runs it)\n", argv[0]);
         return 2;
     }
     setvbuf(stdout, NULL, _IOLBF, 0);

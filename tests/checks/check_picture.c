@@ -221,3 +221,4 @@ CHECK(check_picture_12) { return picture(12, why, why_size); }
 CHECK(check_picture_13) { return picture(13, why, why_size); }
 CHECK(check_picture_14) { return picture(14, why, why_size); }
 CHECK(check_picture_15) { return picture(15, why, why_size); }
+CHECK(check_picture_16) { return picture(16, why, why_size); }

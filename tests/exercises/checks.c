@@ -861,3 +861,92 @@ bool check_cone(cone_fn f, char *why, size_t why_size) {
                     mean.y, mean.z, expected.x, expected.y, expected.z);
     return true;
 }
+
+/* ---- exercise 16.4: spherical linear interpolation -------------------------------------------- */
+
+#define SLERP_DEGREES_TOLERANCE 1e-6 /* angles in degrees: slerp meets them to rounding */
+
+/* The unit quaternion of the turn by `degrees` about the axis (x, y, z). */
+static void quaternion_turn(double degrees, double x, double y, double z, double q[4]) {
+    double length = sqrt(x * x + y * y + z * z), half = degrees * M_PI / 360.0;
+    q[0] = cos(half);
+    q[1] = sin(half) * x / length;
+    q[2] = sin(half) * y / length;
+    q[3] = sin(half) * z / length;
+}
+
+static double quaternion_dot(const double *a, const double *b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
+}
+
+/* The angle in degrees of the turn that takes unit quaternion a to b, from 0 to 180: the angle between
+ * them as 4-vectors (b flipped when that is shorter), doubled; by atan2, which stays exact for small
+ * angles where acos of the dot product does not. */
+static double quaternion_turn_between(const double *a, const double *b) {
+    double sign = quaternion_dot(a, b) < 0 ? -1.0 : 1.0, minus = 0, plus = 0;
+    for (int k = 0; k < 4; k++) {
+        minus += (a[k] - sign * b[k]) * (a[k] - sign * b[k]);
+        plus += (a[k] + sign * b[k]) * (a[k] + sign * b[k]);
+    }
+    return 4.0 * atan2(sqrt(minus), sqrt(plus)) * 180.0 / M_PI;
+}
+
+static bool quaternion_is_unit(const double *q) { return fabs(quaternion_dot(q, q) - 1.0) < 1e-9; }
+
+static bool quaternion_equal(const double *a, const double *b) {
+    for (int k = 0; k < 4; k++)
+        if (!(fabs(a[k] - b[k]) < 1e-9))
+            return false;
+    return true;
+}
+
+bool check_slerp(slerp_fn f, char *why, size_t why_size) {
+    double q0[4], q1[4], out[4];
+    quaternion_turn(20, 1, 2, 3, q0);
+    quaternion_turn(150, -1, 0.5, 2, q1);
+    double whole = quaternion_turn_between(q0, q1); /* about 136 degrees */
+    f(q0, q1, 0, out);
+    if (!quaternion_equal(out, q0))
+        return fail(why, why_size, "t = 0 gave (%.6g, %.6g, %.6g, %.6g), expected q0 = (%.6g, %.6g, %.6g, %.6g)", out[0],
+                    out[1], out[2], out[3], q0[0], q0[1], q0[2], q0[3]);
+    f(q0, q1, 1, out);
+    if (!quaternion_equal(out, q1))
+        return fail(why, why_size, "t = 1 gave (%.6g, %.6g, %.6g, %.6g), expected q1 = (%.6g, %.6g, %.6g, %.6g)", out[0],
+                    out[1], out[2], out[3], q1[0], q1[1], q1[2], q1[3]);
+    for (int k = 1; k < 10; k++) {
+        double t = k / 10.0;
+        f(q0, q1, t, out);
+        if (!quaternion_is_unit(out))
+            return fail(why, why_size, "t = %.1f: the result has length %.12g, not 1", t, sqrt(quaternion_dot(out, out)));
+        double done = quaternion_turn_between(q0, out), left = quaternion_turn_between(out, q1);
+        if (!(fabs(done + left - whole) < SLERP_DEGREES_TOLERANCE))
+            return fail(why, why_size, "t = %.1f: the result is %.6g degrees from q0 and %.6g from q1, which adds up to "
+                        "more than the %.6g between them: it is off the arc from q0 to q1", t, done, left, whole);
+        if (!(fabs(done - t * whole) < SLERP_DEGREES_TOLERANCE))
+            return fail(why, why_size, "t = %.1f: the result is %.6g degrees from q0, expected %.1f of the %.6g between q0 "
+                        "and q1, %.6g: the speed is not constant%s", t, done, t, whole, t * whole,
+                        fabs(done - t * whole) > 0.01 ? " (a linear blend made unit length, nlerp, turns faster in "
+                                                        "the middle: weigh q0 and q1 by sines)" : "");
+    }
+    /* -q1 is the same turn as q1: the way from q0 to it is the same short arc, ending at -q1. */
+    double minus_q1[4] = {-q1[0], -q1[1], -q1[2], -q1[3]}, same[4];
+    f(q0, q1, 0.5, same);
+    f(q0, minus_q1, 0.5, out);
+    if (!(fabs(fabs(quaternion_dot(out, same)) - 1.0) < 1e-9))
+        return fail(why, why_size, "from q0 to -q1 (the same turn as q1) at t = 0.5, the result is %.6g degrees of turn "
+                    "away from the result with q1: the long way round? Flip q1 when q0 . q1 < 0",
+                    quaternion_turn_between(out, same));
+    f(q0, minus_q1, 1, out);
+    if (!quaternion_equal(out, minus_q1) && !quaternion_equal(out, q1))
+        return fail(why, why_size, "from q0 to -q1 at t = 1: expected -q1 (or q1, the same turn), got (%.6g, %.6g, %.6g, "
+                    "%.6g)", out[0], out[1], out[2], out[3]);
+    /* Two turns a millionth of a degree apart: no division by the sine of a tiny angle. */
+    double near_q0[4];
+    quaternion_turn(20 + 1e-6, 1, 2, 3, near_q0);
+    f(q0, near_q0, 0.5, out);
+    if (!quaternion_is_unit(out) || !(quaternion_turn_between(q0, out) < 1e-5))
+        return fail(why, why_size, "q0 and a turn 1e-6 degrees from it, t = 0.5: the result (%.6g, %.6g, %.6g, %.6g) is "
+                    "not a unit quaternion beside them (dividing by the sine of a tiny angle? Blend linearly there)",
+                    out[0], out[1], out[2], out[3]);
+    return true;
+}

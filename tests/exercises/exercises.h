@@ -147,4 +147,16 @@ bool sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, dou
 typedef bool (*cone_fn)(vec3, double, vec3, double, double, vec3 *, double *);
 bool check_cone(cone_fn f, char *why, size_t why_size);
 
+/* Exercise 16.4 (common/keyframes.c): spherical linear interpolation of two rotations (Shoemake 1985),
+ * the way a key's turn can be made at constant speed about one axis where chapter 16's keys blend each
+ * angle apart. q0 and q1 are unit quaternions (w, x, y, z): the turn by angle a about the unit axis u is
+ * (cos a/2, u sin a/2), and q and -q are the same turn. Stores in out the unit quaternion a fraction t in
+ * [0, 1] of the way from q0 to q1 along the shorter arc: q0 at t = 0, q1 at t = 1 (-q1 when q0 . q1 < 0,
+ * the same turn the short way), turning at a constant angular speed, so that the turn from q0 to out(t)
+ * is t times the whole turn. Where q0 and q1 are nearly the same (q0 . q1 above 0.9995 after the flip),
+ * the normalised linear blend, which is then as good and avoids dividing by the sine of a tiny angle. */
+void keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]);
+typedef void (*slerp_fn)(const double *, const double *, double, double *);
+bool check_slerp(slerp_fn f, char *why, size_t why_size);
+
 #endif

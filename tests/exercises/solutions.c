@@ -505,3 +505,35 @@ bool wrong_sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u
                                 double *density) {
     return cone(centre, radius, point, u1, u2, direction, density, true);
 }
+
+/* Slerp: q0 and q1 (flipped to the short way) weighed by sin((1 - t) theta) and sin(t theta) over
+ * sin(theta), theta the angle between them. With `linear` (the wrong answer) the plain blend (1 - t) q0 +
+ * t q1 made unit length, nlerp, which has the right ends and arc but turns faster in the middle. */
+static void slerp(const double q0[4], const double q1[4], double t, double out[4], bool linear) {
+    double dot = q0[0] * q1[0] + q0[1] * q1[1] + q0[2] * q1[2] + q0[3] * q1[3], sign = 1.0;
+    if (dot < 0) {
+        dot = -dot;
+        sign = -1.0;
+    }
+    double a = 1.0 - t, b = t;
+    if (!linear && dot < 0.9995) {
+        double theta = acos(dot);
+        a = sin((1.0 - t) * theta) / sin(theta);
+        b = sin(t * theta) / sin(theta);
+    }
+    double length = 0;
+    for (int k = 0; k < 4; k++) {
+        out[k] = a * q0[k] + sign * b * q1[k];
+        length += out[k] * out[k];
+    }
+    for (int k = 0; k < 4; k++)
+        out[k] /= sqrt(length);
+}
+
+void solution_keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]) {
+    slerp(q0, q1, t, out, false);
+}
+
+void wrong_keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]) {
+    slerp(q0, q1, t, out, true);
+}

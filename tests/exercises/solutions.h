@@ -35,5 +35,7 @@ bool solution_sampling_sphere_cone(vec3 centre, double radius, vec3 point, doubl
                                    double *density);
 bool wrong_sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,
                                 double *density);
+void solution_keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]);
+void wrong_keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]);
 
 #endif

@@ -24,6 +24,8 @@ void figure_lens(FILE *out);       /* 13-lens.svg: the thin lens's rays, the foc
 void figure_textures(FILE *out);   /* 14-normals.svg: normals blended across a face, before and after renormalising */
 void figure_sampling(FILE *out);   /* 15-sampling.svg: uniform and cosine-weighted directions over the hemisphere */
 void figure_convergence(FILE *out); /* 15-convergence.svg: the path tracer's error against paths a pixel */
+void figure_instances(FILE *out);  /* 16-instances.svg: two levels, a ray carried into object space and back */
+void figure_motion_box(FILE *out); /* 16-motion-box.svg: a turning object's box, from its ends and its motion */
 void figure_microfacets(FILE *out); /* 17-microfacets.svg: the half vector, the distribution D, masking G */
 
 #endif
