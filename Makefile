@@ -85,9 +85,10 @@ MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture
 MODULES_15 := $(MODULES_14) sampling emitter bsdf path_trace path_image
 MODULES_16 := $(MODULES_15)
-MODULES_17 := $(MODULES_16)
+MODULES_17 := $(MODULES_16) microfacet rough_surface
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
             09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths
+CHAPTERS += 17-rough
 # (with the modules of the chapters being written, so that their tests link before the chapter does)
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))) $(MODULES_17))
 
