@@ -247,6 +247,7 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               povray_agreement/chapter_12_grid_of_2_and_of_4 \
               results/the_committed_plots_and_tables_are_what_their_csv_files_draw \
               watertight/povray_draws_the_cube_from_inside_without_a_leak_as_chapter_10_does
+LONG_TESTS += rough_plates_long/* reference_image/chapter_17_rough_matches_its_reference
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))

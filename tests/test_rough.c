@@ -197,3 +197,112 @@ Test(rough_furnace, the_energy_a_rough_metal_loses_is_the_integral_of_its_model)
             cr_expect_lt(albedo, 1.0, "a rough metal loses energy by single scattering");
         }
 }
+
+/* ---- Veach's plates ----------------------------------------------------------------------------------- */
+
+enum { PLATES = 4, LIGHTS = 4, STRATEGIES = 3 };
+static const char *const strategy_names[STRATEGIES] = {"mis", "light", "scatter"};
+
+/* Where light `l` shines in plate `p` of scenes/17-veach.scene, as shares of the picture's width and
+ * height: the centre of its highlight (the mirror point of the light's centre, projected by the camera). */
+static const double highlight_x[LIGHTS] = {0.323, 0.440, 0.560, 0.677};
+static const double highlight_y[PLATES] = {0.426, 0.555, 0.703, 0.891};
+#define HIGHLIGHT_HALF_WIDTH 0.04  /* a region is this share of the width either side of the centre */
+#define HIGHLIGHT_HALF_HEIGHT 0.03 /* and this share of the height above and below */
+
+/* One strategy's picture of the plates, by region: the mean and the mean per-path variance (both the
+ * mean of the channels), and the number of pixels. */
+struct plate_regions {
+    double mean[PLATES][LIGHTS], variance[PLATES][LIGHTS];
+    int pixels[PLATES][LIGHTS];
+};
+
+static void render_plates(const char *strategy, int width, int height, int paths, struct plate_regions *r) {
+    char image[64], samples[64], strategy_set[64];
+    snprintf(image, sizeof image, "image=%d %d", width, height);
+    snprintf(samples, sizeof samples, "paths.samples=%d", paths);
+    snprintf(strategy_set, sizeof strategy_set, "paths.strategy=%s", strategy);
+    const char *sets[] = {image, samples, strategy_set};
+    struct path_setup t;
+    char err[512] = "";
+    cr_assert(path_setup_file(&t, "scenes/17-veach.scene", sets, 3, err, sizeof err), "%s", err);
+    t.paths.surface = &rough_surface_hook;
+    vec3 *means = malloc(2 * (size_t)width * (size_t)height * sizeof *means);
+    cr_assert(means != NULL);
+    vec3 *variances = means + (size_t)width * (size_t)height;
+    path_setup_render(&t, means, variances);
+    memset(r, 0, sizeof *r);
+    for (int p = 0; p < PLATES; p++)
+        for (int l = 0; l < LIGHTS; l++) {
+            int i0 = (int)ceil((highlight_x[l] - HIGHLIGHT_HALF_WIDTH) * width);
+            int i1 = (int)floor((highlight_x[l] + HIGHLIGHT_HALF_WIDTH) * width);
+            int j0 = (int)ceil((highlight_y[p] - HIGHLIGHT_HALF_HEIGHT) * height);
+            int j1 = (int)floor((highlight_y[p] + HIGHLIGHT_HALF_HEIGHT) * height);
+            for (int j = j0; j <= j1; j++)
+                for (int i = i0; i <= i1; i++) {
+                    vec3 m = means[j * width + i], v = variances[j * width + i];
+                    r->mean[p][l] += (m.x + m.y + m.z) / 3;
+                    r->variance[p][l] += (v.x + v.y + v.z) / 3;
+                    r->pixels[p][l]++;
+                }
+            r->mean[p][l] /= r->pixels[p][l];
+            r->variance[p][l] /= r->pixels[p][l];
+        }
+    free(means);
+    path_setup_free(&t);
+}
+
+/* The three strategies converge to one picture: each region's means agree within `most` combined standard
+ * errors (every pair when all_pairs is set; otherwise MIS and the better of the other two there: with
+ * few paths, light sampling of the large light in the smoothest plate and scattering towards the
+ * smallest light from the roughest plate have not yet found what they must find, and their spread
+ * understates their error); and MIS has the least variance over all the regions together, and in every
+ * region no more than `mis_most` times the better of the other two. Prints the table when `print` is set. */
+static void expect_plates(int width, int height, int paths, double most, double mis_most, bool all_pairs, bool print) {
+    struct plate_regions r[STRATEGIES];
+    for (int s = 0; s < STRATEGIES; s++)
+        render_plates(strategy_names[s], width, height, paths, &r[s]);
+    double total[STRATEGIES] = {0};
+    for (int p = 0; p < PLATES; p++)
+        for (int l = 0; l < LIGHTS; l++) {
+            for (int s = 0; s < STRATEGIES; s++)
+                total[s] += r[s].variance[p][l];
+            int better = r[1].variance[p][l] < r[2].variance[p][l] ? 1 : 2;
+            for (int a = 0; a < STRATEGIES; a++)
+                for (int b = a + 1; b < STRATEGIES; b++) {
+                    if (!all_pairs && !(a == 0 && b == better))
+                        continue;
+                    double n = (double)paths * r[a].pixels[p][l];
+                    double z = fabs(r[a].mean[p][l] - r[b].mean[p][l]) /
+                               sqrt((r[a].variance[p][l] + r[b].variance[p][l]) / n + 1e-12);
+                    cr_expect_lt(z, most, "plate %d, light %d: %s %.4f and %s %.4f differ by %.1f standard errors",
+                                 p + 1, l + 1, strategy_names[a], r[a].mean[p][l], strategy_names[b], r[b].mean[p][l], z);
+                }
+            double best_other = fmin(r[1].variance[p][l], r[2].variance[p][l]);
+            cr_expect_leq(r[0].variance[p][l], mis_most * best_other,
+                          "plate %d, light %d: MIS's variance %.4g against light %.4g and scatter %.4g", p + 1, l + 1,
+                          r[0].variance[p][l], r[1].variance[p][l], r[2].variance[p][l]);
+        }
+    cr_expect(total[0] < total[1] && total[0] < total[2], "variance over the plates: mis %.4g, light %.4g, scatter %.4g",
+              total[0], total[1], total[2]);
+    if (print) {
+        printf("Veach's plates, %d x %d pixels, %d paths a pixel: each region's variance of one path (mean of the "
+               "channels), light / scatter / mis\n", width, height, paths);
+        for (int p = 0; p < PLATES; p++) {
+            printf("plate %d (roughness %s):", p + 1, (const char *[]){"0.1", "0.18", "0.26", "0.35"}[p]);
+            for (int l = 0; l < LIGHTS; l++)
+                printf("  light %d %8.3g / %8.3g / %8.3g", l + 1, r[1].variance[p][l], r[2].variance[p][l],
+                       r[0].variance[p][l]);
+            printf("\n");
+        }
+        printf("over the plates: light %.4g, scatter %.4g, mis %.4g\n", total[1], total[2], total[0]);
+    }
+}
+
+Test(rough_plates, strategies_agree_and_mis_has_the_least_variance) {
+    expect_plates(192, 128, 64, 5.0, 2.0, false, false);
+}
+
+Test(rough_plates_long, the_table_of_each_regions_variance) {
+    expect_plates(384, 256, 256, 5.0, 2.0, true, true);
+}
