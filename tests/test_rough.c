@@ -195,6 +195,8 @@ Test(rough_furnace, the_energy_a_rough_metal_loses_is_the_integral_of_its_model)
                          "roughness %g at %g degrees: the furnace %.4f +- %.4f, the integral %.4f", roughness[r],
                          degrees[d], mean, error, albedo);
             cr_expect_lt(albedo, 1.0, "a rough metal loses energy by single scattering");
+            printf("white furnace: roughness %.2f at %2.0f degrees: the furnace %.4f +- %.4f, the integral %.4f "
+                   "(a loss of %.1f%%)\n", roughness[r], degrees[d], mean, error, albedo, 100 * (1 - albedo));
         }
 }
 
