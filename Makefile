@@ -343,11 +343,13 @@ endif
 compare: all $(BUILD)/compare | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
 
-## make compare-cycles  chapter 15 against Blender's Cycles (installs Debian's blender): two scenes,
-##                     block means within noise and means within 1 %, in out/cycles/ (UPDATE_DOCS=1
-##                     also writes the table into docs/15-paths.md); several minutes
-compare-cycles: $(BUILD)/chapter-15 | deps
-	UPDATE_DOCS=$(UPDATE_DOCS) tools/cycles/compare-cycles.sh $(BUILD)
+## make compare-cycles  chapters 15 and 17 against Blender's Cycles (installs Debian's blender): two
+##                     scenes each, block means within noise and means within 1 %, in out/cycles/
+##                     (UPDATE_DOCS=1 also writes the tables into docs/15-paths.md and docs/17-rough.md;
+##                     CHAPTERS=17 only chapter 17's); several minutes
+compare-cycles: $(BUILD)/chapter-15 $(BUILD)/chapter-17 | deps
+	UPDATE_DOCS=$(UPDATE_DOCS) CHAPTERS="$(CHAPTERS_COMPARED)" tools/cycles/compare-cycles.sh $(BUILD)
+CHAPTERS_COMPARED ?= 15 17
 
 ## make references     re-render the reference images on purpose and say what changed (a picture whose
 ##                     pixels are the same is left as it was, byte for byte)
