@@ -220,7 +220,7 @@ $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/comm
 # Chapter 11's agreement with POV-Ray is long too: its scene and its reference picture are chapter
 # 10's, whose agreement make test checks, and make test holds chapter 11's picture to that reference.
 # make test and make test-long together run every test once; CI runs both (.ci/run).
-LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
+LONG_TESTS := gallery/every_fault_is_caught_by_the_grader microfacet_long/* \
               coursework/the_grader_ends_every_run_with_a_scoreboard_of_every_task \
               coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_grades_* coursework_long/* \
               results/the_quick_mode_runs_every_experiment_and_draws_every_plot_and_table \

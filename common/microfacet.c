@@ -44,7 +44,8 @@ double microfacet_ggx_lambda(vec3 w, double alpha) {
 double microfacet_ggx_g1(vec3 w, double alpha) { return 1.0 / (1.0 + microfacet_ggx_lambda(w, alpha)); }
 
 double microfacet_ggx_g2(vec3 wo, vec3 wi, double alpha) {
-    return 1.0 / (1.0 + microfacet_ggx_lambda(wo, alpha) + microfacet_ggx_lambda(wi, alpha));
+    /* the two Lambdas added first, so that swapping wo and wi gives the same number to the last bit */
+    return 1.0 / (1.0 + (microfacet_ggx_lambda(wo, alpha) + microfacet_ggx_lambda(wi, alpha)));
 }
 
 vec3 microfacet_ggx_sample_visible(vec3 wo, double alpha, double u1, double u2) {
