@@ -19,7 +19,7 @@
 # nearly all its light samples and the small lamps' light came from rare scattered paths, too noisy to
 # compare at 1024 paths). Their rows go to out/cycles/table-17.md and, with UPDATE_DOCS=1, into
 # docs/17-rough.md. CHAPTERS="15" or "17" draws only one chapter's scenes.
-set -eu
+set -euo pipefail # a pipeline fails when compare.py does (a scene that disagrees)
 build=${1:-build}
 out=out/cycles
 threads=${CYCLES_THREADS:-2}
