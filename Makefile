@@ -11,7 +11,7 @@
 # The goals that need the model answers or every task done, or that would overwrite the reference files
 # with the student's pictures: a student copy (tools/student.sh leaves .student-copy in it) refuses them
 # with a sentence, and make help there leaves them out.
-NOT_IN_HANDOUT := gallery test-long student references results figures test-accel-long
+NOT_IN_HANDOUT := gallery test-long student references results figures test-accel-long rough-energy
 ifneq ($(wildcard .student-copy),)
 ifneq ($(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)),)
 $(error make $(filter $(NOT_IN_HANDOUT),$(MAKECMDGOALS)) is not part of the coursework copy: it needs the model \
@@ -112,7 +112,7 @@ SCENE_FILES := $(if $(CHAPTER_SCENES),$(shell awk '$$1 == "mesh" { print substr(
                         $(CHAPTER_SCENES)))
 scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
-.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures \
+.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures rough-energy \
         clean help check student $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
@@ -361,6 +361,16 @@ references: all $(BUILD)/compare
 ##                     same are left as they were)
 gallery: all $(BUILD)/compare
 	tools/gallery.sh $(BUILD)
+
+# Chapter 17's plot of the light a rough conductor loses against its roughness: the table of
+# tools/rough_energy.c (microfacet.c's numerical integral) drawn by tools/rough-energy.gp.
+$(BUILD)/rough-energy: $(BUILD)/tools/rough_energy.o $(addprefix $(BUILD)/common/,microfacet.o bsdf.o sampling.o sample_hash.o)
+	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
+
+## make rough-energy   redraw chapter 17's plot of energy loss against roughness (docs/images/17-energy-loss.*)
+rough-energy: $(BUILD)/rough-energy
+	./$(BUILD)/rough-energy > docs/images/17-energy-loss.txt
+	gnuplot -e "data='docs/images/17-energy-loss.txt'; output='docs/images/17-energy-loss.svg'" tools/rough-energy.gp
 
 # The walkthroughs' figures: tools/figures/ draws them as SVG with the chapters' own functions, into
 # docs/figures/ (tests/test_figures.c checks that the committed ones are what it draws now).

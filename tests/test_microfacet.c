@@ -2,7 +2,9 @@
  * against closed forms, every sampler against the density it claims by a chi-square test over the
  * sphere (and a wrong density caught by the same test), the densities' integrals, reciprocity, energy,
  * the white furnace's loss against the numerical integral, and the smooth limit. The full grid of
- * roughnesses and angles for the chi-square test runs in make test-long (suite microfacet_long). */
+ * roughnesses and angles for the chi-square test runs in make test-long (suite microfacet_long), and so
+ * does tests/test_microfacet_faults.c, which builds this file again with each fault of the gallery.
+ * This file links with the lobes' modules alone (microfacet, bsdf, sampling, sample_hash). */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -19,12 +21,15 @@
 #define THETA_CELLS 10
 #define PHI_CELLS 20
 /* Each cell's expected share is its density integrated adaptively: a rectangle of (theta, phi) is
- * halved both ways, down to QUADRATURE_DEPTH times, until its four halves' sum (each by a midpoint rule
- * of RECTANGLE_STEPS^2 points) agrees with its own to QUADRATURE_TOLERANCE times its share of the
- * sphere's rectangle. A lobe's density may jump (at alpha 1 the refracted density falls from about 5
- * to 0 where the microfacet that would refract reaches the horizon), and a fixed grid misplaces such
- * jumps by a few thousandths of the whole. */
+ * halved both ways, at least QUADRATURE_MIN_DEPTH and at most QUADRATURE_DEPTH times, until its four
+ * halves' sum (each by a midpoint rule of RECTANGLE_STEPS^2 points) agrees with its own to
+ * QUADRATURE_TOLERANCE times its share of the sphere's rectangle. A lobe's density may jump (Phong's
+ * at alpha 1 from 1 / (2 pi) to 0 at the edge of its lobe; the refracted density from about 5 to 0 where
+ * the microfacet that would refract reaches the horizon): a fixed grid misplaces such jumps by a few
+ * thousandths of the whole, and the least depth keeps a jump that clips a rectangle's corner between
+ * its points from going unseen. */
 #define RECTANGLE_STEPS 4
+#define QUADRATURE_MIN_DEPTH 3
 #define QUADRATURE_DEPTH 8
 #define QUADRATURE_TOLERANCE 1e-4
 /* Cells expecting fewer draws than this are pooled into one, so that the statistic is chi-square. */
@@ -118,7 +123,7 @@ static double adaptive_integral(struct rectangle r, double whole, int depth) {
     for (int k = 0; k < 4; k++)
         sum += sums[k] = rectangle_sum(parts[k]);
     double share = (r.theta1 - r.theta0) * (r.phi1 - r.phi0) / (2.0 * PI * PI);
-    if (depth >= QUADRATURE_DEPTH || fabs(sum - whole) <= QUADRATURE_TOLERANCE * share)
+    if (depth >= QUADRATURE_DEPTH || (depth >= QUADRATURE_MIN_DEPTH && fabs(sum - whole) <= QUADRATURE_TOLERANCE * share))
         return sum;
     sum = 0.0;
     for (int k = 0; k < 4; k++)
@@ -296,6 +301,20 @@ Test(microfacet, alpha_is_the_roughness_squared_once) {
     cr_expect_eq(microfacet_alpha(0.0), 0.0);
     cr_expect_eq(microfacet_alpha(3.0), 1.0);
     cr_expect_eq(microfacet_alpha(-1.0), 0.0);
+}
+
+Test(microfacet, every_lobe_has_the_width_alpha_it_is_given) {
+    /* Seen and lit from straight above, a GGX lobe shows its peak D(n) = 1 / (pi alpha^2), and the
+     * Phong lobe of the matching exponent (n + 2) / (2 pi) = 1 / (pi alpha^2) as well: a lobe that
+     * squared alpha again would be 1 / alpha^2 times as high. */
+    vec3 up = vec3_make(0.0, 0.0, 1.0);
+    for (double alpha = 0.1; alpha < 1.0; alpha += 0.2) {
+        double peak = 1.0 / (PI * alpha * alpha);
+        struct microfacet_lobe metal = lobe(CONDUCTOR, alpha), glass = lobe(DIELECTRIC, alpha), phong = lobe(PHONG, alpha);
+        cr_expect(fabs(microfacet_eval(&metal, up, up).x - peak / 4.0) < 1e-9 * peak, "alpha %.1f", alpha);
+        cr_expect(fabs(microfacet_eval(&glass, up, up).x - 0.04 * peak / 4.0) < 1e-9 * peak, "alpha %.1f", alpha);
+        cr_expect(fabs(microfacet_eval(&phong, up, up).x - peak) < 1e-9 * peak, "alpha %.1f", alpha);
+    }
 }
 
 Test(microfacet, the_projected_distribution_integrates_to_one) {

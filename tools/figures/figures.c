@@ -19,7 +19,7 @@ static const struct {
     {"07-shadow.svg", figure_shadow},   {"08-recursion.svg", figure_recursion}, {"09-kdtree.svg", figure_kdtree},
     {"10-bvh.svg", figure_bvh},         {"12-antialias.svg", figure_antialias}, {"13-penumbra.svg", figure_penumbra},
     {"13-lens.svg", figure_lens},       {"14-normals.svg", figure_textures}, {"15-sampling.svg", figure_sampling},
-    {"15-convergence.svg", figure_convergence},
+    {"15-convergence.svg", figure_convergence}, {"17-microfacets.svg", figure_microfacets},
 };
 
 /* Draws one figure into path through a temporary file renamed into place, so a failed run leaves no

@@ -24,5 +24,6 @@ void figure_lens(FILE *out);       /* 13-lens.svg: the thin lens's rays, the foc
 void figure_textures(FILE *out);   /* 14-normals.svg: normals blended across a face, before and after renormalising */
 void figure_sampling(FILE *out);   /* 15-sampling.svg: uniform and cosine-weighted directions over the hemisphere */
 void figure_convergence(FILE *out); /* 15-convergence.svg: the path tracer's error against paths a pixel */
+void figure_microfacets(FILE *out); /* 17-microfacets.svg: the half vector, the distribution D, masking G */
 
 #endif
