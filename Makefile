@@ -85,9 +85,9 @@ MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture
 MODULES_15 := $(MODULES_14) sampling emitter bsdf path_trace path_image
 MODULES_16 := $(MODULES_15) transform keyframes instance_bvh instances shutter
-MODULES_17 := $(MODULES_16) microfacet
+MODULES_17 := $(MODULES_16) microfacet rough_surface
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
-            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths 16-instances
+            09-kdtree 10-bvh 11-fast 12-antialias 13-distributed 14-textures 15-paths 16-instances 17-rough
 # (with the modules of the chapters being written, so that their tests link before the chapter does)
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))) $(MODULES_17))
 
@@ -251,6 +251,7 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader microfacet_long/* \
               povray_agreement/chapter_12_grid_of_2_and_of_4 \
               results/the_committed_plots_and_tables_are_what_their_csv_files_draw \
               watertight/povray_draws_the_cube_from_inside_without_a_leak_as_chapter_10_does
+LONG_TESTS += rough_plates_long/* reference_image/chapter_17_rough_matches_its_reference
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
@@ -355,11 +356,13 @@ endif
 compare: all $(BUILD)/compare | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
 
-## make compare-cycles  chapter 15 against Blender's Cycles (installs Debian's blender): two scenes,
-##                     block means within noise and means within 1 %, in out/cycles/ (UPDATE_DOCS=1
-##                     also writes the table into docs/15-paths.md); several minutes
-compare-cycles: $(BUILD)/chapter-15 | deps
-	UPDATE_DOCS=$(UPDATE_DOCS) tools/cycles/compare-cycles.sh $(BUILD)
+## make compare-cycles  chapters 15 and 17 against Blender's Cycles (installs Debian's blender): two
+##                     scenes each, block means within noise and means within 1 %, in out/cycles/
+##                     (UPDATE_DOCS=1 also writes the tables into docs/15-paths.md and docs/17-rough.md;
+##                     CHAPTERS=17 only chapter 17's); several minutes
+compare-cycles: $(BUILD)/chapter-15 $(BUILD)/chapter-17 | deps
+	UPDATE_DOCS=$(UPDATE_DOCS) CHAPTERS="$(CHAPTERS_COMPARED)" tools/cycles/compare-cycles.sh $(BUILD)
+CHAPTERS_COMPARED ?= 15 17
 
 ## make references     re-render the reference images on purpose and say what changed (a picture whose
 ##                     pixels are the same is left as it was, byte for byte)

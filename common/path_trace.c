@@ -18,6 +18,7 @@ void path_world_init(struct path_world *pw, const struct world *world, const str
     pw->camera = camera;
     pw->settings = *settings;
     pw->camera_inside = interior_at_point(world, camera->eye);
+    pw->surface = NULL;
 }
 
 static double largest(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
@@ -67,6 +68,28 @@ vec3 path_direct_light(const struct path_world *pw, struct sample_stream *rng, v
     return vec3_scale(vec3_mul(b->albedo, e.radiance), cos_here / M_PI / p_light * weight);
 }
 
+/* TASK 15.1 ALSO: next-event estimation at a surface of pw->surface */
+/* Next-event estimation at `point` of a surface of pw->surface (material m, its normal facing wo): as
+ * path_direct_light, with the surface's f |cos| and, under PATH_MIS, its own density to weigh against. */
+static vec3 surface_direct_light(const struct path_world *pw, struct sample_stream *rng, vec3 point, vec3 normal,
+                                 const struct material *m, vec3 wo, double eta) {
+    double u_pick = sample_stream_next(rng), u1 = sample_stream_next(rng), u2 = sample_stream_next(rng);
+    struct emitter_sample e;
+    if (!emitter_sample(pw->emitters, u_pick, u1, u2, &e))
+        return vec3_make(0, 0, 0);
+    vec3 d = vec3_sub(e.point, point);
+    double distance2 = vec3_dot(d, d);
+    vec3 wi = vec3_scale(d, 1.0 / sqrt(distance2));
+    double p_scatter;
+    vec3 f_cos = pw->surface->eval(m, normal, wo, wi, eta, &p_scatter);
+    double cos_there = fabs(vec3_dot(e.normal, wi));
+    if (!(cos_there > 0.0) || emitter_power(f_cos) == 0.0 || !in_view(pw->world, point, e.point))
+        return vec3_make(0, 0, 0);
+    double p_light = e.density * distance2 / cos_there;
+    double weight = pw->settings.strategy == PATH_MIS ? power_heuristic(p_light, p_scatter) : 1.0;
+    return vec3_scale(vec3_mul(f_cos, e.radiance), weight / p_light);
+}
+
 /* The radiance arriving along r (a camera ray, inside the objects of `inside`), by one path, drawing its
  * numbers from rng in the order path_sample's contract gives (path_trace.h). */
 /* TASK 15.2: the path: emission, scattering, Russian roulette */
@@ -101,7 +124,26 @@ static vec3 radiance(const struct path_world *pw, ray r, struct interior_list in
             return sum;
         struct bsdf b = bsdf_of_material(m);
         vec3 direction;
-        if (b.glass) {
+        if (pw->surface != NULL && pw->surface->claims(m)) {
+            struct interior_list beyond = inside;
+            double eta = b.glass ? interior_cross(&beyond, h.object, b.ior) : 1.0;
+            vec3 wo = vec3_scale(r.direction, -1.0);
+            if (set->strategy != PATH_SCATTER)
+                sum = vec3_add(sum, vec3_mul(throughput, surface_direct_light(pw, rng, point, normal, m, wo, eta)));
+            double u_lobe = sample_stream_next(rng), u1 = sample_stream_next(rng), u2 = sample_stream_next(rng);
+            struct path_scatter scattered;
+            if (!pw->surface->sample(m, normal, wo, eta, u_lobe, u1, u2, &scattered))
+                return sum;
+            direction = scattered.direction;
+            throughput = vec3_mul(throughput, scattered.weight);
+            p_scatter = scattered.pdf;
+            delta = false;
+            if (scattered.crossed) {
+                inside = beyond;
+                stats_thread.refracted_rays++;
+            } else
+                stats_thread.reflected_rays++;
+        } else if (b.glass) {
             struct interior_list beyond = inside;
             double eta = interior_cross(&beyond, h.object, b.ior);
             double cos_i = -vec3_dot(r.direction, normal);

@@ -37,6 +37,31 @@
  * does not find the emitter's own surface at the end. */
 #define PATH_SHADOW_SHORTEN 1e-7
 
+/* A direction a surface of path_surface scattered into (chapter 17's rough surfaces). */
+struct path_scatter {
+    vec3 direction; /* unit length */
+    vec3 weight;    /* f |cos| / pdf: what the path's throughput is multiplied by */
+    double pdf;     /* the density per solid angle with which sample draws it, over all its lobes (> 0) */
+    bool crossed;   /* the direction goes through the surface, into or out of the object */
+};
+
+/* Surfaces this chapter does not know, plugged in by a later one: chapter 17's rough surfaces
+ * (rough_surface.h). A material the surface claims is drawn through its three functions instead of
+ * bsdf.h's smooth ones; directions point away from the point, `normal` is the unit normal on the side
+ * of wo, and eta is the index on wo's side over the index beyond the surface (bsdf_fresnel's eta). */
+struct path_surface {
+    /* True when this surface draws material m. */
+    bool (*claims)(const struct material *m);
+    /* Returns f(wo, wi) |normal . wi|, the light going from wi to wo per unit of light arriving, and
+     * stores in *pdf the density with which sample would draw wi (0 where it never does). Black and 0
+     * for a direction the surface does not scatter into (wi behind a surface that lets no light through). */
+    vec3 (*eval)(const struct material *m, vec3 normal, vec3 wo, vec3 wi, double eta, double *pdf);
+    /* Draws a direction from three uniform numbers (the lobe, then two for the direction). Returns false
+     * when the numbers give no direction (the light is absorbed: the path ends). */
+    bool (*sample)(const struct material *m, vec3 normal, vec3 wo, double eta, double u_lobe, double u1,
+                   double u2, struct path_scatter *out);
+};
+
 /* What a path traces through: the world, its emitters, the camera and the settings. */
 struct path_world {
     const struct world *world;
@@ -44,9 +69,11 @@ struct path_world {
     const struct camera *camera;
     struct path_settings settings;
     struct interior_list camera_inside; /* the glass objects the eye is inside (chapter 8) */
+    const struct path_surface *surface; /* chapter 17's rough surfaces; NULL: chapter 15's only */
 };
 
-/* Fills *pw. The pointers are kept, not copied. Cannot fail. */
+/* Fills *pw, with no surface beyond chapter 15's (set pw->surface after to add one). The pointers are
+ * kept, not copied. Cannot fail. */
 void path_world_init(struct path_world *pw, const struct world *world, const struct emitter_list *emitters,
                      const struct camera *camera, const struct path_settings *settings);
 
@@ -63,8 +90,9 @@ vec3 path_direct_light(const struct path_world *pw, struct sample_stream *rng, v
 
 /* Returns the radiance one path brings to the camera: sample `sample` of pixel (i, j), through a point of
  * the pixel drawn from its stream (sample_stream_start(i, j, sample, seed), then x and y in the pixel).
- * At each surface the path draws, in this order: at glass one number (reflect when under Fresnel's
- * share); elsewhere, path_direct_light's three when the surface is Lambertian and the strategy is not
+ * At each surface the path draws, in this order: at a surface of pw->surface, its next-event estimate's
+ * three numbers (unless the strategy is PATH_SCATTER), then three to scatter; at glass one number
+ * (reflect when under Fresnel's share); elsewhere, path_direct_light's three when the surface is Lambertian and the strategy is not
  * PATH_SCATTER, then three to scatter (the part, Lambertian or mirror, then the direction); from bounce
  * `roulette` on, one more for Russian roulette. Counts its rays in stats_thread. Safe on several threads at once. */
 vec3 path_sample(const struct path_world *pw, int i, int j, uint32_t sample);

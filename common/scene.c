@@ -167,6 +167,9 @@ static void *grow(void *items_ptr, size_t *count, size_t size) {
 
 /* ---- directives -------------------------------------------------------------------------------- */
 
+const char *const scene_metal_names[SCENE_METAL_COUNT] = {"none", "colour", "gold", "silver", "copper",
+                                                          "aluminium"};
+
 static bool material_reference(const struct parser *p, const struct scene *s,
                                const struct key_values *kv, int key, int *material) {
     *material = 0;
@@ -224,10 +227,12 @@ static bool parse_triple(const struct parser *p, const char *directive, char **t
 }
 
 static bool parse_material(const struct parser *p, struct scene *s, char **tok, int n) {
-    enum { COLOUR, AMBIENT, DIFFUSE, PHONG, PHONG_SIZE, REFLECTION, FILTER, TRANSMIT, IOR, PIGMENT, EMISSION };
+    enum { COLOUR, AMBIENT, DIFFUSE, PHONG, PHONG_SIZE, REFLECTION, FILTER, TRANSMIT, IOR, PIGMENT, EMISSION,
+           ROUGHNESS, METAL, LOBE };
     static const struct key_spec specs[] = {
         {"colour", 3}, {"ambient", 1}, {"diffuse", 1},  {"phong", 1}, {"phong_size", 1},
-        {"reflection", 1}, {"filter", 1}, {"transmit", 1}, {"ior", 1}, {"pigment", 0}, {"emission", 3}};
+        {"reflection", 1}, {"filter", 1}, {"transmit", 1}, {"ior", 1}, {"pigment", 0}, {"emission", 3},
+        {"roughness", 1}, {"metal", 0}, {"lobe", 0}};
     struct key_values kv;
     if (n < 1)
         return fail(p, "material needs a name");
@@ -235,7 +240,7 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
         return fail(p, "material name longer than %d characters", SCENE_NAME_MAX - 1);
     if (name_index_find(p->materials, tok[0]) >= 0)
         return fail(p, "material '%s' is already defined", tok[0]);
-    if (!parse_keys(p, "material", tok + 1, n - 1, specs, EMISSION + 1, &kv))
+    if (!parse_keys(p, "material", tok + 1, n - 1, specs, LOBE + 1, &kv))
         return false;
     struct material m = s->materials[0]; /* unspecified keys keep the defaults */
     snprintf(m.name, sizeof m.name, "%s", tok[0]);
@@ -266,6 +271,28 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
                     KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, m.name, SCENE_MAX_LIGHT, e.x, e.y, e.z);
     if (m.filter + m.transmit > 1.0)
         return fail(p, "material '%s': filter + transmit must not exceed 1", m.name);
+    if (kv.present[ROUGHNESS])
+        m.roughness = kv.number[ROUGHNESS][0];
+    if (!(m.roughness >= 0.0 && m.roughness <= 1.0))
+        return fail(p, "material '%s': roughness must be between 0 and 1, got " KEY_NUMBER_SHOWN, m.name,
+                    m.roughness);
+    if (kv.present[METAL]) {
+        int metal = 0;
+        while (metal < SCENE_METAL_COUNT && strcmp(kv.word[METAL], scene_metal_names[metal]) != 0)
+            metal++;
+        if (metal == SCENE_METAL_COUNT)
+            return fail(p, "material '%s': unknown metal '%s' (none, colour, gold, silver, copper or aluminium)",
+                        m.name, kv.word[METAL]);
+        m.metal = (enum scene_metal)metal;
+    }
+    if (kv.present[LOBE]) {
+        if (strcmp(kv.word[LOBE], "ggx") == 0)
+            m.lobe = SCENE_LOBE_GGX;
+        else if (strcmp(kv.word[LOBE], "phong") == 0)
+            m.lobe = SCENE_LOBE_PHONG;
+        else
+            return fail(p, "material '%s': unknown lobe '%s' (ggx or phong)", m.name, kv.word[LOBE]);
+    }
     if (!(m.phong_size > 0.0))
         return fail(p, "material '%s': phong_size must be positive", m.name);
     if (!(m.ior > 0.0))
@@ -926,12 +953,27 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         snprintf(what + used, sizeof what - used, "%sthe emission of %zu material%s", used == 0 ? "" : ", ", emitting,
                  emitting == 1 ? "" : "s");
     }
+    size_t rough = 0;
+    for (size_t k = 0; chapter < ROUGH_CHAPTER && k < s->material_count; k++) {
+        struct material *m = &s->materials[k];
+        if (m->roughness > 0.0 || m->metal != SCENE_METAL_NONE || m->lobe != SCENE_LOBE_GGX) {
+            m->roughness = 0.0;
+            m->metal = SCENE_METAL_NONE;
+            m->lobe = SCENE_LOBE_GGX;
+            rough++;
+        }
+    }
+    if (rough > 0) {
+        size_t used = strlen(what);
+        snprintf(what + used, sizeof what - used, "%sthe roughness of %zu material%s", used == 0 ? "" : ", ", rough,
+                 rough == 1 ? "" : "s");
+    }
     if (!instance_chapter_draws(chapter, PATH_CHAPTER) && s->paths.line != 0) {
         size_t used = strlen(what);
         snprintf(what + used, sizeof what - used, "%sthe paths line", used == 0 ? "" : ", ");
         s->paths = path_settings_default();
     }
-    if (chapter < INSTANCE_CHAPTER) {
+    if (chapter != INSTANCE_CHAPTER) { /* chapter 17 is chapter 15's path tracer: no instances either */
         note_count(what, sizeof what, s->object_count, "object", "objects");
         note_count(what, sizeof what, s->instance_count, "instance", "instances");
         drop_instances(s);
@@ -945,6 +987,8 @@ void scene_drop_unsupported(struct scene *s, int chapter, FILE *note) {
         char path[4 * 1024];
         text_escape(s->path, path, sizeof path); /* the path comes from the command line */
         fprintf(note, "%s: chapter %d ignores %s (%s)\n", path, chapter, what,
-                chapter == INSTANCE_CHAPTER ? "chapter 16 is built on chapter 13's tracer" : "not introduced yet");
+                chapter == INSTANCE_CHAPTER  ? "chapter 16 is built on chapter 13's tracer"
+                : chapter > INSTANCE_CHAPTER ? "chapter 17 is built on chapter 15's tracer"
+                                             : "not introduced yet");
     }
 }

@@ -25,6 +25,23 @@
  * every emitter) stays finite. */
 #define SCENE_MAX_LIGHT 1e18
 #define SCENE_NAME_MAX 64 /* longest material name, including the terminating zero */
+#define ROUGH_CHAPTER 17  /* the chapter that draws a material's roughness, metal and lobe */
+
+/* How a rough mirror's reflectance varies with the angle (chapter 17, the material's `metal` key). */
+enum scene_metal {
+    SCENE_METAL_NONE,   /* `reflection` at every angle, untinted: chapter 15's mirror */
+    SCENE_METAL_COLOUR, /* Schlick's Fresnel from reflection * colour at normal incidence */
+    SCENE_METAL_GOLD,   /* Fresnel's equations from the metal's complex index, per channel */
+    SCENE_METAL_SILVER,
+    SCENE_METAL_COPPER,
+    SCENE_METAL_ALUMINIUM,
+    SCENE_METAL_COUNT
+};
+/* The words of the `metal` key, in the order of enum scene_metal ("none" first). */
+extern const char *const scene_metal_names[SCENE_METAL_COUNT];
+
+/* The shape of a rough surface's highlight (chapter 17, the material's `lobe` key). */
+enum scene_lobe { SCENE_LOBE_GGX, SCENE_LOBE_PHONG };
 
 struct material {
     char name[SCENE_NAME_MAX];
@@ -39,6 +56,9 @@ struct material {
     double ior;         /* index of refraction of the inside (interior ior) */
     int pigment;        /* index into scene.pigments, or -1: the plain colour (chapter 14; pigment.h) */
     vec3 emission;      /* radiance the surface gives off, from both faces (chapter 15; 0 0 0: none) */
+    double roughness;   /* 0..1: 0 the smooth mirror and glass of chapter 15, 1 the roughest (chapter 17) */
+    enum scene_metal metal; /* the rough mirror's Fresnel (chapter 17; SCENE_METAL_NONE: constant) */
+    enum scene_lobe lobe;   /* the rough surface's distribution (chapter 17; default SCENE_LOBE_GGX) */
 };
 
 struct light {
@@ -171,7 +191,8 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size);
  * with the triangles), before chapter 12 the antialias line, before chapter 13 the area of area lights
  * (each becomes a point light at its centre) and the camera's lens (a pinhole again), and before chapter
  * 14 the pigments (every material is then its plain colour), before chapter 15 the paths line and the
- * materials' emission, before chapter 16 the objects, instances (with their keys) and the camera's
+ * materials' emission, before chapter 17 the materials' roughness, metal and lobe (every mirror and
+ * glass smooth again), in every chapter but 16 the objects, instances (with their keys) and the camera's
  * shutter, so that chapter `chapter` can read any
  * scene file and draw what it knows. If something was removed, prints one line to `note` (when not
  * NULL) saying what was ignored, e.g.

@@ -38,7 +38,7 @@ struct key_spec {
     int count;
 };
 
-#define KEY_MAX 11          /* no directive has more keys (a material has 11) */
+#define KEY_MAX 14          /* no directive has more keys (a material has 14) */
 #define KEY_MAX_NUMBERS 3   /* no key takes more numbers */
 
 /* The values found for each key of a table, by position in the table. */

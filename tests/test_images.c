@@ -259,12 +259,26 @@ Test(shadows, the_acne_scene_has_no_povray_twin) {
 
 /* The grader's picture check of chapter 15 (tests/checks/check_picture.c) renders a smaller picture with
  * fewer paths, to take a second instead of half a minute; its reference is the reference program's. */
+static void check_small_picture(int n, const char *options) {
+    char png[256], reference[256], what[64];
+    snprintf(png, sizeof png, TEST_OUT "/chapter-%02d-check.png", n);
+    snprintf(reference, sizeof reference, "reference_images/chapter-%02d-check.png", n);
+    snprintf(what, sizeof what, "chapter %d's picture check vs reference", n);
+    cr_assert_eq(render_chapter(n, chapter_scene(n), png, options), 0);
+    struct image_difference d = compare_png(png, reference);
+    report_difference(what, &d);
+    cr_assert(regression_passes(&d), "%s is stale: max %d, mean %.4f, within 1: %.3f%% (make it again: "
+              "build/chapter-%02d %s)", reference, d.max, d.mean, 100.0 * d.within_1, n, options);
+}
+
 Test(reference_image, chapter_15_check_picture_matches_its_reference, .timeout = 120) {
-    const char *png = TEST_OUT "/chapter-15-check.png";
-    cr_assert_eq(render_chapter(15, chapter_scene(15), png, "--width 128 --height 128 --set paths.samples=16"), 0);
-    struct image_difference d = compare_png(png, "reference_images/chapter-15-check.png");
-    report_difference("chapter 15's picture check vs reference", &d);
-    cr_assert(regression_passes(&d), "reference_images/chapter-15-check.png is stale: max %d, mean %.4f, within 1: "
-              "%.3f%% (make it again with the command in tests/checks/check_picture.c)", d.max, d.mean,
-              100.0 * d.within_1);
+    check_small_picture(15, "--width 128 --height 128 --set paths.samples=16");
+}
+
+/* Chapter 17's picture, held to its reference as chapter 15's (make test-long: some seconds), and its
+ * smaller picture of 16 paths a pixel (make test). Its independent renderer is Cycles (tools/cycles/). */
+Test(reference_image, chapter_17_rough_matches_its_reference, .timeout = 300) { check_reference(17); }
+
+Test(reference_image, chapter_17_check_picture_matches_its_reference, .timeout = 120) {
+    check_small_picture(17, "--width 128 --height 85 --set paths.samples=16");
 }

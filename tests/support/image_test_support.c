@@ -20,7 +20,7 @@
 static const char *const scene_names[] = {
     NULL, "01-camera", "02-sphere", "03-triangle", "04-plane", "05-aabb",
     "06-phong", "07-shadows", "08-recursion", "09-kdtree", "10-bvh", "11-fast", "12-antialias",
-    "13-distributed", "14-textures", "15-paths", "16-instances",
+    "13-distributed", "14-textures", "15-paths", "16-instances", "17-rough",
 };
 
 const char *chapter_scene(int n) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# compare-cycles.sh BUILD: chapter 15's pictures against Blender's Cycles, an independent path tracer
-# (make compare-cycles; docs/15-paths.md, "Checked by another renderer").
+# compare-cycles.sh BUILD: chapters 15's and 17's pictures against Blender's Cycles, an independent path
+# tracer (make compare-cycles; docs/15-paths.md, "Checked by another renderer", and docs/17-rough.md).
 #
 # Two scenes: the Cornell box of scenes/15-paths.scene with its mirror and glass balls made white (Cycles'
 # glass and ours differ in ways this comparison does not need), at 128 x 128 and 2048 paths a pixel, with
@@ -11,7 +11,15 @@
 # combined standard errors and the whole picture's mean; the table goes to out/cycles/table.md, the
 # pictures side by side (ours | Cycles) to out/cycles/NAME-side-by-side.png, and with UPDATE_DOCS=1 the
 # table into docs/15-paths.md between its cycles-table markers. Exits 1 when a scene disagrees.
-set -eu
+#
+# Chapter 17 adds two more, drawn by build/chapter-17 at 96 x 64 and 1024 paths a pixel: its own scene
+# with the gold ball made a white rough mirror (Cycles' Glossy BSDF has no metal's Fresnel), and Veach's
+# plates (scenes/17-veach.scene), both with the overhead emitting rectangle replaced by a uniform sky
+# (Cycles 3.4 chooses the emitting triangles it samples by their area, so that the large rectangle took
+# nearly all its light samples and the small lamps' light came from rare scattered paths, too noisy to
+# compare at 1024 paths). Their rows go to out/cycles/table-17.md and, with UPDATE_DOCS=1, into
+# docs/17-rough.md. CHAPTERS="15" or "17" draws only one chapter's scenes.
+set -euo pipefail # a pipeline fails when compare.py does (a scene that disagrees)
 build=${1:-build}
 out=out/cycles
 threads=${CYCLES_THREADS:-2}
@@ -19,18 +27,28 @@ block=16
 mkdir -p "$out"
 blender_run() { blender -b --factory-startup --python-exit-code 1 --python "$@"; }
 
-table=$out/table.md
-{
-    echo "| scene | blocks | worst \|z\| | blocks within 2 errors | mean z² | our mean | Cycles' mean | difference | verdict |"
-    echo "|---|---|---|---|---|---|---|---|---|"
-} >"$table"
+# start_table TABLE: the table's head.
+start_table() {
+    table=$1
+    {
+        echo "| scene | blocks | worst \|z\| | blocks within 2 errors | mean z² | our mean | Cycles' mean | difference | verdict |"
+        echo "|---|---|---|---|---|---|---|---|---|"
+    } >"$table"
+}
+# update_doc DOC: the table into DOC between its cycles-table markers (with UPDATE_DOCS=1).
+update_doc() {
+    [ "${UPDATE_DOCS:-}" = 1 ] || return 0
+    awk -v table="$table" '/<!-- cycles-table -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
+                           /<!-- \/cycles-table -->/ { skip = 0 } !skip' "$1" >"$1.tmp" && mv "$1.tmp" "$1"
+}
 status=0
-# compare_one NAME SCENE SAMPLES [scatter]: both renderers, both seeds, and the row of the table.
+# compare_one NAME SCENE SAMPLES [scatter]: both renderers, both seeds, and the row of the table; ours is
+# drawn by build/chapter-$chapter.
 compare_one() {
     local name=$1 scene=$2 samples=$3 seed
     shift 3
     for seed in 1 2; do
-        "$build/chapter-15" "$scene" --quiet --threads "$threads" --set paths.samples="$samples" \
+        "$build/chapter-$chapter" "$scene" --quiet --threads "$threads" --set paths.samples="$samples" \
             --set paths.seed="$seed" -o "$out/$name-ours-$seed.png" --hdr "$out/$name-ours-$seed.pfm"
         blender_run tools/cycles/render.py -- "$scene" "$PWD/$out/$name-cycles-$seed.exr" "$samples" "$seed" \
             "$threads" "$@" >"$out/$name-cycles-$seed.log" 2>&1 ||
@@ -41,18 +59,32 @@ compare_one() {
         grep '^|' >>"$table" || status=1
 }
 
-# The Cornell box at 128 x 128 with white balls; the daylight scene at 160 x 120.
-sed -e 's/^image .*/image 128 128/' \
-    -e 's/^material mirror .*/material mirror colour 0.725 0.71 0.68 ambient 0 diffuse 1/' \
-    -e 's/^material glass .*/material glass  colour 0.725 0.71 0.68 ambient 0 diffuse 1/' \
-    scenes/15-paths.scene >"$out/cornell.scene"
-sed -e 's/^image .*/image 160 120/' scenes/15-daylight.scene >"$out/daylight.scene"
-compare_one cornell "$out/cornell.scene" 2048 scatter
-compare_one daylight "$out/daylight.scene" 512
-cat "$table"
-if [ "${UPDATE_DOCS:-}" = 1 ]; then
-    doc=docs/15-paths.md
-    awk -v table="$table" '/<!-- cycles-table -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
-                           /<!-- \/cycles-table -->/ { skip = 0 } !skip' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+chapters=" ${CHAPTERS:-15 17} "
+if [[ $chapters == *" 15 "* ]]; then
+    # The Cornell box at 128 x 128 with white balls; the daylight scene at 160 x 120.
+    chapter=15
+    start_table "$out/table.md"
+    sed -e 's/^image .*/image 128 128/' \
+        -e 's/^material mirror .*/material mirror colour 0.725 0.71 0.68 ambient 0 diffuse 1/' \
+        -e 's/^material glass .*/material glass  colour 0.725 0.71 0.68 ambient 0 diffuse 1/' \
+        scenes/15-paths.scene >"$out/cornell.scene"
+    sed -e 's/^image .*/image 160 120/' scenes/15-daylight.scene >"$out/daylight.scene"
+    compare_one cornell "$out/cornell.scene" 2048 scatter
+    compare_one daylight "$out/daylight.scene" 512
+    cat "$table"
+    update_doc docs/15-paths.md
+fi
+if [[ $chapters == *" 17 "* ]]; then
+    # Chapter 17's scene with a white rough mirror for the gold ball, and Veach's plates, at 96 x 64, the
+    # overhead light replaced by a uniform sky of 0.2 (background 0.2 0.2 0.2).
+    chapter=17
+    start_table "$out/table-17.md"
+    uniform_sky=(-e 's/^image .*/image 96 64/' -e 's/^background .*/background 0.2 0.2 0.2/' -e '/ material sky$/d')
+    sed "${uniform_sky[@]}" -e 's/ metal gold / /' scenes/17-rough.scene >"$out/rough.scene"
+    sed "${uniform_sky[@]}" scenes/17-veach.scene >"$out/plates.scene"
+    compare_one rough "$out/rough.scene" 1024
+    compare_one plates "$out/plates.scene" 1024
+    cat "$table"
+    update_doc docs/17-rough.md
 fi
 exit $status

@@ -9,11 +9,17 @@
 # needs it: Cycles 3.4's sampling of its large lamp comes out about 2 % darker than the exact direct light
 # where the lamp is seen at a grazing angle, while its scattering alone agrees with the exact value.
 #
-# It reads the subset of the scene format that Cycles can draw exactly as chapter 15 does: the camera,
-# image size, background (a uniform world), the paths line's bounces, materials with colour * diffuse
-# (a Diffuse BSDF) and emission (an Emission shader, strength 1), triangles, boxes, spheres (a fine mesh:
-# Blender has no exact spheres) and area lights (an emitting rectangle, as chapter 15 makes them). Mirrors,
-# glass, pigments, meshes, planes and point lights are refused: the comparison is of the diffuse transport.
+# It reads the subset of the scene format that Cycles can draw exactly as chapters 15 and 17 do: the
+# camera, image size, background (a uniform world), the paths line's bounces, materials with colour *
+# diffuse (a Diffuse BSDF) and emission (an Emission shader, strength 1), triangles, boxes, spheres (a fine
+# mesh: Blender has no exact spheres) and area lights (an emitting rectangle, as chapter 15 makes them).
+# Chapter 17's rough surfaces too: a rough mirror (`reflection` with `roughness` above 0, `metal none`,
+# `lobe ggx`) is a Glossy BSDF (GGX) of that colour and Roughness added to the diffuse part, and rough glass
+# (`transmit 1`, `roughness` above 0) a Glass BSDF (GGX) of white colour, that Roughness and the `ior`:
+# both read Roughness as we do (alpha = roughness squared). Smooth mirrors and glass, tinted glass
+# (`filter`: Cycles' Glass colour tints the reflected light too, ours only the refracted), the metals and
+# Schlick's Fresnel (`metal`: the Glossy BSDF has no Fresnel), the Phong lobe, pigments, meshes, planes
+# and point lights are refused.
 # Cycles is set up as an unbiased path tracer over the same pixels: the box filter of one pixel, no
 # clamping, no denoising, no adaptive sampling, no light threshold, the Standard view transform, and the
 # picture written as 32-bit linear OpenEXR.
@@ -78,15 +84,27 @@ def read_scene(path):
             scene["bounces"] = int(v.get("bounces", [256])[0])
         elif what == "material":
             v = keys(rest[1:], {"colour": 3, "ambient": 1, "diffuse": 1, "phong": 1, "phong_size": 1, "reflection": 1,
-                                "filter": 1, "transmit": 1, "ior": 1, "pigment": 0, "emission": 3})
-            for refused in ("reflection", "filter", "transmit", "pigment"):
-                if refused in v and (refused == "pigment" or v[refused][0] > 0):
-                    fail("%s:%d: material '%s' has %s: only diffuse and emission are compared" %
-                         (path, number, rest[0], refused))
+                                "filter": 1, "transmit": 1, "ior": 1, "pigment": 0, "emission": 3, "roughness": 1,
+                                "metal": 0, "lobe": 0})
+            rough = v.get("roughness", [0])[0] > 0
+            transmit = v.get("transmit", [0])[0]
+            refused = [key for key in ("filter", "pigment") if key in v and (key == "pigment" or v[key][0] > 0)]
+            refused += [key for key, default in (("metal", "none"), ("lobe", "ggx")) if v.get(key, default) != default]
+            if not rough:
+                refused += [key for key in ("reflection", "transmit") if v.get(key, [0])[0] > 0]
+            elif transmit not in (0, 1):
+                refused.append("transmit other than 0 or 1")
+            if refused:
+                fail("%s:%d: material '%s' has %s: only diffuse, emission, rough mirrors and rough clear glass are "
+                     "compared" % (path, number, rest[0], ", ".join(refused)))
             m = dict(scene["materials"]["default"])
             m.update({k: v[k] for k in ("colour", "emission") if k in v})
             if "diffuse" in v:
                 m["diffuse"] = v["diffuse"][0]
+            m["roughness"] = v.get("roughness", [0])[0]
+            m["reflection"] = v.get("reflection", [0])[0]
+            m["glass"] = transmit == 1
+            m["ior"] = v.get("ior", [1])[0]
             scene["materials"][rest[0]] = m
         elif what == "triangle":
             v = keys(rest, {"a": 3, "b": 3, "c": 3, "material": 0})
@@ -121,6 +139,22 @@ def material(name, m, scatter_only):
     diffuse.inputs["Color"].default_value = [c * m["diffuse"] for c in m["colour"]] + [1]
     diffuse.inputs["Roughness"].default_value = 0.0  # Lambert
     shader = diffuse.outputs["BSDF"]
+    if m.get("glass"):  # chapter 17's rough glass: the diffuse part is not drawn, as chapter 15's glass
+        glass = nodes.new("ShaderNodeBsdfGlass")
+        glass.distribution = "GGX"
+        glass.inputs["Color"].default_value = [1, 1, 1, 1]
+        glass.inputs["Roughness"].default_value = m["roughness"]
+        glass.inputs["IOR"].default_value = m["ior"]
+        shader = glass.outputs["BSDF"]
+    elif m.get("reflection", 0) > 0:  # chapter 17's rough mirror, added to the diffuse part
+        glossy = nodes.new("ShaderNodeBsdfGlossy")
+        glossy.distribution = "GGX"
+        glossy.inputs["Color"].default_value = [m["reflection"]] * 3 + [1]
+        glossy.inputs["Roughness"].default_value = m["roughness"]
+        add = nodes.new("ShaderNodeAddShader")
+        links.new(shader, add.inputs[0])
+        links.new(glossy.outputs["BSDF"], add.inputs[1])
+        shader = add.outputs["Shader"]
     if any(e > 0 for e in m["emission"]):
         emission = nodes.new("ShaderNodeEmission")
         emission.inputs["Color"].default_value = list(m["emission"]) + [1]
