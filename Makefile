@@ -92,6 +92,8 @@ CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows
 ALL_MODULES := $(sort $(foreach c,$(CHAPTERS),$(MODULES_$(firstword $(subst -, ,$(c))))) $(MODULES_17))
 
 chapter_number = $(firstword $(subst -, ,$(1)))
+# The chapters' numbers without their leading zero (1 2 ... 17), for the chapter-N and check-N goals.
+CHAPTER_NUMBERS := $(foreach c,$(CHAPTERS),$(patsubst 0%,%,$(firstword $(subst -, ,$(c)))))
 chapter_dir = $(filter $(1)-%,$(CHAPTERS))
 
 # The models the chapters' scenes name: the bunny is committed, the teapots are generated
@@ -112,8 +114,8 @@ SCENE_FILES := $(if $(CHAPTER_SCENES),$(shell awk '$$1 == "mesh" { print substr(
                         $(CHAPTER_SCENES)))
 scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):%,$(SCENE_FILES))))
 
-MODULES_16 := $(MODULES_15) transform keyframes instance_bvh instances shutter
-MODULES_17 := $(MODULES_16) microfacet
+.PHONY: deps all chapters exercises test test-long test-sanitize test-accel-long references compare compare-cycles gallery figures rough-energy \
+        clean help check student $(foreach n,$(CHAPTER_NUMBERS),chapter-$(n) check-$(n))
 .DEFAULT_GOAL := all
 .SECONDEXPANSION:
 
@@ -152,9 +154,9 @@ endef
 $(foreach c,$(CHAPTERS),$(eval $(call chapter_rules,$(c))))
 
 # ---- running chapters --------------------------------------------------------------------------
-# chapter-N for N = 1..15: explicit rules (GNU make skips pattern rules for phony targets). The program's
+# chapter-N for N = 1..17: explicit rules (GNU make skips pattern rules for phony targets). The program's
 # rule makes the models and pictures the chapter's scenes name first.
-## make chapter-N      build chapter N (1..16) and render its scene to out/chapter-NN.png
+## make chapter-N      build chapter N (1..17) and render its scene to out/chapter-NN.png
 define run_chapter_rule
 chapter-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
@@ -162,7 +164,7 @@ chapter-$(1): | out
 	    echo "chapter $(1) is not written yet (written: $(CHAPTERS))" >&2; exit 2; fi; \
 	$$(MAKE) --no-print-directory $$(BUILD)/chapter-$$$$n $$(BUILD)/compare && ./$$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16,$(eval $(call run_chapter_rule,$(n))))
+$(foreach n,$(CHAPTER_NUMBERS),$(eval $(call run_chapter_rule,$(n))))
 
 ## make chapters       build and render every written chapter
 chapters: $(foreach c,$(CHAPTERS),chapter-$(patsubst 0%,%,$(call chapter_number,$(c))))
@@ -406,14 +408,14 @@ $(BUILD)/checks/%.o: tests/checks/%.c | deps
 $(BUILD)/check: $(CHECK_OBJECTS) $(IMAGE_COMPARE_OBJECT) $(PATH_PROOFS_OBJECT) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES)))
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
-## make check-N        grade chapter N's coursework tasks (1..16): each task, then a scoreboard (code that
+## make check-N        grade chapter N's coursework tasks (1..17): each task, then a scoreboard (code that
 ##                     only has compiler warnings is graded, with the warnings shown: tests/checks/grade.sh)
 define check_rule
 check-$(1): | out
 	@n=$$$$(printf '%02d' $(1)); \
 	tests/checks/grade.sh "$$(MAKE)" $$(BUILD) $(1) $$(BUILD)/check $$(BUILD)/chapter-$$$$n
 endef
-$(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16,$(eval $(call check_rule,$(n))))
+$(foreach n,$(CHAPTER_NUMBERS),$(eval $(call check_rule,$(n))))
 
 ## make check          grade every chapter's coursework tasks
 check: | out
