@@ -344,8 +344,9 @@ compare: all $(BUILD)/compare | deps
 
 ## make compare-cycles  chapter 15 against Blender's Cycles (installs Debian's blender): two scenes,
 ##                     block means within noise and means within 1 %, in out/cycles/ (UPDATE_DOCS=1
-##                     also writes the table into docs/15-paths.md); several minutes
-compare-cycles: $(BUILD)/chapter-15 | deps
+##                     also writes the table into docs/15-paths.md); then chapter 16's motion blur
+##                     against Cycles' (out/cycles/table-16.md); several minutes
+compare-cycles: $(BUILD)/chapter-15 $(BUILD)/chapter-16 | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/cycles/compare-cycles.sh $(BUILD)
 
 ## make references     re-render the reference images on purpose and say what changed (a picture whose

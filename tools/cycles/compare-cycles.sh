@@ -11,8 +11,15 @@
 # combined standard errors and the whole picture's mean; the table goes to out/cycles/table.md, the
 # pictures side by side (ours | Cycles) to out/cycles/NAME-side-by-side.png, and with UPDATE_DOCS=1 the
 # table into docs/15-paths.md between its cycles-table markers. Exits 1 when a scene disagrees.
+#
+# Then chapter 16's motion blur (docs/16-instances.md, "Checked against Cycles"): scenes/16-blur.scene,
+# flat bunnies moving under an open shutter, 256 camera samples a pixel in each renderer (jitter 16 x 16
+# for ours), Cycles' object motion blur built by tools/cycles/motion.py, compared by compare.py in
+# blocks of 8 x 8; its row goes to out/cycles/table-16.md. `compare-cycles.sh BUILD blur [ARG...]` runs
+# only that comparison, passing the ARGs to chapter 16 (a test plants a wrong shutter this way).
 set -eu
 build=${1:-build}
+only=${2:-}
 out=out/cycles
 threads=${CYCLES_THREADS:-2}
 block=16
@@ -41,6 +48,28 @@ compare_one() {
         grep '^|' >>"$table" || status=1
 }
 
+# compare_blur [ARG...]: chapter 16's motion blur against Cycles', the row into table-16.md.
+compare_blur() {
+    local name=blur scene=scenes/16-blur.scene seed table16=$out/table-16.md
+    head -2 "$table" >"$table16"
+    for seed in 1 2; do
+        "$build/chapter-16" "$scene" --quiet --threads "$threads" --set antialias.samples=16 \
+            --set antialias.seed="$seed" "$@" -o "$out/$name-ours-$seed.png"
+        blender_run tools/cycles/motion.py -- "$scene" "$PWD/$out/$name-cycles-$seed.exr" 256 "$seed" "$threads" \
+            >"$out/$name-cycles-$seed.log" 2>&1 ||
+            { echo "compare-cycles.sh: Blender failed on $scene (see $out/$name-cycles-$seed.log)" >&2; exit 2; }
+    done
+    blender_run tools/cycles/compare.py -- "$name" 8 "$out/$name-ours-1.png" "$out/$name-ours-2.png" \
+        "$out/$name-cycles-1.exr" "$out/$name-cycles-2.exr" "$PWD/$out/$name-side-by-side.png" 2>"$out/$name-compare.log" |
+        grep '^|' >>"$table16" || status=1
+    cat "$table16"
+}
+if [ "$only" = blur ]; then
+    shift 2
+    compare_blur "$@"
+    exit $status
+fi
+
 # The Cornell box at 128 x 128 with white balls; the daylight scene at 160 x 120.
 sed -e 's/^image .*/image 128 128/' \
     -e 's/^material mirror .*/material mirror colour 0.725 0.71 0.68 ambient 0 diffuse 1/' \
@@ -50,6 +79,7 @@ sed -e 's/^image .*/image 160 120/' scenes/15-daylight.scene >"$out/daylight.sce
 compare_one cornell "$out/cornell.scene" 2048 scatter
 compare_one daylight "$out/daylight.scene" 512
 cat "$table"
+compare_blur
 if [ "${UPDATE_DOCS:-}" = 1 ]; then
     doc=docs/15-paths.md
     awk -v table="$table" '/<!-- cycles-table -->/ { print; while ((getline line < table) > 0) print line; skip = 1; next }
