@@ -30,7 +30,7 @@ endif
 # the end.
 DEPS_NEEDS := build $(strip \
     $(if $(filter test test-long test-sanitize test-accel-long %run-tests %run-accel-long,$(MAKECMDGOALS)),test) \
-    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter compare-cycles,$(MAKECMDGOALS)),cycles) \
+    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter compare-cycles test-long,$(MAKECMDGOALS)),cycles) \
     $(if $(filter results,$(MAKECMDGOALS)),results))
 
 # stb from the system, or else unpacked into .deps/ by install-deps.sh on a machine without root
@@ -246,7 +246,8 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader \
               accel/rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mesh \
               povray_agreement/chapter_12_grid_of_2_and_of_4 \
               results/the_committed_plots_and_tables_are_what_their_csv_files_draw \
-              watertight/povray_draws_the_cube_from_inside_without_a_leak_as_chapter_10_does
+              watertight/povray_draws_the_cube_from_inside_without_a_leak_as_chapter_10_does \
+              cycles_motion/*
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))

@@ -17,10 +17,10 @@
 # for ours), Cycles' object motion blur built by tools/cycles/motion.py, compared by compare.py in
 # blocks of 8 x 8; its row goes to out/cycles/table-16.md. `compare-cycles.sh BUILD blur [ARG...]` runs
 # only that comparison, passing the ARGs to chapter 16 (a test plants a wrong shutter this way).
-set -eu
+set -eu -o pipefail # a pipeline fails when compare.py does, not only when grep finds no row
 build=${1:-build}
 only=${2:-}
-out=out/cycles
+out=${CYCLES_OUT:-out/cycles} # where the pictures and tables go
 threads=${CYCLES_THREADS:-2}
 block=16
 mkdir -p "$out"
