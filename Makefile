@@ -30,7 +30,7 @@ endif
 # the end.
 DEPS_NEEDS := build $(strip \
     $(if $(filter test test-long test-sanitize test-accel-long %run-tests %run-accel-long,$(MAKECMDGOALS)),test) \
-    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter compare-cycles,$(MAKECMDGOALS)),cycles) \
+    $(if $(filter compare,$(MAKECMDGOALS)),compare) $(if $(filter compare-cycles test-long,$(MAKECMDGOALS)),cycles) \
     $(if $(filter results,$(MAKECMDGOALS)),results) $(if $(filter test-farm test-long,$(MAKECMDGOALS)),farm))
 
 # stb from the system, or else unpacked into .deps/ by install-deps.sh on a machine without root
@@ -252,7 +252,8 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader microfacet_long/* \
               accel/rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mesh \
               povray_agreement/chapter_12_grid_of_2_and_of_4 \
               results/the_committed_plots_and_tables_are_what_their_csv_files_draw \
-              watertight/povray_draws_the_cube_from_inside_without_a_leak_as_chapter_10_does
+              watertight/povray_draws_the_cube_from_inside_without_a_leak_as_chapter_10_does \
+              cycles_motion/*
 LONG_TESTS += rough_plates_long/* reference_image/chapter_17_rough_matches_its_reference
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
@@ -358,13 +359,14 @@ endif
 compare: all $(BUILD)/compare | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) tools/compare-povray.sh $(BUILD)
 
-## make compare-cycles  chapters 15 and 17 against Blender's Cycles (installs Debian's blender): two
-##                     scenes each, block means within noise and means within 1 %, in out/cycles/
-##                     (UPDATE_DOCS=1 also writes the tables into docs/15-paths.md and docs/17-rough.md;
-##                     CHAPTERS=17 only chapter 17's); several minutes
-compare-cycles: $(BUILD)/chapter-15 $(BUILD)/chapter-17 | deps
+## make compare-cycles  chapters 15, 16 and 17 against Blender's Cycles (installs Debian's blender): chapter
+##                     15's two scenes and chapter 17's two, block means within noise and means within 1 %,
+##                     and chapter 16's motion blur, in out/cycles/ (UPDATE_DOCS=1 also writes the tables
+##                     into docs/15-paths.md and docs/17-rough.md; CHAPTERS_COMPARED=17 only chapter 17's);
+##                     several minutes
+compare-cycles: $(BUILD)/chapter-15 $(BUILD)/chapter-16 $(BUILD)/chapter-17 | deps
 	UPDATE_DOCS=$(UPDATE_DOCS) CHAPTERS="$(CHAPTERS_COMPARED)" tools/cycles/compare-cycles.sh $(BUILD)
-CHAPTERS_COMPARED ?= 15 17
+CHAPTERS_COMPARED ?= 15 16 17
 
 ## make references     re-render the reference images on purpose and say what changed (a picture whose
 ##                     pixels are the same is left as it was, byte for byte)

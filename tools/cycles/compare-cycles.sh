@@ -19,9 +19,17 @@
 # nearly all its light samples and the small lamps' light came from rare scattered paths, too noisy to
 # compare at 1024 paths). Their rows go to out/cycles/table-17.md and, with UPDATE_DOCS=1, into
 # docs/17-rough.md. CHAPTERS="15" or "17" draws only one chapter's scenes.
+#
+# Chapter 16's motion blur (docs/16-instances.md, "Checked against Cycles"): scenes/16-blur.scene, flat
+# bunnies moving under an open shutter, 256 camera samples a pixel in each renderer (jitter 16 x 16 for
+# ours), Cycles' object motion blur built by tools/cycles/motion.py, compared by compare.py in blocks of
+# 8 x 8; its row goes to out/cycles/table-16.md. `compare-cycles.sh BUILD blur [ARG...]` runs only that
+# comparison, passing the ARGs to chapter 16 (a test plants a wrong shutter this way). CHAPTERS="15 16 17"
+# (the default) names the chapters compared. CYCLES_OUT names the folder (default out/cycles).
 set -euo pipefail # a pipeline fails when compare.py does (a scene that disagrees)
 build=${1:-build}
-out=out/cycles
+only=${2:-}
+out=${CYCLES_OUT:-out/cycles} # where the pictures and tables go
 threads=${CYCLES_THREADS:-2}
 block=16
 mkdir -p "$out"
@@ -59,7 +67,30 @@ compare_one() {
         grep '^|' >>"$table" || status=1
 }
 
-chapters=" ${CHAPTERS:-15 17} "
+# compare_blur [ARG...]: chapter 16's motion blur against Cycles', the row into table-16.md.
+compare_blur() {
+    local name=blur scene=scenes/16-blur.scene seed table16=$out/table-16.md
+    start_table "$table16"
+    table=$table16
+    for seed in 1 2; do
+        "$build/chapter-16" "$scene" --quiet --threads "$threads" --set antialias.samples=16 \
+            --set antialias.seed="$seed" "$@" -o "$out/$name-ours-$seed.png"
+        blender_run tools/cycles/motion.py -- "$scene" "$PWD/$out/$name-cycles-$seed.exr" 256 "$seed" "$threads" \
+            >"$out/$name-cycles-$seed.log" 2>&1 ||
+            { echo "compare-cycles.sh: Blender failed on $scene (see $out/$name-cycles-$seed.log)" >&2; exit 2; }
+    done
+    blender_run tools/cycles/compare.py -- "$name" 8 "$out/$name-ours-1.png" "$out/$name-ours-2.png" \
+        "$out/$name-cycles-1.exr" "$out/$name-cycles-2.exr" "$PWD/$out/$name-side-by-side.png" 2>"$out/$name-compare.log" |
+        grep '^|' >>"$table" || status=1
+    cat "$table"
+}
+if [ "$only" = blur ]; then
+    shift 2
+    compare_blur "$@"
+    exit $status
+fi
+
+chapters=" ${CHAPTERS:-15 16 17} "
 if [[ $chapters == *" 15 "* ]]; then
     # The Cornell box at 128 x 128 with white balls; the daylight scene at 160 x 120.
     chapter=15
@@ -73,6 +104,9 @@ if [[ $chapters == *" 15 "* ]]; then
     compare_one daylight "$out/daylight.scene" 512
     cat "$table"
     update_doc docs/15-paths.md
+fi
+if [[ $chapters == *" 16 "* ]]; then
+    compare_blur
 fi
 if [[ $chapters == *" 17 "* ]]; then
     # Chapter 17's scene with a white rough mirror for the gold ball, and Veach's plates, at 96 x 64, the

@@ -4,7 +4,7 @@
 #   blender -b --factory-startup --python-exit-code 1 --python tools/cycles/compare.py -- \
 #       NAME BLOCK OURS_A.pfm OURS_B.pfm CYCLES_A.exr CYCLES_B.exr [SIDE_BY_SIDE.png]
 #
-# Ours is read from the Portable Float Maps chapter 15 writes with --hdr NAME.pfm (every float whole: the
+# Ours is read from the Portable Float Maps chapter 15 writes with --hdr NAME.pfm (or chapter 16's PNG) (every float whole: the
 # Radiance format's 8-bit mantissas would move the mean by up to half a percent), Cycles' from its EXR.
 # Each renderer drew the scene twice with different seeds (A and B). The two draws of one renderer differ
 # only by noise, so (A - B)^2 / 4 is an unbiased estimate of the variance of a pixel of their mean, and the
@@ -25,6 +25,10 @@ MEAN_LIMIT = 0.01
 # (the sky seen directly) the two still differ by rounding, a few parts in a million after 512 samples,
 # so a block's standard error is never taken below this share of its mean.
 FLOAT_SHARE = 1e-5
+# A PNG (chapter 16 writes no floats) holds each value rounded to a 255th: a value that both draws round
+# alike (the faint tip of a blur) shows no noise between them, so a PNG pixel's variance is never taken
+# below that of the rounding, (1/255)^2 / 12, halved for the mean of the two draws.
+PNG_ROUNDING_VARIANCE = (1.0 / 255.0) ** 2 / 12 / 2
 
 
 def load(path):
@@ -59,6 +63,7 @@ def main():
         print("compare.py: the four pictures differ in size", file=sys.stderr)
         sys.exit(2)
     oa, ob, ca, cb = (p for _, _, p in images)
+    rounding = sum(PNG_ROUNDING_VARIANCE for path in args[2:6:2] if path.endswith(".png"))  # ours', Cycles'
     worst, within2, tests, z2 = 0.0, 0, 0, 0.0
     totals = [[0.0] * 3, [0.0] * 3]
     for by in range(height // block):
@@ -74,7 +79,7 @@ def main():
                         vc += (ca[k] - cb[k]) ** 2 / 4
                 n = block * block
                 mo, mc = so / (2 * n), sc / (2 * n)
-                var = (vo + vc) / (n * n) + (FLOAT_SHARE * max(abs(mo), abs(mc))) ** 2
+                var = (vo + vc + n * rounding) / (n * n) + (FLOAT_SHARE * max(abs(mo), abs(mc))) ** 2
                 z = (mo - mc) / math.sqrt(var) if var > 0 else 0.0  # 0: both black
                 worst = max(worst, abs(z))
                 within2 += abs(z) <= 2
