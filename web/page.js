@@ -8,7 +8,9 @@
 "use strict";
 
 const CHAPTERS = ["camera", "sphere", "triangle", "plane", "aabb", "phong", "shadows", "recursion", "kdtree",
-                  "bvh", "fast", "antialias", "distributed", "textures", "paths"];
+                  "bvh", "fast", "antialias", "distributed", "textures", "paths", "instances", "rough"];
+// The chapters that trace paths (chapter 15's estimator): their samples are the paths line's.
+const PATH_CHAPTERS = [15, 17];
 // Chapter 11's rungs, 1 to 10. In the browser rungs 8 and 9 are rung 6, and rung 10's packets walk rung 6's
 // tree (WebAssembly has no AVX2; --stats says so).
 const RUNGS = ["plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean", "packet"];
@@ -93,7 +95,7 @@ function commandArgs(text, coarse) {
         set(`max_depth=${$("max-depth").value}`);
     if ($("fov").value)
         set(`camera.fov=${$("fov").value}`);
-    const samplesKey = n === 15 ? "paths.samples" : n >= 12 ? "antialias.samples" : null;
+    const samplesKey = PATH_CHAPTERS.includes(n) ? "paths.samples" : n >= 12 ? "antialias.samples" : null;
     if (samplesKey && (coarse || $("samples").value))
         set(`${samplesKey}=${coarse ? 1 : $("samples").value}`);
     if (n >= 9 && $("accel").value)
@@ -297,7 +299,7 @@ function showControls() {
     }
     const kinds = n === 9 ? ["kdtree", "none"] : ["bvh", "kdtree", "none"];
     $("accel").innerHTML = kinds.map((k, i) => `<option value="${i ? k : ""}">${k}${i ? "" : " (default)"}</option>`).join("");
-    $("samples").placeholder = n === 15 ? "paths'" : "scene's";
+    $("samples").placeholder = PATH_CHAPTERS.includes(n) ? "paths'" : "scene's";
 }
 
 async function loadScene(name) {

@@ -317,7 +317,7 @@ def main():
 
         # Every chapter's own scene at 160 x 120, and chapter 11's SIMD rung (3), compact rung (7) and
         # packet rung (10: rung 6's tree in the browser, rung 8's natively, the same picture).
-        for chapter in range(1, 16):
+        for chapter in range(1, 18):
             page.open(f"chapter={chapter}", timeout=300)
             n = page.full_shown()
             page.set_control("size", "160x120")
