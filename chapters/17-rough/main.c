@@ -6,26 +6,15 @@
  * f cos and its density, scattering draws the visible normals (Heitz 2018), and multiple importance
  * sampling weighs the two with the density of the lobe a path would have drawn. Everything else, the
  * emitters, the sample streams, the paths line and its strategy, is chapter 15's; a scene without
- * roughness draws chapter 15's picture exactly. */
-#include <limits.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-
-#include "accel_fast_bvh.h"
+ * roughness draws chapter 15's picture exactly. The program is chapter 15's (common/path_program.c)
+ * with the rough surfaces plugged in. */
+#include "accel.h"
 #include "box.h"
 #include "cli.h"
-#include "emitter.h"
-#include "fast_bvh.h"
-#include "lens.h"
-#include "mesh_surface.h"
-#include "path_image.h"
-#include "path_trace.h"
-#include "rough_surface.h"
+#include "path_program.h"
 #include "plane.h"
+#include "rough_surface.h"
 #include "sphere.h"
-#include "text_escape.h"
-#include "texture.h"
 #include "triangle.h"
 
 static struct accel_choice choice = {ACCEL_BVH, true};
@@ -53,85 +42,5 @@ int main(int argc, char **argv) {
     struct cli_run run;
     if (!cli_start(&run, &chapter, argc, argv))
         return cli_finish(&run);
-    struct scene *s = &run.scene;
-    s->paint = texture_paint;
-    if (!texture_load_images(s, run.err, sizeof run.err) || !scene_load_meshes(s, run.err, sizeof run.err) ||
-        !mesh_surface_prepare(s, run.err, sizeof run.err))
-        return cli_fail(&run);
-    /* As chapter 15: the area lights made emitting rectangles before the world is built over
-     * them, the emitters gathered, and every pixel the mean of its paths. */
-    int point_lights = emitter_add_area_lights(s, run.err, sizeof run.err);
-    if (point_lights < 0)
-        return cli_fail(&run);
-    if (point_lights > 0 && !run.options.quiet)
-        fprintf(stderr, "%s: chapter 17 ignores %d point light%s (a point has no area to emit from)\n", s->path,
-                point_lights, point_lights == 1 ? "" : "s");
-    /* Each path picks its own point of the pixel, so the antialias line has nothing to say; the lens is
-     * chapter 13's, which the paths do not sample. */
-    if ((s->antialias.line != 0 || lens_is_open(&s->lens)) && !run.options.quiet)
-        fprintf(stderr, "%s: chapter 17 ignores %s (each path samples the pixel itself, through a pinhole)\n", s->path,
-                s->antialias.line != 0 && lens_is_open(&s->lens) ? "the antialias line and the camera's lens"
-                : s->antialias.line != 0                         ? "the antialias line"
-                                                                 : "the camera's lens");
-    struct accel_world *w = accel_world_create_at_rung(s, &choice, FAST_BVH_RUNG_DEFAULT, run.err, sizeof run.err);
-    if (w == NULL)
-        return cli_fail(&run);
-    struct emitter_list emitters;
-    if (!emitter_list_build(&emitters, w, run.err, sizeof run.err)) {
-        accel_world_destroy(w);
-        return cli_fail(&run);
-    }
-    /* A scene in which nothing gives off light would draw a black picture: say why instead. */
-    if (emitters.count == 0 && s->background.x == 0.0 && s->background.y == 0.0 && s->background.z == 0.0) {
-        snprintf(run.err, sizeof run.err, "%s: nothing gives off light, so the picture would be black: no material "
-                 "has an emission, no light has an area (chapter 17 ignores %d point light%s) and the background "
-                 "is black", s->path, point_lights, point_lights == 1 ? "" : "s");
-        emitter_list_free(&emitters);
-        accel_world_destroy(w);
-        return cli_fail(&run);
-    }
-    struct camera cam;
-    float *linear = NULL, *error = NULL;
-    if (camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, run.err, sizeof run.err)) {
-        linear = calloc((size_t)s->width * (size_t)s->height * 6, sizeof *linear);
-        error = linear == NULL ? NULL : linear + (size_t)s->width * (size_t)s->height * 3;
-        if (linear == NULL) {
-            fprintf(stderr, "out of memory for a %d x %d frame of radiance\n", s->width, s->height);
-            run.status = CLI_OUTPUT_FAILED;
-        }
-    } /* else cli_render_sampled reports the camera */
-    if (run.status == CLI_OK) {
-        struct path_world paths;
-        path_world_init(&paths, &w->world, &emitters, &cam, &s->paths);
-        paths.surface = &rough_surface_hook; /* what chapter 17 adds: the rough surfaces */
-        struct path_picture picture = {&paths, linear, error, s->width};
-        bool report = cli_render_sampled(&run, NULL, &picture, &path_sampler);
-        const char *hdr_path = run.options.chapter_output; /* --hdr FILE, with -o's rules (cli.h) */
-        if (run.status == CLI_OK && run.options.pov == NULL && hdr_path != NULL) {
-            size_t length = strlen(hdr_path);
-            bool pfm = length >= 4 && strcmp(hdr_path + length - 4, ".pfm") == 0;
-            if (!(pfm ? path_image_write_pfm : path_image_write_hdr)(linear, s->width, s->height, hdr_path, run.err,
-                                                                     sizeof run.err)) {
-                fprintf(stderr, "%s\n", run.err);
-                run.status = CLI_OUTPUT_FAILED;
-            } else if (!run.options.quiet) {
-                char shown[4 * PATH_MAX];
-                text_escape(strcmp(hdr_path, "-") == 0 ? "standard output" : hdr_path, shown, sizeof shown);
-                printf("linear radiance: %s\n", shown);
-            }
-        }
-        if (report && run.status == CLI_OK) {
-            printf("paths: %d a pixel (%s, seed %u); noise: a pixel's standard error is %.1f%% of the mean; "
-                   "%.0f paths and %.0f rays a second\n", s->paths.samples, path_strategy_name(s->paths.strategy),
-                   (unsigned)s->paths.seed, 100 * path_image_noise(linear, error, s->width, s->height),
-                   run.total.primary_rays / run.render_seconds,
-                   (run.total.primary_rays + run.total.shadow_rays + run.total.reflected_rays +
-                    run.total.refracted_rays) / run.render_seconds);
-            accel_report(w, &run.total, run.options.stats);
-        }
-    }
-    free(linear);
-    emitter_list_free(&emitters);
-    accel_world_destroy(w);
-    return cli_finish(&run);
+    return path_program_run(&run, &choice, &rough_surface_hook);
 }
