@@ -401,6 +401,9 @@ check-$(1): | out
 	tests/checks/grade.sh "$$(MAKE)" $$(BUILD) $(1) $$(BUILD)/check $$(BUILD)/chapter-$$$$n
 endef
 $(foreach n,1 2 3 4 5 6 7 8 9 10 11 12 13 14 15,$(eval $(call check_rule,$(n))))
+# (chapter 17's grading: make check-17)
+.PHONY: check-17
+$(eval $(call check_rule,17))
 
 ## make check          grade every chapter's coursework tasks
 check: | out

@@ -24,6 +24,7 @@ static double usable_alpha(double alpha) { return fmax(alpha, MICROFACET_ALPHA_M
 
 /* ---- the GGX distribution and Smith's masking ------------------------------------------------------ */
 
+/* TASK 17.1: the GGX distribution of microfacet normals */
 double microfacet_ggx_d(vec3 m, double alpha) {
     if (m.z <= 0.0)
         return 0.0;
@@ -224,6 +225,7 @@ static vec3 phong_direction(vec3 wo, double n, double u1, double u2) {
     return vec3_add(vec3_scale(r, cos_a), vec3_add(vec3_scale(t, sin_a * cos(phi)), vec3_scale(b, sin_a * sin(phi))));
 }
 
+/* TASK 17.2: the rough metal's BRDF: Fresnel, distribution and masking over the two cosines */
 static vec3 conductor_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     vec3 zero = vec3_make(0.0, 0.0, 0.0);
     if (wo.z <= 0.0 || wi.z <= 0.0)
@@ -237,6 +239,7 @@ static vec3 conductor_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     return vec3_scale(conductor_fresnel(l, vec3_dot(wo, h)), shape);
 }
 
+/* TASK 17.3: the density of a reflected direction: the visible normals' through the half vector's Jacobian */
 static double conductor_pdf(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     if (wo.z <= 0.0 || wi.z <= 0.0)
         return 0.0;
@@ -274,6 +277,7 @@ static bool dielectric_pair_of(const struct microfacet_lobe *l, vec3 wo, vec3 wi
     return true;
 }
 
+/* TASK 17.2 ALSO: the rough glass's BSDF, whose reflection is the rough metal's */
 static vec3 dielectric_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     struct dielectric_pair p;
     if (!dielectric_pair_of(l, wo, wi, &p))
@@ -290,6 +294,7 @@ static vec3 dielectric_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     return vec3_scale(l->tint, f);
 }
 
+/* TASK 17.3 ALSO: the rough glass's density, whose reflection carries the same Jacobian */
 static double dielectric_pdf(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     struct dielectric_pair p;
     if (!dielectric_pair_of(l, wo, wi, &p))
@@ -391,6 +396,7 @@ bool microfacet_sample(const struct microfacet_lobe *l, vec3 wo, double u1, doub
  * distribution of D(m) m.z, whose inverse is exact: tan^2(theta_m) = alpha^2 u / (1 - u), with
  * 1 - u = (1 - t)^2 so that the integrand stays smooth where the normals graze; a midpoint rule in
  * (t, phi). */
+/* TASK 17.3 ALSO: the albedo over the microfacet normals, through the same Jacobian turned round */
 static vec3 ggx_albedo(const struct microfacet_lobe *l, vec3 wo, int steps) {
     double alpha = usable_alpha(l->alpha), side = wo.z > 0.0 ? 1.0 : -1.0;
     struct sides s = sides_of(l, wo);
