@@ -36,4 +36,7 @@ bool solution_sampling_sphere_cone(vec3 centre, double radius, vec3 point, doubl
 bool wrong_sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,
                                 double *density);
 
+vec3 solution_microfacet_ggx_sample_normal(double alpha, double u1, double u2);
+vec3 wrong_microfacet_ggx_sample_normal(double alpha, double u1, double u2);
+
 #endif
