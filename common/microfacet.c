@@ -409,7 +409,6 @@ bool microfacet_sample(const struct microfacet_lobe *l, vec3 wo, double u1, doub
  * distribution of D(m) m.z, whose inverse is exact: tan^2(theta_m) = alpha^2 u / (1 - u), with
  * 1 - u = (1 - t)^2 so that the integrand stays smooth where the normals graze; a midpoint rule in
  * (t, phi). */
-/* TASK 17.3 ALSO: the albedo over the microfacet normals, through the same Jacobian turned round */
 static vec3 ggx_albedo(const struct microfacet_lobe *l, vec3 wo, int steps) {
     double alpha = usable_alpha(l->alpha), side = wo.z > 0.0 ? 1.0 : -1.0;
     struct sides s = sides_of(l, wo);
