@@ -24,6 +24,7 @@ static double usable_alpha(double alpha) { return fmax(alpha, MICROFACET_ALPHA_M
 
 /* ---- the GGX distribution and Smith's masking ------------------------------------------------------ */
 
+/* TASK 17.1: the GGX distribution of microfacet normals */
 double microfacet_ggx_d(vec3 m, double alpha) {
     if (m.z <= 0.0)
         return 0.0;
@@ -224,6 +225,10 @@ static vec3 phong_direction(vec3 wo, double n, double u1, double u2) {
     return vec3_add(vec3_scale(r, cos_a), vec3_add(vec3_scale(t, sin_a * cos(phi)), vec3_scale(b, sin_a * sin(phi))));
 }
 
+/* Returns the rough conductor's f(wo, wi) (microfacet_eval's contract): Fresnel at the half vector h of
+ * wo and wi (conductor_fresnel at wo . h) times D(h) times the masking-shadowing G2(wo, wi), over
+ * 4 wo.z wi.z; 0 when wo or wi is below the surface. */
+/* TASK 17.2: the rough metal's BRDF: Fresnel, distribution and masking over the two cosines */
 static vec3 conductor_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     vec3 zero = vec3_make(0.0, 0.0, 0.0);
     if (wo.z <= 0.0 || wi.z <= 0.0)
@@ -237,6 +242,11 @@ static vec3 conductor_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     return vec3_scale(conductor_fresnel(l, vec3_dot(wo, h)), shape);
 }
 
+/* Returns the density per unit solid angle of wi that microfacet_sample gives the rough conductor from wo
+ * (microfacet_pdf's contract): it draws a visible normal h (microfacet_ggx_visible_pdf) and reflects wo
+ * about it, so the density is that of h = the half vector of wo and wi, carried from normals to
+ * directions; 0 when wo or wi is below the surface. */
+/* TASK 17.3: the density of a reflected direction: the visible normals' through the half vector's Jacobian */
 static double conductor_pdf(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     if (wo.z <= 0.0 || wi.z <= 0.0)
         return 0.0;
@@ -274,6 +284,10 @@ static bool dielectric_pair_of(const struct microfacet_lobe *l, vec3 wo, vec3 wi
     return true;
 }
 
+/* Returns the rough dielectric's f(wo, wi) (microfacet_eval's contract): Fresnel times D G2 over
+ * 4 |wo.z wi.z| for a reflection, and for a refraction (1 - Fresnel) D G2 through the generalised half
+ * vector's Jacobian, tinted (Walter et al. 2007, eq. 21). */
+/* TASK 17.2 ALSO: the rough glass's BSDF, whose reflection is the rough metal's */
 static vec3 dielectric_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     struct dielectric_pair p;
     if (!dielectric_pair_of(l, wo, wi, &p))
@@ -290,6 +304,10 @@ static vec3 dielectric_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     return vec3_scale(l->tint, f);
 }
 
+/* Returns the density of wi that microfacet_sample gives the rough dielectric from wo (microfacet_pdf's
+ * contract): the visible normal's density carried to directions, times Fresnel for a reflection or
+ * 1 - Fresnel for a refraction (the share with which the third number chooses each). */
+/* TASK 17.3 ALSO: the rough glass's density, whose reflection carries the same Jacobian */
 static double dielectric_pdf(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     struct dielectric_pair p;
     if (!dielectric_pair_of(l, wo, wi, &p))

@@ -68,9 +68,9 @@ vec3 path_direct_light(const struct path_world *pw, struct sample_stream *rng, v
     return vec3_scale(vec3_mul(b->albedo, e.radiance), cos_here / M_PI / p_light * weight);
 }
 
-/* TASK 15.1 ALSO: next-event estimation at a surface of pw->surface */
 /* Next-event estimation at `point` of a surface of pw->surface (material m, its normal facing wo): as
  * path_direct_light, with the surface's f |cos| and, under PATH_MIS, its own density to weigh against. */
+/* TASK 15.1 ALSO: next-event estimation at a surface of pw->surface */
 static vec3 surface_direct_light(const struct path_world *pw, struct sample_stream *rng, vec3 point, vec3 normal,
                                  const struct material *m, vec3 wo, double eta) {
     double u_pick = sample_stream_next(rng), u1 = sample_stream_next(rng), u2 = sample_stream_next(rng);

@@ -136,8 +136,9 @@ static const char *const idioms[] = {
     "for (int a = 0; a < n; a++)", "for (int b = 0; b < n; b++)", "for (int k = 0; k < FAST_BVH_WIDTH; k++) {",
     "for (int k = 0; k < slots; k++) {", "for (size_t k = 0; k < t->count; k++)",
     "for (size_t k = 0; k < t->count; k++) {", "for (size_t k = 0; k < s->light_count; k++) {",
-    "return vec3_make(0, 0, 0);", "vec3 sum = vec3_make(0, 0, 0);", "struct hit h = hit_nothing(INFINITY);",
-    "struct material painted;", "const struct world *w = world;", "const struct kd_node *n = &k->nodes[index];",
+    "return vec3_make(0, 0, 0);", "return vec3_make(0.0, 0.0, 0.0);", "if (!(vec3_length(h) > 0.0))",
+    "vec3 sum = vec3_make(0, 0, 0);", "struct hit h = hit_nothing(INFINITY);",
+    "struct material painted;", "struct bsdf b = bsdf_of_material(m);", "const struct world *w = world;", "const struct kd_node *n = &k->nodes[index];",
     "stats_thread.box_tests++;", "stats_thread.adc_saves++;", "stats_thread.budget_cut++;",
     "uint32_t n = r->end - r->begin;", "float4 c = centroid_of(&p);", "struct aabb bounds = {b->min, b->max};",
     "__builtin_memcpy(entry, &enter, sizeof enter);",
@@ -452,11 +453,15 @@ Test(coursework_long, each_picture_check_needs_exactly_the_tasks_its_program_run
     cr_assert_eq(run(log, MAKE_IN " %1$s SAN=%2$d -j2 %3$s/check $(cd %1$s && ls -d chapters/[0-9][0-9]-* | "
                           "sed 's|^chapters/\\([0-9]*\\)-.*|%3$s/chapter-\\1|')", dir, san(), build()),
                  0, "the traced copy does not build: see %s", log);
-    char *pictures = output_of(NULL, "cd %s && ./%s/check --list | grep -c 'P$' | tr -d '\\n'", dir, build());
-    int chapters = atoi(pictures);
-    free(pictures);
+    /* The chapters with a picture check, "1 2 ... 15 17": not every number need have one. */
+    char *pictures = output_of(NULL, "cd %s && ./%s/check --list | sed -n 's/[.]P$//p' | tr '\\n' ' '", dir, build());
+    int chapters = 0;
+    for (const char *c = pictures; *c != '\0'; c++)
+        chapters += *c == ' ';
     cr_assert_geq(chapters, 11, "the grader has only %d picture checks", chapters);
-    for (int chapter = 1; chapter <= chapters; chapter++) {
+    char *next = pictures, *end;
+    for (int chapter = (int)strtol(next, &end, 10); end != next; chapter = (int)strtol(next, &end, 10)) {
+        next = end;
         char *ran = output_of(NULL, "cd %1$s && rm -f ran && WHITTED_TASK_TRACE=ran ./%2$s/chapter-%3$02d --quiet "
                                     "--threads 2 -o out.png && sort -t. -k1,1n -k2,2n -u ran | tr '\\n' ' '",
                               dir, build(), chapter);
@@ -467,5 +472,6 @@ Test(coursework_long, each_picture_check_needs_exactly_the_tasks_its_program_run
         free(ran);
         free(needs);
     }
+    free(pictures);
     run(log, "rm -rf %s", dir);
 }

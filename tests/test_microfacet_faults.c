@@ -10,15 +10,14 @@
 
 #include "test_support.h"
 
-/* Each of chapter 17's faults in microfacet.c (a patch with a "Fails:" line naming the test of
- * tests/test_microfacet.c that it breaks; in tools/gallery/ once the gallery shows it, in
- * tools/gallery-17/ until then): that file and the lobes' modules are built again with the patch applied
- * to a copy of common/, and the test must fail there while it passes here. */
+/* Each of chapter 17's faults in microfacet.c (a patch of the gallery, tools/gallery/17-*.patch, with a
+ * "Fails:" line naming the test of tests/test_microfacet.c that it breaks): that file and the lobes'
+ * modules are built again with the patch applied to a copy of common/, and the test must fail there
+ * while it passes here. */
 Test(microfacet_long, every_fault_of_the_lobes_fails_the_test_it_names, .timeout = 600) {
     glob_t found;
     int count = 0;
-    if (glob("tools/gallery/17-*.patch", 0, NULL, &found) == 0 || found.gl_pathc == 0)
-        glob("tools/gallery-17/17-*.patch", GLOB_APPEND, NULL, &found);
+    glob("tools/gallery/17-*.patch", 0, NULL, &found);
     for (size_t k = 0; k < found.gl_pathc; k++) {
         const char *patch = found.gl_pathv[k];
         char *text = read_text_file(patch);

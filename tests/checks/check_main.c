@@ -80,6 +80,12 @@ const struct task check_tasks[] = {
     {"16.3", "the box of a moving object over a stretch of the shutter", "stretch_box in common/keyframes.c", ""},
     {"16.P", "chapter 16's picture", "chapters/16-instances",
      "1.1 4.1 5.1 6.1 6.2 7.1 8.2 10.2 11.1 11.2 12.1 16.1 16.3"},
+    {"17.1", "the GGX distribution of microfacet normals", "microfacet_ggx_d in common/microfacet.c", ""},
+    {"17.2", "the rough metal's BRDF: Fresnel, distribution and masking", "conductor_eval in common/microfacet.c",
+     "17.1"},
+    {"17.3", "the density of a reflected direction", "conductor_pdf in common/microfacet.c", "17.1"},
+    {"17.P", "chapter 17's picture", "chapters/17-rough",
+     "1.1 2.1 2.2 5.1 10.2 11.1 11.2 15.1 15.2 17.1 17.2 17.3"},
 };
 const size_t check_task_count = sizeof check_tasks / sizeof check_tasks[0];
 
@@ -178,6 +184,13 @@ CHECK(check_motion_box_translation);
 CHECK(check_motion_box_turn);
 CHECK(check_motion_box_keys_and_shutter);
 CHECK(check_picture_16);
+CHECK(check_ggx_d_values);
+CHECK(check_ggx_d_projected_area);
+CHECK(check_metal_mirror_pair);
+CHECK(check_metal_fresnel_and_half_vector);
+CHECK(check_metal_pdf_values);
+CHECK(check_metal_pdf_integrates_to_one);
+CHECK(check_picture_17);
 
 const struct check check_list[] = {
     {"1.1", "the top-left pixel's ray", check_camera_top_left},
@@ -275,6 +288,13 @@ const struct check check_list[] = {
     {"16.3", "an arm turning 90 degrees: its middle position held too", check_motion_box_turn},
     {"16.3", "three keys, a shutter across the middle one, a shutter of no length", check_motion_box_keys_and_shutter},
     {"16.P", "the picture matches the reference", check_picture_16},
+    {"17.1", "D at the peak, at 30, 45 and 80 degrees; nothing below", check_ggx_d_values},
+    {"17.1", "the microfacets' projected area is the surface's: D cos integrates to 1", check_ggx_d_projected_area},
+    {"17.2", "eye and light along the normal, and mirrored at 60 degrees: masked", check_metal_mirror_pair},
+    {"17.2", "the eye at 60 degrees, the light overhead: Fresnel at the half vector", check_metal_fresnel_and_half_vector},
+    {"17.3", "the density at the mirror direction and off it, worked by hand", check_metal_pdf_values},
+    {"17.3", "the density integrates to just under 1 over the hemisphere", check_metal_pdf_integrates_to_one},
+    {"17.P", "the picture matches the reference", check_picture_17},
 };
 const size_t check_count = sizeof check_list / sizeof check_list[0];
 

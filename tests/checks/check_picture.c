@@ -37,11 +37,16 @@ extern char **environ;
 /* Chapter 15's picture takes its program 256 paths for each of 256 x 256 pixels, half a minute: its check
  * renders the same scene at 128 x 128 pixels with 16 paths each, 64 times fewer paths, and compares it
  * with a reference of that size. The random numbers are keyed by pixel, sample and seed, so the smaller
- * picture is as exact a test: any change to what a path computes changes it. The reference is made by the
- * reference program with these options (tests/test_images.c checks that it is current):
- *   ./build/chapter-15 --width 128 --height 128 --set paths.samples=16 -o reference_images/chapter-15-check.png */
-#define PATHS_CHECK_OPTIONS "--width", "128", "--height", "128", "--set", "paths.samples=16"
-#define PATHS_CHECK_REFERENCE "reference_images/chapter-15-check.png"
+ * picture is as exact a test: any change to what a path computes changes it. Chapter 17's the same, at its
+ * own shape. The references are made by the reference programs with these options (tests/test_images.c
+ * checks that they are current):
+ *   ./build/chapter-15 --width 128 --height 128 --set paths.samples=16 -o reference_images/chapter-15-check.png
+ *   ./build/chapter-17 --width 128 --height 85 --set paths.samples=16 -o reference_images/chapter-17-check.png */
+#define PATHS_CHECK_OPTIONS_15 "--width", "128", "--height", "128", "--set", "paths.samples=16"
+#define PATHS_CHECK_OPTIONS_17 "--width", "128", "--height", "85", "--set", "paths.samples=16"
+
+/* Whether chapter n's picture check renders the smaller picture of a path tracer. */
+static bool paths_chapter(int n) { return n == 15 || n == 17; }
 
 static int level_difference(const uint8_t *a, const uint8_t *b) {
     int worst = 0;
@@ -119,17 +124,19 @@ static void describe(const uint8_t *expected, const uint8_t *got, int w, int h, 
         snprintf(out + n, size - (size_t)n, "; it looks %s", symptom);
 }
 
-/* Runs ./BUILD/chapter-NN --quiet -o got_path (with chapter 15's smaller picture's options when paths is
- * true) with its messages in log_path. Returns its wait status, or -1 when it could not be started. */
-static int render(const char *program, bool paths, const char *got_path, const char *log_path) {
+/* Runs ./BUILD/chapter-NN --quiet -o got_path (with chapter n's smaller picture's options when it is a
+ * path tracer's) with its messages in log_path. Returns its wait status, or -1 when it could not be
+ * started. */
+static int render(const char *program, int n, const char *got_path, const char *log_path) {
     posix_spawn_file_actions_t files;
     posix_spawn_file_actions_init(&files);
     posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, log_path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
     posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
     char *const args[] = {(char *)program, "--quiet", "-o", (char *)got_path, NULL};
-    char *const paths_args[] = {(char *)program, "--quiet", "-o", (char *)got_path, PATHS_CHECK_OPTIONS, NULL};
+    char *const paths_15[] = {(char *)program, "--quiet", "-o", (char *)got_path, PATHS_CHECK_OPTIONS_15, NULL};
+    char *const paths_17[] = {(char *)program, "--quiet", "-o", (char *)got_path, PATHS_CHECK_OPTIONS_17, NULL};
     pid_t pid;
-    int started = posix_spawn(&pid, program, &files, NULL, paths ? paths_args : args, environ);
+    int started = posix_spawn(&pid, program, &files, NULL, n == 15 ? paths_15 : n == 17 ? paths_17 : args, environ);
     posix_spawn_file_actions_destroy(&files);
     int status;
     if (started != 0 || waitpid(pid, &status, 0) != pid)
@@ -144,16 +151,18 @@ static bool picture(int n, char *why, size_t why_size) {
     mkdir("out", 0777);
     mkdir("out/check", 0777);
     snprintf(got_path, sizeof got_path, "out/check/chapter-%02d-got.png", n);
-    if (n == 15)
-        snprintf(ref_path, sizeof ref_path, "%s", PATHS_CHECK_REFERENCE);
+    if (paths_chapter(n))
+        snprintf(ref_path, sizeof ref_path, "reference_images/chapter-%02d-check.png", n);
     else
         snprintf(ref_path, sizeof ref_path, "reference_images/chapter-%02d.png", n);
     snprintf(panel_path, sizeof panel_path, "out/check/chapter-%02d-expected-got-difference.png", n);
     snprintf(program, sizeof program, "./%s/chapter-%02d", build, n);
     snprintf(log_path, sizeof log_path, "out/check/chapter-%02d.log", n);
     remove(got_path);
-    check_calling(program, "its own scene%s (its messages go to %s)", n == 15 ? " at 128 x 128 pixels, 16 paths each" : "", log_path);
-    int status = render(program, n == 15, got_path, log_path);
+    check_calling(program, "its own scene%s (its messages go to %s)",
+                  n == 15 ? " at 128 x 128 pixels, 16 paths each" : n == 17 ? " at 128 x 85 pixels, 16 paths each" : "",
+                  log_path);
+    int status = render(program, n, got_path, log_path);
     if (status == -1) {
         snprintf(why, why_size, "%s could not be started; is it built? make check-%d builds it", program, n);
         return false;
@@ -222,3 +231,4 @@ CHECK(check_picture_13) { return picture(13, why, why_size); }
 CHECK(check_picture_14) { return picture(14, why, why_size); }
 CHECK(check_picture_15) { return picture(15, why, why_size); }
 CHECK(check_picture_16) { return picture(16, why, why_size); }
+CHECK(check_picture_17) { return picture(17, why, why_size); }

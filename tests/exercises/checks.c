@@ -948,5 +948,44 @@ bool check_slerp(slerp_fn f, char *why, size_t why_size) {
         return fail(why, why_size, "q0 and a turn 1e-6 degrees from it, t = 0.5: the result (%.6g, %.6g, %.6g, %.6g) is "
                     "not a unit quaternion beside them (dividing by the sine of a tiny angle? Blend linearly there)",
                     out[0], out[1], out[2], out[3]);
+/* ---- exercise 17.5: sampling GGX's normals ----------------------------------------------------- */
+
+#define GGX_NORMALS_GRID 200        /* the check draws from a 200 x 200 grid of (u1, u2) midpoints */
+#define GGX_NORMALS_SHARE_TOLERANCE 0.01 /* a share of 40,000 stratified draws, far coarser than their error */
+
+bool check_ggx_normals(ggx_normal_fn f, char *why, size_t why_size) {
+    const double alphas[] = {0.1, 0.5, 1.0};
+    for (int a = 0; a < 3; a++) {
+        double alpha = alphas[a];
+        /* Under D(m) cos(theta), P(tan^2 theta <= x) = x / (alpha^2 + x): that share of each draw's
+         * tan^2 is uniform in [0, 1), so each tenth of it holds a tenth of the draws. */
+        int tenths[10] = {0};
+        long first_quadrant = 0;
+        double sum_x = 0, sum_y = 0;
+        for (int i = 0; i < GGX_NORMALS_GRID; i++)
+            for (int j = 0; j < GGX_NORMALS_GRID; j++) {
+                double u1 = (i + 0.5) / GGX_NORMALS_GRID, u2 = (j + 0.5) / GGX_NORMALS_GRID;
+                vec3 m = f(alpha, u1, u2);
+                if (!(fabs(vec3_length(m) - 1.0) < 1e-9) || !(m.z > 0.0))
+                    return fail(why, why_size, "alpha %g, u1 %g, u2 %g: the normal (%g, %g, %g) is not a unit vector "
+                                "above the surface", alpha, u1, u2, m.x, m.y, m.z);
+                double tan2 = (m.x * m.x + m.y * m.y) / (m.z * m.z), share = tan2 / (alpha * alpha + tan2);
+                tenths[share >= 1.0 ? 9 : (int)(10.0 * share)]++;
+                first_quadrant += m.x > 0.0 && m.y > 0.0;
+                sum_x += m.x;
+                sum_y += m.y;
+            }
+        double count = (double)GGX_NORMALS_GRID * GGX_NORMALS_GRID;
+        for (int k = 0; k < 10; k++)
+            if (!(fabs(tenths[k] / count - 0.1) <= GGX_NORMALS_SHARE_TOLERANCE))
+                return fail(why, why_size, "alpha %g: %.1f %% of the normals have tan^2 / (alpha^2 + tan^2) between %.1f "
+                            "and %.1f, expected 10 %% (their density is not D(m) cos theta: tan^2 theta = alpha^2 u / "
+                            "(1 - u)?)", alpha, 100.0 * tenths[k] / count, k / 10.0, (k + 1) / 10.0);
+        if (!(fabs(first_quadrant / count - 0.25) <= GGX_NORMALS_SHARE_TOLERANCE) || !(fabs(sum_x / count) < 0.01) ||
+            !(fabs(sum_y / count) < 0.01))
+            return fail(why, why_size, "alpha %g: %.1f %% of the normals lean towards +x and +y (expected 25 %%), their mean "
+                        "leaning is (%.3f, %.3f) (expected 0): the angle about the normal is not uniform",
+                        alpha, 100.0 * first_quadrant / count, sum_x / count, sum_y / count);
+    }
     return true;
 }

@@ -158,5 +158,13 @@ bool check_cone(cone_fn f, char *why, size_t why_size);
 void keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]);
 typedef void (*slerp_fn)(const double *, const double *, double, double *);
 bool check_slerp(slerp_fn f, char *why, size_t why_size);
+/* Exercise 17.5 (common/microfacet.c): sampling the GGX distribution's normals themselves (Walter et al.
+ * 2007), the sampler that came before the visible normals of microfacet_ggx_sample_visible. Returns a
+ * unit microfacet normal m (m.z > 0) drawn from two uniform numbers in [0, 1) with the density
+ * D(m) cos(theta_m) per unit solid angle, D = microfacet_ggx_d of width alpha: tan^2 theta =
+ * alpha^2 u1 / (1 - u1), the angle about the normal 2 pi u2. */
+vec3 microfacet_ggx_sample_normal(double alpha, double u1, double u2);
+typedef vec3 (*ggx_normal_fn)(double, double, double);
+bool check_ggx_normals(ggx_normal_fn f, char *why, size_t why_size);
 
 #endif

@@ -537,3 +537,18 @@ void solution_keyframes_slerp(const double q0[4], const double q1[4], double t, 
 void wrong_keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]) {
     slerp(q0, q1, t, out, true);
 }
+/* GGX's normals: tan^2 theta = alpha^2 u1 / (1 - u1), the inverse of the share x / (alpha^2 + x) of
+ * normals with tan^2 theta below x. With `unsquared` (the wrong answer) tan theta = alpha u1 / (1 - u1),
+ * the square root forgotten: the same median, but too many normals near the pole and too many far out. */
+static vec3 ggx_normal(double alpha, double u1, double u2, bool unsquared) {
+    double tan_theta = unsquared ? alpha * u1 / (1.0 - u1) : alpha * sqrt(u1 / (1.0 - u1));
+    double cos_theta = 1.0 / sqrt(1.0 + tan_theta * tan_theta), sin_theta = tan_theta * cos_theta;
+    double phi = 2.0 * M_PI * u2;
+    return vec3_make(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+}
+
+vec3 solution_microfacet_ggx_sample_normal(double alpha, double u1, double u2) {
+    return ggx_normal(alpha, u1, u2, false);
+}
+
+vec3 wrong_microfacet_ggx_sample_normal(double alpha, double u1, double u2) { return ggx_normal(alpha, u1, u2, true); }

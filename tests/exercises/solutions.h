@@ -38,4 +38,7 @@ bool wrong_sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u
 void solution_keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]);
 void wrong_keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]);
 
+vec3 solution_microfacet_ggx_sample_normal(double alpha, double u1, double u2);
+vec3 wrong_microfacet_ggx_sample_normal(double alpha, double u1, double u2);
+
 #endif

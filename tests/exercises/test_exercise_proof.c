@@ -120,3 +120,4 @@ PROOF(concentric, check_concentric, solution_thin_lens_concentric, wrong_thin_le
 PROOF(cylindrical, check_cylindrical, solution_image_map_cylindrical, wrong_image_map_cylindrical)
 PROOF(cone, check_cone, solution_sampling_sphere_cone, wrong_sampling_sphere_cone)
 PROOF(slerp, check_slerp, solution_keyframes_slerp, wrong_keyframes_slerp)
+PROOF(ggx_normals, check_ggx_normals, solution_microfacet_ggx_sample_normal, wrong_microfacet_ggx_sample_normal)

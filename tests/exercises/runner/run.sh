@@ -50,6 +50,7 @@ done <<'TABLE'
 14.4|the cylindrical map|image_map_cylindrical|check_cylindrical|image_map_cylindrical|common/image_map.c|docs/14-textures.md
 15.4|the cone of a ball of light|sampling_sphere_cone|check_cone|sampling_sphere_cone|common/sampling.c|docs/15-paths.md
 16.4|slerp, a turn at constant speed|keyframes_slerp|check_slerp|keyframes_slerp|common/keyframes.c|docs/16-instances.md
+17.5|sampling GGX's normals|microfacet_ggx_sample_normal|check_ggx_normals|microfacet_ggx_sample_normal|common/microfacet.c|docs/17-rough.md
 TABLE
 echo "exercises: $done done, $failing failing, $waiting not started"
 [ "$failing" -eq 0 ]
