@@ -29,8 +29,20 @@
 #include "triangle.h"
 
 static struct accel_choice choice = {ACCEL_BVH, true};
+/* --form cycles-3.4: the lobes as Cycles 3.4 writes them, for the comparison with it only (rough_surface.h). */
+static const struct path_surface *rough_hook = &rough_surface_hook;
 
 static int parse_option(const char *option, const char *value) {
+    if (strcmp(option, "--form") == 0) {
+        if (value != NULL && (strcmp(value, "chapter") == 0 || strcmp(value, "cycles-3.4") == 0)) {
+            rough_hook = strcmp(value, "cycles-3.4") == 0 ? &rough_surface_hook_cycles_3_4 : &rough_surface_hook;
+            return 2;
+        }
+        char got[256];
+        text_escape(value != NULL ? value : "", got, sizeof got); /* the value comes from the command line */
+        fprintf(stderr, "--form needs 'chapter' (the default) or 'cycles-3.4' (to compare with it), got '%s'\n", got);
+        return -1;
+    }
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
 }
 
@@ -47,7 +59,10 @@ int main(int argc, char **argv) {
                         "                   Float Map when FILE ends in .pfm (every float kept whole); - for\n"
                         "                   standard output (the counters then go to standard error)\n"
                         "  --accel KIND     none, kdtree or bvh (default bvh: chapter 11's fast BVH)\n"
-                        "  --split RULE     sah (default) or seed: the seed's rule\n",
+                        "  --split RULE     sah (default) or seed: the seed's rule\n"
+                        "  --form FORM      chapter (default): the chapter's lobes; cycles-3.4: masking by\n"
+                        "                   G1(wo) G1(wi) and glass's Fresnel at the normal, as Blender 3.4's\n"
+                        "                   Cycles has them, for comparing with it only\n",
         .output_option = "--hdr",
     };
     struct cli_run run;
@@ -103,7 +118,7 @@ int main(int argc, char **argv) {
     if (run.status == CLI_OK) {
         struct path_world paths;
         path_world_init(&paths, &w->world, &emitters, &cam, &s->paths);
-        paths.surface = &rough_surface_hook; /* what chapter 17 adds: the rough surfaces */
+        paths.surface = rough_hook; /* what chapter 17 adds: the rough surfaces */
         struct path_picture picture = {&paths, linear, error, s->width};
         bool report = cli_render_sampled(&run, NULL, &picture, &path_sampler);
         const char *hdr_path = run.options.chapter_output; /* --hdr FILE, with -o's rules (cli.h) */
