@@ -49,6 +49,12 @@ double microfacet_ggx_g2(vec3 wo, vec3 wi, double alpha) {
     return 1.0 / (1.0 + (microfacet_ggx_lambda(wo, alpha) + microfacet_ggx_lambda(wi, alpha)));
 }
 
+double microfacet_ggx_masking(enum microfacet_form form, vec3 wo, vec3 wi, double alpha) {
+    if (form == MICROFACET_CYCLES_3_4)
+        return microfacet_ggx_g1(wo, alpha) * microfacet_ggx_g1(wi, alpha);
+    return microfacet_ggx_g2(wo, wi, alpha);
+}
+
 vec3 microfacet_ggx_sample_visible(vec3 wo, double alpha, double u1, double u2) {
     /* Stretch the view so that the distribution becomes the hemisphere of alpha 1 ... */
     vec3 v = vec3_normalize(vec3_make(alpha * wo.x, alpha * wo.y, wo.z));
@@ -238,7 +244,7 @@ static vec3 conductor_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
         return zero;
     h = vec3_normalize(h);
     double alpha = usable_alpha(l->alpha);
-    double shape = microfacet_ggx_d(h, alpha) * microfacet_ggx_g2(wo, wi, alpha) / (4.0 * wo.z * wi.z);
+    double shape = microfacet_ggx_d(h, alpha) * microfacet_ggx_masking(l->form, wo, wi, alpha) / (4.0 * wo.z * wi.z);
     return vec3_scale(conductor_fresnel(l, vec3_dot(wo, h)), shape);
 }
 
@@ -293,8 +299,10 @@ static vec3 dielectric_eval(const struct microfacet_lobe *l, vec3 wo, vec3 wi) {
     if (!dielectric_pair_of(l, wo, wi, &p))
         return vec3_make(0.0, 0.0, 0.0);
     double alpha = usable_alpha(l->alpha);
-    double shape = microfacet_ggx_d(p.m, alpha) * microfacet_ggx_g2(p.wo, p.wi, alpha);
-    double fresnel = dielectric_fresnel(p.wo, p.m, p.s);
+    double shape = microfacet_ggx_d(p.m, alpha) * microfacet_ggx_masking(l->form, p.wo, p.wi, alpha);
+    /* Cycles 3.4's glass weighs its reflection and refraction by the Fresnel of the surface's normal */
+    vec3 fresnel_normal = l->form == MICROFACET_CYCLES_3_4 ? vec3_make(0.0, 0.0, 1.0) : p.m;
+    double fresnel = dielectric_fresnel(p.wo, fresnel_normal, p.s);
     if (p.reflected) {
         double f = fresnel * shape / (4.0 * p.wo.z * p.wi.z);
         return vec3_make(f, f, f);

@@ -41,8 +41,23 @@ double microfacet_ggx_lambda(vec3 w, double alpha);
 double microfacet_ggx_g1(vec3 w, double alpha);
 
 /* Returns the height-correlated masking-shadowing G2(wo, wi) = 1 / (1 + Lambda(wo) + Lambda(wi)), the
- * share of microfacets both directions see (as pbrt-v4 and Cycles use). Symmetric in wo and wi. */
+ * share of microfacets both directions see (as pbrt-v4 and Cycles from 4.0 use). Symmetric in wo and wi. */
 double microfacet_ggx_g2(vec3 wo, vec3 wi, double alpha);
+
+/* Which form of the GGX lobes f takes. The chapter's model is MICROFACET_CHAPTER (0, every constructor's).
+ * MICROFACET_CYCLES_3_4 exists ONLY for the comparison with Blender 3.4's Cycles (tools/cycles/), and
+ * writes f as Cycles 3.4 does: Smith's masking as two separate terms G1(wo) G1(wi) (its GGX, Glossy and
+ * Glass), and a dielectric's Fresnel taken at the surface's normal instead of at each microfacet (its
+ * Glass BSDF node weighs a reflecting and a refracting lobe by F(n . wo) and 1 - F(n . wo)). The
+ * sampling and the pdf are the same for both forms: only f differs. */
+enum microfacet_form {
+    MICROFACET_CHAPTER,    /* G2 = 1 / (1 + Lambda(wo) + Lambda(wi)), Fresnel per microfacet (Walter et al.) */
+    MICROFACET_CYCLES_3_4, /* G1(wo) G1(wi), a dielectric's Fresnel at the normal: for the comparison only */
+};
+
+/* Returns the masking-shadowing of the form `form`: microfacet_ggx_g2, or for MICROFACET_CYCLES_3_4 the
+ * product G1(wo) G1(wi) (never larger than G2). */
+double microfacet_ggx_masking(enum microfacet_form form, vec3 wo, vec3 wi, double alpha);
 
 /* Returns a microfacet normal m drawn with the density of the normals visible from wo (wo.z > 0),
  * microfacet_ggx_visible_pdf, from two uniform numbers in [0, 1): Heitz 2018's method (stretch the
@@ -87,6 +102,7 @@ enum microfacet_kind {
 };
 
 /* One rough lobe. Fill it with the microfacet_*_lobe constructors below rather than by hand. */
+
 struct microfacet_lobe {
     enum microfacet_kind kind;
     double alpha;      /* GGX width (Phong: its exponent is microfacet_phong_exponent(alpha)) */
@@ -95,6 +111,7 @@ struct microfacet_lobe {
     vec3 eta, k;       /* conductor with exact_fresnel: its complex index per channel */
     double ior;        /* dielectric: index of the inside (z < 0) over the outside's */
     vec3 tint;         /* dielectric: what refracted light is multiplied by (chapter 15's glass tint) */
+    enum microfacet_form form; /* conductor and dielectric: MICROFACET_CHAPTER (0) but to compare with Cycles */
 };
 
 /* Returns the normalised Phong lobe of reflectance `reflectance` and width alpha: f = reflectance

@@ -7,6 +7,10 @@
 #include "sampling.h"
 
 struct rough_surface rough_surface_of_material(const struct material *m, double eta) {
+    return rough_surface_in_form(m, eta, MICROFACET_CHAPTER);
+}
+
+struct rough_surface rough_surface_in_form(const struct material *m, double eta, enum microfacet_form form) {
     struct bsdf b = bsdf_of_material(m);
     double alpha = microfacet_alpha(m->roughness);
     struct rough_surface r = {.albedo = b.albedo, .p_diffuse = b.p_diffuse, .scale = vec3_make(1, 1, 1)};
@@ -14,6 +18,7 @@ struct rough_surface rough_surface_of_material(const struct material *m, double 
         r.glass = true;
         r.p_diffuse = 0.0;
         r.lobe = microfacet_dielectric_lobe(1.0 / eta, b.tint, alpha);
+        r.lobe.form = form;
         return r;
     }
     vec3 white = vec3_make(1, 1, 1);
@@ -31,6 +36,7 @@ struct rough_surface rough_surface_of_material(const struct material *m, double 
         r.lobe = microfacet_metal_lobe(metal, alpha);
     else
         r.lobe = microfacet_conductor_lobe(f0, alpha);
+    r.lobe.form = form; /* the Phong lobe has neither masking nor Fresnel: it ignores this */
     return r;
 }
 
@@ -71,15 +77,16 @@ static vec3 eval_local(const struct rough_surface *r, vec3 wo, vec3 wi, double *
     return f_cos;
 }
 
-static vec3 eval(const struct material *m, vec3 normal, vec3 wo, vec3 wi, double eta, double *pdf) {
-    struct rough_surface r = rough_surface_of_material(m, eta);
+static vec3 eval_in_form(enum microfacet_form form, const struct material *m, vec3 normal, vec3 wo, vec3 wi,
+                        double eta, double *pdf) {
+    struct rough_surface r = rough_surface_in_form(m, eta, form);
     struct frame f = frame_about(normal);
     return eval_local(&r, to_local(&f, wo), to_local(&f, wi), pdf);
 }
 
-static bool sample(const struct material *m, vec3 normal, vec3 wo, double eta, double u_lobe, double u1, double u2,
-                   struct path_scatter *out) {
-    struct rough_surface r = rough_surface_of_material(m, eta);
+static bool sample_in_form(enum microfacet_form form, const struct material *m, vec3 normal, vec3 wo, double eta,
+                          double u_lobe, double u1, double u2, struct path_scatter *out) {
+    struct rough_surface r = rough_surface_in_form(m, eta, form);
     if (r.p_diffuse == 0.0 && vec3_dot(r.scale, r.scale) == 0.0)
         return false; /* black: nothing scatters */
     struct frame f = frame_about(normal);
@@ -104,4 +111,24 @@ static bool sample(const struct material *m, vec3 normal, vec3 wo, double eta, d
     return true;
 }
 
+static vec3 eval(const struct material *m, vec3 normal, vec3 wo, vec3 wi, double eta, double *pdf) {
+    return eval_in_form(MICROFACET_CHAPTER, m, normal, wo, wi, eta, pdf);
+}
+
+static bool sample(const struct material *m, vec3 normal, vec3 wo, double eta, double u_lobe, double u1, double u2,
+                   struct path_scatter *out) {
+    return sample_in_form(MICROFACET_CHAPTER, m, normal, wo, eta, u_lobe, u1, u2, out);
+}
+
 const struct path_surface rough_surface_hook = {claims, eval, sample};
+
+static vec3 eval_cycles_3_4(const struct material *m, vec3 normal, vec3 wo, vec3 wi, double eta, double *pdf) {
+    return eval_in_form(MICROFACET_CYCLES_3_4, m, normal, wo, wi, eta, pdf);
+}
+
+static bool sample_cycles_3_4(const struct material *m, vec3 normal, vec3 wo, double eta, double u_lobe, double u1,
+                             double u2, struct path_scatter *out) {
+    return sample_in_form(MICROFACET_CYCLES_3_4, m, normal, wo, eta, u_lobe, u1, u2, out);
+}
+
+const struct path_surface rough_surface_hook_cycles_3_4 = {claims, eval_cycles_3_4, sample_cycles_3_4};

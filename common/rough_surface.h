@@ -31,9 +31,18 @@ struct rough_surface {
 /* The hook chapter 17 sets in path_world.surface: claims the materials with roughness > 0. */
 extern const struct path_surface rough_surface_hook;
 
+/* The same surfaces with their lobes written as Blender 3.4's Cycles writes them (microfacet.h's
+ * MICROFACET_CYCLES_3_4: separable masking, glass's Fresnel at the normal). It exists ONLY for the
+ * comparison with Cycles (chapter 17's --form cycles-3.4, which tools/cycles/compare-cycles.sh passes);
+ * no picture of the chapter uses it. */
+extern const struct path_surface rough_surface_hook_cycles_3_4;
+
 /* Returns material m read as a rough surface, for light arriving from the side where the index over
  * the other side's is eta (bsdf_fresnel's eta: the glass's inside over its outside is 1 / eta).
  * Meaningful for any material; the hook uses it for those with roughness > 0. */
 struct rough_surface rough_surface_of_material(const struct material *m, double eta);
+
+/* Returns rough_surface_of_material(m, eta) with its lobe in the form `form`. */
+struct rough_surface rough_surface_in_form(const struct material *m, double eta, enum microfacet_form form);
 
 #endif

@@ -373,6 +373,45 @@ Test(microfacet, lambda_and_masking_have_their_closed_forms) {
     cr_expect(g2 <= fmin(microfacet_ggx_g1(wo, 0.4), microfacet_ggx_g1(wi, 0.4)));
 }
 
+/* The form Cycles 3.4 writes its lobes in, drawn only to compare with it: its masking the product G1 G1,
+ * and its glass's Fresnel that of the surface's normal; the sampler's density the same as the chapter's. */
+Test(microfacet, cycles_3_4s_form_differs_from_the_chapters_in_masking_and_glasss_fresnel_only) {
+    const double alpha = 0.8, ior = 1.5;
+    vec3 wo = incident(0.3), above = vec3_normalize(vec3_make(-0.5, 0.2, 0.6));
+    vec3 below = vec3_normalize(vec3_make(-0.6, 0.05, -0.8));
+    cr_expect_eq(microfacet_ggx_masking(MICROFACET_CYCLES_3_4, wo, above, alpha),
+                 microfacet_ggx_g1(wo, alpha) * microfacet_ggx_g1(above, alpha));
+    cr_expect_eq(microfacet_ggx_masking(MICROFACET_CHAPTER, wo, above, alpha), microfacet_ggx_g2(wo, above, alpha));
+    /* the microfacet normals joining wo to `above` (a reflection) and to `below` (a refraction into ior) */
+    vec3 h = vec3_normalize(vec3_add(wo, above)), m = vec3_normalize(vec3_add(wo, vec3_scale(below, ior)));
+    m = vec3_scale(m, m.z < 0.0 ? -1.0 : 1.0);
+    double f_normal = bsdf_fresnel(wo.z, 1.0 / ior);
+    struct {
+        struct microfacet_lobe lobe;
+        vec3 wi;
+        double fresnel_ratio; /* Cycles' Fresnel over the chapter's */
+    } cases[] = {
+        {microfacet_conductor_lobe(vec3_make(0.9, 0.6, 0.3), alpha), above, 1.0},
+        {microfacet_dielectric_lobe(ior, vec3_make(1.0, 1.0, 1.0), alpha), above,
+         f_normal / bsdf_fresnel(vec3_dot(wo, h), 1.0 / ior)},
+        {microfacet_dielectric_lobe(ior, vec3_make(1.0, 1.0, 1.0), alpha), below,
+         (1.0 - f_normal) / (1.0 - bsdf_fresnel(vec3_dot(wo, m), 1.0 / ior))},
+    };
+    for (int k = 0; k < 3; k++) {
+        cr_expect_eq(cases[k].lobe.form, MICROFACET_CHAPTER, "every constructor's lobe is the chapter's");
+        struct microfacet_lobe cycles = cases[k].lobe;
+        cycles.form = MICROFACET_CYCLES_3_4;
+        vec3 wi = cases[k].wi;
+        double ratio = microfacet_ggx_masking(MICROFACET_CYCLES_3_4, wo, wi, alpha) /
+                       microfacet_ggx_masking(MICROFACET_CHAPTER, wo, wi, alpha) * cases[k].fresnel_ratio;
+        double chapter_f = microfacet_eval(&cases[k].lobe, wo, wi).x, cycles_f = microfacet_eval(&cycles, wo, wi).x;
+        cr_expect(chapter_f > 0.0 && fabs(ratio - 1.0) > 0.01, "case %d: f %g, ratio %g", k, chapter_f, ratio);
+        cr_expect(fabs(cycles_f - ratio * chapter_f) < 1e-12 * chapter_f, "case %d: %g against %g", k, cycles_f,
+                  ratio * chapter_f);
+        cr_expect_eq(microfacet_pdf(&cycles, wo, wi), microfacet_pdf(&cases[k].lobe, wo, wi));
+    }
+}
+
 /* ---- Fresnel -------------------------------------------------------------------------------------- */
 
 Test(microfacet, fresnel_of_a_complex_index_has_its_limits) {
