@@ -14,14 +14,16 @@ importScripts(`chapter-${chapter}.js`); // defines createChapter
 const compiled = WebAssembly.compileStreaming(fetch(`chapter-${chapter}.wasm`));
 const files = new Map(); // path under scenes/ -> Promise of its bytes (null when it cannot be fetched)
 
-// The files a scene names, relative to scenes/: a mesh line's file and an image_map's file (the same
-// words the Makefile's chapter-N rule looks for).
+// The files a scene names, relative to scenes/: a mesh line's file, an object line's file (chapter 16)
+// and an image_map's file (the same words the Makefile's chapter-N rule looks for).
 function namedFiles(text) {
     const names = [];
     for (const line of text.split("\n")) {
         const words = line.replace(/#.*/, "").trim().split(/\s+/);
         if (words[0] === "mesh" && words.length > 1)
             names.push(words[1]);
+        if (words[0] === "object" && words.length > 2)
+            names.push(words[2]);
         if (words[0] === "pigment")
             for (let k = 2; k + 1 < words.length; k++)
                 if (words[k] === "file")
