@@ -948,6 +948,9 @@ bool check_slerp(slerp_fn f, char *why, size_t why_size) {
         return fail(why, why_size, "q0 and a turn 1e-6 degrees from it, t = 0.5: the result (%.6g, %.6g, %.6g, %.6g) is "
                     "not a unit quaternion beside them (dividing by the sine of a tiny angle? Blend linearly there)",
                     out[0], out[1], out[2], out[3]);
+    return true;
+}
+
 /* ---- exercise 17.5: sampling GGX's normals ----------------------------------------------------- */
 
 #define GGX_NORMALS_GRID 200        /* the check draws from a 200 x 200 grid of (u1, u2) midpoints */

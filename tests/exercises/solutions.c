@@ -537,6 +537,7 @@ void solution_keyframes_slerp(const double q0[4], const double q1[4], double t, 
 void wrong_keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]) {
     slerp(q0, q1, t, out, true);
 }
+
 /* GGX's normals: tan^2 theta = alpha^2 u1 / (1 - u1), the inverse of the share x / (alpha^2 + x) of
  * normals with tan^2 theta below x. With `unsquared` (the wrong answer) tan theta = alpha u1 / (1 - u1),
  * the square root forgotten: the same median, but too many normals near the pole and too many far out. */
