@@ -257,11 +257,18 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader microfacet_long/* \
 LONG_TESTS += rough_plates_long/* reference_image/chapter_17_rough_matches_its_reference
 # Chapters 16 and 17's slower proofs (make test stays within its minute and a half): the whole scene
 # against POV-Ray (the last frame of an animation is in make test), a million instances, MIS against
-# the other strategies on the plates, chapter 11's packets as tiles.
+# the other strategies on the plates, the tiles of every sampler but one ray a pixel and chapter 15's
+# paths (and the farm's frame).
 LONG_TESTS += pictures/the_twin_of_a_frame_without_blur_agrees_with_povray \
               instance_lines/a_million_instances_are_read_and_one_more_than_the_limit_refused \
               rough_plates/strategies_agree_and_mis_has_the_least_variance \
-              tile/chapter_11s_packets_tiles_join_into_the_picture
+              tile/chapter_11s_packets_tiles_join_into_the_picture \
+              tile/grid_jitter_and_recursive_tiles_of_any_size_join_into_the_picture \
+              tile/adaptive_tiles_of_whole_blocks_join_into_the_picture \
+              tile/chapter_13s_lens_and_area_lights_tiles_join_into_the_picture \
+              tile/chapter_16s_moving_instances_tiles_join_into_the_picture \
+              tile/a_tiles_heat_map_is_the_tile_with_its_bar \
+              pictures/one_frame_of_the_farm_is_the_same_frame_of_the_whole_run
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
