@@ -7,16 +7,19 @@
 # A twin from chapter 12 on says how POV-Ray renders it (common/antialias.h): with its anti-aliasing
 # options ("// Antialias options: ..."), or at n times the size in 16 bits, each n x n block then
 # averaged ("// Antialias box: n"). Chapter 12 is also compared with its regular 3 x 3 grid that way.
-# Without N, every chapter whose picture POV-Ray can draw: not chapter 15, whose path tracer solves the
-# rendering equation, which POV-Ray does not (its --pov twin is only the scene's geometry and lights);
-# Blender's Cycles checks it instead (make compare-cycles).
+# Without N, every chapter whose picture POV-Ray can draw: not chapters 15 and 17, whose path tracer
+# solves the rendering equation, which POV-Ray does not (their --pov twin is only the scene's geometry
+# and lights); Blender's Cycles checks them instead (make compare-cycles).
 set -eu
 build=${1:-build}
 shift || true
 chapters=("$@")
 if [ ${#chapters[@]} -eq 0 ]; then
     for program in "$build"/chapter-[0-9][0-9]; do
-        [ "${program##*/chapter-}" = 15 ] || chapters+=("${program##*/chapter-}")
+        case ${program##*/chapter-} in
+        15 | 17) ;; # path tracers
+        *) chapters+=("${program##*/chapter-}") ;;
+        esac
     done
 fi
 out=out/compare
