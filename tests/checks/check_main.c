@@ -79,7 +79,7 @@ const struct task check_tasks[] = {
      "common/instance_bvh.c", "5.1"},
     {"16.3", "the box of a moving object over a stretch of the shutter", "stretch_box in common/keyframes.c", ""},
     {"16.P", "chapter 16's picture", "chapters/16-instances",
-     "1.1 4.1 5.1 6.1 6.2 7.1 8.2 10.2 11.1 11.2 12.1 16.1 16.3"},
+     "1.1 2.2 4.1 5.1 6.1 6.2 7.1 8.2 10.2 11.1 11.2 12.1 16.1 16.3"},
     {"17.1", "the GGX distribution of microfacet normals", "microfacet_ggx_d in common/microfacet.c", ""},
     {"17.2", "the rough metal's BRDF: Fresnel, distribution and masking", "conductor_eval in common/microfacet.c",
      "17.1"},
