@@ -51,6 +51,7 @@ static int bin_of(double c, double lo, double extent) {
 /* Looks for the cheapest binned SAH split of prims [begin, end), whose box is `box`. Returns false,
  * leaving them alone, when a leaf is cheaper (and allowed) or no plane separates the centroids;
  * otherwise partitions them and returns where the right side begins in *mid. */
+/* TASK 10.2 ALSO: the binned SAH split, chapter 10's over instances' boxes */
 static bool split_sah(struct prim *p, uint32_t begin, uint32_t end, struct aabb box, struct aabb centroids,
                       uint32_t *mid) {
     double best_cost = INFINITY; /* area(left) count(left) + area(right) count(right) of the best plane */
@@ -196,6 +197,7 @@ void instance_bvh_refit(struct instance_bvh *b, const struct aabb *boxes) {
 
 /* ==== walking ================================================================================= */
 
+/* TASK 10.3 ALSO: the near-first walk, chapter 10's over instances' boxes */
 void instance_bvh_walk(const struct instance_bvh *b, const ray *r, double t_min, double *t_max,
                        instance_bvh_visit visit, void *context) {
     if (b->node_count == 0)

@@ -147,6 +147,11 @@ static const char *const idioms[] = {
     "if (!(hit_t > t_min && hit_t < t_max))",
     /* chapter 11's walks, the same idea as 10.3 made 4- and 8-wide, which chapter 11 teaches after it */
     "uint32_t slivers = (uint32_t)(b->triangle_count - b->tree_count);",
+    /* chapter 16's declarations and loops, which say nothing of how its tasks are done */
+    "struct transform to_world, to_object;", "const uint32_t *c = m->faces[face].v;",
+    "for (uint32_t i = node->first; i < node->first + node->count; i++)", "struct aabb box = aabb_empty();",
+    "struct instance_bvh_node *node = &b->nodes[k];", "vec3 point = ray_at(r, h.t);",
+    "const struct instance *it = &in->items[k];",
 };
 
 Test(coursework_long, no_line_of_a_blanked_body_is_left_in_a_hand_out, .timeout = 600) {

@@ -112,6 +112,8 @@ static void write_answers(const char *path, const char *prefix) {
             "bool sampling_sphere_cone(vec3 centre, double radius, vec3 point, double u1, double u2, vec3 *direction,\n"
             "                          double *density) {\n"
             "    return %1$s_sampling_sphere_cone(centre, radius, point, u1, u2, direction, density);\n}\n"
+            "void keyframes_slerp(const double q0[4], const double q1[4], double t, double out[4]) {\n"
+            "    %1$s_keyframes_slerp(q0, q1, t, out);\n}\n"
             "vec3 microfacet_ggx_sample_normal(double alpha, double u1, double u2) {\n"
             "    return %1$s_microfacet_ggx_sample_normal(alpha, u1, u2);\n}\n",
             prefix);
