@@ -128,11 +128,11 @@ Test(acceleration, rungs_draw_transparent_meshes_as_the_brute_force_loop, .timeo
     const char *scene = "scenes/09-kdtree.scene.glass-meshes.variant";
     const char *brute = TEST_OUT "/brute-force-glass-meshes.png";
     write_scene_variant(chapter_scene(9), scene, olds, news, 2, NULL);
-    int status = render_chapter(11, scene, brute, "--accel none --width 200 --height 150");
+    int status = render_chapter(11, scene, brute, "--accel none --width 120 --height 90");
     static const char *const rungs[] = {"1", "6", "7", "8", "9", "10"};
     for (size_t k = 0; status == 0 && k < sizeof rungs / sizeof rungs[0]; k++) {
         char extra[64], tag[32];
-        snprintf(extra, sizeof extra, "--rung %s --width 200 --height 150", rungs[k]);
+        snprintf(extra, sizeof extra, "--rung %s --width 120 --height 90", rungs[k]);
         snprintf(tag, sizeof tag, "glass-meshes-rung-%s", rungs[k]);
         check_identical(11, scene, extra, brute, tag);
     }
