@@ -22,6 +22,11 @@
 
 #define READ_CHUNK_BYTES ((size_t)1 << 16) /* first buffer size when the file's size is unknown */
 
+/* Files smaller than this are read, not mapped: mapping costs system calls of its own, and a copy of a
+ * small file costs less (a 100 KB model: 0.2 ms read, 0.5 ms mapped; a 6.6 MB one: 40 ms read in a
+ * fresh process, 5 ms mapped). */
+#define MAP_MIN_BYTES ((size_t)1 << 20)
+
 /* The size to allocate first: the file's own size plus one byte, so that the first read already meets
  * the end of the file; a guess if its size cannot be known. *file_size is the file's size, or 0 when
  * it is not known. */
@@ -73,7 +78,7 @@ struct file_in_memory {
  * (its pages then vanish); a file already shorter than fstat said is refused here, and read instead. */
 static bool map_file(FILE *file, size_t size, struct file_in_memory *f) {
     long page = sysconf(_SC_PAGESIZE);
-    if (size == 0 || page <= 0 || size % (size_t)page == 0)
+    if (size < MAP_MIN_BYTES || page <= 0 || size % (size_t)page == 0)
         return false;
     int flags = MAP_PRIVATE;
 #ifdef MAP_POPULATE

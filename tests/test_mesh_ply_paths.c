@@ -1,5 +1,6 @@
-/* test_mesh_ply_paths.c: the PLY reader's fast path for binary files against its general reader, and
- * the same model written as ascii, binary little-endian and binary big-endian read alike.
+/* test_mesh_ply_paths.c: the PLY reader's fast path for binary files against its general reader, the
+ * same model written as ascii, binary little-endian and binary big-endian read alike, and the mesh
+ * readers' numbers read as strtod and strtoll read them.
  *
  * mesh_read_ply reads binary vertices and faces straight from the bytes and hands anything unusual to
  * the general reader (mesh_read_ply_general, common/mesh_ply.c). Here both read every model of
@@ -115,6 +116,13 @@ Test(mesh_ply_paths, every_model_reads_the_same_on_the_fast_path_as_on_the_gener
         size_t size;
         char *data = read_whole(MODELS[k], &size);
         cr_assert(both_paths_agree(MODELS[k], data, size), "%s should load", MODELS[k]);
+        /* mesh_load maps the big models into memory rather than reading them (mesh_load.c): the same */
+        struct reading copied, loaded = {.ok = true};
+        read_with(true, MODELS[k], data, size, false, &copied);
+        cr_assert(mesh_load(MODELS[k], &loaded.mesh, loaded.err, sizeof loaded.err), "%s", loaded.err);
+        assert_alike(&copied, &loaded, MODELS[k]);
+        reading_free(&copied);
+        reading_free(&loaded);
         free(data);
     }
 }
@@ -264,5 +272,80 @@ Test(mesh_ply_paths, both_paths_read_every_binary_layout_alike_and_refuse_damage
         }
         cr_assert_gt(refused, DAMAGED_COPIES / 10, "the damage should make many copies bad (%d refused)", refused);
         cr_assert_lt(refused, DAMAGED_COPIES, "and leave some good");
+    }
+}
+
+/* ---- numbers in text files --------------------------------------------------------------------- */
+
+/* Decimal numbers tried against strtod in reads_every_decimal_as_strtod_does, and the seed of their digits. */
+#define DECIMALS_TRIED 200000
+#define DECIMALS_SEED 12345u
+
+/* mesh_parse_double reads the commonest numbers without strtod (mesh_read.c); it must give strtod's
+ * double to the bit, and refuse what strtod would not read whole. */
+Test(mesh_numbers, reads_every_decimal_as_strtod_does) {
+    uint32_t state = DECIMALS_SEED;
+    char text[64];
+    for (int k = 0; k < DECIMALS_TRIED; k++) {
+        uint32_t r[4];
+        for (int j = 0; j < 4; j++) {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            r[j] = state;
+        }
+        /* 1 to 21 digits, a point somewhere or nowhere, an exponent or none, a sign or none */
+        int digits = 1 + (int)(r[0] % 21), point = (int)(r[1] % (unsigned)(digits + 2)) - 1, n = 0;
+        if (r[2] % 3 == 0)
+            text[n++] = r[2] % 2 ? '-' : '+';
+        for (int d = 0; d < digits; d++) {
+            if (d == point)
+                text[n++] = '.';
+            uint32_t digit = (r[3] >> (d % 8 * 4)) % 10 ^ (uint32_t)(d * 7 % 10);
+            text[n++] = (char)('0' + digit % 10);
+        }
+        if (r[1] % 4 == 0)
+            n += snprintf(text + n, sizeof text - (size_t)n, "%c%d", r[0] % 2 ? 'e' : 'E', (int)(r[2] % 61) - 30);
+        text[n] = '\0';
+        struct mesh_token token = {text, n};
+        char *end;
+        double expected = strtod(text, &end), got;
+        bool whole = end == text + n;
+        cr_assert_eq(mesh_parse_double(token, &got), whole, "'%s': read whole by one and not the other", text);
+        if (whole)
+            cr_assert(memcmp(&got, &expected, sizeof got) == 0, "'%s' read as %.17g, strtod gives %.17g", text, got,
+                      expected);
+    }
+}
+
+Test(mesh_numbers, reads_the_odd_forms_as_strtod_does_and_refuses_the_rest) {
+    static const char *const read[] = {"-0", "-0.0", "+.5", "5.", "1e22", "1e23", "9007199254740993", "0x1p3",
+                                       "1e-400", "123456789012345678901234567890", "1e99999", "nan", "-inf"};
+    for (size_t k = 0; k < sizeof read / sizeof read[0]; k++) {
+        struct mesh_token token = {read[k], (int)strlen(read[k])};
+        double got, expected = strtod(read[k], NULL);
+        cr_assert(mesh_parse_double(token, &got), "'%s' should be read", read[k]);
+        cr_assert(memcmp(&got, &expected, sizeof got) == 0 || (got != got && expected != expected),
+                  "'%s' read as %.17g, strtod gives %.17g", read[k], got, expected);
+    }
+    static const char *const refused[] = {".", "-", "1e", "1e+", "1.5.3", "1,5", "--1", "e5", "1f"};
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        struct mesh_token token = {refused[k], (int)strlen(refused[k])};
+        double ignored;
+        cr_assert_not(mesh_parse_double(token, &ignored), "'%s' should be refused", refused[k]);
+    }
+    static const char *const integers[] = {"0", "-7", "+12", "007", "999999999999999999", "9223372036854775807",
+                                           "-9223372036854775808"};
+    for (size_t k = 0; k < sizeof integers / sizeof integers[0]; k++) {
+        struct mesh_token token = {integers[k], (int)strlen(integers[k])};
+        long long got;
+        cr_assert(mesh_parse_integer(token, &got), "'%s' should be read", integers[k]);
+        cr_assert_eq(got, strtoll(integers[k], NULL, 10), "'%s' read as %lld", integers[k], got);
+    }
+    static const char *const not_integers[] = {"-", "+", "1.0", "9223372036854775808", "12a", "+-5", "0x10"};
+    for (size_t k = 0; k < sizeof not_integers / sizeof not_integers[0]; k++) {
+        struct mesh_token token = {not_integers[k], (int)strlen(not_integers[k])};
+        long long ignored;
+        cr_assert_not(mesh_parse_integer(token, &ignored), "'%s' should be refused", not_integers[k]);
     }
 }
