@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "mesh.h"
 #include "mesh_load.h"
@@ -131,13 +132,14 @@ Test(mesh_ply_paths, every_model_reads_the_same_on_the_fast_path_as_on_the_gener
 
 /* Writes m as a PLY file of the given format ("ascii", "binary_little_endian", "binary_big_endian"):
  * vertices as float (each of m's coordinates is one, as the model was read from floats), and in ascii
- * with 17 significant digits, which read back as exactly the same double. */
-static void write_ply(const char *path, const struct mesh *m, const char *format) {
+ * with 17 significant digits, which read back as exactly the same double. The header carries a comment
+ * of `padding` characters. */
+static void write_ply(const char *path, const struct mesh *m, const char *format, size_t padding) {
     FILE *f = fopen(path, "wb");
     cr_assert_not_null(f, "cannot write %s", path);
-    fprintf(f, "ply\nformat %s 1.0\nelement vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
-               "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
-            format, m->vertex_count, m->face_count);
+    fprintf(f, "ply\nformat %s 1.0\ncomment %*s\nelement vertex %zu\nproperty float x\nproperty float y\n"
+               "property float z\nelement face %zu\nproperty list uchar int vertex_indices\nend_header\n",
+            format, (int)padding, "", m->vertex_count, m->face_count);
     bool ascii = strcmp(format, "ascii") == 0, big = strcmp(format, "binary_big_endian") == 0;
     for (size_t k = 0; k < m->vertex_count; k++) {
         double xyz[3] = {m->vertices[k].x, m->vertices[k].y, m->vertices[k].z};
@@ -177,7 +179,7 @@ Test(mesh_ply_paths, a_model_written_as_ascii_little_and_big_endian_reads_back_t
     for (size_t k = 0; k < 3; k++) {
         char path[256];
         snprintf(path, sizeof path, SCRATCH "teapot-5k-%s.ply", formats[k]);
-        write_ply(path, &model, formats[k]);
+        write_ply(path, &model, formats[k], 0);
         struct mesh copy;
         cr_assert(mesh_load(path, &copy, err, sizeof err), "%s", err);
         cr_assert_eq(copy.vertex_count, model.vertex_count);
@@ -191,6 +193,37 @@ Test(mesh_ply_paths, a_model_written_as_ascii_little_and_big_endian_reads_back_t
         char *data = read_whole(path, &size);
         cr_assert(both_paths_agree(path, data, size), "%s should load", path);
         free(data);
+    }
+    mesh_free(&model);
+}
+
+/* mesh_load maps a big file into memory, but reads it when it ends exactly at the end of a page (the
+ * byte after it would not be there to read as the NUL the readers need): both give the model. */
+Test(mesh_ply_paths, a_big_file_loads_alike_whether_it_ends_at_a_page_boundary_or_not) {
+    mkdir("out", 0755);
+    mkdir("out/test", 0755);
+    mkdir(SCRATCH, 0755);
+    char err[512] = "";
+    struct mesh model;
+    cr_assert(mesh_load("scenes/models/teapot-346k.ply", &model, err, sizeof err), "%s", err);
+    long page = sysconf(_SC_PAGESIZE);
+    cr_assert_gt(page, 0);
+    const char *path = SCRATCH "teapot-346k-paged.ply";
+    for (long wanted_remainder = 0; wanted_remainder < 2; wanted_remainder++) {
+        write_ply(path, &model, "binary_little_endian", 0);
+        struct stat info;
+        cr_assert_eq(stat(path, &info), 0);
+        size_t padding = (size_t)((wanted_remainder - info.st_size % page + page) % page);
+        write_ply(path, &model, "binary_little_endian", padding);
+        cr_assert_eq(stat(path, &info), 0);
+        cr_assert_eq(info.st_size % page, wanted_remainder, "%s is %lld bytes", path, (long long)info.st_size);
+        struct mesh copy;
+        cr_assert(mesh_load(path, &copy, err, sizeof err), "%s", err);
+        cr_assert_eq(copy.vertex_count, model.vertex_count);
+        cr_assert_eq(copy.face_count, model.face_count);
+        cr_assert(memcmp(copy.vertices, model.vertices, model.vertex_count * sizeof(vec3)) == 0);
+        cr_assert(memcmp(copy.faces, model.faces, model.face_count * sizeof(struct mesh_face)) == 0);
+        mesh_free(&copy);
     }
     mesh_free(&model);
 }
