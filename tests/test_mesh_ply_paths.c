@@ -168,27 +168,38 @@ static void write_ply(const char *path, const struct mesh *m, const char *format
     cr_assert_eq(fclose(f), 0);
 }
 
-Test(mesh_ply_paths, a_model_written_as_ascii_little_and_big_endian_reads_back_the_same) {
+/* Loads the model at `path` and makes the folder its copies are written to. */
+static void load_model_for_copies(const char *path, struct mesh *model) {
     mkdir("out", 0755);
     mkdir("out/test", 0755);
     mkdir(SCRATCH, 0755);
     char err[512] = "";
+    cr_assert(mesh_load(path, model, err, sizeof err), "%s", err);
+}
+
+/* Asserts that the file at `path` loads as exactly `model`'s vertices and faces. */
+static void assert_loads_as(const char *path, const struct mesh *model) {
+    char err[512] = "";
+    struct mesh copy;
+    cr_assert(mesh_load(path, &copy, err, sizeof err), "%s", err);
+    cr_assert_eq(copy.vertex_count, model->vertex_count, "%s", path);
+    cr_assert_eq(copy.face_count, model->face_count, "%s", path);
+    cr_assert(memcmp(copy.vertices, model->vertices, model->vertex_count * sizeof(vec3)) == 0,
+              "%s: the vertices differ from the model's", path);
+    cr_assert(memcmp(copy.faces, model->faces, model->face_count * sizeof(struct mesh_face)) == 0,
+              "%s: the faces differ from the model's", path);
+    mesh_free(&copy);
+}
+
+Test(mesh_ply_paths, a_model_written_as_ascii_little_and_big_endian_reads_back_the_same) {
     struct mesh model;
-    cr_assert(mesh_load("scenes/models/teapot-5k.ply", &model, err, sizeof err), "%s", err);
+    load_model_for_copies("scenes/models/teapot-5k.ply", &model);
     static const char *const formats[] = {"ascii", "binary_little_endian", "binary_big_endian"};
     for (size_t k = 0; k < 3; k++) {
         char path[256];
         snprintf(path, sizeof path, SCRATCH "teapot-5k-%s.ply", formats[k]);
         write_ply(path, &model, formats[k], 0);
-        struct mesh copy;
-        cr_assert(mesh_load(path, &copy, err, sizeof err), "%s", err);
-        cr_assert_eq(copy.vertex_count, model.vertex_count);
-        cr_assert_eq(copy.face_count, model.face_count);
-        cr_assert(memcmp(copy.vertices, model.vertices, model.vertex_count * sizeof(vec3)) == 0,
-                  "%s: the vertices differ from the model's", path);
-        cr_assert(memcmp(copy.faces, model.faces, model.face_count * sizeof(struct mesh_face)) == 0,
-                  "%s: the faces differ from the model's", path);
-        mesh_free(&copy);
+        assert_loads_as(path, &model);
         size_t size;
         char *data = read_whole(path, &size);
         cr_assert(both_paths_agree(path, data, size), "%s should load", path);
@@ -200,12 +211,8 @@ Test(mesh_ply_paths, a_model_written_as_ascii_little_and_big_endian_reads_back_t
 /* mesh_load maps a big file into memory, but reads it when it ends exactly at the end of a page (the
  * byte after it would not be there to read as the NUL the readers need): both give the model. */
 Test(mesh_ply_paths, a_big_file_loads_alike_whether_it_ends_at_a_page_boundary_or_not) {
-    mkdir("out", 0755);
-    mkdir("out/test", 0755);
-    mkdir(SCRATCH, 0755);
-    char err[512] = "";
     struct mesh model;
-    cr_assert(mesh_load("scenes/models/teapot-346k.ply", &model, err, sizeof err), "%s", err);
+    load_model_for_copies("scenes/models/teapot-346k.ply", &model);
     long page = sysconf(_SC_PAGESIZE);
     cr_assert_gt(page, 0);
     const char *path = SCRATCH "teapot-346k-paged.ply";
@@ -217,13 +224,7 @@ Test(mesh_ply_paths, a_big_file_loads_alike_whether_it_ends_at_a_page_boundary_o
         write_ply(path, &model, "binary_little_endian", padding);
         cr_assert_eq(stat(path, &info), 0);
         cr_assert_eq(info.st_size % page, wanted_remainder, "%s is %lld bytes", path, (long long)info.st_size);
-        struct mesh copy;
-        cr_assert(mesh_load(path, &copy, err, sizeof err), "%s", err);
-        cr_assert_eq(copy.vertex_count, model.vertex_count);
-        cr_assert_eq(copy.face_count, model.face_count);
-        cr_assert(memcmp(copy.vertices, model.vertices, model.vertex_count * sizeof(vec3)) == 0);
-        cr_assert(memcmp(copy.faces, model.faces, model.face_count * sizeof(struct mesh_face)) == 0);
-        mesh_free(&copy);
+        assert_loads_as(path, &model);
     }
     mesh_free(&model);
 }
