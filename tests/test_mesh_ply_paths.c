@@ -216,11 +216,12 @@ Test(mesh_ply_paths, a_big_file_loads_alike_whether_it_ends_at_a_page_boundary_o
     long page = sysconf(_SC_PAGESIZE);
     cr_assert_gt(page, 0);
     const char *path = SCRATCH "teapot-346k-paged.ply";
+    write_ply(path, &model, "binary_little_endian", 0);
+    struct stat info;
+    cr_assert_eq(stat(path, &info), 0);
+    long unpadded = (long)(info.st_size % page);
     for (long wanted_remainder = 0; wanted_remainder < 2; wanted_remainder++) {
-        write_ply(path, &model, "binary_little_endian", 0);
-        struct stat info;
-        cr_assert_eq(stat(path, &info), 0);
-        size_t padding = (size_t)((wanted_remainder - info.st_size % page + page) % page);
+        size_t padding = (size_t)((wanted_remainder - unpadded + page) % page);
         write_ply(path, &model, "binary_little_endian", padding);
         cr_assert_eq(stat(path, &info), 0);
         cr_assert_eq(info.st_size % page, wanted_remainder, "%s is %lld bytes", path, (long long)info.st_size);
