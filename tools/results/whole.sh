@@ -38,7 +38,7 @@ else
     W=800 H=600 PAIRS=7 WARMUP=1
 fi
 DEPTH=1
-cores=$(nproc)
+cores=$(getconf _NPROCESSORS_ONLN) # as the tests count them (sysconf)
 thread_counts=1
 [ "$cores" -gt 1 ] && thread_counts="1 $cores"
 
