@@ -574,6 +574,218 @@ static bool read_element(struct ply_reader *r, const struct ply_element *e, size
     return true;
 }
 
+/* ---- the fast path: binary entries whose layout is known in advance ------------------------------ */
+
+/* The general reader above reads every value through one function that asks the format, the type and
+ * the byte order each time, which costs more than the value. Most models are binary with a fixed
+ * layout: a vertex is the same few scalars at the same offsets every time, and a face is a corner count
+ * and its indices. read_vertices_fast and read_faces_fast read such elements straight from the bytes,
+ * checking what the general reader checks. They never report a fault themselves: at the first thing
+ * they do not expect (a value that is not finite, an index out of range, the file ending early, a
+ * layout they do not handle) they decline, and the general reader reads the element again from its
+ * start and reports the fault with its usual message. So the two agree by construction on every file,
+ * good or bad (tests/test_mesh.c compares them on every model, and fuzz/fuzz_ply.c on anything). */
+
+/* Whether a binary file's byte order differs from this machine's, so each value must be reversed. */
+static bool must_swap(enum ply_format format) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    return format == PLY_BINARY_LITTLE_ENDIAN;
+#else
+    return format == PLY_BINARY_BIG_ENDIAN;
+#endif
+}
+
+static uint16_t load_u16(const unsigned char *p, bool swap) {
+    uint16_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? (uint16_t)(v << 8 | v >> 8) : v;
+}
+
+static uint32_t load_u32(const unsigned char *p, bool swap) {
+    uint32_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? __builtin_bswap32(v) : v;
+}
+
+static uint64_t load_u64(const unsigned char *p, bool swap) {
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return swap ? __builtin_bswap64(v) : v;
+}
+
+/* The value of type `type` at p, as binary_value gives it. */
+static double load_binary(const unsigned char *p, enum ply_type type, bool swap) {
+    switch (type) {
+    case PLY_INT8:
+        return (double)(int8_t)p[0];
+    case PLY_UINT8:
+        return (double)p[0];
+    case PLY_INT16:
+        return (double)(int16_t)load_u16(p, swap);
+    case PLY_UINT16:
+        return (double)load_u16(p, swap);
+    case PLY_INT32:
+        return (double)(int32_t)load_u32(p, swap);
+    case PLY_UINT32:
+        return (double)load_u32(p, swap);
+    case PLY_FLOAT32: {
+        uint32_t bits = load_u32(p, swap);
+        float f;
+        memcpy(&f, &bits, sizeof f);
+        return (double)f;
+    }
+    case PLY_FLOAT64: {
+        uint64_t bits = load_u64(p, swap);
+        double d;
+        memcpy(&d, &bits, sizeof d);
+        return d;
+    }
+    case PLY_NOT_A_TYPE:
+        break;
+    }
+    return 0.0;
+}
+
+/* The commonest vertex of all: x, y and z as float32 in the machine's byte order, one after the other. */
+static bool is_plain_float_xyz(const enum ply_type types[], const size_t offsets[], size_t wanted, bool swap) {
+    return wanted == 3 && !swap && types[0] == PLY_FLOAT32 && types[1] == PLY_FLOAT32 && types[2] == PLY_FLOAT32 &&
+           offsets[1] == offsets[0] + 4 && offsets[2] == offsets[0] + 8;
+}
+
+/* Reads every vertex of a binary file whose vertex properties are all single values (no lists); false
+ * (declined, r untouched) otherwise or at the first fault. */
+static bool read_vertices_fast(struct ply_reader *r, const struct ply_element *e) {
+    const struct ply_property *properties = &r->header->properties[e->first_property];
+    size_t stride = 0, offsets[PLY_VERTEX_VALUES] = {0};
+    enum ply_type types[PLY_VERTEX_VALUES] = {PLY_NOT_A_TYPE};
+    for (size_t k = 0; k < e->property_count; k++) {
+        const struct ply_property *p = &properties[k];
+        if (p->count_type != PLY_NOT_A_TYPE)
+            return false;
+        if (p->role != ROLE_SKIPPED) {
+            offsets[p->role - ROLE_X] = stride;
+            types[p->role - ROLE_X] = p->type;
+        }
+        stride += TYPES[p->type].size;
+    }
+    if (e->count > (r->in->size - r->next) / stride)
+        return false;
+    /* The values wanted, in role order: x y z, then the normals and (u, v) when the caller keeps them. */
+    struct mesh_corners *c = r->in->corners;
+    size_t wanted = 3 + (c != NULL && c->normals != NULL ? 3 : 0);
+    size_t roles[PLY_VERTEX_VALUES] = {0, 1, 2, 3, 4, 5};
+    if (c != NULL && c->uvs != NULL) {
+        roles[wanted++] = ROLE_U - ROLE_X;
+        roles[wanted++] = ROLE_V - ROLE_X;
+    }
+    enum ply_type wanted_types[PLY_VERTEX_VALUES];
+    size_t wanted_offsets[PLY_VERTEX_VALUES];
+    for (size_t k = 0; k < wanted; k++) {
+        wanted_types[k] = types[roles[k]];
+        wanted_offsets[k] = offsets[roles[k]];
+    }
+    bool swap = must_swap(r->header->format);
+    const unsigned char *entry = (const unsigned char *)r->in->data + r->next;
+    vec3 *vertices = r->mesh->vertices;
+    if (is_plain_float_xyz(wanted_types, wanted_offsets, wanted, swap)) {
+        for (size_t index = 0; index < e->count; index++, entry += stride) {
+            float xyz[3];
+            memcpy(xyz, entry + wanted_offsets[0], sizeof xyz);
+            if (!(isfinite(xyz[0]) && isfinite(xyz[1]) && isfinite(xyz[2])))
+                return false;
+            vertices[index] = (vec3){xyz[0], xyz[1], xyz[2]};
+        }
+    } else {
+        for (size_t index = 0; index < e->count; index++, entry += stride) {
+            double values[PLY_VERTEX_VALUES] = {0};
+            for (size_t k = 0; k < wanted; k++) {
+                values[roles[k]] = load_binary(entry + wanted_offsets[k], wanted_types[k], swap);
+                if (!isfinite(values[roles[k]]))
+                    return false;
+            }
+            vertices[index] = (vec3){values[0], values[1], values[2]};
+            if (c != NULL && c->normals != NULL)
+                c->normals[index] = (vec3){values[3], values[4], values[5]};
+            if (c != NULL && c->uvs != NULL)
+                c->uvs[index] = (struct mesh_uv){values[6], values[7]};
+        }
+    }
+    r->next += e->count * stride;
+    return true;
+}
+
+/* Appends the fan (0,1,2), (0,2,3), ... of a face whose `corners` indices, of type `type`, are at p
+ * (each already checked to be below the vertex count); false when memory runs out. */
+static bool add_fan(struct ply_reader *r, const unsigned char *p, size_t corners, enum ply_type type, bool swap) {
+    size_t size = TYPES[type].size;
+    uint32_t first = (uint32_t)load_binary(p, type, swap), previous = (uint32_t)load_binary(p + size, type, swap);
+    for (size_t k = 2; k < corners; k++) {
+        uint32_t corner = (uint32_t)load_binary(p + k * size, type, swap);
+        if (!mesh_add_triangle(r->mesh, &r->face_capacity, first, previous, corner))
+            return false;
+        previous = corner;
+    }
+    return true;
+}
+
+/* Reads every face of a binary file whose face properties are the corner list and single values; false
+ * (declined: r and the mesh's faces as they were) otherwise or at the first fault. */
+static bool read_faces_fast(struct ply_reader *r, const struct ply_element *e, size_t vertex_count) {
+    const struct ply_property *properties = &r->header->properties[e->first_property];
+    for (size_t k = 0; k < e->property_count; k++)
+        if (properties[k].count_type != PLY_NOT_A_TYPE && properties[k].role != ROLE_CORNERS)
+            return false;
+    bool swap = must_swap(r->header->format);
+    const unsigned char *start = (const unsigned char *)r->in->data + r->next;
+    const unsigned char *p = start, *end = (const unsigned char *)r->in->data + r->in->size;
+    size_t faces_before = r->mesh->face_count;
+    for (size_t index = 0; index < e->count; index++) {
+        for (size_t k = 0; k < e->property_count; k++) {
+            const struct ply_property *property = &properties[k];
+            if (property->role != ROLE_CORNERS) {
+                if (TYPES[property->type].size > (size_t)(end - p))
+                    goto decline; /* the general reader says where the file ends */
+                p += TYPES[property->type].size;
+                continue;
+            }
+            size_t count_size = TYPES[property->count_type].size, item_size = TYPES[property->type].size;
+            if (count_size > (size_t)(end - p))
+                goto decline;
+            double length = load_binary(p, property->count_type, swap);
+            if (!(length >= 3 && length <= MESH_MAX_POLYGON_CORNERS))
+                goto decline;
+            size_t corners = (size_t)length;
+            p += count_size;
+            if (corners > (size_t)(end - p) / item_size)
+                goto decline;
+            for (size_t j = 0; j < corners; j++) {
+                double index_value = load_binary(p + j * item_size, property->type, swap);
+                if (!(index_value >= 0 && index_value < (double)vertex_count))
+                    goto decline;
+            }
+            if (!add_fan(r, p, corners, property->type, swap))
+                goto decline;
+            p += corners * item_size;
+        }
+    }
+    r->next += (size_t)(p - start);
+    return true;
+decline:
+    r->mesh->face_count = faces_before;
+    return false;
+}
+
+/* Reads element e through the fast path where it applies, else (or when it declines) the general one. */
+static bool read_element_fastest(struct ply_reader *r, const struct ply_element *e, size_t vertex_count) {
+    if (r->header->format != PLY_ASCII && e->property_count > 0 && e->count > 0) {
+        if (e->kind == KIND_VERTEX && read_vertices_fast(r, e))
+            return true;
+        if (e->kind == KIND_FACE && read_faces_fast(r, e, vertex_count))
+            return true;
+    }
+    return read_element(r, e, vertex_count);
+}
+
 /* Allocates the vertex array (and the normals and texture coordinates the vertices have) and room for
  * one triangle per face; their counts fit in the file. */
 static bool allocate(const struct mesh_input *in, const struct ply_header *h, struct ply_reader *r) {
@@ -615,7 +827,8 @@ static bool index_corners(const struct mesh_input *in, const struct mesh *m) {
     return true;
 }
 
-bool mesh_read_ply(const struct mesh_input *in, struct mesh *m) {
+/* The reader, with the fast path (fast == true) or without it. */
+static bool read_ply(const struct mesh_input *in, struct mesh *m, bool fast) {
     struct ply_header h = {0};
     bool ok = parse_header(in, &h);
     struct ply_reader r = {.in = in, .header = &h, .next = h.body, .mesh = m};
@@ -624,7 +837,8 @@ bool mesh_read_ply(const struct mesh_input *in, struct mesh *m) {
     if (ok) {
         mesh_lines_begin(&r.lines, in->data, in->size, h.body, h.end_line + 1);
         for (size_t k = 0; ok && k < h.element_count; k++)
-            ok = read_element(&r, &h.elements[k], m->vertex_count);
+            ok = fast ? read_element_fastest(&r, &h.elements[k], m->vertex_count)
+                      : read_element(&r, &h.elements[k], m->vertex_count);
     }
     if (ok)
         ok = index_corners(in, m);
@@ -632,3 +846,7 @@ bool mesh_read_ply(const struct mesh_input *in, struct mesh *m) {
     free(h.properties);
     return ok;
 }
+
+bool mesh_read_ply(const struct mesh_input *in, struct mesh *m) { return read_ply(in, m, true); }
+
+bool mesh_read_ply_general(const struct mesh_input *in, struct mesh *m) { return read_ply(in, m, false); }

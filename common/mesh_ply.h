@@ -13,4 +13,8 @@
  * hold a half-built mesh, which the caller frees. */
 bool mesh_read_ply(const struct mesh_input *in, struct mesh *m);
 
+/* mesh_read_ply without its fast path for binary files (mesh_ply.c): every value through the general
+ * reader. The same answer, the same message, only slower; the tests and the PLY fuzzer compare the two. */
+bool mesh_read_ply_general(const struct mesh_input *in, struct mesh *m);
+
 #endif

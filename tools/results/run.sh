@@ -13,6 +13,8 @@
 #                   11 too; brute force sampled on a coarser grid and scaled up
 #   scaling.csv     teapots of 1,000 to 4,000,000 triangles: build time, frame time, peak memory
 #   threads.csv     chapters 10 and 11 on chapter 10's scene on 1, 2 (and more) threads
+#   whole.csv       chapter 11 against POV-Ray 3.7 on the large model, the whole process by the wall
+#                   clock, paired runs on one thread and on every core (tools/results/whole.sh)
 #   accel.csv       the acceleration benchmark against Embree (bench/bench_accel.c; full mode only)
 #   machine.csv     when, where and how the numbers were taken
 #   *.png           a picture of each scene (chapter 10), 400 pixels wide (50 in the quick run)
@@ -292,6 +294,10 @@ for program in chapter-10 chapter-11; do
         printf '  %s  %d threads  render best %.3f s, median %.3f s\n' "$program" "$t" "$render_best" "$render_median" >&2
     done
 done
+
+# ---- the whole program against POV-Ray ------------------------------------------------------------
+echo "the whole program against POV-Ray 3.7 on the large model, paired runs" >&2
+BUILD=$build tools/results/whole.sh "$work" $([ $quick -eq 1 ] && echo --quick)
 
 # ---- the benchmark against Embree ---------------------------------------------------------------------
 if [ $quick -eq 0 ]; then

@@ -3,7 +3,7 @@
 #   awk -F, -v table=NAME -f tools/results/tables.awk FILE.csv
 #
 # NAME is one of: seed (reads scene1.csv bunny.csv teapot-5k.csv large.csv together), machine, scene1, sweep (bunny.csv or teapot-5k.csv), large, scaling-build,
-# scaling-frame, scaling-memory, threads, accel-MODEL (accel.csv; MODEL as in its model column).
+# scaling-frame, scaling-memory, threads, whole (whole.csv), accel-MODEL (accel.csv; MODEL as in its model column).
 # Prints the table alone; tools/results/publish.sh puts it between the page's markers. Rows measured
 # on a coarser grid and scaled up (scale > 1) are marked with an asterisk.
 #
@@ -160,6 +160,15 @@ table == "threads" {
     rows[++n_rows] = p SUBSEP n
     rb[p, n] = f("render_best_s"); rm[p, n] = f("render_median_s"); wb[p, n] = f("wall_best_s"); wm[p, n] = f("wall_median_s")
     runs = f("runs"); cores = f("cores_online"); size = f("width") " × " f("height")
+    next
+}
+
+# ---- whole.csv: the whole program against POV-Ray, paired runs (tools/results/whole.sh) --------------
+table == "whole" {
+    whole_lines[++n_whole] = "| " f("threads") " | " f("width") " × " f("height") " | " seconds(f("ours_wall_median_s")) " s | " \
+        seconds(f("povray_wall_median_s")) " s | **" sprintf("%.1f ×", f("ratio_median")) "** | " \
+        sprintf("%.1f – %.1f", f("ratio_min"), f("ratio_max")) " | " ratio(f("povray_cpu_median_s"), f("ours_cpu_median_s")) " | " \
+        f("pairs") " | " f("load_before") " / " f("load_after") " |"
     next
 }
 
@@ -388,6 +397,10 @@ END {
             print "| " p " | " n " | " seconds(rb[p, n]) " s | " seconds(rm[p, n]) " s | " ratio(rb[p, 1], rb[p, n]) " | " \
                 seconds(wb[p, n]) " s | " seconds(wm[p, n]) " s |"
         }
+    } else if (table == "whole") {
+        print "| threads, each side | picture | chapter 11 (rung 6), wall, median | POV-Ray 3.7, wall, median | POV-Ray ÷ chapter 11, median of the pairs | smallest – largest | processor time, POV-Ray ÷ chapter 11 (medians) | pairs | load average, before / after |"
+        print "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        for (i = 1; i <= n_whole; i++) print whole_lines[i]
     } else if (table ~ /^accel-/) {
         print "| structure | build ms | frame ms | Mrays/s | tri/ray | nodes/ray | tri/cam | SAH cost | frame/E | build/E | pixels unlike BVH-SAH's |"
         print "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
