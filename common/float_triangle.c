@@ -34,7 +34,9 @@ struct fast_bvh *float_triangle_build(const struct mesh *m, enum bvh_split split
     if (b == NULL)
         return NULL;
     b->rung = FAST_BVH_RUNG_EXACT;
-    if (b->nodes8 != NULL && !float_triangle_prepare(b)) {
+    if (b->nodes8 == NULL || !b->float_range) /* no 8-wide walk, or none in float: rung 9 as it is */
+        return b;
+    if (!float_triangle_prepare(b)) {
         fast_bvh_free(b);
         return NULL;
     }
