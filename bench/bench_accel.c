@@ -22,7 +22,10 @@
  * Every structure must find exactly the brute-force answer, so each frame is also checked pixel by
  * pixel against the BVH-SAH frame: the nearest face, its t to the last bit, and the shadow. The rows
  * "rung N" are chapter 11's ladder (rung 1 is chapter 10's BVH-SAH); each gets its ratio to the rung
- * below (rung 8's to rung 6, which it widens; without AVX2 it is rung 6 again). Embree works
+ * below (rung 8's to rung 6, which it widens; without AVX2 it is rung 6 again; rung 11's to rung 9,
+ * whose tree it walks). Under the table, rung 11's row is followed by what its float triangle test said:
+ * the share of its triangles dropped as sure misses, and the shares tested again in double (sure hits,
+ * for their t, and those too close to call). Embree works
  * in float, so it is only expected to agree on nearly every pixel; its count of differing pixels is
  * printed for information.
  *
