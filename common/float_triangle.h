@@ -15,9 +15,10 @@
  * n roundings, each a factor (1 + d) with |d| <= u, is within gamma(n) of exact (Higham, and pbrt 4th
  * edition, section 6.8). Let A be, on each axis, the largest |coordinate| of the tree's corners (the
  * root box's) plus |origin|: every difference corner - origin is at most A.
- *  - A corner rounded to float, the origin rounded to float and their difference rounded: three
- *    roundings, each of something at most A, so p' = corner - origin is within gamma(2) A of exact
- *    (translation is the step pbrt need not bound: its corners are floats already; ours are doubles).
+ *  - A corner rounded to float and the origin rounded to float move their difference by at most
+ *    u (|corner| + |origin|) <= u A together, and rounding the difference by u (1 + u) A more: the float
+ *    p' = corner - origin is within gamma(2) A of exact (translation is the step pbrt need not bound:
+ *    its corners are floats already; ours are doubles).
  *  - The shear x = p'x - sx p'z with sx rounded to float, its product and its difference rounded: the
  *    float x is within gamma(3) Ax + gamma(5) |sx| Az of the exact x (of the double sx); the double test
  *    is itself within gamma_double(3) (Ax + |sx| Az) of exact, less than one float unit more, so
@@ -37,7 +38,7 @@
  *
  * t is not computed in float: the double test gives it for every triangle not dropped. (A float t
  * with pbrt's deltaT bound could skip the double test of a triangle surely behind the nearest hit so
- * far; docs/11-fast.md's appendix says why rung 11 does not.) */
+ * far; chapter 11's lab notes, docs/fast-notes.md, say why rung 11 does not.) */
 #ifndef WHITTED_FLOAT_TRIANGLE_H
 #define WHITTED_FLOAT_TRIANGLE_H
 
