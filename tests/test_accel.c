@@ -316,8 +316,8 @@ static void build_fast(const struct mesh *m, const char *mesh_name, enum bvh_spl
     cr_assert_not_null(b, "%s: %s ran out of memory", mesh_name, name);
     cr_assert(fast_bvh_is_valid(b, m, why, sizeof why), "%s: %s invalid: %s", mesh_name, name, why);
     bool float_walk = b->nodes8 != NULL && b->float_range; /* rung 11's float triangle test can run */
-    cr_assert(rung != FAST_BVH_RUNG_EXACT ||
-                  ((b->float_corners != NULL) == float_walk && (b->lean_corners == NULL) == float_walk),
+    cr_assert(rung != FAST_BVH_RUNG_EXACT || ((b->float_corners != NULL) == float_walk &&
+                                              (!float_walk || b->lean_corners == NULL)),
               "%s: %s has no float copy of its triangles where it walks in float, or keeps rung 9's", mesh_name,
               name);
     *out = (struct accel){name, b, fast_closest_of, fast_occluded_of, fast_for_each_hit_of, fast_free_of};
