@@ -24,7 +24,7 @@
 # machine without Embree, make bench, which installs Embree, links the Embree one (tests/test_build.c).
 
 BENCH_MODELS := scenes/models/teapot-346k.ply scenes/models/bunny.ply
-BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_eight fast_bvh_lean fast_bvh_build fast_bvh_packet kdtree kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj mesh_load infile camera
+BENCH_MODULES := aabb clock big_alloc bvh bvh_check fast_bvh fast_bvh_eight fast_bvh_lean fast_bvh_build fast_bvh_packet float_triangle kdtree kdtree_check triangle triangle_syntax stats mesh mesh_read mesh_ply mesh_obj mesh_load infile camera
 # Embree's header, when it is installed (`make BENCH_EMBREE= ...` builds the plain variant anyway).
 BENCH_EMBREE := $(wildcard /usr/include/embree3/rtcore.h)
 BENCH_VARIANT := $(if $(BENCH_EMBREE),embree,plain)

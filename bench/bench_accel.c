@@ -10,7 +10,8 @@
  * take hours on big models, so it traces only a few evenly spaced rows and its time is scaled up to the
  * whole frame; its row says "(sampled)". With --embree (when built with Embree, see bench/bench.mk)
  * Intel Embree 3 traces the same rays as the yardstick and every row gets its ratio to it. --only NAME
- * runs just the structure called NAME (and BVH-SAH, the reference), e.g. for a profiler.
+ * runs just the structure called NAME (and BVH-SAH, the reference), e.g. for a profiler; NAME may list
+ * several, separated by commas ("rung 9 lean,rung 11 exact-float"), which then take turns.
  *
  * --csv FILE also writes the tables' rows to FILE as CSV, for scripts: a header line (CSV_HEADER below),
  * then one line per model and structure, the numbers exact (every printed value can be recomputed from
@@ -21,7 +22,10 @@
  * Every structure must find exactly the brute-force answer, so each frame is also checked pixel by
  * pixel against the BVH-SAH frame: the nearest face, its t to the last bit, and the shadow. The rows
  * "rung N" are chapter 11's ladder (rung 1 is chapter 10's BVH-SAH); each gets its ratio to the rung
- * below (rung 8's to rung 6, which it widens; without AVX2 it is rung 6 again). Embree works
+ * below (rung 8's to rung 6, which it widens; without AVX2 it is rung 6 again; rung 11's to rung 9,
+ * whose tree it walks). Under the table, rung 11's row is followed by what its float triangle test said:
+ * the share of its triangles dropped as sure misses, and the shares tested again in double (sure hits,
+ * for their t, and those too close to call). Embree works
  * in float, so it is only expected to agree on nearly every pixel; its count of differing pixels is
  * printed for information.
  *
@@ -46,6 +50,7 @@
 #include "fast_bvh_build.h"
 #include "fast_bvh_eight.h"
 #include "fast_bvh_packet.h"
+#include "float_triangle.h"
 #include "camera.h"
 #include "kdtree.h"
 #include "mesh.h"
@@ -118,7 +123,8 @@ static bool build(const struct accel *a, const struct mesh *m, struct built *out
         break;
     case FAST_BVH:
     case FAST_BVH_PACKETS:
-        out->fast_bvh = fast_bvh_build(m, BVH_SPLIT_SAH, (enum fast_bvh_rung)a->rule);
+        out->fast_bvh = a->rule == FAST_BVH_RUNG_EXACT ? float_triangle_build(m, BVH_SPLIT_SAH)
+                                                       : fast_bvh_build(m, BVH_SPLIT_SAH, (enum fast_bvh_rung)a->rule);
         break;
     }
     *build_ms = processor_ms() - start;
@@ -215,10 +221,13 @@ static const struct accel accels[] = {
     {"rung 8 eight", "rung-8", FAST_BVH, FAST_BVH_RUNG_EIGHT, 9}, /* rung 6 on eight lanes: compared with 6 */
     {"rung 9 lean", "rung-9", FAST_BVH, FAST_BVH_RUNG_LEAN, 11},  /* rung 8's tree, less per ray: with 8 */
     {"rung 10 packet", "rung-10", FAST_BVH_PACKETS, FAST_BVH_RUNG_EIGHT, 11}, /* rung 8's tree: compared with 8 */
+    {"rung 11 exact-float", "rung-11", FAST_BVH, FAST_BVH_RUNG_EXACT, 12}, /* rung 9's tree: compared with 9 */
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])
 #define ACCEL_NAIVE 0
 #define ACCEL_REFERENCE 4
+#define ACCEL_PACKETS 13 /* rung 10's row */
+#define ACCEL_EXACT 14   /* rung 11's row */
 
 /* ---- the frame --------------------------------------------------------------------------------- */
 
@@ -232,6 +241,7 @@ struct pixel {
 struct frame {
     double ms;
     struct stats counters;        /* all rays */
+    struct float_triangle_counts float_counts; /* rung 11's float triangle test, all rays */
     uint64_t primary_tests;       /* triangle tests spent on camera rays alone */
 };
 
@@ -250,6 +260,7 @@ static bool shadowed(const struct built *structure, const ray *r, const struct p
 static void trace_frame_in_packets(const struct built *structure, const struct camera *cam, vec3 light,
                                    struct pixel *pixels, struct frame *out) {
     stats_reset_thread();
+    float_triangle_thread = (struct float_triangle_counts){0, 0, 0};
     uint64_t primary_tests = 0;
     double start = processor_ms();
     for (int y = 0; y < cam->height; y += FAST_BVH_PACKET_ROWS)
@@ -277,6 +288,7 @@ static void trace_frame_in_packets(const struct built *structure, const struct c
         }
     out->ms = processor_ms() - start;
     out->counters = stats_thread;
+    out->float_counts = float_triangle_thread;
     out->primary_tests = primary_tests;
 }
 
@@ -284,6 +296,7 @@ static void trace_frame_in_packets(const struct built *structure, const struct c
 static void trace_frame(const struct built *structure, const struct camera *cam, vec3 light, const int *rows,
                         int row_count, struct pixel *pixels, struct frame *out) {
     stats_reset_thread();
+    float_triangle_thread = (struct float_triangle_counts){0, 0, 0};
     uint64_t primary_tests = 0;
     double start = processor_ms();
     for (int k = 0; k < row_count; k++) {
@@ -302,6 +315,7 @@ static void trace_frame(const struct built *structure, const struct camera *cam,
     }
     out->ms = processor_ms() - start;
     out->counters = stats_thread;
+    out->float_counts = float_triangle_thread;
     out->primary_tests = primary_tests;
 }
 
@@ -345,6 +359,7 @@ struct row {
     int sampled_rows;     /* rows the brute-force loop traced; 0 for every other row */
     double build_ms, frame_ms, sah_cost;
     double rays, triangle_tests, node_visits, primary_rays, primary_tests;
+    struct float_triangle_counts float_counts; /* rung 11: what its float triangle test said, in its best frame */
     long differ;
     bool compared;
 };
@@ -507,6 +522,15 @@ struct options {
     FILE *csv;         /* NULL without --csv */
 };
 
+/* Whether name is one of the comma-separated names in list. */
+static bool named_in(const char *list, const char *name) {
+    size_t length = strlen(name);
+    for (const char *p = list; p != NULL; p = strchr(p, ',') != NULL ? strchr(p, ',') + 1 : NULL)
+        if (strncmp(p, name, length) == 0 && (p[length] == ',' || p[length] == '\0'))
+            return true;
+    return false;
+}
+
 /* Benchmarks the model at path as the comment at the top says: prints its table and, with --csv, writes
  * its rows. Returns 0, or 1 after a message on standard error when the model cannot be loaded or
  * memory runs out. */
@@ -571,7 +595,7 @@ static int bench_model(const char *path, const struct options *options) {
         for (size_t o = 0; o < ACCEL_COUNT; o++) {
             size_t k = order[o];
             const struct accel *a = &accels[k];
-            if (only != NULL && k != ACCEL_REFERENCE && strcmp(only, a->name) != 0)
+            if (only != NULL && k != ACCEL_REFERENCE && !named_in(only, a->name))
                 continue;
             struct row *row = &rows[k];
             bool naive = k == ACCEL_NAIVE;
@@ -611,6 +635,7 @@ static int bench_model(const char *path, const struct options *options) {
                 row->triangle_tests = (double)f.counters.triangle_tests * scale;
                 row->node_visits = (double)f.counters.node_visits * scale;
                 row->primary_tests = (double)f.primary_tests * scale;
+                row->float_counts = f.float_counts;
             }
             if (k != ACCEL_REFERENCE) {
                 long differ = count_differences(reference, pixels, cam.width, list, list_count);
@@ -641,7 +666,7 @@ static int bench_model(const char *path, const struct options *options) {
             embree.rays = (double)(pixel_count + hits);
             embree.differ = differ;
             embree.done = true;
-            for (int p = 0; p < 2 && (only == NULL || strcmp(only, "rung 10 packet") == 0); p++) {
+            for (int p = 0; p < 2 && (only == NULL || named_in(only, "rung 10 packet")); p++) {
                 if (!embree_ref_frame(&m, &cam, light, embree_packets[p], 1, &build_ms, &frame_ms, codes, err,
                                       sizeof err)) {
                     fprintf(stderr, "bench_accel: %s: %s\n", path, err);
@@ -661,7 +686,15 @@ static int bench_model(const char *path, const struct options *options) {
     if (embree.done)
         printf("  Embree's pixels are compared with BVH-SAH's hit/miss and shadow only: it works in float, so a\n"
                "  few grazing rays may go the other way\n");
-    const struct row *packets = &rows[ACCEL_COUNT - 1];
+    const struct float_triangle_counts *said = &rows[ACCEL_EXACT].float_counts;
+    if (rows[ACCEL_EXACT].done && said->tests > 0) {
+        double tests = (double)said->tests, sure = (double)said->sure_hits, close = (double)said->too_close;
+        printf("  rung 11's float triangle test: %.2f triangles a ray in float; of them %.2f %% dropped as sure\n"
+               "    misses, %.2f %% sure hits and %.3f %% too close to call, both tested again in double\n",
+               tests / rows[ACCEL_EXACT].rays, 100.0 * (tests - sure - close) / tests, 100.0 * sure / tests,
+               100.0 * close / tests);
+    }
+    const struct row *packets = &rows[ACCEL_PACKETS];
     for (int p = 0; p < 2 && packets->done && embree.done && !isinf(embree_packet_ms[p]); p++)
         printf("  Embree 3 rtcIntersect%d (camera rays in packets of %d, shadow rays one by one): frame %.1f ms;\n"
                "    rung 10 packet / it: %.2f\n",

@@ -6,6 +6,7 @@
 #include "clock.h"
 #include "fast_bvh.h"
 #include "fast_bvh_build.h"
+#include "float_triangle.h"
 
 static bool fast_bvh_closest_any(const void *bvh, const ray *r, double t_min, double t_max, double *t,
                                  uint32_t *face) {
@@ -28,7 +29,9 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
         return accel_world_use_bvh(w, split, err, err_size);
     double started = clock_seconds();
     int tree_rung = rung == FAST_BVH_RUNG_PACKET ? FAST_BVH_RUNG_EIGHT : rung; /* rung 10 walks rung 8's tree */
-    struct fast_bvh *bvh = fast_bvh_build(&w->triangles, (enum bvh_split)split, (enum fast_bvh_rung)tree_rung);
+    struct fast_bvh *bvh = rung == FAST_BVH_RUNG_EXACT /* rung 9's tree with a float copy of its triangles */
+                               ? float_triangle_build(&w->triangles, (enum bvh_split)split)
+                               : fast_bvh_build(&w->triangles, (enum bvh_split)split, (enum fast_bvh_rung)tree_rung);
     double build_ms = 1e3 * (clock_seconds() - started);
     if (bvh == NULL) {
         snprintf(err, err_size, "out of memory building the BVH");
@@ -58,8 +61,14 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
         {"fast BVH, rung 10 packet without AVX2: rung 6's tree (median split)",
          "fast BVH, rung 10 packet without AVX2: rung 6's tree (binned SAH)"},
         {"fast BVH, rung 10 packet (median split)", "fast BVH, rung 10 packet (binned SAH)"}};
+    /* Rung 11, rung 9's tree with the float triangle test, or rung 9's fallback without AVX2. */
+    static const char *const exact[2][2] = {
+        {"fast BVH, rung 11 exact-float without AVX2: rung 6's tree and walk (median split)",
+         "fast BVH, rung 11 exact-float without AVX2: rung 6's tree and walk (binned SAH)"},
+        {"fast BVH, rung 11 exact-float (median split)", "fast BVH, rung 11 exact-float (binned SAH)"}};
     bool wide = rung == FAST_BVH_RUNG_EIGHT || rung == FAST_BVH_RUNG_LEAN;
-    const char *name = rung == FAST_BVH_RUNG_PACKET ? packet[bvh->nodes8 != NULL][split == BVH_SPLIT_SAH]
+    const char *name = rung == FAST_BVH_RUNG_EXACT    ? exact[bvh->nodes8 != NULL][split == BVH_SPLIT_SAH]
+                       : rung == FAST_BVH_RUNG_PACKET ? packet[bvh->nodes8 != NULL][split == BVH_SPLIT_SAH]
                        : wide && bvh->nodes8 == NULL ? fallback[rung == FAST_BVH_RUNG_LEAN][split == BVH_SPLIT_SAH]
                                                      : names[split == BVH_SPLIT_SAH][rung];
     w->summary = (struct accel_summary){name, build_ms, info.nodes, info.leaves,

@@ -68,6 +68,7 @@ void fast_bvh_free(struct fast_bvh *b) {
     free(b->nodes8);
     free(b->triangles);
     free(b->lean_corners);
+    free(b->float_corners);
     free(b->faces);
     free(b);
 }
@@ -452,6 +453,7 @@ static inline __attribute__((always_inline)) bool traverse_rung(const struct fas
             return traverse(b, r, t_min, t_max, kind, true, true, &f, false, q);
         return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
     case FAST_BVH_RUNG_LEAN: /* rung 8's tree walked leaner (AVX2); else rung 6's */
+    case FAST_BVH_RUNG_EXACT: /* the same, its triangles tested in float first (b->float_corners) */
         if (b->nodes8 != NULL)
             return fast_bvh_lean_traverse(b, r, t_min, t_max, kind, q);
         if (float_setup_make(b, r, t_min, &f))
@@ -490,7 +492,7 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
 
 static const char *const rung_names[FAST_BVH_RUNG_LAST + 1] = {
     NULL, "plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean",
-    [FAST_BVH_RUNG_PACKET] = "packet",
+    [FAST_BVH_RUNG_PACKET] = "packet", [FAST_BVH_RUNG_EXACT] = "exact-float",
 };
 
 int fast_bvh_rung_from_name(const char *name) {

@@ -48,7 +48,7 @@ void fast_bvh_get_info(const struct fast_bvh *b, struct bvh_info *info);
 bool fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why, size_t why_size);
 
 /* The rung called `name` ("plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean",
- * "packet") or written as its number ("1" to "10"); 0 when there is none. */
+ * "packet", "exact-float") or written as its number ("1" to "11"); 0 when there is none. */
 int fast_bvh_rung_from_name(const char *name);
 
 /* The name of rung r, for reports ("plain", ...); "?" for a number that is not a rung. */

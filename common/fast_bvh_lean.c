@@ -23,6 +23,10 @@
  *    work.
  * A ray that rung 6's bound does not cover is walked by rung 8, in double.
  *
+ * Rung 11 walks the same tree in the same way; only its leaves differ: their triangles are tested eight
+ * at a time in float first (leaf_triangles_float8, float_triangle.h), and in double only where the float
+ * test cannot rule the double test's hit out.
+ *
  * As fast_bvh_eight.c, only the functions that need AVX2 are compiled for it (the AVX2 attribute); the
  * build makes rung 9's tree only when fast_bvh_eight_available() says the processor has AVX2. */
 #include "fast_bvh_lean.h"
@@ -32,6 +36,7 @@
 
 #include "fast_bvh_eight.h"
 #include "float4.h"
+#include "float_triangle.h"
 #include "stats.h"
 #include "triangle.h"
 
@@ -96,6 +101,7 @@ struct lean_ray {
     size_t near[3]; /* each axis's near bounds' byte offset in a node; the far ones' is near ^ LEAN_ROW_BYTES */
     double4 o[3], sx, sy, sz;
     size_t axis[3]; /* where corner a's coordinates on the ray's x, y and z axes are in a block */
+    struct float_triangle_ray8 exact; /* rung 11: the ray for the float triangle test */
 };
 
 static inline AVX2 float8 broadcast8(float x) { return (float8){x, x, x, x, x, x, x, x}; }
@@ -220,6 +226,40 @@ static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const str
     return true;
 }
 
+/* Rung 11: tests triangles [first, first + count) of the tree for query q, eight at a time in float
+ * (float_triangle_test8): the triangles that the double test surely misses are dropped, and every other
+ * one is tested by triangle_crossing_prepared, which decides, and taken by leaf_hit_taken, as on rung 9.
+ * Adds to *counts what the float test said. Returns false when the walk should stop. */
+static inline AVX2 __attribute__((always_inline)) bool leaf_triangles_float8(
+    const struct fast_bvh *b, const struct lean_ray *l, const struct triangle_ray *ready, uint32_t first,
+    uint32_t count, double t_min, double t_max, enum query kind, struct query_state *q, double *box_max,
+    uint64_t *tests, struct float_triangle_counts *counts) {
+    *tests += count;
+    counts->tests += count;
+    uint32_t end = first + count;
+    for (uint32_t k = first - first % FLOAT_TRIANGLE_LANES; k < end; k += FLOAT_TRIANGLE_LANES) {
+        struct float_triangle_verdict said =
+            float_triangle_test8(b->float_corners + float_triangle_index(k, 0, 0), &l->exact);
+        unsigned in_leaf = (1u << FLOAT_TRIANGLE_LANES) - 1u;
+        if (k < first)
+            in_leaf &= ~((1u << (first - k)) - 1u); /* the lanes before the leaf */
+        if (end - k < FLOAT_TRIANGLE_LANES)
+            in_leaf &= (1u << (end - k)) - 1u; /* the lanes past it */
+        unsigned keep = ~said.sure_miss & in_leaf;
+        counts->sure_hits += (uint64_t)__builtin_popcount(said.sure_hit & in_leaf);
+        counts->too_close += (uint64_t)__builtin_popcount(keep & ~said.sure_hit);
+        for (; keep != 0; keep &= keep - 1) { /* the triangles kept, tested in double */
+            uint32_t j = k + (uint32_t)__builtin_ctz(keep);
+            const struct bvh_triangle *tri = &b->triangles[j];
+            double t, u, v;
+            if (triangle_crossing_prepared(tri->a, tri->b, tri->c, ready, &t, &u, &v) &&
+                !leaf_hit_taken(kind, t, b->faces[j], t_min, t_max, q, box_max))
+                return false;
+        }
+    }
+    return true;
+}
+
 /* Rung 6's float set-up of r (float_setup_make in fast_bvh_walk.h) for the three axes at once, in
  * four double lanes (the fourth a dummy axis with origin 0 and direction 1, which passes every check
  * and adds no slack): the same operations lane by lane, so the same float origin, the same float
@@ -256,9 +296,18 @@ static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const ray *r,
     return true;
 }
 
-/* Makes *ready for r and the triangles' half of *l from it. */
-static inline AVX2 void lean_ray_ready(const ray *r, struct triangle_ray *ready, struct lean_ray *l) {
+/* Makes *ready for r and the triangles' half of *l from it: rung 9's double lanes, or with `exact` rung
+ * 11's float ray over b. */
+static inline AVX2 __attribute__((always_inline)) void lean_ray_ready(const struct fast_bvh *b, const ray *r,
+                                                                      bool exact, struct triangle_ray *ready,
+                                                                      struct lean_ray *l) {
     *ready = triangle_ray_make(r);
+    if (exact) {
+        struct float_triangle_ray exact_ray;
+        float_triangle_ray_make(ready, &b->root_box, &exact_ray);
+        float_triangle_ray_spread(&exact_ray, &l->exact);
+        return;
+    }
     const int axis[3] = {ready->kx, ready->ky, ready->kz};
     for (int a = 0; a < 3; a++) {
         l->o[a] = broadcast4(vec3_axis(r->origin, axis[a]));
@@ -335,7 +384,8 @@ static inline AVX2 bool lean_pop(struct lean_walk *s) {
  * lean_float_setup has made into the boxes' half of *l and f. */
 static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struct fast_bvh *b, const ray *r,
                                                                      double t_min, double t_max, enum query kind,
-                                                                     struct lean_ray *l, const struct float_setup *f,
+                                                                     bool exact, struct lean_ray *l,
+                                                                     const struct float_setup *f,
                                                                      struct query_state *q) {
     q->found = false;
     q->t = t_max;
@@ -365,14 +415,19 @@ static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struc
         return q->found;
     }
     struct triangle_ray ready;
-    lean_ray_ready(r, &ready, l);
+    lean_ray_ready(b, r, exact, &ready, l);
+    struct float_triangle_counts counts = {0, 0, 0};
     while (running) {
         visits++;
         if (s.count == 0) {
             if (node_step(b, l, f, &w, kind, &s, &boxes))
                 continue;
         } else {
-            if (!leaf_triangles4(b, l, &ready, s.child, s.count, t_min, t_max, kind, q, &box_max, &tests))
+            bool go_on = exact ? leaf_triangles_float8(b, l, &ready, s.child, s.count, t_min, t_max, kind, q,
+                                                       &box_max, &tests, &counts)
+                               : leaf_triangles4(b, l, &ready, s.child, s.count, t_min, t_max, kind, q, &box_max,
+                                                 &tests);
+            if (!go_on)
                 break;
             if (kind == QUERY_CLOSEST && box_max < w.limit_for) { /* a nearer hit: narrow the window */
                 w = window_up_to(f, w.float_min, box_max);
@@ -382,23 +437,39 @@ static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struc
         running = lean_pop(&s);
     }
     walk_counted(visits, boxes, tests);
+    if (exact) {
+        float_triangle_thread.tests += counts.tests;
+        float_triangle_thread.sure_hits += counts.sure_hits;
+        float_triangle_thread.too_close += counts.too_close;
+    }
     return q->found;
 }
 
-/* traverse_lean specialised for each query; a ray rung 6's bound does not cover goes to rung 8. */
+/* traverse_lean specialised for each query, and for rung 11's float triangle test when b has its float
+ * copy of the triangles; a ray rung 6's bound does not cover goes to rung 8 (in double). */
 AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max,
                                  enum query kind, struct query_state *q) {
     struct float_setup f;
     struct lean_ray l;
     if (!lean_float_setup(b, r, t_min, &l, &f))
         return fast_bvh_eight_traverse(b, r, t_min, t_max, kind, q);
+    if (b->float_corners != NULL) { /* rung 11 */
+        switch (kind) {
+        case QUERY_CLOSEST:
+            return traverse_lean(b, r, t_min, t_max, QUERY_CLOSEST, true, &l, &f, q);
+        case QUERY_ANY:
+            return traverse_lean(b, r, t_min, t_max, QUERY_ANY, true, &l, &f, q);
+        default:
+            return traverse_lean(b, r, t_min, t_max, QUERY_ALL, true, &l, &f, q);
+        }
+    }
     switch (kind) {
     case QUERY_CLOSEST:
-        return traverse_lean(b, r, t_min, t_max, QUERY_CLOSEST, &l, &f, q);
+        return traverse_lean(b, r, t_min, t_max, QUERY_CLOSEST, false, &l, &f, q);
     case QUERY_ANY:
-        return traverse_lean(b, r, t_min, t_max, QUERY_ANY, &l, &f, q);
+        return traverse_lean(b, r, t_min, t_max, QUERY_ANY, false, &l, &f, q);
     default:
-        return traverse_lean(b, r, t_min, t_max, QUERY_ALL, &l, &f, q);
+        return traverse_lean(b, r, t_min, t_max, QUERY_ALL, false, &l, &f, q);
     }
 }
 

@@ -36,11 +36,17 @@ enum fast_bvh_rung {
     FAST_BVH_RUNG_PACKET = 10,  /* rung 8's tree, the camera rays walked through it eight at a time
                                    (fast_bvh_packet.c); every other ray walked as on rung 8. Not a tree
                                    of its own: fast_bvh_build makes rung 8's for it */
+    FAST_BVH_RUNG_EXACT = 11,   /* rung 9's tree and walk, each leaf's triangles tested eight at a time in
+                                   float with bounds on the rounding (float_triangle.h); only those the
+                                   float test cannot rule out are tested in double. Built by
+                                   float_triangle_build (rung 9's tree, and a float copy of its triangles);
+                                   without AVX2, rung 6's tree and walk */
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
 #define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_LEAN /* the top rung that fast_bvh_build builds */
-/* The last rung a chapter accepts (--rung): rung 10 renders in packets over rung 8's tree. */
-#define FAST_BVH_RUNG_LAST FAST_BVH_RUNG_PACKET
+/* The last rung a chapter accepts (--rung): rung 10 renders in packets over rung 8's tree, rung 11
+ * walks rung 9's tree with the float triangle test. */
+#define FAST_BVH_RUNG_LAST FAST_BVH_RUNG_EXACT
 /* The rung the chapters walk unless told otherwise. Rung 7 takes the least memory, but its frames are
  * slower; rung 8 is faster on big meshes only (0.93 of rung 6's frame on the teapot, 1.00 on the bunny)
  * and needs AVX2, so that the counters the chapters print would depend on the processor
@@ -96,6 +102,8 @@ struct fast_bvh {
     size_t triangle_count, tree_count;
     double *lean_corners;            /* rung 9 with AVX2: the tree's triangles again, in blocks of four
                                         (fast_bvh_lean.h says how); else NULL */
+    float *float_corners;            /* rung 11 with AVX2: the tree's triangles in float, in blocks of eight
+                                        (float_triangle.h says how); else NULL */
     struct bvh_info info;            /* nodes counted in the 4-wide tree (the 8-wide one on rung 8) */
 };
 

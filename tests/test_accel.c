@@ -29,6 +29,7 @@
 #include "fast_bvh_build.h"
 #include "fast_bvh_eight.h"
 #include "fast_bvh_lean.h"
+#include "float_triangle.h"
 #include "kdtree.h"
 #include "mesh.h"
 #include "mesh_load.h"
@@ -293,27 +294,36 @@ static void kd_for_each_hit_of(const void *s, const ray *r, double t_min, double
 }
 static void kd_free_of(void *s) { kdtree_free(s); }
 
-/* Chapters 9 and 10's four, chapter 11's rungs by the SAH, its rungs 7, 8 and 9 by the median, and rungs
- * 8 and 9 as built without AVX2 (rung 6's tree: the fallback, which the machine running the tests may not
- * need). */
-#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 5)
+/* Chapters 9 and 10's four, chapter 11's rungs by the SAH (2 to 9, and 11), its rungs 7, 8, 9 and 11 by
+ * the median, and rungs 8, 9 and 11 as built without AVX2 (rung 6's tree: the fallback, which the machine
+ * running the tests may not need). */
+#define ACCEL_COUNT (4 + FAST_BVH_RUNG_TOP - FAST_BVH_RUNG_FIRST + 1 + 8)
 
-/* Builds chapter 11's fast BVH over m at `rung` by `split`, checks its invariants and puts it in *out. */
+/* Builds chapter 11's fast BVH over m at `rung` by `split` (rung 11 by float_triangle_build), checks its
+ * invariants and puts it in *out. */
 static void build_fast(const struct mesh *m, const char *mesh_name, enum bvh_split split, int rung, struct accel *out) {
-    static const char *const names[2][FAST_BVH_RUNG_TOP + 1] = {
+    static const char *const names[2][FAST_BVH_RUNG_LAST + 1] = {
         {"", "", "fast BVH median rung 2", "fast BVH median rung 3", "fast BVH median rung 4", "fast BVH median rung 5",
-         "fast BVH median rung 6", "fast BVH median rung 7", "fast BVH median rung 8", "fast BVH median rung 9"},
+         "fast BVH median rung 6", "fast BVH median rung 7", "fast BVH median rung 8", "fast BVH median rung 9", "",
+         "fast BVH median rung 11"},
         {"", "", "fast BVH SAH rung 2", "fast BVH SAH rung 3", "fast BVH SAH rung 4", "fast BVH SAH rung 5",
-         "fast BVH SAH rung 6", "fast BVH SAH rung 7", "fast BVH SAH rung 8", "fast BVH SAH rung 9"}};
+         "fast BVH SAH rung 6", "fast BVH SAH rung 7", "fast BVH SAH rung 8", "fast BVH SAH rung 9", "",
+         "fast BVH SAH rung 11"}};
     char why[256];
     const char *name = names[split == BVH_SPLIT_SAH][rung];
-    struct fast_bvh *b = fast_bvh_build(m, split, (enum fast_bvh_rung)rung);
+    struct fast_bvh *b = rung == FAST_BVH_RUNG_EXACT ? float_triangle_build(m, split)
+                                                     : fast_bvh_build(m, split, (enum fast_bvh_rung)rung);
     cr_assert_not_null(b, "%s: %s ran out of memory", mesh_name, name);
     cr_assert(fast_bvh_is_valid(b, m, why, sizeof why), "%s: %s invalid: %s", mesh_name, name, why);
+    bool float_walk = b->nodes8 != NULL && b->float_range; /* rung 11's float triangle test can run */
+    cr_assert(rung != FAST_BVH_RUNG_EXACT || ((b->float_corners != NULL) == float_walk &&
+                                              (!float_walk || b->lean_corners == NULL)),
+              "%s: %s has no float copy of its triangles where it walks in float, or keeps rung 9's", mesh_name,
+              name);
     *out = (struct accel){name, b, fast_closest_of, fast_occluded_of, fast_for_each_hit_of, fast_free_of};
 }
 
-/* Builds all ten structures over m and checks each one's invariants. */
+/* Builds all the structures over m and checks each one's invariants. */
 static void build_all(const struct mesh *m, const char *mesh_name, struct accel out[ACCEL_COUNT]) {
     char why[256];
     struct bvh *bvh_median = bvh_build(m, BVH_SPLIT_MEDIAN), *bvh_sah = bvh_build(m, BVH_SPLIT_SAH);
@@ -329,20 +339,24 @@ static void build_all(const struct mesh *m, const char *mesh_name, struct accel 
     out[3] = (struct accel){"kd-tree SAH", kd_sah, kd_closest_of, kd_occluded_of, kd_for_each_hit_of, kd_free_of};
     for (int rung = FAST_BVH_RUNG_FIRST; rung <= FAST_BVH_RUNG_TOP; rung++)
         build_fast(m, mesh_name, BVH_SPLIT_SAH, rung, &out[4 + rung - FAST_BVH_RUNG_FIRST]);
-    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_COMPACT, &out[ACCEL_COUNT - 5]);
-    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 4]);
-    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_LEAN, &out[ACCEL_COUNT - 3]);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EXACT, &out[ACCEL_COUNT - 8]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_COMPACT, &out[ACCEL_COUNT - 7]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 6]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_LEAN, &out[ACCEL_COUNT - 5]);
+    build_fast(m, mesh_name, BVH_SPLIT_MEDIAN, FAST_BVH_RUNG_EXACT, &out[ACCEL_COUNT - 4]);
     cr_assert_eq(setenv(FAST_BVH_NO_AVX2_VARIABLE, "1", 1), 0);
-    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 2]);
-    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN, &out[ACCEL_COUNT - 1]);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT, &out[ACCEL_COUNT - 3]);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN, &out[ACCEL_COUNT - 2]);
+    build_fast(m, mesh_name, BVH_SPLIT_SAH, FAST_BVH_RUNG_EXACT, &out[ACCEL_COUNT - 1]);
     cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
-    for (int k = ACCEL_COUNT - 2; k < ACCEL_COUNT; k++) {
+    for (int k = ACCEL_COUNT - 3; k < ACCEL_COUNT; k++) {
         const struct fast_bvh *fallback = out[k].structure;
-        cr_assert(fallback->nodes8 == NULL && fallback->lean_corners == NULL,
+        cr_assert(fallback->nodes8 == NULL && fallback->lean_corners == NULL && fallback->float_corners == NULL,
                   "%s: %s told there is no AVX2 built 8-wide nodes", mesh_name, out[k].name);
     }
-    out[ACCEL_COUNT - 2].name = "fast BVH SAH rung 8 without AVX2";
-    out[ACCEL_COUNT - 1].name = "fast BVH SAH rung 9 without AVX2";
+    out[ACCEL_COUNT - 3].name = "fast BVH SAH rung 8 without AVX2";
+    out[ACCEL_COUNT - 2].name = "fast BVH SAH rung 9 without AVX2";
+    out[ACCEL_COUNT - 1].name = "fast BVH SAH rung 11 without AVX2";
 }
 
 /* Builds the kd-tree over m by each rule, checking each one's invariants; returns how many. */
@@ -1165,10 +1179,10 @@ Test(accel, rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mes
     check_mesh("sphere of radius 3e-3 at (4096, -2048, 1024)", &sphere, 57);
 }
 
-/* Chapter 11's rungs: only 1 to 9, by number or name; anything else builds nothing. */
+/* Chapter 11's rungs: only 1 to 11, by number or name; fast_bvh_build builds 2 to 9 and nothing else. */
 Test(accel, fast_bvh_rungs_are_named_and_checked) {
-    static const char *const names[] = {"plain", "wide",    "simd",  "prefetch", "build",
-                                        "float", "compact", "eight", "lean",     "packet"};
+    static const char *const names[] = {"plain", "wide",    "simd",  "prefetch", "build",      "float",
+                                        "compact", "eight", "lean", "packet",   "exact-float"};
     cr_assert_eq(sizeof names / sizeof names[0], FAST_BVH_RUNG_LAST);
     for (int r = FAST_BVH_RUNG_PLAIN; r <= FAST_BVH_RUNG_LAST; r++) {
         char number[12];
@@ -1177,7 +1191,7 @@ Test(accel, fast_bvh_rungs_are_named_and_checked) {
         cr_expect_eq(fast_bvh_rung_from_name(number), r, "%s", number);
         cr_expect_str_eq(fast_bvh_rung_name(r), names[r - 1]);
     }
-    cr_expect_eq(fast_bvh_rung_from_name("11"), 0);
+    cr_expect_eq(fast_bvh_rung_from_name("12"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("010"), 0);
     cr_expect_eq(fast_bvh_rung_from_name("1 "), 0);
     cr_expect_eq(fast_bvh_rung_from_name(":"), 0); /* the character after '9' */
@@ -1187,6 +1201,7 @@ Test(accel, fast_bvh_rungs_are_named_and_checked) {
     struct mesh m = make_soup(7, 20);
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PLAIN), "rung 1 is chapter 10's, not built here");
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PACKET), "rung 10 walks rung 8's tree");
+    cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EXACT), "rung 11 is built by float_triangle_build");
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, (enum fast_bvh_rung)(FAST_BVH_RUNG_LAST + 1)));
     mesh_free(&m);
 }

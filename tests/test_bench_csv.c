@@ -21,7 +21,7 @@
     "sah_cost,frame_over_embree,build_over_embree,frame_over_below,build_over_below,sampled_rows,"        \
     "pixels_differing"
 #define BENCH_CSV_FIELDS 16
-#define BENCH_CSV_STRUCTURES 14 /* without Embree */
+#define BENCH_CSV_STRUCTURES 15 /* without Embree */
 
 /* The columns the tests read, by their place in the header. */
 enum {
@@ -36,7 +36,7 @@ enum {
 
 static const char *const structures[BENCH_CSV_STRUCTURES] = {
     "naive", "kd-seed", "kd-sah", "bvh-median", "bvh-sah", "rung-2", "rung-3", "rung-4", "rung-5", "rung-6", "rung-7",
-    "rung-8", "rung-9", "rung-10"};
+    "rung-8", "rung-9", "rung-10", "rung-11"};
 
 /* The benchmark program of the build under test, e.g. "build/bench_accel". */
 static const char *bench_program(void) {

@@ -48,10 +48,10 @@ Test(cli, a_wrong_accel_is_refused_with_the_choices) {
     expect_chapter_run(10, "--rung 2", 2, "unknown option '--rung'");
     expect_chapter_run(17, "--form cycles", 2, "--form needs 'chapter' (the default) or 'cycles-3.4' (to compare with it), got 'cycles'");
     expect_chapter_run(15, "--form cycles-3.4", 2, "unknown option '--form'");
-    expect_chapter_run(11, "--rung 11", 2,
-                       "--rung needs 1 to 10 or one of: plain wide simd prefetch build float compact eight lean packet; got '11'");
+    expect_chapter_run(11, "--rung 12", 2,
+                       "--rung needs 1 to 11 or one of: plain wide simd prefetch build float compact eight lean packet exact-float; got '12'");
     expect_chapter_run(11, "--rung fast", 2,
-                       "--rung needs 1 to 10 or one of: plain wide simd prefetch build float compact eight lean packet; got 'fast'");
+                       "--rung needs 1 to 11 or one of: plain wide simd prefetch build float compact eight lean packet exact-float; got 'fast'");
 }
 
 Test(cli, a_missing_scene_file_is_bad_input) {

@@ -93,7 +93,7 @@ Test(acceleration, every_rung_of_chapter_11_draws_the_brute_force_picture, .time
     const char *scene = chapter_scene(9);
     const char *brute = TEST_OUT "/brute-force-09-for-11.png";
     cr_assert_eq(render_chapter(11, scene, brute, "--accel none"), 0);
-    static const char *const rungs[] = {"1", "2", "3", "4", "5", "6", "7", "8", "9", "10"};
+    static const char *const rungs[] = {"1", "2", "3", "4", "5", "6", "7", "8", "9", "10", "11"};
     for (size_t k = 0; k < sizeof rungs / sizeof rungs[0]; k++) {
         char extra[64], tag[32];
         snprintf(extra, sizeof extra, "--rung %s", rungs[k]);
@@ -106,17 +106,19 @@ Test(acceleration, every_rung_of_chapter_11_draws_the_brute_force_picture, .time
     check_identical(11, scene, "--rung eight --split seed", brute, "rung-8-median");
     check_identical(11, scene, "--rung lean --split seed", brute, "rung-9-median");
     check_identical(11, scene, "--rung packet --split seed", brute, "rung-10-median");
+    check_identical(11, scene, "--rung exact-float --split seed", brute, "rung-11-median");
     check_identical(11, scene, "--rung packet --threads 2", brute, "rung-10-two-threads");
-    cr_assert_eq(setenv("WHITTED_NO_AVX2", "1", 1), 0); /* rungs 8's, 9's and 10's fallback, as without AVX2 */
+    cr_assert_eq(setenv("WHITTED_NO_AVX2", "1", 1), 0); /* rungs 8's to 11's fallback, as without AVX2 */
     check_identical(11, scene, "--rung eight", brute, "rung-8-without-avx2");
     check_identical(11, scene, "--rung lean", brute, "rung-9-without-avx2");
     check_identical(11, scene, "--rung packet", brute, "rung-10-without-avx2");
+    check_identical(11, scene, "--rung exact-float", brute, "rung-11-without-avx2");
     cr_assert_eq(unsetenv("WHITTED_NO_AVX2"), 0);
 }
 
 /* Transparent meshes: shadow rays pass through glass and take its colour, so every rung's shadow query
  * must find each triangle the brute-force loop finds, not only the first. Chapter 9's scene with the
- * teapot made filtering glass and the bunny clear glass, at half size, by rungs 1, 6, 7, 8, 9 and 10. */
+ * teapot made filtering glass and the bunny clear glass, at half size, by rungs 1, 6, 7, 8, 9, 10 and 11. */
 Test(acceleration, rungs_draw_transparent_meshes_as_the_brute_force_loop, .timeout = 120) {
     const char *olds[] = {
         "material china  colour 0.9 0.88 0.82 ambient 0.1 diffuse 0.7 phong 0.8 phong_size 120 reflection 0.1",
@@ -129,7 +131,7 @@ Test(acceleration, rungs_draw_transparent_meshes_as_the_brute_force_loop, .timeo
     const char *brute = TEST_OUT "/brute-force-glass-meshes.png";
     write_scene_variant(chapter_scene(9), scene, olds, news, 2, NULL);
     int status = render_chapter(11, scene, brute, "--accel none --width 120 --height 90");
-    static const char *const rungs[] = {"1", "6", "7", "8", "9", "10"};
+    static const char *const rungs[] = {"1", "6", "7", "8", "9", "10", "11"};
     for (size_t k = 0; status == 0 && k < sizeof rungs / sizeof rungs[0]; k++) {
         char extra[64], tag[32];
         snprintf(extra, sizeof extra, "--rung %s --width 120 --height 90", rungs[k]);

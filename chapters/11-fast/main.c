@@ -2,10 +2,11 @@
  * walked for speed, one optimisation (a rung) at a time.
  *
  * The fast hierarchy is in common/fast_bvh.c and is plugged into the world by common/accel_fast_bvh.c.
- * --rung N (1 to 10) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6 the
+ * --rung N (1 to 11) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6 the
  * default, 7 the smallest, 8 eight boxes at a time where the processor has AVX2, 9 the same tree walked
  * with less work per ray, 10 rung 8 with the camera rays traced in packets of eight (render_in_packets,
- * below). The picture is chapter 10's on every rung; only the time and the memory change. */
+ * below), 11 rung 9 with its triangles tested in float first, and in double only where the float test
+ * cannot rule a hit out. The picture is chapter 10's on every rung; only the time and the memory change. */
 #include <stdio.h>
 #include <string.h>
 
@@ -28,8 +29,8 @@ static int parse_option(const char *option, const char *value) {
         rung = value != NULL ? fast_bvh_rung_from_name(value) : 0;
         if (rung != 0)
             return 2;
-        fprintf(stderr, "--rung needs 1 to 10 or one of: plain wide simd prefetch build float compact eight lean "
-                        "packet; got '%s'\n",
+        fprintf(stderr, "--rung needs 1 to 11 or one of: plain wide simd prefetch build float compact eight lean "
+                        "packet exact-float; got '%s'\n",
                 value != NULL ? value : "");
         return -1;
     }
@@ -155,7 +156,9 @@ int main(int argc, char **argv) {
                         "                   7 compact (the least memory), 8 eight (eight boxes at a\n"
                         "                   time with AVX2; rung 6 without it), 9 lean (rung 8's tree,\n"
                         "                   less work per ray), 10 packet (rung 8 with the camera rays\n"
-                        "                   traced eight at a time); a number or a name\n"
+                        "                   traced eight at a time), 11 exact-float (rung 9, its\n"
+                        "                   triangles tested in float first, in double only where\n"
+                        "                   the float test cannot tell); a number or a name\n"
                         "  --accel KIND     none, kdtree or bvh (default bvh: the fast BVH at the chosen rung)\n"
                         "  --split RULE     sah (default) or seed: the seed's rule (BVH: median split;\n"
                         "                   kd-tree: the axis holding most objects)\n",

@@ -1,0 +1,46 @@
+/* float_triangle.c: rung 11's exact float triangle filter: its float copy of the triangles, its counters
+ * and rung 11's hierarchy (chapter 11; float_triangle.h derives the bounds and holds the test). */
+#include "float_triangle.h"
+
+#include <stdlib.h>
+
+#include "fast_bvh_build.h"
+
+/* The blocks' alignment: one AVX2 load of eight floats. */
+#define FLOAT_TRIANGLE_ALIGN 32
+
+_Thread_local struct float_triangle_counts float_triangle_thread;
+
+bool float_triangle_prepare(struct fast_bvh *b) {
+    size_t padded = (b->tree_count + FLOAT_TRIANGLE_LANES - 1) / FLOAT_TRIANGLE_LANES * FLOAT_TRIANGLE_LANES;
+    size_t floats = (padded > 0 ? padded : FLOAT_TRIANGLE_LANES) * 9; /* nine per triangle: whole blocks */
+    float *corners = aligned_alloc(FLOAT_TRIANGLE_ALIGN, floats * sizeof(float)); /* a multiple of 32 bytes */
+    if (corners == NULL)
+        return false;
+    const vec3 zero = {0.0, 0.0, 0.0}; /* the lanes past the last triangle */
+    for (size_t k = 0; k < padded; k++) {
+        const struct bvh_triangle *t = k < b->tree_count ? &b->triangles[k] : NULL;
+        for (int i = 0; i < 9; i++) { /* corner i / 3, axis i % 3 */
+            vec3 corner = t == NULL ? zero : i < 3 ? t->a : i < 6 ? t->b : t->c;
+            corners[float_triangle_index(k, i / 3, i % 3)] = (float)vec3_axis(corner, i % 3);
+        }
+    }
+    b->float_corners = corners;
+    return true;
+}
+
+struct fast_bvh *float_triangle_build(const struct mesh *m, enum bvh_split split) {
+    struct fast_bvh *b = fast_bvh_build(m, split, FAST_BVH_RUNG_LEAN);
+    if (b == NULL)
+        return NULL;
+    b->rung = FAST_BVH_RUNG_EXACT;
+    if (b->nodes8 == NULL || !b->float_range) /* no 8-wide walk, or none in float: rung 9 as it is */
+        return b;
+    if (!float_triangle_prepare(b)) {
+        fast_bvh_free(b);
+        return NULL;
+    }
+    free(b->lean_corners); /* rung 9's double blocks: rung 11 reads its float ones instead */
+    b->lean_corners = NULL;
+    return b;
+}
