@@ -91,6 +91,8 @@ struct fast_bvh {
     struct bvh_triangle *triangles;  /* triangle_count entries: tree_count in leaf order, then the slivers;
                                         NULL on rung 7, which reads them from mesh */
     const struct mesh *mesh;         /* rung 7: the mesh built from, kept (not owned); else NULL */
+    uint32_t *corners;               /* rung 7: corners[3 k + c] = the number in mesh's vertices of corner c
+                                        of the k-th triangle in leaf order (its face's v[c]); else NULL */
     uint32_t *faces;                 /* faces[k] = index into the mesh's faces of the k-th triangle in leaf
                                         order (triangles[k]) */
     size_t triangle_count, tree_count;
