@@ -76,6 +76,14 @@ void fast_bvh_free(struct fast_bvh *b) {
 
 void fast_bvh_get_info(const struct fast_bvh *b, struct bvh_info *info) { *info = b->info; }
 
+size_t fast_bvh_bytes(const struct fast_bvh *b) {
+    size_t per_triangle = sizeof *b->faces + (b->triangles != NULL ? sizeof *b->triangles : 0) +
+                          (b->corners != NULL ? 3 * sizeof *b->corners : 0);
+    size_t lean_blocks = b->lean_corners != NULL ? (b->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES : 0;
+    return b->node_count * (b->nodes8 != NULL ? sizeof *b->nodes8 : sizeof *b->nodes) + b->triangle_count * per_triangle +
+           lean_blocks * FAST_BVH_LEAN_BLOCK * sizeof *b->lean_corners;
+}
+
 /* ==== checking ================================================================================ */
 
 struct check {
