@@ -374,9 +374,15 @@ struct builder {
     _Alignas(64) uint32_t node_count;
 };
 
-/* Prim k's box. */
+/* Prim k's box, `packed` saying whether bd's boxes are rung 7's (a constant where the caller wants a loop
+ * for each kind of box), or asking bd. */
+static inline __attribute__((always_inline)) struct float_box prim_box_of(const struct builder *bd, bool packed,
+                                                                          uint32_t k) {
+    return packed ? packed_box_widened(&bd->packed[k], &bd->grid) : bd->prims[k];
+}
+
 static inline struct float_box prim_box(const struct builder *bd, uint32_t k) {
-    return bd->packed != NULL ? packed_box_widened(&bd->packed[k], &bd->grid) : bd->prims[k];
+    return prim_box_of(bd, bd->packed != NULL, k);
 }
 
 static inline void swap_prims(struct builder *bd, uint32_t i, uint32_t j) {
@@ -454,10 +460,12 @@ static inline __attribute__((always_inline)) uint32_t bin_fours(const struct bui
                                                                 uint32_t end, float4 origin, float4 scale, int slots,
                                                                 struct bin bins[][3][BVH_BINS]) {
     uint32_t i = begin;
-    for (; i + FAST_BVH_BIN_SETS <= end; i += FAST_BVH_BIN_SETS)
-        for (uint32_t j = 0; j < FAST_BVH_BIN_SETS; j++)
-            bin_prim(bins[j], packed ? packed_box_widened(&bd->packed[i + j], &bd->grid) : bd->prims[i + j], origin,
-                     scale, slots);
+    for (; i + FAST_BVH_BIN_SETS <= end; i += FAST_BVH_BIN_SETS) {
+        bin_prim(bins[0], prim_box_of(bd, packed, i), origin, scale, slots);
+        bin_prim(bins[1], prim_box_of(bd, packed, i + 1), origin, scale, slots);
+        bin_prim(bins[2], prim_box_of(bd, packed, i + 2), origin, scale, slots);
+        bin_prim(bins[3], prim_box_of(bd, packed, i + 3), origin, scale, slots);
+    }
     return i;
 }
 
