@@ -4,7 +4,7 @@
 #
 #   make bench-accel   build $(BUILD)/bench_accel and run it on the big teapot and the bunny, with Intel
 #                      Embree 3 as the yardstick (installs Debian's libembree-dev if it is missing)
-#   make bench-memory  peak memory of chapters 10 and 11 (rungs 1 to 9) per triangle, on a teapot of about
+#   make bench-memory  peak memory of chapters 10 and 11 (its default rung, then rungs 1 to 9) per triangle, on a teapot of about
 #                      4 million triangles made by tools/models/teapot.c into out/bench/; rung 10 builds
 #                      rung 8's tree and holds nothing per triangle of its own, so its peak is rung 8's
 #   make bench-instances chapter 16's two-level BVH against Embree 3's instances on the forest (10,000
@@ -93,6 +93,8 @@ bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_
 	echo "peak memory on $(BENCH_MEMORY_SCENE) ($$triangles triangles, 64x48, 1 thread):"; \
 	$(BUILD)/peak_rss $$triangles "chapter 10, BVH-SAH" $(BUILD)/chapter-10 $(BENCH_MEMORY_SCENE) --threads 1 --quiet \
 	    -o $(BENCH_MEMORY_DIR)/memory.png && \
+	$(BUILD)/peak_rss $$triangles "chapter 11, the default rung" \
+	    $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE) --threads 1 --quiet -o $(BENCH_MEMORY_DIR)/memory.png && \
 	for rung in 1 2 3 4 5 6 7 8 9; do \
 	    $(BUILD)/peak_rss $$triangles "chapter 11, rung $$rung" $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE) --threads 1 \
 	        --quiet --rung $$rung -o $(BENCH_MEMORY_DIR)/memory.png || exit 1; \

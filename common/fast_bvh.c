@@ -14,8 +14,9 @@
  *    made conservative by a bound on their rounding (float_setup_make says how); a ray the bound
  *    cannot cover takes rung 5's test instead.
  *  - FAST_BVH_RUNG_COMPACT: rung 6's tree and walk with compact leaves: a leaf's triangles are read
- *    from the mesh by their face numbers (test_leaf_triangles), so the 72-byte copy of each triangle in
- *    leaf order is not made; one more dependent load per triangle test.
+ *    from the mesh's vertices by their corners' numbers, kept in leaf order (test_leaf_triangles), so
+ *    the 72-byte copy of each triangle in leaf order is not made, only 12 bytes of numbers; one more
+ *    dependent load per triangle test.
  *  - FAST_BVH_RUNG_EIGHT: rung 6 on an 8-wide tree, walked by fast_bvh_eight.c with AVX2 when the
  *    processor has it; a tree built without it is rung 6's and walked here as rung 6.
  *  - FAST_BVH_RUNG_LEAN: rung 8's tree walked with less work per ray by fast_bvh_lean.c (its leaves'
@@ -69,11 +70,20 @@ void fast_bvh_free(struct fast_bvh *b) {
     free(b->triangles);
     free(b->lean_corners);
     free(b->float_corners);
+    free(b->corners);
     free(b->faces);
     free(b);
 }
 
 void fast_bvh_get_info(const struct fast_bvh *b, struct bvh_info *info) { *info = b->info; }
+
+size_t fast_bvh_bytes(const struct fast_bvh *b) {
+    size_t per_triangle = sizeof *b->faces + (b->triangles != NULL ? sizeof *b->triangles : 0) +
+                          (b->corners != NULL ? 3 * sizeof *b->corners : 0);
+    size_t lean_blocks = b->lean_corners != NULL ? (b->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES : 0;
+    return b->node_count * (b->nodes8 != NULL ? sizeof *b->nodes8 : sizeof *b->nodes) + b->triangle_count * per_triangle +
+           lean_blocks * FAST_BVH_LEAN_BLOCK * sizeof *b->lean_corners;
+}
 
 /* ==== checking ================================================================================ */
 
@@ -158,6 +168,12 @@ bool fast_bvh_is_valid(const struct fast_bvh *b, const struct mesh *m, char *why
         compact.triangles = malloc((b->triangle_count + 1) * sizeof *compact.triangles);
         if (compact.triangles != NULL)
             bvh_copy_triangles(m, b->faces, b->triangle_count, compact.triangles);
+        for (size_t k = 0; k < b->triangle_count; k++)
+            if (memcmp(&b->corners[3 * k], m->faces[b->faces[k]].v, 3 * sizeof *b->corners) != 0) {
+                snprintf(why, why_size, "compact leaf's corners are not its face's (at %zu)", k);
+                free(compact.triangles);
+                return false;
+            }
     }
     struct check c = {&compact, m, calloc(b->triangle_count + 1, 1), calloc(b->node_count + 1, 1), why, why_size};
     bool ok = c.seen_triangle != NULL && c.seen_node != NULL && compact.triangles != NULL;
@@ -312,7 +328,7 @@ static inline void prefetch_child(const struct fast_bvh *b, uint32_t child, uint
         __builtin_prefetch(&b->nodes[child]);
         __builtin_prefetch((const char *)&b->nodes[child] + 64);
     } else if (compact) {
-        __builtin_prefetch(&b->mesh->faces[b->faces[child]]); /* the first face's corners' numbers */
+        __builtin_prefetch(&b->corners[3 * (size_t)child]); /* the leaf's corners' numbers */
     } else {
         __builtin_prefetch(&b->triangles[child]);
         __builtin_prefetch((const char *)&b->triangles[child] + 64);

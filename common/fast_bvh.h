@@ -41,6 +41,10 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
 /* Fills *info with b's shape, build time and SAH cost (nodes counted in the 4-wide tree). Cannot fail. */
 void fast_bvh_get_info(const struct fast_bvh *b, struct bvh_info *info);
 
+/* The bytes b holds: its nodes, its leaves' triangles (or on rung 7 their corners' numbers, and not the
+ * mesh it reads them from) and their face numbers. */
+size_t fast_bvh_bytes(const struct fast_bvh *b);
+
 /* Checks b, built from m, against its invariants: every face stored exactly once and reachable from
  * the root, every box holding its triangles' corners and its children's boxes, the depth within the
  * traversal stack. Returns true when all hold; otherwise false with the first broken one described in

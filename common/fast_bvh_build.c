@@ -23,7 +23,7 @@
  * Its tree is not chapter 10's node for node (float centroids, other slots), but as good by the SAH's
  * measure.
  *
- * Rung 7 (compact leaves) builds as rung 5, but keeps the build's boxes in 12 bytes instead of 32
+ * Rung 7 (compact leaves) builds as rung 5, but keeps the build's boxes in 16 bytes instead of 32
  * (struct packed_box: each bound a 16-bit step on a grid over the root's box, rounded outward), because
  * they set the program's peak memory once the leaves no longer copy the triangles. Its tree is rung 5's
  * but for boxes up to one grid step larger. Where the SAH finds no plane or the tree is deeper than BVH_MAX_DEPTH, chapter 10 halves a
@@ -43,6 +43,10 @@
 #include <omp.h>
 #endif
 #include <stdlib.h>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "big_alloc.h"
 #include "clock.h"
@@ -254,7 +258,7 @@ struct build_range {
     struct float_box box, centroids;
 };
 
-/* ---- rung 7: the build's boxes in 12 bytes ----
+/* ---- rung 7: the build's boxes in 16 bytes ----
  * A box's six bounds as steps of a grid: bound = base + q * step on each axis, computed in float
  * (packed_value), q from 0 to FAST_BVH_PACKED_STEPS. base is the low corner of the root's box and the
  * grid reaches past its high corner, so every bound of the tree is on it; a low bound is rounded down
@@ -267,12 +271,16 @@ struct build_range {
 #define FAST_BVH_PACKED_WIDEN (1.0f + 0x1p-10f) /* how much a step too short for the grid is widened */
 
 struct packed_box {
-    uint16_t lo[3], hi[3];
+    uint16_t lo[4], hi[4]; /* x, y, z and an unused lane, 0 (as in struct float_box), so that a box is 16
+                              bytes, read and moved in one instruction */
 };
 
-/* The grid: base and step for each axis (lane 3 is 0 in both, the unused lane of struct float_box). */
+/* The grid: base and step for each axis (lane 3 is 0 in both, the unused lane of struct float_box), and
+ * 1 / step in double (0 for a step of 0; finite for a step below float's normal range), which only
+ * guesses a bound's step (packed_guess). */
 struct packed_grid {
     float4 base, step;
+    double inverse_step[3];
 };
 
 static inline float packed_value(float base, float step, uint16_t q) { return base + (float)q * step; }
@@ -297,45 +305,65 @@ static bool packed_grid_make(const struct float_box *root, struct packed_grid *g
             return false;
         g->base[a] = lo;
         g->step[a] = step;
+        g->inverse_step[a] = step > 0.0f ? 1.0 / step : 0.0;
     }
     return true;
 }
 
-/* The highest grid step at or below x, and the lowest at or above it, for base <= x <= the grid's end. */
-static uint16_t packed_below(float x, float base, float step) {
-    double q = step > 0.0f ? floor(((double)x - base) / step) : 0.0;
-    uint16_t k = (uint16_t)(q < 0.0 ? 0.0 : q > FAST_BVH_PACKED_STEPS ? FAST_BVH_PACKED_STEPS : q);
-    while (k > 0 && packed_value(base, step, k) > x)
-        k--;
-    return k;
+/* Where x lies on the grid, in steps from base, estimated by the grid's inverse step (0 where a step is
+ * 0) and clamped to the grid: packed_below rounds it down and packed_above up, and each then walks to
+ * the exact step (almost always none to walk, so that the walks' branches are foreseen). */
+static inline double packed_guess(float x, float base, double inverse_step) {
+    double q = ((double)x - base) * inverse_step;
+    return q > 0.0 ? (q < FAST_BVH_PACKED_STEPS ? q : FAST_BVH_PACKED_STEPS) : 0.0; /* a NaN gives 0 */
 }
 
-static uint16_t packed_above(float x, float base, float step) {
-    double q = step > 0.0f ? ceil(((double)x - base) / step) : 0.0;
-    uint16_t k = (uint16_t)(q < 0.0 ? 0.0 : q > FAST_BVH_PACKED_STEPS ? FAST_BVH_PACKED_STEPS : q);
-    while (k < FAST_BVH_PACKED_STEPS && packed_value(base, step, k) < x)
+/* The highest grid step at or below x, and the lowest at or above it, for base <= x <= the grid's end. */
+static inline uint16_t packed_below(float x, float base, float step, double inverse_step) {
+    uint16_t k = (uint16_t)packed_guess(x, base, inverse_step);
+    while (k > 0 && packed_value(base, step, k) > x)
+        k--;
+    while (k < FAST_BVH_PACKED_STEPS && packed_value(base, step, (uint16_t)(k + 1)) <= x)
         k++;
     return k;
 }
 
+static inline uint16_t packed_above(float x, float base, float step, double inverse_step) {
+    double q = packed_guess(x, base, inverse_step);
+    uint16_t k = (uint16_t)q;
+    k += (double)k < q; /* rounded up */
+    while (k < FAST_BVH_PACKED_STEPS && packed_value(base, step, k) < x)
+        k++;
+    while (k > 0 && packed_value(base, step, (uint16_t)(k - 1)) >= x)
+        k--;
+    return k;
+}
+
 static struct packed_box packed_box_make(const struct float_box *box, const struct packed_grid *g) {
-    struct packed_box p;
+    struct packed_box p = {{0}, {0}};
     for (int a = 0; a < 3; a++) {
-        p.lo[a] = packed_below(box->lo[a], g->base[a], g->step[a]);
-        p.hi[a] = packed_above(box->hi[a], g->base[a], g->step[a]);
+        p.lo[a] = packed_below(box->lo[a], g->base[a], g->step[a], g->inverse_step[a]);
+        p.hi[a] = packed_above(box->hi[a], g->base[a], g->step[a], g->inverse_step[a]);
     }
     return p;
 }
 
-/* The float box p stands for: packed_value on all four lanes at once, the same float steps. */
+/* The float box p stands for: packed_value on all four lanes at once, the same float steps. With SSE2,
+ * the box is read in one 16-byte load and each corner widened by two instructions. */
 static inline struct float_box packed_box_widened(const struct packed_box *p, const struct packed_grid *g) {
+#if defined(__SSE2__)
+    __m128i steps = _mm_loadu_si128((const __m128i *)(const void *)p), zero = _mm_setzero_si128();
+    float4 lo = _mm_cvtepi32_ps(_mm_unpacklo_epi16(steps, zero));
+    float4 hi = _mm_cvtepi32_ps(_mm_unpackhi_epi16(steps, zero));
+#else
     float4 lo = {p->lo[0], p->lo[1], p->lo[2], 0.0f}, hi = {p->hi[0], p->hi[1], p->hi[2], 0.0f};
+#endif
     return (struct float_box){g->base + lo * g->step, g->base + hi * g->step};
 }
 
 struct builder {
     struct float_box *prims;     /* one padded box per triangle; the splits reorder them into leaf order */
-    struct packed_box *packed;   /* rung 7: the same in 12 bytes, on the grid (prims is then NULL) */
+    struct packed_box *packed;   /* rung 7: the same in 16 bytes, on the grid (prims is then NULL) */
     struct packed_grid grid;
     uint32_t *faces;             /* the face number of each prim, reordered along with them */
     struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (on more than one thread,
@@ -346,9 +374,15 @@ struct builder {
     _Alignas(64) uint32_t node_count;
 };
 
-/* Prim k's box. */
+/* Prim k's box, `packed` saying whether bd's boxes are rung 7's (a constant where the caller wants a loop
+ * for each kind of box), or asking bd. */
+static inline __attribute__((always_inline)) struct float_box prim_box_of(const struct builder *bd, bool packed,
+                                                                          uint32_t k) {
+    return packed ? packed_box_widened(&bd->packed[k], &bd->grid) : bd->prims[k];
+}
+
 static inline struct float_box prim_box(const struct builder *bd, uint32_t k) {
-    return bd->packed != NULL ? packed_box_widened(&bd->packed[k], &bd->grid) : bd->prims[k];
+    return prim_box_of(bd, bd->packed != NULL, k);
 }
 
 static inline void swap_prims(struct builder *bd, uint32_t i, uint32_t j) {
@@ -419,8 +453,24 @@ static inline void bin_prim(struct bin set[3][BVH_BINS], struct float_box p, flo
     float_box_grow(&z->box, p.lo, p.hi);
 }
 
+/* Bins prims [begin, end) four a step, one into each of four sets, as far as whole steps go; returns
+ * where it stopped. `packed` is whether bd's boxes are rung 7's (a constant where it is inlined, so
+ * that each kind of box gets its own loop). */
+static inline __attribute__((always_inline)) uint32_t bin_fours(const struct builder *bd, bool packed, uint32_t begin,
+                                                                uint32_t end, float4 origin, float4 scale, int slots,
+                                                                struct bin bins[][3][BVH_BINS]) {
+    uint32_t i = begin;
+    for (; i + FAST_BVH_BIN_SETS <= end; i += FAST_BVH_BIN_SETS) {
+        bin_prim(bins[0], prim_box_of(bd, packed, i), origin, scale, slots);
+        bin_prim(bins[1], prim_box_of(bd, packed, i + 1), origin, scale, slots);
+        bin_prim(bins[2], prim_box_of(bd, packed, i + 2), origin, scale, slots);
+        bin_prim(bins[3], prim_box_of(bd, packed, i + 3), origin, scale, slots);
+    }
+    return i;
+}
+
 /* Clears `sets` sets of bins and bins prims [begin, end) into them, the prims into the sets in turn. With
- * four sets and the prims' own boxes (not rung 7's packed ones), four prims a step, one into each set. */
+ * four sets, four prims a step, one into each set. */
 static void bin_prims(const struct builder *bd, uint32_t begin, uint32_t end, float4 origin, float4 scale, int slots,
                       int sets, struct bin bins[][3][BVH_BINS]) {
     for (int set = 0; set < sets; set++)
@@ -428,15 +478,10 @@ static void bin_prims(const struct builder *bd, uint32_t begin, uint32_t end, fl
             for (int k = 0; k < slots; k++)
                 bins[set][a][k] = (struct bin){float_box_empty(), 0};
     uint32_t i = begin;
-    if (sets == FAST_BVH_BIN_SETS && bd->packed == NULL) {
-        const struct float_box *prims = bd->prims;
-        for (; i + FAST_BVH_BIN_SETS <= end; i += FAST_BVH_BIN_SETS) {
-            bin_prim(bins[0], prims[i], origin, scale, slots);
-            bin_prim(bins[1], prims[i + 1], origin, scale, slots);
-            bin_prim(bins[2], prims[i + 2], origin, scale, slots);
-            bin_prim(bins[3], prims[i + 3], origin, scale, slots);
-        }
-    }
+    if (sets == FAST_BVH_BIN_SETS && bd->packed != NULL)
+        i = bin_fours(bd, true, begin, end, origin, scale, slots, bins);
+    else if (sets == FAST_BVH_BIN_SETS)
+        i = bin_fours(bd, false, begin, end, origin, scale, slots, bins);
     for (; i < end; i++)
         bin_prim(bins[sets == 1 ? 0 : i % FAST_BVH_BIN_SETS], prim_box(bd, i), origin, scale, slots);
 }
@@ -736,6 +781,25 @@ static bool face_float_box(const struct mesh *m, size_t f, double pad, struct fl
     return true;
 }
 
+/* The box around the corners of every face of m, grown by pad and rounded outward to float, in *box: it
+ * holds every face's box (face_float_box), and is found by one pass over the corners, cheaper than
+ * their boxes. False when a corner is not finite (a NaN would not be held by any box). */
+static bool faces_float_box(const struct mesh *m, double pad, struct float_box *box) {
+    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+    bool finite = true;
+    for (size_t f = 0; f < m->face_count; f++)
+        for (int c = 0; c < 3; c++) {
+            vec3 p = m->vertices[m->faces[f].v[c]];
+            finite = finite && isfinite(p.x) && isfinite(p.y) && isfinite(p.z);
+            lo = vec3_min(p, lo);
+            hi = vec3_max(p, hi);
+        }
+    struct aabb around = rounded_to_float(aabb_pad((struct aabb){lo, hi}, pad));
+    *box = (struct float_box){{(float)around.min.x, (float)around.min.y, (float)around.min.z, 0.0f},
+                              {(float)around.max.x, (float)around.max.y, (float)around.max.z, 0.0f}};
+    return finite && m->face_count > 0;
+}
+
 /* True when the build may run in parallel: OpenMP is compiled in (not in the browser's build) and gives
  * more than one thread. */
 static bool threads_to_share(void) {
@@ -747,7 +811,7 @@ static bool threads_to_share(void) {
 }
 
 /* Rung 5's build of b (its triangle_count set) over the faces of m, by the SAH: fills b's faces,
- * root, nodes and info. With `packed` (rung 7), the build's boxes are kept in 12 bytes each where the
+ * root, nodes and info. With `packed` (rung 7), the build's boxes are kept in 16 bytes each where the
  * mesh is within float's range (struct packed_box). With `eight` (rung 8), the nodes are 8-wide
  * (nodes8): the same splits, each node opening its widest children until it has eight. Returns false
  * when memory runs out. */
@@ -755,14 +819,11 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
     double pad = triangle_box_pad(m);
-    struct builder bd = {NULL, NULL, {{0}, {0}}, NULL, {NULL, NULL}, threads_to_share(), 0};
+    struct builder bd = {NULL, NULL, {{0}, {0}, {0}}, NULL, {NULL, NULL}, threads_to_share(), 0};
     struct float_box box;
-    if (packed) { /* a first pass for the root's box, which the grid spans */
-        struct float_box root = float_box_empty();
-        for (size_t f = 0; f < n; f++)
-            if (face_float_box(m, f, pad, &box))
-                float_box_grow(&root, box.lo, box.hi);
-        packed = packed_grid_make(&root, &bd.grid);
+    if (packed) { /* the grid spans every face's box */
+        struct float_box around;
+        packed = faces_float_box(m, pad, &around) && packed_grid_make(&around, &bd.grid);
     }
     if (packed)
         bd.packed = big_alloc((n ? n : 1) * sizeof *bd.packed, true);
@@ -843,6 +904,24 @@ static bool in_float_range(struct aabb box) {
     return true;
 }
 
+/* Rung 7's leaves: the corners' numbers of b's triangles in leaf order (b->corners, from m's faces by
+ * b->faces), in parts shared among the threads, and m kept for its vertices. Returns false when memory
+ * runs out. */
+static bool with_compact_leaves(struct fast_bvh *b, const struct mesh *m) {
+    b->mesh = m;
+    b->corners = big_alloc((b->triangle_count ? b->triangle_count : 1) * 3 * sizeof *b->corners, true);
+    if (b->corners == NULL)
+        return false;
+#pragma omp parallel for schedule(static) default(none) shared(b, m)
+    for (size_t start = 0; start < b->triangle_count; start += FAST_BVH_COPY_PART) {
+        size_t end = b->triangle_count - start < FAST_BVH_COPY_PART ? b->triangle_count : start + FAST_BVH_COPY_PART;
+        for (size_t k = start; k < end; k++)
+            for (int c = 0; c < 3; c++)
+                b->corners[3 * k + c] = m->faces[b->faces[k]].v[c];
+    }
+    return true;
+}
+
 struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum fast_bvh_rung rung) {
     if (m->face_count > BVH_MAX_FACES || rung < FAST_BVH_RUNG_FIRST || rung > FAST_BVH_RUNG_TOP)
         return NULL;
@@ -855,7 +934,10 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
         if (b != NULL && rung == FAST_BVH_RUNG_COMPACT) { /* the median tree's leaves made compact */
             free(b->triangles);
             b->triangles = NULL;
-            b->mesh = m;
+            if (!with_compact_leaves(b, m)) {
+                fast_bvh_free(b);
+                return NULL;
+            }
         }
         return with_lean_leaves(b);
     }
@@ -874,9 +956,12 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
      * intersection test wants them; allocated only now that the build's boxes are freed, so that the
      * peak memory holds one or the other. */
     b->float_range = in_float_range(b->root_box);
-    b->info.build_ms = 1e3 * (clock_seconds() - start);
     if (rung == FAST_BVH_RUNG_COMPACT) {
-        b->mesh = m;
+        if (!with_compact_leaves(b, m)) {
+            fast_bvh_free(b);
+            return NULL;
+        }
+        b->info.build_ms = 1e3 * (clock_seconds() - start);
         return b;
     }
     b->triangles = big_alloc((b->triangle_count ? b->triangle_count : 1) * sizeof *b->triangles, true);

@@ -47,11 +47,11 @@ enum fast_bvh_rung {
 /* The last rung a chapter accepts (--rung): rung 10 renders in packets over rung 8's tree, rung 11
  * walks rung 9's tree with the float triangle test. */
 #define FAST_BVH_RUNG_LAST FAST_BVH_RUNG_EXACT
-/* The rung the chapters walk unless told otherwise. Rung 7 takes the least memory, but its frames are
- * slower; rung 8 is faster on big meshes only (0.93 of rung 6's frame on the teapot, 1.00 on the bunny)
- * and needs AVX2, so that the counters the chapters print would depend on the processor
- * (docs/11-fast.md). */
-#define FAST_BVH_RUNG_DEFAULT FAST_BVH_RUNG_FLOAT
+/* The rung the chapters walk unless told otherwise: rung 7, which takes the least memory (80 bytes a
+ * triangle at the program's peak, against rung 6's 162) and builds and walks as fast as rung 6. Rung 8
+ * is faster on big meshes only (0.93 of rung 6's frame on the teapot, 1.00 on the bunny) and needs AVX2,
+ * so that the counters the chapters print would depend on the processor (docs/11-fast.md). */
+#define FAST_BVH_RUNG_DEFAULT FAST_BVH_RUNG_COMPACT
 
 /* Children per node: FAST_BVH_WIDTH on every rung but 8, FAST_BVH_WIDTH_EIGHT on rung 8's tree. */
 #define FAST_BVH_WIDTH 4
@@ -97,6 +97,8 @@ struct fast_bvh {
     struct bvh_triangle *triangles;  /* triangle_count entries: tree_count in leaf order, then the slivers;
                                         NULL on rung 7, which reads them from mesh */
     const struct mesh *mesh;         /* rung 7: the mesh built from, kept (not owned); else NULL */
+    uint32_t *corners;               /* rung 7: corners[3 k + c] = the number in mesh's vertices of corner c
+                                        of the k-th triangle in leaf order (its face's v[c]); else NULL */
     uint32_t *faces;                 /* faces[k] = index into the mesh's faces of the k-th triangle in leaf
                                         order (triangles[k]) */
     size_t triangle_count, tree_count;

@@ -146,8 +146,9 @@ static inline __attribute__((always_inline)) bool leaf_hit_taken(enum query kind
 
 /* Tests triangles [first, first + count) for query q with triangle_crossing_prepared (triangle.h), the
  * arithmetic triangle_intersect uses, so t is bit-identical to the brute-force loop's; lowers *box_max
- * as nearer hits turn up. With `compact` (rung 7) each triangle's corners are read from the mesh by its
- * face number, the very doubles the brute-force loop reads; else from the copy in leaf order. Returns
+ * as nearer hits turn up. With `compact` (rung 7) each triangle's corners are read from the mesh's
+ * vertices by their numbers, kept in leaf order (b->corners), the very doubles the brute-force loop
+ * reads; else from the copy of the triangles in leaf order. Returns
  * false when the walk should stop (QUERY_ANY found one, or QUERY_ALL's visit said so). */
 static inline __attribute__((always_inline)) bool test_leaf_triangles(const struct fast_bvh *b,
                                                                       const struct triangle_ray *r, uint32_t first,
@@ -159,7 +160,7 @@ static inline __attribute__((always_inline)) bool test_leaf_triangles(const stru
         bool crossed;
         (*tests)++;
         if (compact) {
-            const uint32_t *corner = b->mesh->faces[b->faces[k]].v;
+            const uint32_t *corner = &b->corners[3 * (size_t)k];
             const vec3 *vertices = b->mesh->vertices;
             crossed = triangle_crossing_prepared(vertices[corner[0]], vertices[corner[1]], vertices[corner[2]], r, &t,
                                                  &u, &v);

@@ -142,9 +142,8 @@ static bool load_object(struct instances *in, struct scene *s, size_t k, char *e
     }
     const struct fast_bvh *b = in->objects[k];
     in->info.object_triangles += o->mesh.face_count;
-    in->info.object_bytes += o->mesh.vertex_count * sizeof(vec3) + o->mesh.face_count * sizeof(struct mesh_face) +
-                             b->node_count * sizeof(struct fast_bvh_node) +
-                             b->triangle_count * (sizeof(struct bvh_triangle) + sizeof(uint32_t));
+    in->info.object_bytes +=
+        o->mesh.vertex_count * sizeof(vec3) + o->mesh.face_count * sizeof(struct mesh_face) + fast_bvh_bytes(b);
     return true;
 }
 

@@ -2,9 +2,9 @@
  * walked for speed, one optimisation (a rung) at a time.
  *
  * The fast hierarchy is in common/fast_bvh.c and is plugged into the world by common/accel_fast_bvh.c.
- * --rung N (1 to 11) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6 the
- * default, 7 the smallest, 8 eight boxes at a time where the processor has AVX2, 9 the same tree walked
- * with less work per ray, 10 rung 8 with the camera rays traced in packets of eight (render_in_packets,
+ * --rung N (1 to 11) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6
+ * float boxes, 7 the smallest and the default, 8 eight boxes at a time where the processor has AVX2, 9
+ * the same tree walked with less work per ray, 10 rung 8 with the camera rays traced in packets of eight (render_in_packets,
  * below), 11 rung 9 with its triangles tested in float first, and in double only where the float test
  * cannot rule a hit out. The picture is chapter 10's on every rung; only the time and the memory change. */
 #include <stdio.h>

@@ -617,9 +617,9 @@ CHECK(check_fast_crossing) { return fast_case(crossed_layers, FAST_BVH_RUNG_BUIL
 
 CHECK(check_fast_near_first) {
     struct mesh m = row(2); /* the triangles stacked at z = 0, 1, ..., 63 over the same square */
-    /* At rung 6, the walk chapters 11 to 14 take, so that this check needs only what the chapters' own
-     * pictures run: its float build (which goes with task 10.2) and its float box test, child_quad_hit
-     * (which goes with task 11.1). */
+    /* At rung 6, whose walk chapters 11 to 14 take (their default, rung 7, walks it over compact
+     * leaves), so that this check needs only what the chapters' own pictures run: its float build
+     * (which goes with task 10.2) and its float box test, child_quad_hit (which goes with task 11.1). */
     check_calling("fast_bvh_build", "%d triangles stacked at z = 0 .. %d, rung 6", ROW_TRIANGLES, ROW_TRIANGLES - 1);
     struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_FLOAT);
     mesh_free(&m);
