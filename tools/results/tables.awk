@@ -48,7 +48,7 @@ function structure_name(s) {
     if (s == "kd-sah") return "kd-tree, SAH"
     if (s == "bvh-median") return "BVH, median split (seed's rule)"
     if (s == "bvh-sah") return "BVH, SAH"
-    if (s == "fast") return "chapter 11's BVH (rung 6)"
+    if (s == "fast") return "chapter 11's BVH (its default rung)"
     if (s == "povray") return "POV-Ray 3.7"
     return s
 }
@@ -398,7 +398,7 @@ END {
                 seconds(wb[p, n]) " s | " seconds(wm[p, n]) " s |"
         }
     } else if (table == "whole") {
-        print "| threads, each side | picture | chapter 11 (rung 6), wall, median | POV-Ray 3.7, wall, median | POV-Ray ÷ chapter 11, median of the pairs | smallest – largest | processor time, POV-Ray ÷ chapter 11 (medians) | pairs | load average, before / after |"
+        print "| threads, each side | picture | chapter 11 (default rung), wall, median | POV-Ray 3.7, wall, median | POV-Ray ÷ chapter 11, median of the pairs | smallest – largest | processor time, POV-Ray ÷ chapter 11 (medians) | pairs | load average, before / after |"
         print "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
         for (i = 1; i <= n_whole; i++) print whole_lines[i]
     } else if (table ~ /^accel-/) {
