@@ -301,7 +301,7 @@ static float *render_cornell(int threads, int samples, int seed, const char *sam
                              .antialias = &t.scene.antialias, .lens = &t.scene.lens};
     struct stats total = {0};
     render_image(&job, &img, &total);
-    cr_expect_eq(total.primary_rays, 32 * 32 * samples, "one camera ray a path");
+    cr_expect_eq(total.primary_rays, (uint64_t)32 * 32 * (uint64_t)samples, "one camera ray a path");
     image_free(&img);
     path_setup_free(&t);
     return linear;
