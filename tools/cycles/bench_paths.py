@@ -6,7 +6,8 @@
 #
 # The scene is chapter 15's Cornell box (scenes/15-paths.scene: diffuse walls, the lamp, the mirror ball
 # and the glass ball) at BENCH_SIZE x BENCH_SIZE pixels. Each renderer draws it at each sample count
-# (default 16, 64 and 256 a pixel) with two seeds, on THREADS threads: ours is CHAPTER15 (its PFM), Cycles
+# (default 16, 64 and 256 a pixel) with two seeds, on THREADS threads: ours is CHAPTER15 (its PFM), once
+# with its default sampler (independent numbers) and once with `--set paths.sampler=sobol`, Cycles
 # is tools/cycles/render.py with `smooth` (the balls as a sharp Glossy and a sharp Glass BSDF on smoothly
 # shaded meshes), sampling its lights as it does by default, as ours does (multiple importance).
 #
@@ -29,6 +30,7 @@
 # (the geometric mean of RMSE sqrt(samples) over the counts), the target is Cycles' RMSE at the largest
 # count, and each renderer's time is (c / target)^2 samples at its cost per sample. Writes a table and
 #   paths vs Cycles at equal noise (N threads, wall): ours X s, Cycles Y s, ratio X/Y
+# for each of our samplers
 # to OUT_DIR/report.txt (and standard output, among Blender's own messages).
 import math
 import os
@@ -59,10 +61,11 @@ def children_cpu():
     return usage.ru_utime + usage.ru_stime
 
 
-def run_ours(chapter, scene, samples, seed, threads, out):
+def run_ours(chapter, scene, samples, seed, threads, out, sampler):
     start, cpu = time.perf_counter(), children_cpu()
     result = subprocess.run([chapter, scene, "--quiet", "--threads", str(threads), "--set", "paths.samples=%d" % samples,
-                             "--set", "paths.seed=%d" % seed, "-o", out + ".png", "--hdr", out + ".pfm"])
+                             "--set", "paths.seed=%d" % seed, "--set", "paths.sampler=" + sampler, "-o", out + ".png",
+                             "--hdr", out + ".pfm"])
     if result.returncode != 0:
         fail("%s failed on %s" % (chapter, scene))
     return time.perf_counter() - start, children_cpu() - cpu, out + ".pfm"
@@ -109,13 +112,15 @@ def main():
     with open(SCENE) as source, open(scene, "w") as bench:
         for line in source:
             bench.write("image %d %d\n" % (BENCH_SIZE, BENCH_SIZE) if line.startswith("image ") else line)
-    runs = {"ours": [], "Cycles": []}  # (samples, wall, cpu, noise)
+    runs = {"ours": [], "ours, sobol": [], "Cycles": []}  # (samples, wall, cpu, noise)
     for n in counts:
-        paths = {"ours": [], "Cycles": []}
-        for seed in SEEDS:  # the two renderers in turn, so that a drift of the machine's speed hits both
-            wall, cpu, path = run_ours(chapter, scene, n, seed, threads, "%s/ours-%d-%d" % (out, n, seed))
-            runs["ours"].append([n, wall, cpu])
-            paths["ours"].append(path)
+        paths = {name: [] for name in runs}
+        for seed in SEEDS:  # the renderers in turn, so that a drift of the machine's speed hits all
+            for name, sampler in (("ours", "independent"), ("ours, sobol", "sobol")):
+                wall, cpu, path = run_ours(chapter, scene, n, seed, threads, "%s/%s-%d-%d" % (out, sampler, n, seed),
+                                           sampler)
+                runs[name].append([n, wall, cpu])
+                paths[name].append(path)
             wall, cpu, path = run_cycles(scene, n, seed, threads, "%s/cycles-%d-%d" % (out, n, seed))
             runs["Cycles"].append([n, wall, cpu])
             paths["Cycles"].append(path)
@@ -125,7 +130,7 @@ def main():
                 run.append(sigma)
     largest = max(counts)
     check = subprocess.run(BLENDER + [os.path.join(HERE, "compare.py"), "--", "bench", "16",
-                                      "%s/ours-%d-1.pfm" % (out, largest), "%s/ours-%d-2.pfm" % (out, largest),
+                                      "%s/sobol-%d-1.pfm" % (out, largest), "%s/sobol-%d-2.pfm" % (out, largest),
                                       "%s/cycles-%d-1.exr" % (out, largest), "%s/cycles-%d-2.exr" % (out, largest)],
                            capture_output=True, text=True)
     rows = [line for line in check.stdout.splitlines() if line.startswith("|")]
@@ -150,10 +155,12 @@ def main():
     say("target RMSE %.4f (Cycles' at %d samples)" % (target, largest))
     for clock, k in (("wall", 1), ("processor", 2)):
         times = {name: (fit[0] / target) ** 2 * fit[k] for name, fit in fits.items()}
-        say("paths vs Cycles at equal noise (%d thread%s, %s): ours %.2f s, Cycles %.2f s, ratio %.2f" %
-              (threads, "" if threads == 1 else "s", clock, times["ours"], times["Cycles"],
-               times["ours"] / times["Cycles"]))
-    say("converged to the same picture (ours against Cycles at %d samples, blocks of 16 x 16):" % largest)
+        for ours, sampler in (("ours", "independent"), ("ours, sobol", "sobol")):
+            say("paths vs Cycles at equal noise (%d thread%s, %s, sampler %s): ours %.2f s, Cycles %.2f s, ratio %.2f" %
+                (threads, "" if threads == 1 else "s", clock, sampler, times[ours], times["Cycles"],
+                 times[ours] / times["Cycles"]))
+    say("converged to the same picture (ours with sampler sobol against Cycles at %d samples, blocks of 16 x 16):" %
+        largest)
     say("\n".join(rows) if rows else "compare.py printed no row: " + check.stderr.strip()[-300:])
     with open(os.path.join(out, "report.txt"), "w") as f:
         f.write("\n".join(report) + "\n")
