@@ -85,7 +85,7 @@ MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_eight fast_bvh_lean fast
 MODULES_12 := $(MODULES_11) sample_hash supersample
 MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture
-MODULES_15 := $(MODULES_14) sampling emitter bsdf path_trace path_image path_program
+MODULES_15 := $(MODULES_14) owen_sobol sampling emitter bsdf path_trace path_image path_program
 MODULES_16 := $(MODULES_15) transform keyframes instance_bvh instances shutter
 MODULES_17 := $(MODULES_16) microfacet rough_surface
 CHAPTERS := 01-camera 02-sphere 03-triangle 04-plane 05-aabb 06-phong 07-shadows 08-recursion \
@@ -400,7 +400,7 @@ gallery: all $(BUILD)/compare
 
 # Chapter 17's plot of the light a rough conductor loses against its roughness: the table of
 # tools/rough_energy.c (microfacet.c's numerical integral) drawn by tools/rough-energy.gp.
-$(BUILD)/rough-energy: $(BUILD)/tools/rough_energy.o $(addprefix $(BUILD)/common/,microfacet.o bsdf.o sampling.o sample_hash.o)
+$(BUILD)/rough-energy: $(BUILD)/tools/rough_energy.o $(addprefix $(BUILD)/common/,microfacet.o bsdf.o owen_sobol.o sampling.o sample_hash.o)
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 ## make rough-energy   redraw chapter 17's plot of energy loss against roughness (docs/images/17-energy-loss.*)

@@ -9,7 +9,10 @@
 #                      rung 8's tree and holds nothing per triangle of its own, so its peak is rung 8's
 #   make bench-instances chapter 16's two-level BVH against Embree 3's instances on the forest (10,000
 #                      instanced teapots and bunnies, written by tools/models/forest.c into out/bench/)
-#   make bench         every benchmark: bench-accel, then bench-memory, then bench-instances
+#   make bench-paths   chapter 15's path tracer against Blender's Cycles at equal noise on its Cornell box, on
+#                      1 and 2 threads (tools/cycles/bench_paths.py; installs Debian's blender if it is
+#                      missing): the time each needs to reach the same RMSE, and paths a second
+#   make bench         every benchmark: bench-accel, then bench-memory, then bench-instances, then bench-paths
 #   make bench-profile instructions, cache misses and mispredicted branches per ray for rungs 1, 5 to 9
 #                      and Embree on the teapot frame (bench/profile.sh, under valgrind: ten minutes or so)
 #
@@ -33,10 +36,11 @@ BENCH_OBJECTS := $(patsubst bench/%.c,$(BUILD)/bench/$(BENCH_VARIANT)/%.o,$(BENC
 BENCH_CFLAGS := $(if $(BENCH_EMBREE),-DWHITTED_EMBREE)
 BENCH_LDLIBS := $(if $(BENCH_EMBREE),-lembree3)
 
-.PHONY: bench bench-accel bench-memory bench-profile bench-instances
+.PHONY: bench bench-accel bench-memory bench-profile bench-instances bench-paths
 
-## make bench          every benchmark: make bench-accel, then make bench-memory, then make bench-instances
-bench: bench-accel bench-memory bench-instances
+## make bench          every benchmark: make bench-accel, then make bench-memory, then make bench-instances,
+##                     then make bench-paths
+bench: bench-accel bench-memory bench-instances bench-paths
 
 ## make bench-accel    the kd-tree, the BVH and chapter 11's rungs against Intel Embree 3, on the big
 ##                     teapot and the bunny (installs libembree-dev first)
@@ -142,4 +146,22 @@ bench-instances: $(BENCH_MODELS) $(BENCH_FOREST) $(BENCH_FOREST_BASE) $(BUILD)/p
 	    awk -v label="$$label" -v full=$$full -v base=$$base -v n=$$n 'BEGIN { \
 	        printf "  %-30s %7.1f MB with %d, %6.1f MB with 2: %5.0f bytes per instance\n", \
 	               label, full / 1024, n, base / 1024, (full - base) * 1024 / (n - 2) }'; \
+	done
+
+# ---- paths: chapter 15 against Cycles at equal noise --------------------------------------------
+BENCH_PATHS_THREADS := 1 2
+BENCH_PATHS_DIR := out/bench/paths
+
+## make bench-paths    chapter 15's Cornell box drawn by chapter 15 and by Blender's Cycles at 16, 64 and 256
+##                     paths a pixel, two seeds each, on 1 and then 2 threads: each one's RMSE, its cost
+##                     a sample, the time each needs to reach the same RMSE and their ratio, and whether
+##                     the two converge to the same picture (installs Debian's blender; a few minutes)
+bench-paths: $(BUILD)/chapter-15 | deps
+	tools/build/install-deps.sh cycles
+	for threads in $(BENCH_PATHS_THREADS); do \
+	    mkdir -p $(BENCH_PATHS_DIR)-$$threads && \
+	    blender -b --factory-startup --python-exit-code 1 --python tools/cycles/bench_paths.py -- \
+	        $(BUILD)/chapter-15 $$threads $(BENCH_PATHS_DIR)-$$threads >$(BENCH_PATHS_DIR)-$$threads/blender.log 2>&1 || \
+	        { tail -5 $(BENCH_PATHS_DIR)-$$threads/blender.log; exit 1; }; \
+	    cat $(BENCH_PATHS_DIR)-$$threads/report.txt; \
 	done

@@ -93,9 +93,9 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
             }
         }
         if (report && run->status == CLI_OK) {
-            printf("paths: %d a pixel (%s, seed %u); noise: a pixel's standard error is %.1f%% of the mean; "
+            printf("paths: %d a pixel (%s%s, seed %u); noise: a pixel's standard error is %.1f%% of the mean; "
                    "%.0f paths and %.0f rays a second\n", s->paths.samples, path_strategy_name(s->paths.strategy),
-                   (unsigned)s->paths.seed, 100 * path_image_noise(linear, error, tile.width, tile.height),
+                   s->paths.sampler == PATH_SAMPLER_SOBOL ? ", sampler sobol" : "", (unsigned)s->paths.seed, 100 * path_image_noise(linear, error, tile.width, tile.height),
                    run->total.primary_rays / run->render_seconds,
                    (run->total.primary_rays + run->total.shadow_rays + run->total.reflected_rays +
                     run->total.refracted_rays) / run->render_seconds);

@@ -1,7 +1,7 @@
 /* path_settings.h: the scene's `paths` line, how chapter 15 traces its paths (read from chapter 1 on,
  * drawn by chapter 15; docs/15-paths.md).
  *
- *   paths samples 64 seed 0 roulette 3 bounces 256 strategy mis
+ *   paths samples 64 seed 0 roulette 3 bounces 256 strategy mis sampler independent
  *
  * samples   paths per pixel (each through a random point of the pixel: a box filter of one pixel)
  * seed      chooses the random numbers; the same seed gives the same picture on any number of threads
@@ -13,6 +13,9 @@
  *           light for albedos up to 0.95 (docs/15-paths.md, "A path, not a tree")
  * strategy  how direct light is found: mis (next-event estimation and the scattered direction, weighed
  *           by the power heuristic), light (next-event estimation alone) or scatter (scattering alone)
+ * sampler   how a pixel's paths draw their random numbers: independent (each path its own hashed
+ *           stream) or sobol (the pixel's paths stratified together, a scrambled (0,2)-sequence,
+ *           owen_sobol.h): both unbiased, sobol less noisy for the same paths (docs/15-paths.md)
  *
  * Like the antialias line (antialias.h) the settings are plain data read with every scene, so that any
  * chapter reads any scene; the chapters before 15 ignore them (scene_drop_unsupported). */
@@ -32,6 +35,11 @@
 #define PATH_MAX_SAMPLES 1048576     /* 2^20 paths a pixel: more than any picture here needs */
 #define PATH_MAX_BOUNCES 4096
 
+enum path_sampler {
+    PATH_SAMPLER_INDEPENDENT, /* every number a hash of (pixel, sample, seed, its place in the path) */
+    PATH_SAMPLER_SOBOL,       /* the pixel's samples stratified: Owen-scrambled (0,2)-sequences */
+};
+
 enum path_strategy {
     PATH_MIS,     /* next-event estimation and scattering, combined by the power heuristic */
     PATH_LIGHT,   /* next-event estimation only: emitters reached by scattering count only after a mirror */
@@ -44,11 +52,12 @@ struct path_settings {
     int roulette;
     int bounces;
     enum path_strategy strategy;
+    enum path_sampler sampler;
     int line; /* the scene file's line, 0 when the scene has none (the defaults hold) */
 };
 
-/* The keys of the line: samples, seed, roulette, bounces, strategy (a word). */
-#define PATH_KEY_COUNT 5
+/* The keys of the line: samples, seed, roulette, bounces, strategy and sampler (words). */
+#define PATH_KEY_COUNT 6
 extern const struct key_spec path_keys[PATH_KEY_COUNT];
 
 /* Returns the settings a scene without a paths line has. */
@@ -58,10 +67,13 @@ struct path_settings path_settings_default(void);
  * defaults. Returns false with the reason in why (without file and line: the parser adds them) for
  * samples not a whole number from 1 to PATH_MAX_SAMPLES, a seed not a whole number from 0 to 2^32 - 1,
  * roulette or bounces not a whole number from 0 to PATH_MAX_BOUNCES, or
- * an unknown strategy. */
+ * an unknown strategy or sampler. */
 bool path_settings_make(const struct key_values *kv, struct path_settings *p, char *why, size_t why_size);
 
 /* Returns the strategy's name as the scene file spells it: "mis", "light" or "scatter". */
 const char *path_strategy_name(enum path_strategy strategy);
+
+/* Returns the sampler's name as the scene file spells it: "independent" or "sobol". */
+const char *path_sampler_name(enum path_sampler sampler);
 
 #endif

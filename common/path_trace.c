@@ -189,7 +189,9 @@ static vec3 radiance(const struct path_world *pw, ray r, struct interior_list in
 }
 
 vec3 path_sample(const struct path_world *pw, int i, int j, uint32_t sample) {
-    struct sample_stream rng = sample_stream_start((uint32_t)i, (uint32_t)j, sample, pw->settings.seed);
+    struct sample_stream rng = pw->settings.sampler == PATH_SAMPLER_SOBOL
+                                   ? sample_stream_stratified((uint32_t)i, (uint32_t)j, sample, pw->settings.seed)
+                                   : sample_stream_start((uint32_t)i, (uint32_t)j, sample, pw->settings.seed);
     double x = i + sample_stream_next(&rng), y = j + sample_stream_next(&rng);
     ray r = camera_ray_through(pw->camera, x, y);
     stats_thread.primary_rays++;

@@ -33,7 +33,7 @@ FUZZ_MODULES_obj := $(FUZZ_MODULES_ply)
 # chapter 11's fast BVH, whose float boxes promise no exact agreement with brute force), with the
 # picture, its heat-map and its file, which chapter 12's sampling links to.
 FUZZ_MODULES_render := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_10)) image outfile heatmap sample_hash supersample \
-                       soft_shadow thin_lens image_map mesh_surface texture sampling emitter bsdf path_trace
+                       soft_shadow thin_lens image_map mesh_surface texture owen_sobol sampling emitter bsdf path_trace
 FUZZ_MODULES_image := infile image_map pigment_syntax
 FUZZ_EXTRA_ply := fuzz_mesh
 FUZZ_EXTRA_obj := fuzz_mesh

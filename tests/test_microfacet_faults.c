@@ -37,9 +37,9 @@ Test(microfacet_long, every_fault_of_the_lobes_fails_the_test_it_names, .timeout
         snprintf(command, sizeof command,
                  "tests/support/patched-copy.sh %s %s common && "
                  "${CC:-gcc} -std=c11 -D_DEFAULT_SOURCE -O2 -I%s/common tests/test_microfacet.c "
-                 "%s/common/microfacet.c %s/common/bsdf.c %s/common/sampling.c "
+                 "%s/common/microfacet.c %s/common/bsdf.c %s/common/sampling.c %s/common/owen_sobol.c "
                  "%s/common/sample_hash.c -o %s/run $(pkg-config --cflags --libs criterion) -lm",
-                 patch, dir, dir, dir, dir, dir, dir, dir);
+                 patch, dir, dir, dir, dir, dir, dir, dir, dir);
         cr_assert_eq(run_logged(command, log), 0, "%s: the patched copy does not build (see %s)", name, log);
         snprintf(command, sizeof command, "env -u BXFI_MAP %s/run --filter '%s'", dir, fails);
         cr_expect_neq(run_logged(command, log), 0, "%s: %s passes with the fault (see %s)", name, fails, log);

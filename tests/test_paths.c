@@ -1,7 +1,8 @@
 /* test_paths.c: chapter 15's path tracer: the paths line and emission read and refused, the emitters
  * gathered, the sampling densities, Fresnel's reflectance, and the proofs that the estimator is right:
  * the white furnace, error falling as 1 / sqrt(N), the three strategies agreeing with MIS the least
- * noisy, uncorrelated pixels, and the same picture for any thread count. */
+ * noisy, uncorrelated pixels, and the same picture for any thread count; the stratified sampler's
+ * strata, and its paths unbiased and less noisy than independent ones. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -10,6 +11,7 @@
 
 #include "bsdf.h"
 #include "emitter.h"
+#include "owen_sobol.h"
 #include "path_image.h"
 #include "path_proofs.h"
 #include "path_trace.h"
@@ -36,6 +38,7 @@ Test(paths_line, keys_and_defaults_are_read) {
     cr_assert(parse_lines("material lamp emission 4 2 1", &s, err, sizeof err), "%s", err);
     cr_expect_eq(s.paths.samples, PATH_DEFAULT_SAMPLES);
     cr_expect_eq(s.paths.strategy, PATH_MIS);
+    cr_expect_eq(s.paths.sampler, PATH_SAMPLER_INDEPENDENT);
     cr_expect_eq(s.paths.line, 0);
     cr_expect(s.materials[1].emission.x == 4 && s.materials[1].emission.y == 2 && s.materials[1].emission.z == 1);
     cr_expect(s.materials[0].emission.x == 0, "no emission by default");
@@ -45,12 +48,17 @@ Test(paths_line, keys_and_defaults_are_read) {
     cr_expect_eq(s.paths.strategy, PATH_SCATTER);
     cr_expect_eq(s.paths.line, 3);
     scene_free(&s);
+    cr_assert(parse_lines("paths sampler sobol", &s, err, sizeof err), "%s", err);
+    cr_expect_eq(s.paths.sampler, PATH_SAMPLER_SOBOL);
+    cr_expect_str_eq(path_sampler_name(s.paths.sampler), "sobol");
+    scene_free(&s);
 }
 
 Test(paths_line, bad_values_are_refused_with_file_and_line) {
     expect_refused("paths samples 0", "paths.scene:3: paths samples must be a whole number from 1 to 1048576, got 0");
     expect_refused("paths bounces 2.5", "paths.scene:3: paths bounces must be a whole number from 0 to 4096, got 2.5");
     expect_refused("paths strategy both", "paths.scene:3: unknown paths strategy 'both' (mis, light or scatter)");
+    expect_refused("paths sampler halton", "paths.scene:3: unknown paths sampler 'halton' (independent or sobol)");
     expect_refused("paths samples 4\npaths samples 5", "paths.scene:4: a second paths line (a scene has one)");
     expect_refused("material lamp emission 1 -1 1",
                    "paths.scene:3: material 'lamp': emission must be finite and not negative");
@@ -156,12 +164,13 @@ Test(emitters, an_emissive_plane_is_refused) {
 /* ---- the proofs ------------------------------------------------------------------------------------ */
 
 /* Inside a closed sphere that emits Le and reflects a share rho of what reaches it, the radiance is the
- * same everywhere and in every direction: L = Le + rho L, so L = Le / (1 - rho). */
+ * same everywhere and in every direction: L = Le + rho L, so L = Le / (1 - rho). With either sampler. */
 Test(furnace, every_strategy_converges_to_le_over_one_minus_rho) {
     const double rhos[] = {0.0, 0.3, 0.6, 0.8};
-    const char *strategies[] = {"mis", "light", "scatter"};
+    const char *strategies[] = {"mis", "light", "scatter", "mis sampler sobol", "light sampler sobol",
+                                "scatter sampler sobol"}; /* each with the stratified sampler too */
     for (int r = 0; r < 4; r++)
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < 6; k++) {
             struct furnace_result f;
             char err[512] = "";
             cr_assert(path_proof_furnace(rhos[r], strategies[k], &f, err, sizeof err), "%s", err);
@@ -274,12 +283,16 @@ Test(strategies, light_sampling_wins_under_a_small_distant_lamp_and_mis_keeps_it
 
 /* ---- threads -------------------------------------------------------------------------------------- */
 
-/* The linear frame of the Cornell box at 32 x 32 with 4 paths a pixel, rendered on `threads` threads. */
-static float *render_threads(int threads) {
+/* The linear frame of the Cornell box at 32 x 32 with `samples` paths a pixel under `seed` and `sampler`
+ * (independent or sobol), rendered on `threads` threads. */
+static float *render_cornell(int threads, int samples, int seed, const char *sampler) {
     struct path_setup t;
-    char err[512] = "";
-    const char *sets[] = {"image=32 32", "paths.samples=4"};
-    cr_assert(path_setup_file(&t, "scenes/15-paths.scene", sets, 2, err, sizeof err), "%s", err);
+    char err[512] = "", set_samples[64], set_seed[64], set_sampler[64];
+    snprintf(set_samples, sizeof set_samples, "paths.samples=%d", samples);
+    snprintf(set_seed, sizeof set_seed, "paths.seed=%d", seed);
+    snprintf(set_sampler, sizeof set_sampler, "paths.sampler=%s", sampler);
+    const char *sets[] = {"image=32 32", set_samples, set_seed, set_sampler};
+    cr_assert(path_setup_file(&t, "scenes/15-paths.scene", sets, 4, err, sizeof err), "%s", err);
     float *linear = calloc(32 * 32 * 3, sizeof *linear);
     struct image img;
     cr_assert(image_create(&img, 32, 32) && linear != NULL);
@@ -288,17 +301,20 @@ static float *render_threads(int threads) {
                              .antialias = &t.scene.antialias, .lens = &t.scene.lens};
     struct stats total = {0};
     render_image(&job, &img, &total);
-    cr_expect_eq(total.primary_rays, 32 * 32 * 4, "one camera ray a path");
+    cr_expect_eq(total.primary_rays, (uint64_t)32 * 32 * (uint64_t)samples, "one camera ray a path");
     image_free(&img);
     path_setup_free(&t);
     return linear;
 }
 
 Test(paths_threads, one_and_two_threads_give_the_same_radiance_to_the_bit) {
-    float *one = render_threads(1), *two = render_threads(2);
-    cr_expect_eq(memcmp(one, two, 32 * 32 * 3 * sizeof *one), 0);
-    free(one);
-    free(two);
+    const char *samplers[] = {"independent", "sobol"};
+    for (int k = 0; k < 2; k++) {
+        float *one = render_cornell(1, 4, 0, samplers[k]), *two = render_cornell(2, 4, 0, samplers[k]);
+        cr_expect_eq(memcmp(one, two, 32 * 32 * 3 * sizeof *one), 0, "%s", samplers[k]);
+        free(one);
+        free(two);
+    }
 }
 
 Test(path_image, the_tone_map_clips_and_applies_the_srgb_curve) {
@@ -308,4 +324,97 @@ Test(path_image, the_tone_map_clips_and_applies_the_srgb_curve) {
     cr_expect(fabs(path_image_display(0.002) - 0.02584) < 1e-12, "the linear piece");
     cr_expect(fabs(path_image_display(0.18) - 0.461356) < 1e-6, "18%% grey");
     cr_expect(fabs(path_image_display(1.0) - 1.0) < 1e-12);
+}
+
+/* ---- the stratified sampler (paths ... sampler sobol) ------------------------------------------------ */
+
+/* Scrambling seeds for test number k: any spread of values. */
+static struct owen_sobol_seeds test_seeds(uint32_t k) {
+    return (struct owen_sobol_seeds){k * 2654435761u, k * 40503u + 7u, (k ^ 0x5bd1e995u) * 0x9e3779b9u};
+}
+
+/* The first 16 points of every scrambled copy put one point in each cell of every grid of 16 equal
+ * rectangles (16 x 1, 8 x 2, 4 x 4, 2 x 8, 1 x 16), and the first 16 lone values one in each sixteenth. */
+Test(owen_sobol, sixteen_points_fill_every_grid_of_sixteen_cells) {
+    for (uint32_t k = 0; k < 200; k++) {
+        struct owen_sobol_seeds seeds = test_seeds(k);
+        for (int columns = 1; columns <= 16; columns *= 2) {
+            int rows = 16 / columns, filled[16] = {0};
+            for (uint32_t n = 0; n < 16; n++) {
+                double u, v;
+                owen_sobol_point(n, &seeds, &u, &v);
+                cr_assert(u >= 0 && u < 1 && v >= 0 && v < 1, "point %u: %g %g", n, u, v);
+                filled[(int)(u * columns) * rows + (int)(v * rows)]++;
+            }
+            for (int c = 0; c < 16; c++)
+                cr_expect_eq(filled[c], 1, "seeds %u, %d x %d cells: cell %d holds %d points", k, columns, rows, c,
+                             filled[c]);
+        }
+        int sixteenths[16] = {0};
+        for (uint32_t n = 0; n < 16; n++)
+            sixteenths[(int)(owen_sobol_value(n, &seeds) * 16)]++;
+        for (int c = 0; c < 16; c++)
+            cr_expect_eq(sixteenths[c], 1, "seeds %u: sixteenth %d holds %d values", k, c, sixteenths[c]);
+    }
+}
+
+/* One point of a copy, over many seeds, is uniform: its quarter of the square is each quarter a quarter of
+ * the time (the chi-square of 4,000 points in 16 cells, 15 degrees of freedom, under its 0.1 % point of
+ * 37.7), whichever point of the sequence it is. Without the scrambling it would always be in one cell. */
+Test(owen_sobol, one_point_over_the_seeds_is_uniform) {
+    enum { DRAWS = 4000 };
+    const uint32_t indices[] = {0, 1, 5, 1000};
+    for (int i = 0; i < 4; i++) {
+        int cells[16] = {0};
+        for (uint32_t k = 0; k < DRAWS; k++) {
+            struct owen_sobol_seeds seeds = test_seeds(k + 1);
+            double u, v;
+            owen_sobol_point(indices[i], &seeds, &u, &v);
+            cells[(int)(u * 4) * 4 + (int)(v * 4)]++;
+        }
+        double chi2 = 0, expected = DRAWS / 16.0;
+        for (int c = 0; c < 16; c++)
+            chi2 += (cells[c] - expected) * (cells[c] - expected) / expected;
+        cr_expect_lt(chi2, 37.7, "point %u: chi-square %.1f", indices[i], chi2);
+    }
+}
+
+/* The Cornell box at 32 x 32 and 16 paths a pixel, drawn twice (seeds 1 and 2) by each sampler: the two
+ * draws differ only by noise, so the mean of (a - b)^2 / 2 over pixels and channels is a draw's variance
+ * about the exact picture. The stratified sampler's is well below the independent one's, and the two
+ * samplers' pictures agree: each block of 8 x 8 pixels' mean within four combined standard errors. */
+Test(strategies, the_stratified_sampler_is_less_noisy_and_converges_to_the_same_picture) {
+    enum { SIDE = 32, BLOCK = 8, SAMPLES = 16 };
+    float *independent[2] = {render_cornell(2, SAMPLES, 1, "independent"), render_cornell(2, SAMPLES, 2, "independent")};
+    float *sobol[2] = {render_cornell(2, SAMPLES, 1, "sobol"), render_cornell(2, SAMPLES, 2, "sobol")};
+    double variance[2] = {0, 0}, worst = 0;
+    for (int k = 0; k < SIDE * SIDE * 3; k++) {
+        variance[0] += pow(independent[0][k] - independent[1][k], 2) / 2 / (SIDE * SIDE * 3);
+        variance[1] += pow(sobol[0][k] - sobol[1][k], 2) / 2 / (SIDE * SIDE * 3);
+    }
+    for (int by = 0; by < SIDE / BLOCK; by++)
+        for (int bx = 0; bx < SIDE / BLOCK; bx++)
+            for (int c = 0; c < 3; c++) {
+                double mean[2] = {0, 0}, spread[2] = {0, 0}, n = BLOCK * BLOCK;
+                for (int j = by * BLOCK; j < (by + 1) * BLOCK; j++)
+                    for (int i = bx * BLOCK; i < (bx + 1) * BLOCK; i++) {
+                        int k = 3 * (j * SIDE + i) + c;
+                        mean[0] += (independent[0][k] + independent[1][k]) / (2 * n);
+                        mean[1] += (sobol[0][k] + sobol[1][k]) / (2 * n);
+                        /* the variance of the pixel's mean of two draws, (a - b)^2 / 4 */
+                        spread[0] += pow(independent[0][k] - independent[1][k], 2) / 4 / (n * n);
+                        spread[1] += pow(sobol[0][k] - sobol[1][k], 2) / 4 / (n * n);
+                    }
+                double error = sqrt(spread[0] + spread[1]);
+                if (error > 0)
+                    worst = fmax(worst, fabs(mean[0] - mean[1]) / error);
+            }
+    cr_log_info("Cornell box, 32 x 32, 16 paths: variance of a draw %.4g independent, %.4g sobol; worst block %.2f "
+                "errors", variance[0], variance[1], worst);
+    cr_expect_lt(variance[1], 0.8 * variance[0], "sobol %.4g, independent %.4g", variance[1], variance[0]);
+    cr_expect_leq(worst, 4.0, "a block's means differ by %.2f combined standard errors", worst);
+    for (int k = 0; k < 2; k++) {
+        free(independent[k]);
+        free(sobol[k]);
+    }
 }

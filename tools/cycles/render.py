@@ -2,12 +2,19 @@
 # comparison with an independent path tracer (tools/cycles/compare-cycles.sh runs it; docs/15-paths.md).
 #
 #   blender -b --factory-startup --python-exit-code 1 --python tools/cycles/render.py -- \
-#       SCENE OUT.exr SAMPLES SEED THREADS [scatter]
+#       SCENE OUT.exr SAMPLES SEED THREADS [scatter] [smooth]
 #
 # With `scatter`, no emitter is sampled as a light (each emissive material's Multiple Importance is off):
 # Cycles then finds the emitters only by scattering into them. docs/paths-notes.md says why the Cornell box
 # needs it: Cycles 3.4's sampling of its large lamp comes out about 2 % darker than the exact direct light
 # where the lamp is seen at a grazing angle, while its scattering alone agrees with the exact value.
+#
+# With `smooth` (make bench-paths, tools/cycles/bench-paths.sh), chapter 15's smooth mirror (`reflection` 1,
+# no diffuse part) becomes a Glossy BSDF of roughness 0 and its clear glass (`transmit 1`) a Glass BSDF of
+# roughness 0 with the material's `ior`, and the spheres' meshes are shaded smooth (their normals
+# interpolated), so that the benchmark's Cornell box keeps its mirror and glass balls. The seconds Cycles
+# spent in bpy.ops.render.render (its scene sync and its samples, not Blender's start-up nor the scene's
+# building here) are printed as `render.py: rendered in S s, C s of processor time` (C: every thread's).
 #
 # It reads the subset of the scene format that Cycles can draw exactly as chapters 15 and 17 do: the
 # camera, image size, background (a uniform world), the paths line's bounces, materials with colour *
@@ -25,6 +32,7 @@
 # picture written as 32-bit linear OpenEXR.
 import math
 import sys
+import time
 
 import bpy
 from mathutils import Matrix, Vector
@@ -60,7 +68,7 @@ def point(v):
     return Vector((v[0], -v[2], v[1]))
 
 
-def read_scene(path):
+def read_scene(path, smooth=False):
     scene = {"materials": {"default": {"colour": [1, 1, 1], "diffuse": 0.6, "emission": [0, 0, 0]}},
              "triangles": [], "spheres": [], "boxes": [], "lights": [], "background": [0, 0, 0], "up": [0, 1, 0],
              "bounces": 256}
@@ -90,9 +98,9 @@ def read_scene(path):
             transmit = v.get("transmit", [0])[0]
             refused = [key for key in ("filter", "pigment") if key in v and (key == "pigment" or v[key][0] > 0)]
             refused += [key for key, default in (("metal", "none"), ("lobe", "ggx")) if v.get(key, default) != default]
-            if not rough:
+            if not rough and not smooth:
                 refused += [key for key in ("reflection", "transmit") if v.get(key, [0])[0] > 0]
-            elif transmit not in (0, 1):
+            elif transmit not in (0, 1) or (smooth and not rough and v.get("reflection", [0])[0] not in (0, 1)):
                 refused.append("transmit other than 0 or 1")
             if refused:
                 fail("%s:%d: material '%s' has %s: only diffuse, emission, rough mirrors and rough clear glass are "
@@ -167,9 +175,11 @@ def material(name, m, scatter_only):
     return mat
 
 
-def mesh_object(name, vertices, faces, mat):
+def mesh_object(name, vertices, faces, mat, smooth=False):
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata([point(v) for v in vertices], [], faces)
+    if smooth:
+        mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
     mesh.materials.append(mat)
     obj = bpy.data.objects.new(name, mesh)
     bpy.context.scene.collection.objects.link(obj)
@@ -200,7 +210,7 @@ def box_mesh(lo, hi):
     return vertices, faces
 
 
-def build(scene, scatter_only):
+def build(scene, scatter_only, smooth=False):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     s = bpy.context.scene
     mats = {name: material(name, m, scatter_only) for name, m in scene["materials"].items()}
@@ -208,7 +218,7 @@ def build(scene, scatter_only):
         mesh_object("triangle %d" % k, [a, b, c], [(0, 1, 2)], mats[m])
     for k, (centre, radius, m) in enumerate(scene["spheres"]):
         vertices, faces = sphere_mesh(centre, radius)
-        mesh_object("sphere %d" % k, vertices, faces, mats[m])
+        mesh_object("sphere %d" % k, vertices, faces, mats[m], smooth)
     for k, (lo, hi, m) in enumerate(scene["boxes"]):
         vertices, faces = box_mesh(lo, hi)
         mesh_object("box %d" % k, vertices, faces, mats[m])
@@ -266,16 +276,22 @@ def render(scene, out, samples, seed, threads):
     s.render.image_settings.color_depth = "32"
     s.render.image_settings.color_mode = "RGB"
     s.render.filepath = out
-    bpy.ops.render.render(write_still=True)
+    start, cpu = time.perf_counter(), time.process_time()
+    bpy.ops.render.render()
+    print("render.py: rendered in %.6f s, %.6f s of processor time" %
+          (time.perf_counter() - start, time.process_time() - cpu))
+    bpy.data.images["Render Result"].save_render(out, scene=s)
 
 
 def main():
     args = sys.argv[sys.argv.index("--") + 1:]
-    if len(args) not in (5, 6) or (len(args) == 6 and args[5] != "scatter"):
-        fail("usage: blender -b --python render.py -- SCENE OUT.exr SAMPLES SEED THREADS [scatter]")
-    scene = read_scene(args[0])
-    build(scene, len(args) == 6)
+    words = args[5:]
+    if len(args) < 5 or any(w not in ("scatter", "smooth") for w in words):
+        fail("usage: blender -b --python render.py -- SCENE OUT.exr SAMPLES SEED THREADS [scatter] [smooth]")
+    scene = read_scene(args[0], "smooth" in words)
+    build(scene, "scatter" in words, "smooth" in words)
     render(scene, args[1], int(args[2]), int(args[3]), int(args[4]))
 
 
-main()
+if __name__ == "__main__":
+    main()
