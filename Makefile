@@ -461,7 +461,7 @@ endif
 # ---- the browser: every chapter compiled to WebAssembly (web/) ----------------------------------------
 #   make web        compiles each chapter's own main.c and the common/ modules it links (MODULES_NN) to
 #                   WebAssembly with Emscripten (Debian's emscripten, installed on demand) into
-#                   build/web/: the page (index.html, page.js, worker.js), one chapter-NN.js and
+#                   build/web/: the page (index.html, page.js, renders.js, worker.js), one chapter-NN.js and
 #                   chapter-NN.wasm per chapter (the page loads only the chapter it shows), the scenes,
 #                   their meshes and textures. A static folder: any web server can serve it.
 #   make serve      serves build/web on http://localhost:$(WEB_PORT)/ (python3's http.server)
@@ -474,8 +474,8 @@ endif
 # multiply-add anyway) and no fast-math. Chapter 11's four-float boxes (common/float4.h) use GCC's
 # vector extension; with -msimd128 clang compiles it to WebAssembly's 128-bit SIMD instructions (the
 # x86 intrinsics are behind __SSE__, which is not defined here), and the lanes compute what SSE's
-# minps/maxps compute, so the picture is the same. OpenMP is not used: the page renders in one worker,
-# one thread (render.c's loop runs serially without _OPENMP). stb's code, a library natively, is
+# minps/maxps compute, so the picture is the same. OpenMP is not used: each of the page's workers
+# renders its band of rows on one thread (render.c's loop runs serially without _OPENMP; docs/web.md). stb's code, a library natively, is
 # compiled in from its header by web/stb_code.c.
 
 WEB := build/web
