@@ -466,7 +466,7 @@ endif
 # ---- the browser: every chapter compiled to WebAssembly (web/) ----------------------------------------
 #   make web        compiles each chapter's own main.c and the common/ modules it links (MODULES_NN) to
 #                   WebAssembly with Emscripten (Debian's emscripten, installed on demand) into
-#                   build/web/: the page (index.html, page.js, worker.js), one chapter-NN.js and
+#                   build/web/: the page (index.html, page.js, renders.js, worker.js), one chapter-NN.js and
 #                   chapter-NN.wasm per chapter (the page loads only the chapter it shows), the scenes,
 #                   their meshes and textures. A static folder: any web server can serve it.
 #   make serve      serves build/web on http://localhost:$(WEB_PORT)/ (python3's http.server)
@@ -479,8 +479,8 @@ endif
 # multiply-add anyway) and no fast-math. Chapter 11's four-float boxes (common/float4.h) use GCC's
 # vector extension; with -msimd128 clang compiles it to WebAssembly's 128-bit SIMD instructions (the
 # x86 intrinsics are behind __SSE__, which is not defined here), and the lanes compute what SSE's
-# minps/maxps compute, so the picture is the same. OpenMP is not used: the page renders in one worker,
-# one thread (render.c's loop runs serially without _OPENMP). stb's code, a library natively, is
+# minps/maxps compute, so the picture is the same. OpenMP is not used: each of the page's workers
+# renders its band of rows on one thread (render.c's loop runs serially without _OPENMP; docs/web.md). stb's code, a library natively, is
 # compiled in from its header by web/stb_code.c.
 
 WEB := build/web
@@ -495,12 +495,18 @@ WEB_SCREENSHOT ?= out/web-page.png
 EMCC := NODE_PATH=/usr/share/nodejs emcc
 WEB_CFLAGS = -std=c11 -D_DEFAULT_SOURCE -O2 -ffp-contract=off -msimd128 -Wall -Wextra -Werror -Icommon \
              $(STB_CFLAGS)
-# One module per chapter, run like a process: the worker makes a fresh instance for every render and
-# calls main with the command line (so each render starts from the program's first state, as natively).
+# One module per chapter, run like a process: a worker makes an instance and calls main with the
+# command line (so each render of a new world starts from the program's first state, as natively). The
+# instance is then held (common/cli.c's held loop): after its picture the program waits, through
+# Asyncify, for the next camera, size, samples or tile of the same world and renders again without
+# reading or building anything. With ASYNCIFY_IGNORE_INDIRECT, Asyncify instruments only the functions
+# that call down to the wait directly (main, cli_render, the held loop), so the tracing code runs as fast
+# as without it. web_join.c joins the bands of rows the workers render into the whole picture's PNG.
 WEB_LDFLAGS := -O2 -msimd128 -sMODULARIZE=1 -sEXPORT_NAME=createChapter -sENVIRONMENT=worker \
                -sINVOKE_RUN=0 -sEXIT_RUNTIME=1 -sALLOW_MEMORY_GROWTH=1 -sMAXIMUM_MEMORY=2GB \
-               -sFORCE_FILESYSTEM=1 -sEXPORTED_RUNTIME_METHODS=FS,callMain
-WEB_PAGE := $(addprefix $(WEB)/,index.html page.js worker.js)
+               -sFORCE_FILESYSTEM=1 -sEXPORTED_RUNTIME_METHODS=FS,callMain \
+               -sASYNCIFY=1 -sASYNCIFY_IMPORTS=held_next_job -sASYNCIFY_IGNORE_INDIRECT=1
+WEB_PAGE := $(addprefix $(WEB)/,index.html page.js worker.js renders.js)
 WEB_CHAPTERS := $(foreach c,$(CHAPTERS),$(WEB)/chapter-$(call chapter_number,$(c)).js)
 
 .PHONY: web serve test-web
@@ -537,14 +543,18 @@ $(WEB_OBJ)/stb_code.o: web/stb_code.c | web-deps
 	@mkdir -p $(@D)
 	$(EMCC) $(WEB_CFLAGS) -Wno-unused-function -c $< -o $@
 
--include $(wildcard $(WEB_OBJ)/*/*.d)
+$(WEB_OBJ)/web_join.o: web/web_join.c | web-deps
+	@mkdir -p $(@D)
+	$(EMCC) $(WEB_CFLAGS) -MMD -MP -c $< -o $@
+
+-include $(wildcard $(WEB_OBJ)/*/*.d $(WEB_OBJ)/*.d)
 
 # One module per chapter, linked from exactly that chapter's modules (as the native link).
 define web_chapter_rules
 # The folder is an order-only prerequisite: the objects live elsewhere, so nothing else creates it first.
-$(WEB)/chapter-$(call chapter_number,$(1)).js: $(WEB_OBJ)/chapters/$(1).o $(WEB_OBJ)/stb_code.o \
-        $(addprefix $(WEB_OBJ)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1))))) | $(WEB)
-	$(EMCC) $(WEB_LDFLAGS) $$^ -o $$@
+$(WEB)/chapter-$(call chapter_number,$(1)).js: $(WEB_OBJ)/chapters/$(1).o $(WEB_OBJ)/stb_code.o $(WEB_OBJ)/web_join.o \
+        $(addprefix $(WEB_OBJ)/common/,$(addsuffix .o,$(MODULES_$(call chapter_number,$(1))))) Makefile | $(WEB)
+	$(EMCC) $(WEB_LDFLAGS) $$(filter %.o,$$^) -o $$@
 endef
 $(foreach c,$(CHAPTERS),$(eval $(call web_chapter_rules,$(c))))
 

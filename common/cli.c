@@ -21,6 +21,20 @@
 
 #define CLI_MAX_THREADS 256  /* more threads than this is a typing mistake */
 
+#ifdef __EMSCRIPTEN__
+#include <emscripten.h>
+
+#define HELD_ARGS_PATH "/held/args"   /* where web/worker.js writes the next render's command line */
+#define HELD_ARGS_BYTES 65536         /* the longest command line a held render takes */
+#define HELD_ARGS_MAX 1024            /* the most words in it */
+
+/* Whether the page (web/worker.js) holds this instance for more renders of the same world. */
+EM_JS(int, held_wanted, (void), { return Module.holdRenders ? 1 : 0; });
+/* Hands the finished render's status to the page and waits (the instance's stack set aside by
+ * Asyncify) until the page has written the next render's scene and command line. */
+EM_ASYNC_JS(void, held_next_job, (int status), { await Module.nextJob(status); });
+#endif
+
 /* Prints one error message and a newline to standard error, with every non-printable byte of it (which
  * can only have come from the input it quotes) escaped as \xNN. */
 static void complain(const char *format, ...) __attribute__((format(printf, 1, 2)));
@@ -403,6 +417,68 @@ bool cli_render(struct cli_run *run, render_trace_fn trace, const void *world) {
     return cli_render_sampled(run, trace, world, NULL);
 }
 
+#ifdef __EMSCRIPTEN__
+bool cli_held(const struct cli_run *run) { return run->options.pov == NULL && held_wanted(); }
+
+/* Reads the held render's command line (words ending in zero bytes) into argv, the words kept in a
+ * static buffer until the next call. Returns the number of words (with the program's name), or 0 when
+ * the file cannot be read or is too long. */
+static int held_read_args(char **argv) {
+    static char text[HELD_ARGS_BYTES + 1];
+    FILE *f = fopen(HELD_ARGS_PATH, "rb");
+    size_t n = f != NULL ? fread(text, 1, HELD_ARGS_BYTES + 1, f) : 0;
+    if (f != NULL)
+        fclose(f);
+    if (n == 0 || n > HELD_ARGS_BYTES || text[n - 1] != '\0')
+        return 0;
+    int argc = 0;
+    for (size_t at = 0; at < n && argc < HELD_ARGS_MAX; at += strlen(text + at) + 1)
+        argv[argc++] = text + at;
+    return argc;
+}
+
+/* The held loop (cli_render): the next render's command line and scene read as cli_start reads them,
+ * their camera, size, samples and tile taken into the run (the world, built over the rest, is the
+ * same), and the picture drawn again. Never returns. */
+static __attribute__((noinline)) void held_renders(struct cli_run *run, render_trace_fn trace, const void *world,
+                                                   const struct render_sampler *sampler) {
+    for (;;) {
+        fflush(stdout);
+        fflush(stderr);
+        held_next_job(run->status);
+        static char *argv[HELD_ARGS_MAX + 1];
+        int argc = held_read_args(argv);
+        argv[argc] = NULL;
+        struct cli_run next;
+        bool go = argc > 0 && cli_start(&next, run->chapter, argc, argv);
+        run->status = argc > 0 ? next.status : CLI_USAGE;
+        if (argc > 0) {
+            struct scene *s = &run->scene, *n = &next.scene;
+            if (go) {
+                run->options = next.options;
+                s->eye = n->eye, s->target = n->target, s->up = n->up, s->fov = n->fov, s->lens = n->lens;
+                s->width = n->width, s->height = n->height;
+                s->antialias = n->antialias, s->paths = n->paths;
+            }
+            cli_finish(&next);
+        }
+        if (!go || run->status != CLI_OK)
+            continue;
+        run->total = (struct stats){0};
+        if (run->held_refresh != NULL && !run->held_refresh(run, run->held_context))
+            continue;
+        if (!run->options.quiet)
+            scene_scale_warn(&run->scene, stderr);
+        render_and_write(run, trace, world, sampler);
+    }
+}
+#else
+bool cli_held(const struct cli_run *run) {
+    (void)run;
+    return false;
+}
+#endif
+
 bool cli_render_sampled(struct cli_run *run, render_trace_fn trace, const void *world,
                         const struct render_sampler *sampler) {
     if (!run->options.quiet)
@@ -411,5 +487,10 @@ bool cli_render_sampled(struct cli_run *run, render_trace_fn trace, const void *
         write_twin(run);
         return false;
     }
-    return render_and_write(run, trace, world, sampler) && !run->options.quiet;
+    bool written = render_and_write(run, trace, world, sampler);
+#ifdef __EMSCRIPTEN__
+    if (cli_held(run))
+        held_renders(run, trace, world, sampler);
+#endif
+    return written && !run->options.quiet;
 }

@@ -89,6 +89,12 @@ struct cli_run {
     double render_seconds;
     char err[CLI_ERROR_SIZE];   /* where the chapter's own steps write why they failed, for cli_fail */
     int status;                 /* an enum cli_exit */
+    /* Only in the browser (web/worker.js holds a chapter's instance across renders of one world, see
+     * cli_render): called before each render after the first with the new camera, size, samples and tile
+     * in the run, to redo what the chapter derived from them (NULL: nothing); returns false with the
+     * reason printed and run->status set. Natively never called. */
+    bool (*held_refresh)(struct cli_run *run, void *context);
+    void *held_context;
 };
 
 /* Starts chapter `ch` with the command line argc/argv: parses the options, reads the scene with the
@@ -107,8 +113,16 @@ int cli_fail(struct cli_run *run);
  * POV-Ray twin of the scene as the chapter lights it and returns false. Otherwise renders the picture,
  * tracing each pixel's primary ray with trace(world, ray), writes it (and the heat-map), prints where
  * it went and the counters (into run->total), and returns true when the chapter may add its own
- * report: the picture was written and --quiet not given. On failure sets run->status. */
+ * report: the picture was written and --quiet not given. On failure sets run->status.
+ * In the browser only (compiled with Emscripten, and the page asking for it), the run is then held: it
+ * waits for the page's next command line and scene of the same world (only the camera and image lines,
+ * --width, --height, --tile and the samples may differ), takes those into the run, and renders again,
+ * over and over, never returning; the page drops the instance when the world changes. */
 bool cli_render(struct cli_run *run, render_trace_fn trace, const void *world);
+
+/* True when this run may be held for more renders (in the browser, when the page asks for it; natively
+ * never): a chapter may then keep state across renders for held_refresh. */
+bool cli_held(const struct cli_run *run);
 
 /* cli_render with the pixels sampled by `sampler` (chapter 12's anti-aliasing, as the scene's antialias
  * line says) instead of one ray through each pixel centre; its heat-map shows the sampler's scale. */

@@ -27,8 +27,9 @@ static void render_paths(const struct render_job *job, struct image *img, int le
         for (int i = left; i < right; i++) {
             uint64_t cost_before = render_thread_cost();
             vec3 variance;
-            vec3 c = path_pixel(picture->paths, i, j, &variance);
-            size_t at = 3 * ((size_t)j * (size_t)picture->width + (size_t)i);
+            size_t pixel = (size_t)j * (size_t)picture->width + (size_t)i, at = 3 * pixel;
+            vec3 c = picture->sums != NULL ? path_pixel_resume(picture->paths, i, j, &picture->sums[pixel], &variance)
+                                           : path_pixel(picture->paths, i, j, &variance);
             for (int k = 0; k < 3; k++)
                 picture->linear[at + k] = (float)vec3_axis(c, k);
             for (int k = 0; picture->error != NULL && k < 3; k++)

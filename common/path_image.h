@@ -25,6 +25,9 @@ struct path_picture {
     float *linear; /* width * height * 3 floats, rows top first; owned by whoever made the picture */
     float *error;  /* optional (NULL), the same size: each channel's standard error, sqrt(variance / samples) */
     int width;
+    /* optional (NULL), width * height running sums (path_pixel_resume) kept between renders of more and
+     * more samples, each pixel going on from its sum; NULL: every pixel from zero (path_pixel) */
+    struct path_pixel_sum *sums;
 };
 
 /* The renderer's way of sampling (render.h) for a job whose world is a struct path_picture: each pixel

@@ -15,6 +15,81 @@
 #include "text_escape.h"
 #include "texture.h"
 
+/* The view a picture's pixels were drawn for: where the camera is and the picture's size. (Not the
+ * tile: a pixel's sum holds for any tile it falls in.) */
+struct path_view {
+    vec3 eye, target, up;
+    double fov;
+    int width, height;
+};
+
+/* What a held run (cli_render's held loop, in the browser) redoes before each render after the first. */
+struct held_paths {
+    struct camera *cam;
+    struct path_world *paths;
+    struct path_picture *picture;
+    const struct world *world;
+    const struct emitter_list *emitters;
+    const struct path_surface *surface;
+    struct path_view view;         /* the view the pixels' sums were drawn for */
+    struct path_settings settings; /* and the paths' settings */
+    bool first;                    /* no frames made yet */
+};
+
+static struct path_view view_of(const struct cli_run *run) {
+    const struct scene *s = &run->scene;
+    return (struct path_view){s->eye, s->target, s->up, s->fov, s->width, s->height};
+}
+
+/* Makes the picture's frames (the linear radiance and its error, and when the run may be held each
+ * pixel's running sums) for the run's picture size. Returns false with run->status set when memory
+ * runs out. */
+static bool frames_for(struct cli_run *run, struct held_paths *held) {
+    const struct scene *s = &run->scene;
+    struct path_picture *picture = held->picture;
+    size_t pixels = (size_t)s->width * (size_t)s->height;
+    free(picture->linear);
+    free(picture->sums);
+    picture->linear = calloc(pixels * 6, sizeof *picture->linear);
+    picture->error = picture->linear == NULL ? NULL : picture->linear + pixels * 3;
+    picture->sums = cli_held(run) ? calloc(pixels, sizeof *picture->sums) : NULL;
+    picture->width = s->width;
+    if (picture->linear == NULL || (cli_held(run) && picture->sums == NULL)) {
+        fprintf(stderr, "out of memory for a %d x %d frame of radiance\n", s->width, s->height);
+        run->status = CLI_OUTPUT_FAILED;
+        return false;
+    }
+    held->first = false;
+    return true;
+}
+
+/* The run's held_refresh: the camera, the frames and the paths' settings for the run's new view and
+ * samples. The pixels' sums go on when only the samples grew or the tile moved (the view and the other
+ * settings the same), so that passes of more and more samples each add only their new paths; else they
+ * start again. */
+static bool refresh_held_paths(struct cli_run *run, void *context) {
+    struct held_paths *held = context;
+    struct scene *s = &run->scene;
+    if (!camera_init(held->cam, s->eye, s->target, s->up, s->fov, s->width, s->height, run->err, sizeof run->err))
+        return true; /* cli_render_sampled reports the camera */
+    struct path_view view = view_of(run);
+    struct path_settings settings = s->paths;
+    settings.samples = held->settings.samples;
+    bool same = memcmp(&view, &held->view, sizeof view) == 0 && memcmp(&settings, &held->settings, sizeof settings) == 0 &&
+                s->paths.samples >= held->settings.samples && !held->first;
+    if (view.width != held->view.width || view.height != held->view.height || held->first) {
+        if (!frames_for(run, held))
+            return false;
+    } else if (!same && held->picture->sums != NULL) {
+        memset(held->picture->sums, 0, (size_t)s->width * (size_t)s->height * sizeof *held->picture->sums);
+    }
+    held->view = view;
+    held->settings = s->paths;
+    path_world_init(held->paths, held->world, held->emitters, held->cam, &s->paths);
+    held->paths->surface = held->surface;
+    return true;
+}
+
 int path_program_run(struct cli_run *run, const struct accel_choice *choice, const struct path_surface *surface) {
     int chapter = run->chapter->number;
     struct scene *s = &run->scene;
@@ -55,20 +130,21 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
         return cli_fail(run);
     }
     struct camera cam;
-    float *linear = NULL, *error = NULL;
-    if (camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, run->err, sizeof run->err)) {
-        linear = calloc((size_t)s->width * (size_t)s->height * 6, sizeof *linear);
-        error = linear == NULL ? NULL : linear + (size_t)s->width * (size_t)s->height * 3;
-        if (linear == NULL) {
-            fprintf(stderr, "out of memory for a %d x %d frame of radiance\n", s->width, s->height);
-            run->status = CLI_OUTPUT_FAILED;
-        }
-    } /* else cli_render_sampled reports the camera */
+    struct path_world paths;
+    struct path_picture picture = {&paths, NULL, NULL, s->width, NULL};
+    struct held_paths held = {.cam = &cam, .paths = &paths, .picture = &picture, .world = &w->world,
+                              .emitters = &emitters, .surface = surface, .first = true};
+    if (camera_init(&cam, s->eye, s->target, s->up, s->fov, s->width, s->height, run->err, sizeof run->err))
+        frames_for(run, &held);
+    /* else cli_render_sampled reports the camera */
+    float *linear = picture.linear, *error = picture.error;
     if (run->status == CLI_OK) {
-        struct path_world paths;
         path_world_init(&paths, &w->world, &emitters, &cam, &s->paths);
         paths.surface = surface; /* NULL in chapter 15; chapter 17's rough surfaces */
-        struct path_picture picture = {&paths, linear, error, s->width};
+        held.settings = s->paths;
+        held.view = view_of(run);
+        run->held_refresh = refresh_held_paths;
+        run->held_context = &held;
         bool report = cli_render_sampled(run, NULL, &picture, &path_sampler);
         const char *hdr_path = run->options.chapter_output; /* --hdr FILE, with -o's rules (cli.h) */
         /* With --tile, only the tile was rendered: its frame is written, and the noise is its own. */
@@ -103,6 +179,7 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
         }
     }
     free(linear);
+    free(picture.sums);
     emitter_list_free(&emitters);
     accel_world_destroy(w);
     return cli_finish(run);

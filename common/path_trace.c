@@ -199,15 +199,23 @@ vec3 path_sample(const struct path_world *pw, int i, int j, uint32_t sample) {
 }
 
 vec3 path_pixel(const struct path_world *pw, int i, int j, vec3 *variance) {
+    struct path_pixel_sum sum = {vec3_make(0, 0, 0), vec3_make(0, 0, 0), 0};
+    return path_pixel_resume(pw, i, j, &sum, variance);
+}
+
+vec3 path_pixel_resume(const struct path_world *pw, int i, int j, struct path_pixel_sum *sum, vec3 *variance) {
     /* Welford's running mean and sum of squared differences: steady however many paths. */
-    vec3 mean = vec3_make(0, 0, 0), squares = vec3_make(0, 0, 0);
     int n = pw->settings.samples;
-    for (int k = 0; k < n; k++) {
+    if (sum->count > n)
+        *sum = (struct path_pixel_sum){vec3_make(0, 0, 0), vec3_make(0, 0, 0), 0};
+    vec3 mean = sum->mean, squares = sum->squares;
+    for (int k = sum->count; k < n; k++) {
         vec3 x = path_sample(pw, i, j, (uint32_t)k);
         vec3 before = vec3_sub(x, mean);
         mean = vec3_add_scaled(mean, before, 1.0 / (k + 1));
         squares = vec3_add(squares, vec3_mul(before, vec3_sub(x, mean)));
     }
+    *sum = (struct path_pixel_sum){mean, squares, n};
     if (variance != NULL)
         *variance = n > 1 ? vec3_scale(squares, 1.0 / (n - 1)) : vec3_make(0, 0, 0);
     return mean;

@@ -102,4 +102,17 @@ vec3 path_sample(const struct path_world *pw, int i, int j, uint32_t sample);
  * for the variance of the estimate). */
 vec3 path_pixel(const struct path_world *pw, int i, int j, vec3 *variance);
 
+/* A pixel's running sums so far (Welford's): `count` paths (samples 0 .. count - 1), their mean and the
+ * sum of their squared differences from it. All zero before the first path. */
+struct path_pixel_sum {
+    vec3 mean, squares;
+    int count;
+};
+
+/* path_pixel resumed: adds pixel (i, j)'s paths sum->count .. settings.samples - 1 to *sum (starting
+ * again from zero when sum->count is past settings.samples) and returns the mean of all of them, the
+ * variance as path_pixel's. The numbers equal path_pixel's at that count, bit for bit: path_pixel is this
+ * with a zero sum. (The page draws a path-traced picture in passes of more and more samples this way.) */
+vec3 path_pixel_resume(const struct path_world *pw, int i, int j, struct path_pixel_sum *sum, vec3 *variance);
+
 #endif

@@ -296,7 +296,7 @@ static float *render_cornell(int threads, int samples, int seed, const char *sam
     float *linear = calloc(32 * 32 * 3, sizeof *linear);
     struct image img;
     cr_assert(image_create(&img, 32, 32) && linear != NULL);
-    struct path_picture picture = {&t.paths, linear, NULL, 32};
+    struct path_picture picture = {&t.paths, linear, NULL, 32, NULL};
     struct render_job job = {.camera = &t.camera, .world = &picture, .threads = threads, .sampler = &path_sampler,
                              .antialias = &t.scene.antialias, .lens = &t.scene.lens};
     struct stats total = {0};
@@ -305,6 +305,35 @@ static float *render_cornell(int threads, int samples, int seed, const char *sam
     image_free(&img);
     path_setup_free(&t);
     return linear;
+}
+
+/* The page's passes (web/renders.js): a pixel's sums taken on from 1 to 2 to 5 paths give path_pixel's mean
+ * and variance at 5 paths to the bit, and fewer paths than the sum holds start it again. */
+Test(paths_resume, a_pixel_resumed_pass_after_pass_is_path_pixel_to_the_bit) {
+    struct path_setup t;
+    char err[512] = "";
+    const char *sets[] = {"image=16 16", "paths.samples=5"};
+    cr_assert(path_setup_file(&t, "scenes/15-paths.scene", sets, 2, err, sizeof err), "%s", err);
+    for (int j = 4; j < 16; j += 5)
+        for (int i = 3; i < 16; i += 6) {
+            vec3 variance, resumed_variance = vec3_make(-1, -1, -1);
+            t.paths.settings.samples = 5;
+            vec3 whole = path_pixel(&t.paths, i, j, &variance);
+            struct path_pixel_sum sum = {vec3_make(0, 0, 0), vec3_make(0, 0, 0), 0};
+            vec3 resumed = vec3_make(0, 0, 0);
+            for (int samples = 1; samples <= 5; samples = samples == 2 ? 5 : samples + 1) {
+                t.paths.settings.samples = samples;
+                resumed = path_pixel_resume(&t.paths, i, j, &sum, &resumed_variance);
+                cr_expect_eq(sum.count, samples);
+            }
+            cr_expect(memcmp(&whole, &resumed, sizeof whole) == 0 && memcmp(&variance, &resumed_variance, sizeof variance) == 0,
+                      "pixel (%d, %d): resumed (%.17g %.17g %.17g), whole (%.17g %.17g %.17g)", i, j, resumed.x, resumed.y,
+                      resumed.z, whole.x, whole.y, whole.z);
+            t.paths.settings.samples = 2; /* fewer than the sum holds: from zero again */
+            vec3 again = path_pixel_resume(&t.paths, i, j, &sum, NULL), two = path_pixel(&t.paths, i, j, NULL);
+            cr_expect(memcmp(&again, &two, sizeof two) == 0 && sum.count == 2, "pixel (%d, %d) started again", i, j);
+        }
+    path_setup_free(&t);
 }
 
 Test(paths_threads, one_and_two_threads_give_the_same_radiance_to_the_bit) {

@@ -1,10 +1,11 @@
 // page.js: the page's controls: the chapter and its scene, the editor, the camera under the mouse, the
-// settings each chapter's command line takes, and the renders, which a worker runs (worker.js).
+// settings each chapter's command line takes, and the renders, which workers run (renders.js, worker.js).
 //
 // Every picture is the chapter program's own, run with a command line the page shows (the same line
 // gives the same picture natively). While the camera moves the program draws a coarse picture (a
-// fraction of the width and height, one sample a pixel); at rest, the full one. A new change while a
-// full picture is being drawn stops it (the worker is ended and a new one started).
+// fraction of the width and height, one sample a pixel); at rest, the full one, which the path tracers
+// (chapters 15 and 17) draw in passes of more and more samples. A new change while a full picture is
+// being drawn stops it.
 "use strict";
 
 const CHAPTERS = ["camera", "sphere", "triangle", "plane", "aabb", "phong", "shadows", "recursion", "kdtree",
@@ -27,11 +28,13 @@ const ORBIT_PER_PIXEL = 0.01, PAN_PER_PIXEL = 0.002, ZOOM_PER_WHEEL = 0.001, PIT
 
 const $ = id => document.getElementById(id);
 const state = {
-    chapter: DEFAULT_CHAPTER, scenes: [], worker: null, running: null, pending: null, nextId: 1, typing: 0,
+    chapter: DEFAULT_CHAPTER, scenes: [], running: null, pending: null, nextId: 1, typing: 0,
     picture: null, dragging: null, coarse: COARSE_START,
 };
 // What the browser test reads: every render's kind, times and status, the last full render.
-window.whitted = {renders: [], fullShown: 0, lastFull: null, loadedAt: performance.now()};
+// passes: the path tracers' passes shown ({samplesDone, samplesTotal, secondsLeft, at}); workers: how many draw.
+window.whitted = {renders: [], fullShown: 0, lastFull: null, loadedAt: performance.now(), passes: [],
+                  workers: Renders.workers};
 
 const pad = n => String(n).padStart(2, "0");
 const chapterName = n => `${pad(n)}-${CHAPTERS[n - 1]}`;
@@ -91,8 +94,8 @@ function commandArgs(text, coarse) {
     const args = [scenePath(), "--stats"];
     const set = s => args.push("--set", s);
     const n = state.chapter;
-    if ($("max-depth").value && n >= 8)
-        set(`max_depth=${$("max-depth").value}`);
+    if ($("max-depth").value && n >= 8) // the path tracers' depth is their paths' bounces
+        set(PATH_CHAPTERS.includes(n) ? `paths.bounces=${$("max-depth").value}` : `max_depth=${$("max-depth").value}`);
     if ($("fov").value)
         set(`camera.fov=${$("fov").value}`);
     const samplesKey = PATH_CHAPTERS.includes(n) ? "paths.samples" : n >= 12 ? "antialias.samples" : null;
@@ -118,20 +121,22 @@ function shellWord(w) {
     return /^[\w./=:,-]+$/.test(w) ? w : `'${w.replace(/'/g, "'\\''")}'`;
 }
 
-// ---- the worker ------------------------------------------------------------------------------------
-function startWorker() {
-    if (state.worker)
-        state.worker.terminate();
-    state.worker = new Worker(`worker.js?chapter=${pad(state.chapter)}`);
-    state.worker.onmessage = e => finished(e.data);
+// ---- the renders (renders.js) ----------------------------------------------------------------------
+// Stops the picture being drawn, if any.
+function stopRender() {
+    Renders.stop();
     state.running = null;
+    state.pending = null;
+    document.body.dataset.state = "idle";
 }
 
 function run(job) {
     state.running = job;
     job.started = performance.now();
     document.body.dataset.state = "rendering";
-    state.worker.postMessage({id: job.id, scenePath: job.scenePath, text: job.text, args: job.args});
+    Renders.render({chapter: state.chapter, scenePath: job.scenePath, text: job.text, args: job.args,
+                    coarse: job.coarse, onPass: (picture, progress) => passShown(job, picture, progress),
+                    onDone: result => finished(job, result)});
 }
 
 // Asks for a picture of the editor's scene: a coarse one while the camera moves, else the full one.
@@ -141,16 +146,30 @@ function render(coarse) {
     if (!state.running) {
         run(job);
     } else if (!state.running.coarse) {
-        startWorker(); // a full picture is being drawn: stop it
+        Renders.stop(); // a full picture is being drawn: stop it
         run(job);
     } else {
         state.pending = job; // a coarse picture is quick: the newest request waits for it
     }
 }
 
-async function finished(result) {
-    const job = state.running;
-    if (!job || result.id !== job.id)
+// A path tracer's pass (chapters 15 and 17): its picture, the samples so far and the time left.
+async function passShown(job, picture, progress) {
+    if (state.running !== job)
+        return;
+    window.whitted.passes.push({...progress, at: performance.now()});
+    const bitmap = await createImageBitmap(new Blob([picture], {type: "image/png"}));
+    if (state.running !== job)
+        return;
+    const canvas = $("picture");
+    [canvas.width, canvas.height] = [bitmap.width, bitmap.height];
+    canvas.getContext("2d").drawImage(bitmap, 0, 0);
+    $("status").textContent = `${progress.samplesDone} of ${progress.samplesTotal} paths a pixel, ` +
+                              `about ${Math.ceil(progress.secondsLeft)} s left`;
+}
+
+async function finished(job, result) {
+    if (state.running !== job)
         return;
     state.running = null;
     const ms = performance.now() - job.started;
@@ -317,7 +336,7 @@ async function chooseChapter(n, sceneName) {
     const own = state.scenes.filter(s => s.startsWith(pad(n) + "-"));
     $("scene-file").innerHTML = own.map(s => `<option>${s}</option>`).join("");
     showControls();
-    startWorker();
+    stopRender();
     const name = own.includes(sceneName) ? sceneName : own.includes(`${chapterName(n)}.scene`) ? `${chapterName(n)}.scene` : own[0];
     const url = new URL(location.href);
     url.searchParams.set("chapter", String(n));
