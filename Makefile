@@ -467,8 +467,9 @@ endif
 #   make serve      serves build/web on http://localhost:$(WEB_PORT)/ (python3's http.server)
 #   make test-web   builds the page and the native chapters, serves the page and drives it in headless
 #                   Chromium (web/test_web.py): pictures against the native ones (chapters 2, 8 and 10 at
-#                   their size, every chapter small), frame rates, a parse error, the big teapot, a
-#                   screenshot of the page (WEB_SCREENSHOT)
+#                   their size, every chapter small), frame rates, a parse error, the big teapot, the
+#                   page's explanations, editor, size guard, layouts (375 x 667, 1280 x 800) and touch, a
+#                   screenshot of the page (WEB_SCREENSHOT, and the two layouts' beside it)
 #
 # The same floating-point rules as the native build: -ffp-contract=off (WebAssembly has no fused
 # multiply-add anyway) and no fast-math. Chapter 11's four-float boxes (common/float4.h) use GCC's
