@@ -557,6 +557,12 @@ def main():
                 page.set_control("rung", rung)
                 page.wait_idle(n + 1, timeout=300)
                 compare_with_native(page, o.build, chapter, f"chapter 11 at 160 x 120, rung {rung}")
+            if chapter == 15:  # the bounces control sets the paths line's bounces
+                n = page.full_shown()
+                page.set_control("bounces", "1")
+                page.wait_idle(n + 1, timeout=300)
+                got = compare_with_native(page, o.build, chapter, "chapter 15 at 160 x 120, one bounce")
+                check("paths.bounces=1" in got["args"], f"chapter 15's bounces control: {' '.join(got['args'])}")
 
         # Chapter 10: the big teapot, from a fresh page.
         started = time.monotonic()
