@@ -519,7 +519,8 @@ serve: web
 	cd $(WEB) && python3 -m http.server --bind 127.0.0.1 $(WEB_PORT)
 
 ## make test-web       the page in headless Chromium against the native chapters: the same pixels,
-##                     frame rates, a parse error, the big teapot, README's screenshot
+##                     frame rates, a parse error, the big teapot, the page's explanations, editor,
+##                     size guard, layouts and touch, README's screenshots
 test-web: web $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) | deps
 	tools/build/install-deps.sh test-web
 	@mkdir -p $(dir $(WEB_SCREENSHOT))
