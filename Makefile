@@ -472,8 +472,9 @@ endif
 #   make serve      serves build/web on http://localhost:$(WEB_PORT)/ (python3's http.server)
 #   make test-web   builds the page and the native chapters, serves the page and drives it in headless
 #                   Chromium (web/test_web.py): pictures against the native ones (chapters 2, 8 and 10 at
-#                   their size, every chapter small), frame rates, a parse error, the big teapot, a
-#                   screenshot of the page (WEB_SCREENSHOT)
+#                   their size, every chapter small), frame rates, a parse error, the big teapot, the
+#                   page's explanations, editor, size guard, layouts (375 x 667, 1280 x 800) and touch, a
+#                   screenshot of the page (WEB_SCREENSHOT, and the two layouts' beside it)
 #
 # The same floating-point rules as the native build: -ffp-contract=off (WebAssembly has no fused
 # multiply-add anyway) and no fast-math. Chapter 11's four-float boxes (common/float4.h) use GCC's
@@ -490,6 +491,14 @@ WEB_PORT ?= 8642
 # Where make test-web puts its screenshot of the page; README's is made with
 # make test-web WEB_SCREENSHOT=docs/images/web-page.png
 WEB_SCREENSHOT ?= out/web-page.png
+# Where the page's links to each chapter's walkthrough and main.c (and docs/scene-format.md) point: the
+# address of the repository's files, ending in a slash (e.g. https://github.com/OWNER/whitted/blob/main/).
+# Empty, the default: the copies make web puts beside the page (build/web/docs/, build/web/chapters/),
+# served as plain text wherever the page is served.
+WEB_REPO_BASE ?=
+# The page's published address, ending in a slash: the walkthroughs' "try it" links point there.
+# make try-links WEB_BASE=https://... rewrites them (the default: make serve's local address).
+WEB_BASE ?= http://localhost:$(WEB_PORT)/
 # Debian's emcc runs JavaScript tools (acorn) that Debian installs under /usr/share/nodejs; a node from
 # elsewhere does not look there by itself.
 EMCC := NODE_PATH=/usr/share/nodejs emcc
@@ -509,11 +518,11 @@ WEB_LDFLAGS := -O2 -msimd128 -sMODULARIZE=1 -sEXPORT_NAME=createChapter -sENVIRO
 WEB_PAGE := $(addprefix $(WEB)/,index.html page.js worker.js renders.js)
 WEB_CHAPTERS := $(foreach c,$(CHAPTERS),$(WEB)/chapter-$(call chapter_number,$(c)).js)
 
-.PHONY: web serve test-web
+.PHONY: web serve test-web try-links FORCE
 
 ## make web            every chapter compiled to WebAssembly, with the page, scenes and meshes, into
 ##                     build/web/ (a static folder; installs Debian's emscripten first)
-web: $(WEB_CHAPTERS) $(WEB_PAGE) $(WEB)/scenes.stamp
+web: $(WEB_CHAPTERS) $(WEB_PAGE) $(WEB)/scenes.stamp $(WEB)/site.js $(WEB)/sources.stamp
 
 ## make serve          serves build/web on http://localhost:8642/ (WEB_PORT=N for another port)
 serve: web
@@ -521,7 +530,8 @@ serve: web
 	cd $(WEB) && python3 -m http.server --bind 127.0.0.1 $(WEB_PORT)
 
 ## make test-web       the page in headless Chromium against the native chapters: the same pixels,
-##                     frame rates, a parse error, the big teapot, README's screenshot
+##                     frame rates, a parse error, the big teapot, the page's explanations, editor,
+##                     size guard, layouts and touch, README's screenshots
 test-web: web $(foreach c,$(CHAPTERS),$(BUILD)/chapter-$(call chapter_number,$(c))) | deps
 	tools/build/install-deps.sh test-web
 	@mkdir -p $(dir $(WEB_SCREENSHOT))
@@ -564,6 +574,28 @@ $(WEB):
 $(WEB)/%: web/%
 	@mkdir -p $(@D)
 	cp $< $@
+
+FORCE:
+
+# The page's settings from the build (WEB_REPO_BASE), rewritten only when they change.
+$(WEB)/site.js: FORCE | $(WEB)
+	@printf '// site.js: where the page links to (make web WEB_REPO_BASE=...; made by the Makefile).\nwindow.WHITTED_SITE = {repoBase: "%s"};\n' \
+	    '$(WEB_REPO_BASE)' > $@.new
+	@cmp -s $@.new $@ && rm $@.new || mv $@.new $@
+
+# The walkthroughs and each chapter's main.c beside the page, for its links when WEB_REPO_BASE is empty;
+# the walkthroughs' "try it" links then lead back to the page beside them.
+$(WEB)/sources.stamp: $(wildcard docs/*.md) $(wildcard chapters/*/main.c) | $(WEB)
+	@mkdir -p $(WEB)/docs $(foreach c,$(CHAPTERS),$(WEB)/chapters/$(c))
+	$(foreach c,$(CHAPTERS),cp chapters/$(c)/main.c $(WEB)/chapters/$(c)/ &&) true
+	cp docs/*.md $(WEB)/docs/
+	sed -E -i 's#\]\([^)]*index\.html\?chapter=([0-9]+)\)#](../index.html?chapter=\1)#' $(WEB)/docs/*.md
+	touch $@
+
+## make try-links      points the walkthroughs' "try it" links at the page published on WEB_BASE
+##                     (default http://localhost:8642/, make serve's)
+try-links:
+	sed -E -i 's#\]\([^)]*index\.html\?chapter=([0-9]+)\)#]($(WEB_BASE)index.html?chapter=\1)#' docs/[0-9][0-9]-*.md
 
 # The scenes and what they name (mesh and texture paths are relative to scenes/), and the list of
 # scenes the page offers.

@@ -1,5 +1,6 @@
-// page.js: the page's controls: the chapter and its scene, the editor, the camera under the mouse, the
-// settings each chapter's command line takes, and the renders, which workers run (renders.js, worker.js).
+// page.js: the page's controls: the chapter and its scene (its idea, its walkthrough and source), the
+// editor (line numbers, the error's line), the camera under the mouse and the fingers, the settings each
+// chapter's command line takes, and the renders, which workers run (renders.js, worker.js).
 //
 // Every picture is the chapter program's own, run with a command line the page shows (the same line
 // gives the same picture natively). While the camera moves the program draws a coarse picture (a
@@ -10,8 +11,53 @@
 
 const CHAPTERS = ["camera", "sphere", "triangle", "plane", "aabb", "phong", "shadows", "recursion", "kdtree",
                   "bvh", "fast", "antialias", "distributed", "textures", "paths", "instances", "rough"];
-// The chapters that trace paths (chapter 15's estimator): their samples are the paths line's.
+// Each chapter's new idea, in one line (its walkthrough, docs/NN-name.md, tells the whole story).
+const IDEAS = [
+    "one ray through the centre of every pixel, coloured by the way it points: the camera alone.",
+    "a ray meets a sphere (the quadratic formula); each pixel shows the nearest hit, lit from the eye.",
+    "triangles and whole meshes (Möller–Trumbore, then a watertight test), every triangle tried by every ray.",
+    "infinite planes: a floor under the shapes, the one shape without a bounding box.",
+    "the slab test: boxes as shapes, and a box around each mesh that a missing ray skips whole.",
+    "materials and coloured point lights: ambient, diffuse and highlight terms replace the light at the eye.",
+    "a shadow ray to each light, offset from the surface so that it does not hit its own start.",
+    "mirrors and glass spawn reflected and refracted rays, traced like the camera's, to a maximum depth.",
+    "space cut in two again and again; a ray visits the cells it crosses, front to back.",
+    "triangles grouped and boxed, the groups split again, so a ray skips every group whose box it misses.",
+    "chapter 10's tree and answers, laid out and walked for speed, one rung at a time.",
+    "several camera rays a pixel, averaged, some only where neighbouring colours differ.",
+    "area lights cast soft shadows, and a lens gives depth of field.",
+    "colours that change from point to point (patterns and image maps), and smooth meshes.",
+    "the rendering equation solved by Monte Carlo: random paths from the camera, averaged per pixel.",
+    "many objects from a few meshes on a two-level BVH, with animation and motion blur.",
+    "glossy metal and frosted glass from GGX microfacets, in chapter 15's path tracer.",
+];
+// The chapters that trace paths (chapter 15's estimator): their samples and bounces are the paths line's.
 const PATH_CHAPTERS = [15, 17];
+// The settings each chapter's program reads (its --help and its scene's lines); a control is shown only
+// on the chapters that read it. depth: the scene's max_depth (chapter 8's recursion and those built on
+// it); bounces: the paths line's (15 and 17 stop by bounces and Russian roulette, not max_depth);
+// samples: the antialias line's (12 to 14, 16) or the paths line's; accel and split: --accel, --split
+// (chapter 16 builds its own two-level tree and takes neither); rung: chapter 11's --rung.
+const READS = {
+    depth: n => n >= 8 && !PATH_CHAPTERS.includes(n),
+    bounces: n => PATH_CHAPTERS.includes(n),
+    samples: n => n >= 12,
+    accel: n => n >= 9 && n !== 16,
+    split: n => n >= 9 && n !== 16,
+    rung: n => n === 11,
+};
+// What the heat-map counts: the samplers of chapters 12, 13, 14 and 16 draw camera rays a pixel on a
+// scale to 100 (common/supersample.c); every other chapter draws the work a pixel on a scale to 8192
+// (common/heatmap.h).
+const CAMERA_RAY_HEATMAP = [12, 13, 14, 16];
+// The largest picture the page draws (4096 x 4096): a bigger one would hold gigabytes in the tab (the
+// native program draws any size).
+const MAX_PIXELS = 4096 * 4096;
+// Where the walkthroughs, the chapters' main.c and the scene format are (make web's WEB_REPO_BASE, in
+// site.js): empty for the copies beside the page.
+const REPO_BASE = (window.WHITTED_SITE && window.WHITTED_SITE.repoBase) || "";
+// The editor's line height in pixels (index.html's #gutter and #scene) and the text's top padding.
+const LINE_HEIGHT = 18, EDITOR_PAD = 4;
 // Chapter 11's rungs, 1 to 10. In the browser rungs 8 and 9 are rung 6, and rung 10's packets walk rung 6's
 // tree (WebAssembly has no AVX2; --stats says so).
 const RUNGS = ["plain", "wide", "simd", "prefetch", "build", "float", "compact", "eight", "lean", "packet"];
@@ -29,7 +75,7 @@ const ORBIT_PER_PIXEL = 0.01, PAN_PER_PIXEL = 0.002, ZOOM_PER_WHEEL = 0.001, PIT
 const $ = id => document.getElementById(id);
 const state = {
     chapter: DEFAULT_CHAPTER, scenes: [], running: null, pending: null, nextId: 1, typing: 0,
-    picture: null, dragging: null, coarse: COARSE_START,
+    picture: null, dragging: null, coarse: COARSE_START, gutterLines: 0, errorLine: 0, refused: false,
 };
 // What the browser test reads: every render's kind, times and status, the last full render.
 // passes: the path tracers' passes shown ({samplesDone, samplesTotal, secondsLeft, at}); workers: how many draw.
@@ -94,18 +140,20 @@ function commandArgs(text, coarse) {
     const args = [scenePath(), "--stats"];
     const set = s => args.push("--set", s);
     const n = state.chapter;
-    if ($("max-depth").value && n >= 8) // the path tracers' depth is their paths' bounces
-        set(PATH_CHAPTERS.includes(n) ? `paths.bounces=${$("max-depth").value}` : `max_depth=${$("max-depth").value}`);
+    if ($("max-depth").value && READS.depth(n))
+        set(`max_depth=${$("max-depth").value}`);
+    if ($("bounces").value && READS.bounces(n))
+        set(`paths.bounces=${$("bounces").value}`);
     if ($("fov").value)
         set(`camera.fov=${$("fov").value}`);
     const samplesKey = PATH_CHAPTERS.includes(n) ? "paths.samples" : n >= 12 ? "antialias.samples" : null;
     if (samplesKey && (coarse || $("samples").value))
         set(`${samplesKey}=${coarse ? 1 : $("samples").value}`);
-    if (n >= 9 && $("accel").value)
+    if (READS.accel(n) && $("accel").value)
         args.push("--accel", $("accel").value);
-    if (n >= 9 && $("split").value)
+    if (READS.split(n) && $("split").value)
         args.push("--split", $("split").value);
-    if (n === 11 && $("rung").value)
+    if (READS.rung(n) && $("rung").value)
         args.push("--rung", $("rung").value);
     let [w, h] = pictureSize(text);
     if (coarse)
@@ -142,6 +190,8 @@ function run(job) {
 // Asks for a picture of the editor's scene: a coarse one while the camera moves, else the full one.
 function render(coarse) {
     const text = $("scene").value;
+    if (refusedAsTooBig(text))
+        return;
     const job = {id: state.nextId++, coarse, text, scenePath: scenePath(), args: commandArgs(text, coarse)};
     if (!state.running) {
         run(job);
@@ -189,7 +239,10 @@ async function finished(job, result) {
 
 async function show(job, result, ms) {
     const errors = result.status !== 0;
-    $("errors").textContent = errors ? result.stderr.trim() : "";
+    if (!state.refused) {
+        $("errors").textContent = errors ? result.stderr.trim() : "";
+        markStale(errors || !result.picture, errors ? errorLine(result.stderr, job.scenePath) : 0);
+    }
     $("warnings").textContent = errors ? "" : result.stderr.trim();
     if (errors || !result.picture) {
         $("status").textContent = `the program stopped with status ${result.status}`;
@@ -211,14 +264,15 @@ async function show(job, result, ms) {
     ctx.drawImage(bitmap, 0, 0);
     $("status").textContent = `${bitmap.width} x ${bitmap.height} in ${(ms / 1000).toFixed(2)} s ` +
                               `(the program: ${(result.ms / 1000).toFixed(2)} s)`;
-    $("counters").textContent = result.stdout.trim();
+    $("counters").textContent = pageCounters(result.stdout);
     $("command").textContent = `./build/chapter-${pad(state.chapter)} ` + job.args.map(shellWord).join(" ") +
                                "\n(with the scene as the editor has it)";
     state.picture = result.picture;
-    const link = $("download-picture");
-    URL.revokeObjectURL(link.href);
-    link.href = URL.createObjectURL(new Blob([result.picture], {type: "image/png"}));
-    link.download = `chapter-${pad(state.chapter)}.png`;
+    offerDownload($("download-picture"), result.picture, `chapter-${chapterName(state.chapter)}.png`);
+    const heatmap = job.args.includes("--heatmap") && result.heatmap;
+    $("download-heatmap").classList.toggle("hidden", !heatmap);
+    if (heatmap)
+        offerDownload($("download-heatmap"), result.heatmap, `chapter-${chapterName(state.chapter)}-heatmap.png`);
     window.whitted.lastFull = {job, result};
     window.whitted.fullShown++;
 }
@@ -258,6 +312,7 @@ function moveCamera(kind, dx, dy, factor) {
     }
     $("scene").value = writeCamera(text, eye, target);
     updateSceneLink();
+    updateGutter();
     return true;
 }
 
@@ -265,6 +320,8 @@ function setUpMouse() {
     const canvas = $("picture");
     canvas.addEventListener("contextmenu", e => e.preventDefault());
     canvas.addEventListener("pointerdown", e => {
+        if (e.pointerType === "touch")
+            return; // setUpTouch's
         state.dragging = {x: e.clientX, y: e.clientY, pan: e.shiftKey || e.button === 2};
         canvas.setPointerCapture(e.pointerId);
         canvas.classList.add("dragging");
@@ -298,6 +355,142 @@ function setUpMouse() {
     }, {passive: false});
 }
 
+// The camera under the fingers, with the mouse's moves: one finger orbits, two fingers pinch to zoom
+// (the distance to the target shrinks as they spread) and drag together to pan.
+function setUpTouch() {
+    const canvas = $("picture");
+    let last = null, moved = false; // the fingers' centre, spread and count at the last event
+    const measure = touches => {
+        const t = [...touches].slice(0, 2);
+        const x = t.reduce((s, p) => s + p.clientX, 0) / t.length, y = t.reduce((s, p) => s + p.clientY, 0) / t.length;
+        const spread = t.length < 2 ? 0 : Math.hypot(t[0].clientX - t[1].clientX, t[0].clientY - t[1].clientY);
+        return {x, y, spread, count: t.length};
+    };
+    canvas.addEventListener("touchstart", e => {
+        e.preventDefault();
+        last = measure(e.touches);
+    }, {passive: false});
+    canvas.addEventListener("touchmove", e => {
+        e.preventDefault();
+        const now = measure(e.touches);
+        if (last && now.count === last.count) {
+            const [dx, dy] = [now.x - last.x, now.y - last.y];
+            let changed = false;
+            if (now.count === 1) {
+                changed = (dx || dy) && moveCamera("orbit", dx, dy);
+            } else {
+                changed = (dx || dy) && moveCamera("pan", dx, dy);
+                if (now.spread > 0 && last.spread > 0 && now.spread !== last.spread)
+                    changed = moveCamera("zoom", 0, 0, last.spread / now.spread) || changed;
+            }
+            if (changed) {
+                moved = true;
+                render(true);
+            }
+        }
+        last = now;
+    }, {passive: false});
+    const lift = e => {
+        e.preventDefault();
+        last = e.touches.length ? measure(e.touches) : null;
+        if (!last && moved) {
+            moved = false;
+            render(false);
+        }
+    };
+    canvas.addEventListener("touchend", lift);
+    canvas.addEventListener("touchcancel", lift);
+}
+
+// ---- what the page says: the chapter's idea and links, the counters, the downloads ------------------
+function showAbout() {
+    const n = state.chapter, name = chapterName(n);
+    $("idea").textContent = `Chapter ${n}, ${CHAPTERS[n - 1]}: ${IDEAS[n - 1]}`;
+    const link = (id, path) => {
+        $(id).href = REPO_BASE + path;
+        $(id).textContent = path;
+    };
+    link("walkthrough-link", `docs/${name}.md`);
+    link("source-link", `chapters/${name}/main.c`);
+    for (const id of ["format-link", "format-link-2"])
+        $(id).href = REPO_BASE + "docs/scene-format.md";
+    $("format-link").textContent = "docs/scene-format.md";
+    $("format-link-2").textContent = "docs/scene-format.md";
+}
+
+// What the heat-map's colours count on this chapter, and the bar under it.
+function showHeatNote() {
+    const on = $("heatmap").checked;
+    $("heat-note").classList.toggle("hidden", !on);
+    $("heat-note").textContent = CAMERA_RAY_HEATMAP.includes(state.chapter)
+        ? "Heat-map: the camera rays each pixel took, on a logarithmic scale from 0 (black) through blue, red " +
+          "and yellow to 100 or more (white); the bar under the picture marks 0, 1, 10 and 100."
+        : "Heat-map: the work each pixel cost, its rays' node visits plus box and shape tests, on a logarithmic " +
+          "scale from 0 (black) through blue, red and yellow to 8192 or more (white); the bar under the picture " +
+          "marks 0, 1, 10, 100, 1000 and 8192.";
+}
+
+// The program's counters as the page shows them: its picture is not a file here, so "wrote out/…png
+// (W x H)" reads "drew W x H".
+function pageCounters(stdout) {
+    return stdout.trim().replace(/: wrote \S+ \(([^)]*)\)/g, ": drew $1");
+}
+
+function offerDownload(link, bytes, name) {
+    URL.revokeObjectURL(link.href);
+    link.href = URL.createObjectURL(new Blob([bytes], {type: "image/png"}));
+    link.download = name;
+    link.textContent = name;
+}
+
+// ---- the editor: line numbers, the error's line, the stale picture --------------------------------
+function updateGutter() {
+    const lines = $("scene").value.split("\n").length;
+    if (lines !== state.gutterLines) { // one number a line, and one more for the scroll bar's height
+        $("gutter").textContent = Array.from({length: lines + 1}, (_, k) => (k < lines ? k + 1 : "")).join("\n");
+        state.gutterLines = lines;
+    }
+    $("gutter").scrollTop = $("scene").scrollTop;
+    placeErrorLine();
+}
+
+function placeErrorLine() {
+    const line = state.errorLine, mark = $("error-line");
+    mark.classList.toggle("hidden", !line);
+    if (line)
+        mark.style.top = `${EDITOR_PAD + (line - 1) * LINE_HEIGHT - $("scene").scrollTop}px`;
+}
+
+// The scene's line a message names ("scenes/NN-name.scene:LINE: what"), 0 when it names none.
+function errorLine(stderr, path) {
+    const named = stderr.split("\n").find(l => l.startsWith(path + ":"));
+    return named ? Number(named.slice(path.length + 1).split(":")[0]) || 0 : 0;
+}
+
+// Marks the picture and counters as stale (from the last scene that worked) and the editor's line
+// `line` (0: none) while an error stands.
+function markStale(stale, line) {
+    $("view").classList.toggle("stale", stale);
+    $("stale-note").classList.toggle("hidden", !stale || !window.whitted.fullShown);
+    state.errorLine = stale ? line : 0;
+    placeErrorLine();
+}
+
+// Refuses a picture over MAX_PIXELS before any render, saying so; returns true when refused.
+function refusedAsTooBig(text) {
+    const [w, h] = pictureSize(text);
+    state.refused = w * h > MAX_PIXELS;
+    if (!state.refused)
+        return false;
+    const mega = x => (x / 1e6).toFixed(1);
+    $("errors").textContent = `${w} x ${h} is ${mega(w * h)} megapixels: the page draws at most ${mega(MAX_PIXELS)} megapixels ` +
+        `(4096 x 4096), so that the tab keeps within its memory. The native program draws it:\n` +
+        `./build/chapter-${pad(state.chapter)} ${scenePath()} --width ${w} --height ${h}`;
+    $("status").textContent = "not drawn: the picture is too big for the page";
+    markStale(true, $("size").value ? 0 : sceneLine(text, "image") + 1);
+    return true;
+}
+
 // ---- the chapter and its scene --------------------------------------------------------------------
 function updateSceneLink() {
     const link = $("download-scene");
@@ -307,15 +500,15 @@ function updateSceneLink() {
     link.textContent = link.download;
 }
 
-// Shows the controls the chapter's program has.
+// Shows the controls the chapter's program reads (READS; the others every chapter reads).
 function showControls() {
     const n = state.chapter;
     for (const label of document.querySelectorAll("#controls label")) {
-        const from = label.dataset.from, only = label.dataset.only;
-        const shown = (from === undefined || n >= Number(from)) && (only === undefined || n === Number(only)) &&
-                      (label.dataset.samples === undefined || n >= 12);
-        label.classList.toggle("hidden", !shown);
+        const reads = READS[label.dataset.option];
+        label.classList.toggle("hidden", reads !== undefined && !reads(n));
     }
+    showAbout();
+    showHeatNote();
     const kinds = n === 9 ? ["kdtree", "none"] : ["bvh", "kdtree", "none"];
     $("accel").innerHTML = kinds.map((k, i) => `<option value="${i ? k : ""}">${k}${i ? "" : " (default)"}</option>`).join("");
     $("samples").placeholder = PATH_CHAPTERS.includes(n) ? "paths'" : "scene's";
@@ -325,7 +518,9 @@ async function loadScene(name) {
     $("scene-file").value = name;
     const response = await fetch(`scenes/${name}`);
     $("scene").value = await response.text();
+    $("scene").scrollTop = 0;
     updateSceneLink();
+    updateGutter();
     render(true); // a quick first view, then the full picture
     render(false);
 }
@@ -351,14 +546,18 @@ async function start() {
                           RUNGS.map((r, i) => `<option value="${i + 1}">${i + 1} ${r}</option>`).join("");
     state.scenes = await (await fetch("scenes/index.json")).json();
     setUpMouse();
+    setUpTouch();
+    $("scene").addEventListener("scroll", updateGutter);
+    $("heatmap").addEventListener("change", showHeatNote);
     $("chapter").addEventListener("change", () => chooseChapter(Number($("chapter").value)));
     $("scene-file").addEventListener("change", () => loadScene($("scene-file").value));
     $("scene").addEventListener("input", () => {
         updateSceneLink();
+        updateGutter();
         clearTimeout(state.typing);
         state.typing = setTimeout(() => render(false), TYPING_PAUSE);
     });
-    for (const id of ["max-depth", "fov", "samples", "accel", "split", "rung", "size", "heatmap"])
+    for (const id of ["max-depth", "bounces", "fov", "samples", "accel", "split", "rung", "size", "heatmap"])
         $(id).addEventListener("change", () => render(false));
     const params = new URL(location.href).searchParams;
     const n = Number(params.get("chapter"));

@@ -11,8 +11,11 @@ Selenium, and checks the page against the native programs:
   - README's sizes of a chapter's modules ("at most X MB of `.wasm` and Y MB of script") are the
     largest of build/web/chapter-NN.wasm and .js rounded up to the hundredth of a megabyte;
 and prints how fast it is: the page's first picture, chapter 8 at 640 x 480, the frame rate while the
-camera is dragged, and chapter 10's 353,546 triangles against the native program on one thread. It
-ends with a screenshot of the page (--screenshot) for README.
+camera is dragged, and chapter 10's 353,546 triangles against the native program on one thread. The
+page explains itself (each chapter's idea, links and controls; downloads; the heat-map's scale), its
+editor numbers lines and marks the error's, it refuses too big a picture, it fits 1280 x 800 and
+375 x 667 without sideways scrolling (screenshots: --screenshot for README, and beside it the phone's)
+and touches move the camera.
 
 The engine (renders.js, worker.js and common/cli.c's held loop):
   - the teapot scene of chapter 10 dragged: coarse frames a second (printed, and asserted above a floor
@@ -339,6 +342,217 @@ def test_engine(page, build):
     test_teapot(page, build)
 
 
+CHAPTER_NAMES = ["camera", "sphere", "triangle", "plane", "aabb", "phong", "shadows", "recursion", "kdtree",
+                 "bvh", "fast", "antialias", "distributed", "textures", "paths", "instances", "rough"]
+TRY_LINK = re.compile(r"\]\(([^)]*)index\.html\?chapter=(\d+)\)")
+
+
+def check_try_links():
+    """Every walkthrough has a "try it" link to its own chapter's page, all on one base address."""
+    bases = set()
+    for n, name in enumerate(CHAPTER_NAMES, 1):
+        with open(os.path.join(REPO, "docs", f"{n:02d}-{name}.md"), encoding="utf-8") as f:
+            links = TRY_LINK.findall(f.read())
+        check(len(links) == 1 and links[0][1] == str(n),
+              f"docs/{n:02d}-{name}.md links to the page at chapter {n} once: {links}")
+        bases.update(base for base, _ in links)
+    check(len(bases) == 1, f"the walkthroughs' links to the page share one address: {sorted(bases)}")
+
+
+def visible(page, element_id):
+    return page.js("const e = document.getElementById(arguments[0]); return e.offsetParent !== null;", element_id)
+
+
+def check_explained(page, chapter):
+    """The chapter's idea, its walkthrough, its main.c and the scene format are shown and can be fetched; the
+    controls are those the chapter reads."""
+    name = f"{chapter:02d}-{CHAPTER_NAMES[chapter - 1]}"
+    got = page.js("""
+        const read = id => document.getElementById(id);
+        const fetched = async a => (await fetch(a.href)).status;
+        return (async () => ({idea: read('idea').textContent,
+            walk: read('walkthrough-link').href, source: read('source-link').href, format: read('format-link').href,
+            status: [await fetched(read('walkthrough-link')), await fetched(read('source-link')),
+                     await fetched(read('format-link'))]}))();""")
+    check(got["idea"].startswith(f"Chapter {chapter}, {CHAPTER_NAMES[chapter - 1]}: ") and len(got["idea"]) > 40,
+          f"chapter {chapter}: the page says its idea: {got['idea']!r}")
+    check(got["walk"].endswith(f"docs/{name}.md") and got["source"].endswith(f"chapters/{name}/main.c")
+          and got["format"].endswith("docs/scene-format.md") and got["status"] == [200, 200, 200],
+          f"chapter {chapter}: links to its walkthrough, main.c and the scene format answer {got['status']}")
+    shown = {k: visible(page, k) for k in ("max-depth", "bounces", "samples", "accel", "split", "rung")}
+    expected = {"max-depth": 8 <= chapter and chapter not in (15, 17), "bounces": chapter in (15, 17),
+                "samples": chapter >= 12, "accel": chapter >= 9 and chapter != 16,
+                "split": chapter >= 9 and chapter != 16, "rung": chapter == 11}
+    check(shown == expected, f"chapter {chapter}: the controls shown are those it reads: {shown}")
+
+
+def check_downloads_and_counters(page):
+    """Chapter 2's downloads are named after it, the heat-map's too, with a note on what it counts; the
+    counters say what was drawn, not a file inside the page; the heat-map link goes with the heat-map."""
+    page.open("chapter=2")
+    names = lambda: page.js("return ['download-picture', 'download-scene', 'download-heatmap']"
+                            ".map(id => [document.getElementById(id).download, "
+                            "document.getElementById(id).offsetParent !== null])")
+    counters = page.driver.find_element(By.ID, "counters").text
+    size = page.js("const c = document.getElementById('picture'); return `${c.width} x ${c.height}`;")
+    check(names() == [["chapter-02-sphere.png", True], ["02-sphere.scene", True], ["", False]],
+          f"chapter 2's downloads: {names()}")
+    check("out/" not in counters and re.search(rf"chapter 2 \(sphere\): drew {size} in", counters) is not None,
+          f"the counters say what was drawn: {counters.splitlines()[0]!r}")
+    n = page.full_shown()
+    page.set_control("heatmap", True)
+    page.wait_idle(n + 1)
+    note = page.driver.find_element(By.ID, "heat-note").text
+    check(names()[2] == ["chapter-02-sphere-heatmap.png", True] and "8192" in note and "tests" in note,
+          f"the heat-map's download {names()[2]} and its note: {note!r}")
+    page.set_control("heatmap", False)
+    page.wait_idle(n + 2)
+
+
+def set_scene(page, text):
+    page.js("const e = document.getElementById('scene'); e.value = arguments[0];"
+            "e.dispatchEvent(new Event('input'));", text)
+
+
+def check_editor(page):
+    """On chapter 8's scene, 40 comment lines longer (so that the editor scrolls): one line number a line; a
+    broken line is marked in the editor (the band over its line, scrolled with the text and the numbers)
+    and the old picture is marked stale; mending it clears both."""
+    page.open("chapter=8")
+    n = page.full_shown()
+    text = "# a comment\n" * 40 + page.js("return document.getElementById('scene').value")
+    set_scene(page, text)
+    page.wait_idle(n + 1)
+    numbers = page.driver.find_element(By.ID, "gutter").get_attribute("textContent").split("\n")
+    lines = text.split("\n")
+    check(numbers[:len(lines)] == [str(k) for k in range(1, len(lines) + 1)] and not "".join(numbers[len(lines):]),
+          f"the gutter numbers the scene's {len(lines)} lines")
+    line = len(lines) - 1  # near the end, so that the editor scrolls to it
+    while not lines[line - 1].startswith("sphere"):
+        line -= 1
+    broken = lines[:line - 1] + ["sphere centre 0 1 0 radius -2 material glass"] + lines[line:]
+    n = len(page.js("return window.whitted.renders"))
+    set_scene(page, "\n".join(broken))
+    page.wait(f"window.whitted.renders.length > {n} && document.body.dataset.state === 'idle'", 60, "the message")
+    page.js("document.getElementById('scene').scrollTop = 300; document.getElementById('scene')"
+            ".dispatchEvent(new Event('scroll'));")
+    got = page.js("""const s = document.getElementById('scene'), m = document.getElementById('error-line'),
+                     g = document.getElementById('gutter');
+                     return {top: m.offsetTop, shown: m.offsetParent !== null, scroll: s.scrollTop, gutter: g.scrollTop,
+                             stale: document.getElementById('view').classList.contains('stale'),
+                             note: document.getElementById('stale-note').offsetParent !== null,
+                             opacity: getComputedStyle(document.getElementById('picture')).opacity};""")
+    check(got["shown"] and got["scroll"] > 0 and got["top"] == 4 + (line - 1) * 18 - got["scroll"]
+          and got["gutter"] == got["scroll"],
+          f"the error's line {line} is marked beside its number (band at {got['top']} px, scrolled {got['scroll']} px)")
+    check(got["stale"] and got["note"] and float(got["opacity"]) < 1,
+          f"while the error stands the old picture is marked stale (opacity {got['opacity']})")
+    n = page.full_shown()
+    set_scene(page, text)
+    page.wait_idle(n + 1)
+    check(not visible(page, "error-line") and not visible(page, "stale-note"), "mended, the marks are gone")
+
+
+def check_size_guard(page):
+    """A 16384 x 16384 picture is refused before any render, with the reason; the scene's size again draws."""
+    page.open("chapter=8")
+    text = page.js("return document.getElementById('scene').value")
+    lines = text.split("\n")
+    k = next(k for k, l in enumerate(lines) if l.startswith("image"))
+    n = len(page.js("return window.whitted.renders"))
+    set_scene(page, "\n".join(lines[:k] + ["image 16384 16384"] + lines[k + 1:]))
+    time.sleep(1.5)  # past the typing pause
+    message = page.driver.find_element(By.ID, "errors").text
+    renders = len(page.js("return window.whitted.renders"))
+    check(renders == n and "16384 x 16384 is 268.4 megapixels: the page draws at most 16.8" in message
+          and visible(page, "error-line"), f"a 16384 x 16384 picture is refused without a render: {message!r}")
+    n = page.full_shown()
+    set_scene(page, text)
+    page.wait_idle(n + 1)
+    check(page.driver.find_element(By.ID, "errors").text == "", "the scene's own size draws again")
+
+
+def emulate(page, width, height, mobile):
+    page.driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                                {"width": width, "height": height, "deviceScaleFactor": 1, "mobile": mobile})
+    page.driver.execute_cdp_cmd("Emulation.setTouchEmulationEnabled", {"enabled": mobile, "maxTouchPoints": 2})
+
+
+def layout(page):
+    return page.js("""const box = id => { const r = document.getElementById(id).getBoundingClientRect();
+                                          return {left: r.left, right: r.right, top: r.top, bottom: r.bottom}; };
+                      return {scroll: document.documentElement.scrollWidth, width: innerWidth, height: innerHeight,
+                              picture: box('picture'), editor: box('scene'), counters: box('counters')};""")
+
+
+def check_layout(page, width, height, screenshot):
+    """At width x height: chapter 8 (a 640 x 480 picture) and chapter 15 (its long counter line) at 160 x 120
+    fit the width with the editor and the picture on the page; on a wide screen both within the first
+    screen, the editor in the same place for both chapters. Saves a screenshot of chapter 8."""
+    emulate(page, width, height, width < 800)
+    places = []
+    for query in ("chapter=15", "chapter=8"):
+        page.driver.get(f"{page.base}/index.html?{query}")
+        page.wait("window.whitted && window.whitted.renders.length >= 1", 120, "a first picture")
+        if query == "chapter=15":  # chapter 15's full picture is slow: a small one
+            page.set_control("size", "160x120")
+        page.wait_idle(1, 300)
+        got = layout(page)
+        pic, ed = got["picture"], got["editor"]
+        fits = all(0 <= b["left"] and b["right"] <= got["width"] for b in (pic, ed, got["counters"]))
+        within = pic["top"] < height and ed["top"] < height if width >= 800 else True
+        check(got["scroll"] <= got["width"] and fits and within and ed["bottom"] - ed["top"] >= 200,
+              f"{width} x {height}, {query}: no sideways scroll ({got['scroll']} <= {got['width']}), picture "
+              f"{pic['left']:.0f}..{pic['right']:.0f} top {pic['top']:.0f}, editor {ed['left']:.0f}..{ed['right']:.0f} "
+              f"top {ed['top']:.0f}")
+        places.append(ed["left"])
+    check(places[0] == places[1], f"{width} x {height}: the editor stays in place between chapters ({places})")
+    if screenshot:
+        page.driver.save_screenshot(screenshot)
+        print(f"screenshot: {screenshot}")
+
+
+def touch(page, kind, points_list):
+    page.driver.execute_cdp_cmd("Input.dispatchTouchEvent", {
+        "type": kind, "touchPoints": [{"x": x, "y": y, "id": k} for k, (x, y) in enumerate(points_list)]})
+
+
+def camera(page):
+    return page.js("return document.getElementById('scene').value.split('\\n').find(l => l.startsWith('camera'))")
+
+
+def check_touch(page):
+    """At 375 x 667 with touch: one finger orbits, two fingers spreading zoom in, two moving together pan; each
+    moves the camera line, and lifting the fingers draws the full picture."""
+    emulate(page, 375, 667, True)
+    page.open("chapter=8")
+    r = page.js("const r = document.getElementById('picture').getBoundingClientRect();"
+                "return [r.left + r.width / 2, r.top + r.height / 2];")
+    x, y = r
+    eye = lambda c: [float(v) for v in c.split("eye")[1].split()[:3]]
+    target = lambda c: [float(v) for v in c.split("target")[1].split()[:3]]
+    gestures = (("one finger", [[(x + 8 * k, y)] for k in range(8)]),
+                ("a pinch", [[(x - 20 - 2 * k, y), (x + 20 + 2 * k, y)] for k in range(8)]),
+                ("two fingers", [[(x - 20, y + 4 * k), (x + 20, y + 4 * k)] for k in range(8)]))
+    for what, steps in gestures:
+        before, n = camera(page), page.full_shown()
+        touch(page, "touchStart", steps[0])
+        for points in steps[1:]:
+            touch(page, "touchMove", points)
+            time.sleep(0.03)
+        touch(page, "touchEnd", [])
+        page.wait_idle(n + 1, 300)  # the full picture after the gesture; slow on a loaded machine
+        after = camera(page)
+        span = lambda c: math.dist(eye(c), target(c))
+        if what == "one finger":
+            ok = target(after) == target(before) and eye(after) != eye(before) and abs(span(after) - span(before)) < 1e-3
+        elif what == "a pinch":
+            ok = target(after) == target(before) and span(after) < span(before) - 1e-3
+        else:
+            ok = target(after) != target(before) and abs(span(after) - span(before)) < 1e-3
+        check(ok, f"touch, {what}: {before!r} -> {after!r}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--web", default="build/web")
@@ -411,6 +625,21 @@ def main():
         check(status == 1 and shown == stderr.strip() and shown.startswith(f"scenes/08-recursion.scene:{line}:"),
               f"a broken line {line} shows the native message: {shown!r}")
 
+        # The page explains itself, its editor, its size guard, its layout and touch.
+        check_try_links()
+        for chapter in (8, 11, 15, 16):
+            page.open(f"chapter={chapter}") if chapter != 15 else page.driver.get(f"{page.base}/index.html?chapter=15")
+            page.wait("document.getElementById('idea').textContent !== ''", 60, "the chapter's idea")
+            check_explained(page, chapter)
+        check_downloads_and_counters(page)
+        check_editor(page)
+        check_size_guard(page)
+        # README's screenshot is the wide one; the phone's goes beside it (web-page-375x667.png).
+        check_layout(page, 1280, 800, o.screenshot)
+        check_layout(page, 375, 667, o.screenshot and re.sub(r"(\.png)?$", "-375x667.png", o.screenshot, count=1))
+        check_touch(page)
+        emulate(page, 1280, 800, False)
+
         # Every chapter's own scene at 160 x 120, and chapter 11's SIMD rung (3), compact rung (7) and
         # packet rung (10: rung 6's tree in the browser, rung 8's natively, the same picture).
         for chapter in range(1, 18):
@@ -424,6 +653,12 @@ def main():
                 page.set_control("rung", rung)
                 page.wait_idle(n + 1, timeout=300)
                 compare_with_native(page, o.build, chapter, f"chapter 11 at 160 x 120, rung {rung}")
+            if chapter == 15:  # the bounces control sets the paths line's bounces
+                n = page.full_shown()
+                page.set_control("bounces", "1")
+                page.wait_idle(n + 1, timeout=300)
+                got = compare_with_native(page, o.build, chapter, "chapter 15 at 160 x 120, one bounce")
+                check("paths.bounces=1" in got["args"], f"chapter 15's bounces control: {' '.join(got['args'])}")
 
         # Chapter 10: the big teapot, from a fresh page.
         started = time.monotonic()
@@ -446,13 +681,6 @@ def main():
         if triangles:
             print(f"      {triangles.strip()}")
 
-        if o.screenshot:
-            page.open("chapter=8")
-            n = page.full_shown()
-            page.set_control("max-depth", "3")
-            page.wait_idle(n + 1)
-            driver.save_screenshot(o.screenshot)
-            print(f"screenshot: {o.screenshot}")
     finally:
         if driver:
             driver.quit()
