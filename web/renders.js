@@ -17,6 +17,78 @@
 // traces its new paths, and the last pass is the native program's picture at that count, byte for byte.
 "use strict";
 
+// The bands' counters as the whole picture's (what the native program prints for it): the first line says
+// the whole picture and the slowest band's time; each count is the bands' sum, each per-pixel figure that
+// sum over the picture's pixels ("most camera rays" the largest); a line that differs between bands and
+// cannot be summed (chapter 15's noise, a rate) is the first band's, and says so.
+function joinCounters(outputs) {
+    const tile = /\(the \d+ x \d+ tile at column \d+, row \d+ of the (\d+) x (\d+) picture\)/;
+    const size = outputs.length > 1 && outputs[0].split("\n")[0].match(tile);
+    if (!size)
+        return outputs.join("");
+    const pixels = Number(size[1]) * Number(size[2]);
+    // Each band read as: its first line, its counts and per-pixel figures (label -> value, in order), the rest.
+    const bands = outputs.map(text => {
+        const band = {first: "", counts: new Map(), pixel: new Map(), pixelHeading: null, rest: []};
+        let section = null;
+        text.replace(/\n$/, "").split("\n").forEach((line, k) => {
+            if (k === 0)
+                return void (band.first = line);
+            if (!line.startsWith("  ")) {
+                section = line === "counters:" ? "counts" : line.startsWith("per pixel") ? "pixel" : null;
+                if (section === "pixel")
+                    band.pixelHeading = line;
+                if (section)
+                    return;
+            }
+            const m = section ? line.match(/^  (.*?)\s+([0-9.]+)$/) : null;
+            if (m)
+                band[section].set(m[1], Number(m[2]));
+            else
+                band.rest.push(line);
+        });
+        return band;
+    });
+    // Every label in the order the program prints them (a band prints no line for a count of 0).
+    const labels = key => {
+        const order = [];
+        for (const band of bands) {
+            let at = 0;
+            for (const label of band[key].keys()) {
+                const k = order.indexOf(label);
+                if (k < 0)
+                    order.splice(at++, 0, label);
+                else
+                    at = k + 1;
+            }
+        }
+        return order;
+    };
+    const sum = (key, label) => bands.reduce((total, b) => total + (b[key].get(label) || 0), 0);
+    const line = (label, value) => `  ${label.padEnd(16)} ${value.padStart(15)}`; // common/stats.c's "  %-16s %15"
+    const seconds = Math.max(...bands.map(b => Number((b.first.match(/ in ([0-9.]+) s$/) || [0, 0])[1])));
+    const out = [bands[0].first.replace(tile, `(${size[1]} x ${size[2]})`).replace(/ in [0-9.]+ s$/, ` in ${seconds.toFixed(3)} s`)];
+    if (bands.some(b => b.counts.size)) {
+        out.push("counters:");
+        for (const label of labels("counts"))
+            out.push(line(label, String(sum("counts", label))));
+    }
+    const heading = bands.map(b => b.pixelHeading).find(h => h);
+    if (heading) {
+        out.push(heading);
+        const ofCount = {"camera rays": "primary rays", "rays": "rays (all)"};
+        for (const label of labels("pixel")) {
+            if (label.startsWith("most "))
+                out.push(line(label, String(Math.max(...bands.map(b => b.pixel.get(label) || 0)))));
+            else
+                out.push(line(label, (sum("counts", ofCount[label] || label) / pixels).toFixed(2)));
+        }
+    }
+    bands[0].rest.forEach((text, k) =>
+        out.push(bands.every(b => b.rest[k] === text) || text.startsWith("  ") ? text : `${text} (the first band's)`));
+    return out.join("\n") + "\n";
+}
+
 const Renders = (() => {
     const WORKERS_MAX = 8;   // the most workers drawing at once
     const BAND_QUANTUM = 32; // band edges on this grid of rows: chapter 12's blocks (ANTIALIAS_BLOCK) stay whole
@@ -139,7 +211,7 @@ const Renders = (() => {
         const ms = performance.now() - render.started;
         const result = failed ? {...failed, ms} : {
             status: 0, ms, picture, heatmap: results[0].heatmap,
-            stdout: results.map(r => r.stdout).join(""),
+            stdout: joinCounters(results.map(r => r.stdout)),
             stderr: results.map(r => r.stderr).filter((s, k, all) => all.indexOf(s) === k).join(""),
         };
         if (failed || render.passes.length === 0) {

@@ -322,6 +322,10 @@ def test_workers_same_bytes(page, build):
         workers = page.js("return window.whitted.workers")
         check(one["picture"] is not None and one["picture"] == several["picture"] and workers == 3,
               f"chapter {chapter} at {size}: 1 worker and {workers} the same PNG ({len(one['picture'] or b'')} bytes)")
+        # The counters the page shows for the bands joined are the whole picture's (all but the time).
+        counts = lambda r: re.sub(r" in [0-9.]+ s", "", r["stdout"] or "")
+        check(counts(one) == counts(several) and "counters:" in counts(one),
+              f"chapter {chapter} at {size}: the counters of {workers} bands joined are one worker's")
         compare_with_native(page, build, chapter, f"chapter {chapter} at {size} on {workers} workers")
 
 
