@@ -518,7 +518,7 @@ WEB_LDFLAGS := -O2 -msimd128 -sMODULARIZE=1 -sEXPORT_NAME=createChapter -sENVIRO
 WEB_PAGE := $(addprefix $(WEB)/,index.html page.js worker.js renders.js)
 WEB_CHAPTERS := $(foreach c,$(CHAPTERS),$(WEB)/chapter-$(call chapter_number,$(c)).js)
 
-.PHONY: web serve test-web try-links FORCE
+.PHONY: web serve test-web try-links
 
 ## make web            every chapter compiled to WebAssembly, with the page, scenes and meshes, into
 ##                     build/web/ (a static folder; installs Debian's emscripten first)
@@ -575,6 +575,7 @@ $(WEB)/%: web/%
 	@mkdir -p $(@D)
 	cp $< $@
 
+# FORCE: a target with no file and no recipe, so what names it is always remade (it need not be phony).
 FORCE:
 
 # The page's settings from the build (WEB_REPO_BASE), rewritten only when they change.
