@@ -219,19 +219,31 @@ $(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUIL
 # triangles, meshes beyond float range, whole pictures by every structure and rung), and those that
 # take four seconds or more of their own: the damaged-mesh sweeps, the largest picture, linking every
 # chapter with its own modules and with the modules before it, make bench after make test, make help
-# and make clean in a copy, the soups of 30 to 1000 triangles (make test keeps those of 1 to 10, the
-# bunny, the sphere and the grids), chapter 10's picture by 1, 2 and 4 threads
+# and make clean in a copy, the soups of triangles, the sphere and the grids (make test keeps the
+# bunny, the 5,000-triangle teapot and the float test's grazing rays), chapter 10's picture by 1, 2 and 4 threads
 # (chapters 12 and 13 check their own in make test), the results page's staleness checks; and the
 # proofs that the picture checks catch a planted fault (a wrong index of refraction, an extra trace
 # level, a wrong grid or threshold, a hard shadow), while the checks themselves run in make test; rung
 # 6 on meshes where a float step is the mesh's size (with the other float-range cases); chapter 12's
-# grids of 2 and 4 against POV-Ray (make test compares the grid of 3 and the other methods); POV-Ray
-# on the watertight cube (make test checks chapters 9 and 10 on it); the programs' output quoted in the
-# walkthroughs, run again (make test keeps the proof that a changed counter is noticed).
-# Chapter 11's agreement with POV-Ray is long too: its scene and its reference picture are chapter
-# 10's, whose agreement make test checks, and make test holds chapter 11's picture to that reference.
+# grids of 2 and 4 against POV-Ray (make test compares the grid of 3 and the other methods); chapters
+# 9 and 10 and POV-Ray on the watertight cube (make test keeps chapter 3's loop, the icosphere and the
+# cube seen from its centre); the programs' output quoted in the walkthroughs, run again (make test keeps
+# the proof that a changed counter is noticed); chapter 13's depth of field and its adaptive, circular
+# and oriented lights against POV-Ray (make test compares its other lights and holds its focus to a
+# reference); the glass of water against POV-Ray (make test holds it to its reference); jitter's
+# unbiasedness where the grid aliases.
+# Chapters 8, 10 and 11's agreement with POV-Ray is long too: make test holds each chapter's picture to
+# its reference picture, which make test-long compares with POV-Ray's.
 # make test and make test-long together run every test once; CI runs both (.ci/run).
 LONG_TESTS := gallery/every_fault_is_caught_by_the_grader microfacet_long/* doc_outputs/quoted_output_is_what_the_program_prints \
+              accel/bvh_and_kdtree_match_brute_force_on_soups_of_1_to_10_triangles \
+              accel/bvh_and_kdtree_match_brute_force_on_a_sphere_from_inside_and_outside \
+              accel/bvh_and_kdtree_match_brute_force_on_stacked_axis_aligned_grids \
+              povray_agreement/chapter_08_recursion_agrees_with_povray povray_agreement/chapter_10_bvh_agrees_with_povray \
+              povray_agreement/chapter_13_depth_of_field_within_the_noise \
+              povray_agreement/chapter_13_adaptive_circular_and_oriented_lights \
+              watertight/chapters_9_and_10_draw_the_cube_from_inside_without_a_leak \
+              nested_glass/glass_of_water_agrees_with_povray antialias/jitter_is_unbiased_where_the_grid_aliases \
               coursework/the_grader_ends_every_run_with_a_scoreboard_of_every_task \
               coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_grades_* coursework_long/* \
               results/the_quick_mode_runs_every_experiment_and_draws_every_plot_and_table \
