@@ -123,8 +123,7 @@ static bool build(const struct accel *a, const struct mesh *m, struct built *out
         break;
     case FAST_BVH:
     case FAST_BVH_PACKETS:
-        out->fast_bvh = a->rule == FAST_BVH_RUNG_EXACT ? float_triangle_build(m, BVH_SPLIT_SAH)
-                                                       : fast_bvh_build(m, BVH_SPLIT_SAH, (enum fast_bvh_rung)a->rule);
+        out->fast_bvh = fast_bvh_build(m, BVH_SPLIT_SAH, (enum fast_bvh_rung)a->rule);
         break;
     }
     *build_ms = processor_ms() - start;

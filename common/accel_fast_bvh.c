@@ -29,9 +29,7 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
         return accel_world_use_bvh(w, split, err, err_size);
     double started = clock_seconds();
     int tree_rung = rung == FAST_BVH_RUNG_PACKET ? FAST_BVH_RUNG_EIGHT : rung; /* rung 10 walks rung 8's tree */
-    struct fast_bvh *bvh = rung == FAST_BVH_RUNG_EXACT /* rung 9's tree with a float copy of its triangles */
-                               ? float_triangle_build(&w->triangles, (enum bvh_split)split)
-                               : fast_bvh_build(&w->triangles, (enum bvh_split)split, (enum fast_bvh_rung)tree_rung);
+    struct fast_bvh *bvh = fast_bvh_build(&w->triangles, (enum bvh_split)split, (enum fast_bvh_rung)tree_rung);
     double build_ms = 1e3 * (clock_seconds() - started);
     if (bvh == NULL) {
         snprintf(err, err_size, "out of memory building the BVH");

@@ -9,7 +9,8 @@
 #include "mesh.h"
 
 /* Builds a hierarchy over the faces of m with the given split rule, at the given rung (from
- * FAST_BVH_RUNG_FIRST to FAST_BVH_RUNG_TOP; others give NULL): chapter 10's bvh_build collapsed by
+ * FAST_BVH_RUNG_FIRST to FAST_BVH_RUNG_TOP, or rung 11: rung 9's tree with a float copy of its
+ * triangles; others give NULL): chapter 10's bvh_build collapsed by
  * fast_bvh_collapse on rungs 2 to 4; from rung 5 on the float build by the SAH (the median split, quick
  * already, is built as on rung 4); on rung 8 with 8-wide nodes when the processor has AVX2
  * (fast_bvh_eight_available), else with rung 6's tree. Below rung 7, m is only read, and not kept: it may be changed or

@@ -39,11 +39,11 @@ enum fast_bvh_rung {
     FAST_BVH_RUNG_EXACT = 11,   /* rung 9's tree and walk, each leaf's triangles tested eight at a time in
                                    float with bounds on the rounding (float_triangle.h); only those the
                                    float test cannot rule out are tested in double. Built by
-                                   float_triangle_build (rung 9's tree, and a float copy of its triangles);
+                                   fast_bvh_build as rung 9's tree with a float copy of its triangles;
                                    without AVX2, rung 6's tree and walk */
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
-#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_LEAN /* the top rung that fast_bvh_build builds */
+#define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_LEAN /* the top rung of its own tree (rung 11 is rung 9's, with float triangles) */
 /* The last rung a chapter accepts (--rung): rung 10 renders in packets over rung 8's tree, rung 11
  * walks rung 9's tree with the float triangle test. */
 #define FAST_BVH_RUNG_LAST FAST_BVH_RUNG_EXACT

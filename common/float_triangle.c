@@ -1,10 +1,8 @@
 /* float_triangle.c: rung 11's exact float triangle filter: its float copy of the triangles, its counters
- * and rung 11's hierarchy (chapter 11; float_triangle.h derives the bounds and holds the test). */
+ * (chapter 11; float_triangle.h derives the bounds and holds the test; fast_bvh_build makes rung 11's tree). */
 #include "float_triangle.h"
 
 #include <stdlib.h>
-
-#include "fast_bvh_build.h"
 
 /* The blocks' alignment: one AVX2 load of eight floats. */
 #define FLOAT_TRIANGLE_ALIGN 32
@@ -27,20 +25,4 @@ bool float_triangle_prepare(struct fast_bvh *b) {
     }
     b->float_corners = corners;
     return true;
-}
-
-struct fast_bvh *float_triangle_build(const struct mesh *m, enum bvh_split split) {
-    struct fast_bvh *b = fast_bvh_build(m, split, FAST_BVH_RUNG_LEAN);
-    if (b == NULL)
-        return NULL;
-    b->rung = FAST_BVH_RUNG_EXACT;
-    if (b->nodes8 == NULL || !b->float_range) /* no 8-wide walk, or none in float: rung 9 as it is */
-        return b;
-    if (!float_triangle_prepare(b)) {
-        fast_bvh_free(b);
-        return NULL;
-    }
-    free(b->lean_corners); /* rung 9's double blocks: rung 11 reads its float ones instead */
-    b->lean_corners = NULL;
-    return b;
 }

@@ -124,13 +124,6 @@ static inline void float_triangle_ray_make(const struct triangle_ray *ready, con
  * of memory (b is then unchanged). */
 bool float_triangle_prepare(struct fast_bvh *b);
 
-/* Builds rung 11's hierarchy over the faces of m with the given split rule: rung 9's (fast_bvh_build at
- * FAST_BVH_RUNG_LEAN, with everything it says of m), then, where that tree is 8-wide (AVX2) and within
- * rung 6's float range (b->float_range: its corners fit a float), the float copy of its triangles in
- * place of rung 9's blocks of doubles (freed: 36 bytes a triangle instead of 72); otherwise rung 9's
- * hierarchy as it is (walked by rung 9's fallbacks: rung 8's walk in double, or rung 6's tree and walk). Returns NULL when
- * memory runs out. Free the result with fast_bvh_free. */
-struct fast_bvh *float_triangle_build(const struct mesh *m, enum bvh_split split);
 
 /* How the float test's triangles went, counted per thread for bench_accel: tests (triangles tested in
  * float), sure_hits (the double test surely hits them: still redone in double, for t) and too_close

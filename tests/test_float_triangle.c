@@ -10,6 +10,7 @@
 #include <stdlib.h>
 
 #include "fast_bvh.h"
+#include "fast_bvh_build.h"
 #include "fast_bvh_eight.h"
 #include "float_triangle.h"
 #include "mesh.h"
@@ -118,7 +119,7 @@ Test(float_triangle, is_never_sure_where_the_double_test_says_otherwise_and_unsu
         return;
     }
     struct mesh m = bumpy_grid();
-    struct fast_bvh *b = float_triangle_build(&m, BVH_SPLIT_SAH);
+    struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EXACT);
     cr_assert(b != NULL && b->float_corners != NULL && b->tree_count == m.face_count);
     struct draws state = {1, 0};
     size_t unsure_at_corners = 0, sure_hits = 0, sure_misses = 0;
@@ -169,7 +170,7 @@ static uint32_t brute_force_nearest(const struct mesh *m, const ray *r, double *
 
 Test(float_triangle, rung_11_gives_the_brute_force_answers_on_grazing_rays_and_counts_its_verdicts) {
     struct mesh m = bumpy_grid();
-    struct fast_bvh *b = float_triangle_build(&m, BVH_SPLIT_SAH);
+    struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EXACT);
     cr_assert_not_null(b);
     float_triangle_thread = (struct float_triangle_counts){0, 0, 0};
     struct draws state = {2, 0};
