@@ -467,8 +467,6 @@ static __attribute__((noinline)) void held_renders(struct cli_run *run, render_t
         run->total = (struct stats){0};
         if (run->held_refresh != NULL && !run->held_refresh(run, run->held_context))
             continue;
-        if (!run->options.quiet)
-            scene_scale_warn(&run->scene, stderr);
         render_and_write(run, trace, world, sampler);
     }
 }
@@ -479,10 +477,15 @@ bool cli_held(const struct cli_run *run) {
 }
 #endif
 
+void cli_check_scale(struct cli_run *run) {
+    if (!run->scale_checked && !run->options.quiet)
+        scene_scale_warn(&run->scene, stderr);
+    run->scale_checked = true;
+}
+
 bool cli_render_sampled(struct cli_run *run, render_trace_fn trace, const void *world,
                         const struct render_sampler *sampler) {
-    if (!run->options.quiet)
-        scene_scale_warn(&run->scene, stderr);
+    cli_check_scale(run);
     if (run->options.pov != NULL) {
         write_twin(run);
         return false;

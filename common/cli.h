@@ -89,6 +89,7 @@ struct cli_run {
     double render_seconds;
     char err[CLI_ERROR_SIZE];   /* where the chapter's own steps write why they failed, for cli_fail */
     int status;                 /* an enum cli_exit */
+    bool scale_checked;         /* cli_check_scale has looked at the scene (it warns once a run) */
     /* Only in the browser (web/worker.js holds a chapter's instance across renders of one world, see
      * cli_render): called before each render after the first with the new camera, size, samples and tile
      * in the run, to redo what the chapter derived from them (NULL: nothing); returns false with the
@@ -109,7 +110,12 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
  * message is in run->err: prints it and returns cli_finish's status, CLI_BAD_INPUT. */
 int cli_fail(struct cli_run *run);
 
-/* Warns when the scene is too small for the tracer's margins (scene_scale.h). With --pov, writes the
+/* Warns on standard error (unless --quiet) when the scene is too small for the tracer's margins
+ * (scene_scale.h), once a run: later calls do nothing. cli_render calls it; a chapter that lets go of
+ * the scene's meshes after gathering them (chapter 11's rung 7) calls it first, while they are there. */
+void cli_check_scale(struct cli_run *run);
+
+/* cli_check_scale, then: with --pov, writes the
  * POV-Ray twin of the scene as the chapter lights it and returns false. Otherwise renders the picture,
  * tracing each pixel's primary ray with trace(world, ray), writes it (and the heat-map), prints where
  * it went and the counters (into run->total), and returns true when the chapter may add its own

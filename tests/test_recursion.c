@@ -273,6 +273,41 @@ Test(scale, a_millimetre_scene_is_warned_about, .timeout = 60) {
     free(err);
 }
 
+/* Runs chapter 11 (its default rung, which lets go of the scene's meshes once it has gathered them) on
+ * a scene of one plane and a one-triangle mesh `size` units across seen from `distance` away; returns
+ * its standard error (the caller frees it). */
+static char *chapter_11_on_a_triangle(const char *name, double size, double distance) {
+    char mesh[256], scene[256], log[256], command[1024];
+    snprintf(mesh, sizeof mesh, TEST_OUT "/%s.obj", name);
+    snprintf(scene, sizeof scene, TEST_OUT "/%s.scene", name);
+    snprintf(log, sizeof log, TEST_OUT "/%s.stderr", name);
+    FILE *f = fopen(mesh, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "v %g 0 0\nv %g 0 0\nv 0 %g 0\nf 1 2 3\n", -size / 2, size / 2, size);
+    fclose(f);
+    f = fopen(scene, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "camera eye 0 %g %g target 0 0 0 fov 40\nimage 8 6\nlight position 0 10 10\n"
+               "material white colour 1 1 1\nplane normal 0 1 0 distance 0\nmesh %s.obj material white\n",
+            distance / 2, distance, name);
+    fclose(f);
+    snprintf(command, sizeof command, "timeout 20 %s %s -o %s.png > /dev/null 2> %s", chapter_program(11), scene,
+             scene, log);
+    cr_assert_eq(system(command), 0, "%s", command);
+    return read_text_file(log);
+}
+
+Test(scale, chapter_11_measures_the_meshes_it_lets_go_of, .timeout = 60) {
+    /* A mesh of 2 units seen from 4 away: no warning, although rung 7 frees the mesh before it renders. */
+    char *err = chapter_11_on_a_triangle("metres-mesh", 2.0, 4.0);
+    cr_assert_null(strstr(err, "warning"), "%s", err);
+    free(err);
+    /* The same at a thousandth of the size: warned about, with the mesh's own extent. */
+    err = chapter_11_on_a_triangle("millimetres-mesh", 0.002, 0.004);
+    cr_assert_not_null(strstr(err, "millimetres-mesh.scene: warning: the scene is 0.00"), "%s", err);
+    free(err);
+}
+
 Test(scale, no_shipped_scene_is_warned_about, .timeout = 120) {
     FILE *pipe = popen("ls scenes/*.scene", "r");
     cr_assert_not_null(pipe);

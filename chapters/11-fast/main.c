@@ -152,8 +152,8 @@ int main(int argc, char **argv) {
         .lighting = POV_WHITTED,
         .parse_option = parse_option,
         .options_help = "  --rung R         how much of the speed-up to use: 1 plain (chapter 10's BVH),\n"
-                        "                   2 wide, 3 simd, 4 prefetch, 5 build, 6 float (the default),\n"
-                        "                   7 compact (the least memory), 8 eight (eight boxes at a\n"
+                        "                   2 wide, 3 simd, 4 prefetch, 5 build, 6 float, 7 compact\n"
+                        "                   (the default: the least memory), 8 eight (eight boxes at a\n"
                         "                   time with AVX2; rung 6 without it), 9 lean (rung 8's tree,\n"
                         "                   less work per ray), 10 packet (rung 8 with the camera rays\n"
                         "                   traced eight at a time), 11 exact-float (rung 9, its\n"
@@ -169,6 +169,7 @@ int main(int argc, char **argv) {
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
     render_use_threads(run.options.threads); /* the build's too; the tree is the same for any number */
+    cli_check_scale(&run); /* before rung 7 lets go of the meshes it has gathered */
     struct accel_world *w = prepare(&run.scene, run.options.pov != NULL, run.err, sizeof run.err);
     if (w == NULL)
         return cli_fail(&run);
