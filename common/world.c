@@ -71,18 +71,25 @@ bool world_init(struct world *w, const struct scene *s, char *err, size_t err_si
         add_shapes(w, list);
     }
     w->mesh_bounds = calloc(s->mesh_count + 1, sizeof *w->mesh_bounds);
-    if (w->mesh_bounds == NULL) {
+    w->mesh_first_face = calloc(s->mesh_count + 1, sizeof *w->mesh_first_face);
+    if (w->mesh_bounds == NULL || w->mesh_first_face == NULL) {
+        world_free(w);
         snprintf(err, err_size, "out of memory");
         return false;
     }
-    for (size_t k = 0; k < s->mesh_count; k++)
+    w->mesh_first_face[0] = w->triangles.count;
+    for (size_t k = 0; k < s->mesh_count; k++) {
         w->mesh_bounds[k] = world_mesh_cull_bounds(&s->meshes[k].mesh);
+        w->mesh_first_face[k + 1] = w->mesh_first_face[k] + s->meshes[k].mesh.face_count;
+    }
     return true;
 }
 
 void world_free(struct world *w) {
     free(w->mesh_bounds);
+    free(w->mesh_first_face);
     w->mesh_bounds = NULL;
+    w->mesh_first_face = NULL;
 }
 
 /* The object a face of the acceleration structure belongs to: the `triangle` directives come first,
@@ -93,13 +100,11 @@ static int accel_face_object(const struct world *w, uint32_t face, int *local) {
     if (face < w->triangles.count)
         return w->triangles.first_object + (int)face;
     const struct scene *s = w->scene;
-    size_t first = w->triangles.count;
-    for (size_t k = 0; k < s->mesh_count; k++) {
-        *local = (int)(face - first);
-        first += s->meshes[k].mesh.face_count;
-        if (face < first)
+    for (size_t k = 0; k < s->mesh_count; k++)
+        if (face < w->mesh_first_face[k + 1]) {
+            *local = (int)(face - w->mesh_first_face[k]);
             return world_mesh_object_number(s, k);
-    }
+        }
     return -1; /* not reached: the structure holds only these faces */
 }
 

@@ -58,6 +58,10 @@ struct world_shapes {
 struct world {
     const struct scene *scene;
     struct aabb *mesh_bounds;        /* one box per scene mesh (world_mesh_cull_bounds); owned */
+    size_t *mesh_first_face;         /* per scene mesh, and one past the last: the number the structures
+                                      * give its first face (the triangle lines come first); owned. Kept
+                                      * here because a program may free a mesh once it is gathered
+                                      * (chapter 11) */
     const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
     const struct world_instances *instances; /* chapter 16's instances; NULL: none */
     double time;                     /* the clock time the queries see the instances at (chapter 16): each
@@ -74,7 +78,8 @@ struct world {
 };
 
 /* Makes the world of scene s (meshes already loaded), whose shapes must all be of kinds the program
- * draws (scene_drop_unsupported), and computes the bounding box of every mesh. Free with world_free.
+ * draws (scene_drop_unsupported), and computes the bounding box of every mesh and the number of its
+ * first face among all the scene's triangles. Free with world_free.
  * On failure returns false, with nothing to free and the reason in err: "out of memory", or
  * "scene: 2 spheres of no kind ..." for shapes whose list has no kind. */
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size);

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "accel.h"
 #include "box.h"
 #include "camera.h"
 #include "phong.h"
@@ -244,6 +245,29 @@ Test(world, mesh_bounds_hold_the_transformed_vertices) {
     double pad = 1.0 / 1048576.0;
     assert_colour(f.world.mesh_bounds[0].min, vec3_sub(b.min, grey(pad)), EXACT, "world_init's min");
     assert_colour(f.world.mesh_bounds[0].max, vec3_add(b.max, grey(pad)), EXACT, "world_init's max");
+    release(&f);
+}
+
+Test(world, a_structures_faces_keep_their_objects_after_a_gathered_mesh_is_freed) {
+    /* A triangle line and three octahedra along x; chapter 11 frees a mesh once the structure has
+     * gathered its triangles. A ray at the middle octahedron must still find that mesh's object and its
+     * own face numbers, which are counted from the first mesh's faces, now gone from the scene. */
+    struct fixture f;
+    build(&f, "triangle a 10 10 -9 b 11 10 -9 c 10 11 -9\n"
+              "mesh octahedron.obj translate -3 0 -5\nmesh octahedron.obj translate 0 0 -5\n"
+              "mesh octahedron.obj translate 3 0 -5\n");
+    char err[512] = "";
+    struct accel_world *w = accel_world_create(&f.scene, &(struct accel_choice){ACCEL_KDTREE, true}, err, sizeof err);
+    cr_assert_not_null(w, "%s", err);
+    mesh_free(&f.scene.meshes[0].mesh);
+    for (int k = 1; k <= 2; k++) {
+        ray r = ray_along(vec3_make(3.0 * (k - 1), 0.1, 0), vec3_make(0, 0, -1));
+        struct hit h = hit_nothing(INFINITY);
+        cr_assert(world_closest(&w->world, &r, RAY_T_MIN, &h));
+        cr_assert_eq(h.object, world_mesh_object_number(&f.scene, (size_t)k), "mesh %d: object %d", k, h.object);
+        cr_assert(h.face >= 0 && h.face < 8, "mesh %d: face %d", k, h.face);
+    }
+    accel_world_destroy(w);
     release(&f);
 }
 
