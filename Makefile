@@ -73,7 +73,7 @@ CRITERION = $(shell pkg-config --cflags --libs criterion)
 # ---- what each chapter introduces ----------------------------------------------------------------
 MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens instance_syntax pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap ray_budget cli
 MODULES_02 := $(MODULES_01) sphere headlight
-MODULES_03 := $(MODULES_02) triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
+MODULES_03 := $(MODULES_02) big_alloc triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
 MODULES_04 := $(MODULES_03) plane
 MODULES_05 := $(MODULES_04) aabb box world
 MODULES_06 := $(MODULES_05) phong
@@ -81,7 +81,7 @@ MODULES_07 := $(MODULES_06) shadow
 MODULES_08 := $(MODULES_07) interior whitted
 MODULES_09 := $(MODULES_08) kdtree kdtree_check accel
 MODULES_10 := $(MODULES_09) bvh bvh_check accel_bvh
-MODULES_11 := $(MODULES_10) big_alloc fast_bvh fast_bvh_eight fast_bvh_lean fast_bvh_build accel_fast_bvh fast_bvh_packet float_triangle
+MODULES_11 := $(MODULES_10) fast_bvh fast_bvh_eight fast_bvh_lean fast_bvh_build accel_fast_bvh fast_bvh_packet float_triangle
 MODULES_12 := $(MODULES_11) sample_hash supersample
 MODULES_13 := $(MODULES_12) soft_shadow thin_lens
 MODULES_14 := $(MODULES_13) image_map mesh_surface texture

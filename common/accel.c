@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "clock.h"
 #include "kdtree.h"
 #include "text_escape.h"
@@ -22,9 +23,9 @@ static bool gather_triangles(struct accel_world *w, const struct scene *s) {
     if (vertices > UINT32_MAX)
         return false;
     struct mesh *all = &w->triangles;
-    all->vertices = malloc((vertices + 1) * sizeof *all->vertices);
-    all->faces = malloc((faces + 1) * sizeof *all->faces);
-    w->materials = malloc((faces + 1) * sizeof *w->materials);
+    all->vertices = big_alloc((vertices + 1) * sizeof *all->vertices, true); /* big_alloc.h: 2 MB pages */
+    all->faces = big_alloc((faces + 1) * sizeof *all->faces, true);
+    w->materials = big_alloc((faces + 1) * sizeof *w->materials, true);
     if (all->vertices == NULL || all->faces == NULL || w->materials == NULL)
         return false;
     size_t v = 0, f = 0;

@@ -1,10 +1,11 @@
-/* big_alloc.c: aligned arrays, with 2 MB pages for the big ones when asked (chapter 11).
+/* big_alloc.c: aligned arrays, with 2 MB pages for the big ones when asked (chapter 3).
  *
  * Memory comes from the kernel in 4 KB pages, each costing a page fault the first time it is touched and
  * an entry in the processor's small cache of page addresses (the TLB) whenever it is used. Linux can
  * back an array with 2 MB pages instead (madvise MADV_HUGEPAGE, when the array is aligned to 2 MB): one
  * fault per 2 MB instead of one per 4 KB, and 512 times fewer TLB entries. On the virtual machine this
- * was measured on, first-touch page faults cost 70 ms per 25 MB, most of a big build's time. The advice
+ * was measured on, first-touch page faults cost 70 ms per 25 MB, most of a big build's time, and the
+ * 350,000-triangle teapot's arrays took 50 ms to read in 4 KB pages and 18 ms in 2 MB ones. The advice
  * is only a hint: elsewhere, or when the kernel refuses it, the array is an ordinary one. */
 #include "big_alloc.h"
 

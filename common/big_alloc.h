@@ -1,4 +1,5 @@
-/* big_alloc.h: memory for the big arrays of chapter 11's build rung, backed by 2 MB pages (chapter 11). */
+/* big_alloc.h: memory for big arrays, backed by 2 MB pages (chapter 3: a model's arrays; chapter 9's
+ * gathered triangles; chapter 11's build). */
 #ifndef WHITTED_BIG_ALLOC_H
 #define WHITTED_BIG_ALLOC_H
 

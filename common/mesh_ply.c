@@ -28,6 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "mesh_ply.h"
 
 #define PLY_MIN_LINE_BYTES 2 /* an ascii value needs a digit and a separator after it */
@@ -794,8 +795,10 @@ static bool allocate(const struct mesh_input *in, const struct ply_header *h, st
     size_t face_count = h->elements[find_element(h, KIND_FACE)].count;
     struct mesh *m = r->mesh;
     struct mesh_corners *c = in->corners; /* has_role finds normals and (u, v) only when it is not NULL */
-    m->vertices = calloc(room, sizeof *m->vertices);
+    m->vertices = big_alloc(room * sizeof *m->vertices, true); /* at most MESH_MAX_VERTICES */
     bool ok = m->vertices != NULL;
+    if (ok)
+        memset(m->vertices, 0, room * sizeof *m->vertices);
     if (ok && has_role(h, v, ROLE_NX)) {
         c->normals = calloc(room, sizeof *c->normals);
         c->normal_count = vertex_count;

@@ -11,6 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
+
 /* ---- error messages ------------------------------------------------------------------------- */
 
 /* Writes "<path><location>: <message>" into in->err; returns false. */
@@ -198,9 +200,12 @@ bool mesh_reserve(void **array, size_t *capacity, size_t wanted, size_t item_siz
         new_capacity = new_capacity > SIZE_MAX / 2 ? wanted : new_capacity * 2;
     if (new_capacity > SIZE_MAX / item_size)
         return false;
-    void *grown = realloc(*array, new_capacity * item_size);
+    void *grown = big_alloc(new_capacity * item_size, true); /* a big model's arrays on 2 MB pages */
     if (grown == NULL)
         return false;
+    if (*capacity > 0)
+        memcpy(grown, *array, *capacity * item_size);
+    free(*array);
     *array = grown;
     *capacity = new_capacity;
     return true;
