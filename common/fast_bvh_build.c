@@ -811,6 +811,55 @@ static bool threads_to_share(void) {
 #endif
 }
 
+/* A face that is a sliver, in face_prims' first pass: no face has this number (BVH_MAX_FACES). */
+#define FAST_BVH_SLIVER_MARK UINT32_MAX
+
+/* Fills the prims of bd (bd->packed where it is not NULL, else bd->prims) and faces[] (m->face_count
+ * entries) for the faces of m: the tree faces first, in order, each with its padded box rounded outward
+ * (face_float_box); the slivers, which the tree leaves out, at the end of faces[] from the last entry
+ * down, in order. Returns the number of tree faces and sets *slivers to the number of slivers.
+ * In two passes, so that the first, where the time goes, is shared among the threads and the result is
+ * the same for any number of them: each face's prim at its own index, slivers marked; then the tree
+ * faces moved down over the gaps (an entry only ever moves to a lower index), and the slivers written
+ * after them. */
+static size_t face_prims(struct builder *bd, uint32_t *faces, const struct mesh *m, double pad, size_t *slivers) {
+    ptrdiff_t n = (ptrdiff_t)m->face_count;
+#pragma omp parallel for if (bd->parallel) schedule(static) default(none) shared(bd, faces, m, pad, n)
+    for (ptrdiff_t f = 0; f < n; f++) {
+        struct float_box box;
+        if (!face_float_box(m, (size_t)f, pad, &box))
+            faces[f] = FAST_BVH_SLIVER_MARK;
+        else if (bd->packed != NULL) {
+            bd->packed[f] = packed_box_make(&box, &bd->grid);
+            faces[f] = (uint32_t)f;
+        } else {
+            bd->prims[f] = box;
+            faces[f] = (uint32_t)f;
+        }
+    }
+    size_t tree = 0;
+    for (size_t f = 0; f < (size_t)n; f++) {
+        if (faces[f] == FAST_BVH_SLIVER_MARK)
+            continue;
+        if (bd->packed != NULL)
+            bd->packed[tree] = bd->packed[f];
+        else
+            bd->prims[tree] = bd->prims[f];
+        faces[tree++] = (uint32_t)f;
+    }
+    /* The faces missing from faces[0, tree), in order, are the slivers; they go to entries tree and up,
+     * which the walk along the tree faces has already left behind. */
+    size_t next_tree = 0;
+    *slivers = 0;
+    for (size_t f = 0; f < (size_t)n; f++) {
+        if (next_tree < tree && faces[next_tree] == f)
+            next_tree++;
+        else
+            faces[(size_t)n - ++*slivers] = (uint32_t)f;
+    }
+    return tree;
+}
+
 /* Rung 5's build of b (its triangle_count set) over the faces of m, by the SAH: fills b's faces,
  * root, nodes and info. With `packed` (rung 7), the build's boxes are kept in 16 bytes each where the
  * mesh is within float's range (struct packed_box). With `eight` (rung 8), the nodes are 8-wide
@@ -821,7 +870,6 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
     double pad = triangle_box_pad(m);
     struct builder bd = {NULL, NULL, {{0}, {0}, {0}}, NULL, {NULL, NULL}, threads_to_share(), 0};
-    struct float_box box;
     if (packed) { /* the grid spans every face's box */
         struct float_box around;
         packed = faces_float_box(m, pad, &around) && packed_grid_make(&around, &bd.grid);
@@ -840,19 +888,7 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
         free(bd.packed);
         return false;
     }
-    /* Tree faces first (their prims: padded boxes, rounded outward), slivers at the end of faces[]. */
-    size_t tree = 0, slivers = 0;
-    for (size_t f = 0; f < n; f++) {
-        if (!face_float_box(m, f, pad, &box)) {
-            b->faces[n - ++slivers] = (uint32_t)f;
-            continue;
-        }
-        if (packed)
-            bd.packed[tree] = packed_box_make(&box, &bd.grid);
-        else
-            bd.prims[tree] = box;
-        b->faces[tree++] = (uint32_t)f;
-    }
+    size_t slivers = 0, tree = face_prims(&bd, b->faces, m, pad, &slivers);
     b->tree_count = tree;
 
     bd.faces = b->faces;

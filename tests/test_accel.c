@@ -1022,6 +1022,49 @@ Test(accel, float_build_is_the_same_tree_on_any_number_of_threads, .timeout = AC
     omp_set_num_threads(threads_before);
 }
 
+/* A grid of small triangles in which every fifth face (3, 8, 13, ...) is a sliver: a sine of 2e-9
+ * between its edges, below TRIANGLE_SLIVER_SINE. */
+static struct mesh make_grid_with_slivers(size_t count) {
+    struct builder b = {0};
+    for (size_t f = 0; f < count; f++) {
+        vec3 a = vec3_make((double)(f % 100), (double)(f / 100 % 100), (double)(f / 10000));
+        vec3 c = f % 5 == 3 ? vec3_add(a, vec3_make(0.5, 1e-9, 0)) : vec3_add(a, vec3_make(0.5, 0.7, 0.3));
+        add_triangle(&b, a, vec3_add(a, vec3_make(1, 0, 0)), c);
+    }
+    return b.m;
+}
+
+/* The float build leaves slivers out of the tree and lists them at the end of its faces, the first at the
+ * very end, in face order, whatever the number of threads that prepared the prims (face_prims). */
+Test(accel, float_build_lists_slivers_last_in_face_order_on_any_number_of_threads, .timeout = ACCEL_TEST_TIMEOUT) {
+    enum { FACES = 20000 };
+    struct mesh m = make_grid_with_slivers(FACES);
+    int threads_before = omp_get_max_threads();
+    static const enum fast_bvh_rung rungs[] = {FAST_BVH_RUNG_BUILD, FAST_BVH_RUNG_COMPACT};
+    for (size_t r = 0; r < sizeof rungs / sizeof rungs[0]; r++) {
+        omp_set_num_threads(1);
+        struct fast_bvh *one = fast_bvh_build(&m, BVH_SPLIT_SAH, rungs[r]);
+        cr_assert_not_null(one);
+        cr_assert_eq(one->tree_count, FACES - FACES / 5, "rung %d: %zu faces in the tree", (int)rungs[r],
+                     one->tree_count);
+        for (size_t k = 0; k < FACES / 5; k++)
+            cr_assert_eq(one->faces[FACES - 1 - k], 5 * k + 3, "rung %d: sliver %zu is face %u", (int)rungs[r], k,
+                         one->faces[FACES - 1 - k]);
+        for (int threads = 2; threads <= 4; threads += 2) {
+            omp_set_num_threads(threads);
+            struct fast_bvh *many = fast_bvh_build(&m, BVH_SPLIT_SAH, rungs[r]);
+            cr_assert_not_null(many);
+            char why[64];
+            cr_expect(same_tree(one, many, FACES, why, sizeof why), "rung %d on %d threads: %s", (int)rungs[r],
+                      threads, why);
+            fast_bvh_free(many);
+        }
+        fast_bvh_free(one);
+    }
+    omp_set_num_threads(threads_before);
+    mesh_free(&m);
+}
+
 /* The SAH tree is the cheaper one by the SAH's own measure (the seed's rule prices nothing), and an
  * empty leaf or more where the triangles leave space empty; on the cost the tree predicts, a tree made
  * with every candidate plane priced should beat median planes by a wide margin on real meshes. */
