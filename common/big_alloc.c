@@ -24,8 +24,10 @@ void *big_alloc(size_t bytes, bool huge_pages) {
     size_t rounded = (bytes + BIG_ALLOC_HUGE_PAGE - 1) / BIG_ALLOC_HUGE_PAGE * BIG_ALLOC_HUGE_PAGE;
     void *p = aligned_alloc(BIG_ALLOC_HUGE_PAGE, rounded);
 #if defined(MADV_HUGEPAGE)
+    /* Only the whole big pages the array fills: its last part stays in small pages, so that touching
+     * its end does not make the rest of a big page resident (up to 2 MB an array). */
     if (p != NULL)
-        madvise(p, rounded, MADV_HUGEPAGE); /* only a hint: failure changes nothing */
+        madvise(p, bytes / BIG_ALLOC_HUGE_PAGE * BIG_ALLOC_HUGE_PAGE, MADV_HUGEPAGE); /* only a hint */
 #endif
     return p;
 }
