@@ -147,6 +147,10 @@ int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *opt
 void accel_report(const struct accel_world *w, const struct stats *total, bool detailed) {
     const struct accel_summary *a = &w->summary;
     uint64_t rays = total->primary_rays + total->shadow_rays + total->reflected_rays + total->refracted_rays;
+    if (w->triangles.face_count == 0) { /* an empty structure: its build time would be the clock's noise */
+        printf("acceleration: none needed, the scene has no triangles\n");
+        return;
+    }
     printf("acceleration: %s over %zu triangles\n", a->name, w->triangles.face_count);
     if (w->structure == NULL)
         return;

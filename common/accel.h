@@ -71,7 +71,8 @@ struct accel_world *accel_world_create(struct scene *s, const struct accel_choic
 void accel_world_destroy(void *world);
 
 /* Prints what was built and its build time; with `detailed`, also its shape and what tracing it cost
- * per ray, beside the cost the SAH predicted. `total` holds the counters of the whole render. */
+ * per ray, beside the cost the SAH predicted. `total` holds the counters of the whole render. A scene
+ * without triangles gets the one line "acceleration: none needed, the scene has no triangles". */
 void accel_report(const struct accel_world *w, const struct stats *total, bool detailed);
 
 #endif

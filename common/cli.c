@@ -64,7 +64,7 @@ static void print_usage(FILE *out, const struct chapter *ch, const char *program
             "                   (0 0 at its top left), written as a W x H picture: a render\n"
             "                   farm's tile, the same pixels as the whole picture's\n"
             "  --threads N      render on N threads, and build on them where the chapter\n"
-            "                   builds in parallel (chapter 11); default: all cores\n"
+            "                   builds in parallel (chapter 11 on); default: all cores\n"
             "  --set PATH=VALUE change one value of the scene, e.g. max_depth=1, camera.fov=30,\n"
             "                   material.glass.ior=1.45, sphere.2.radius=0.5 (repeatable)\n"
             "  --stats          also print the details of what the chapter built\n"
@@ -249,6 +249,7 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
         run->status = status;
         return false;
     }
+    render_use_threads(o->threads); /* the build's threads too (chapter 11 on), not only the render's */
     bool to_stdout = false;
     const char *outputs[] = {o->output, o->heatmap, o->pov, o->chapter_output};
     for (int k = 0; k < 4; k++)

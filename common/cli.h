@@ -98,7 +98,8 @@ struct cli_run {
     void *held_context;
 };
 
-/* Starts chapter `ch` with the command line argc/argv: parses the options, reads the scene with the
+/* Starts chapter `ch` with the command line argc/argv: parses the options (--threads N then holds for
+ * every parallel part of the run, render_use_threads), reads the scene with the
  * chapter's kinds of shape (printing one line about those it ignores) and applies --set, --width and
  * --height. Unless --pov is given, bounds the rays the scene asks for (ray_budget.h): above
  * RAY_BUDGET_LARGE it says so on standard error (unless --quiet), above RAY_BUDGET_LIMIT it refuses the

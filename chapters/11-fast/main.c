@@ -168,7 +168,6 @@ int main(int argc, char **argv) {
         return cli_finish(&run);
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    render_use_threads(run.options.threads); /* the build's too; the tree is the same for any number */
     cli_check_scale(&run); /* before rung 7 lets go of the meshes it has gathered */
     struct accel_world *w = prepare(&run.scene, run.options.pov != NULL, run.err, sizeof run.err);
     if (w == NULL)

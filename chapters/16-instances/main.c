@@ -181,7 +181,6 @@ int main(int argc, char **argv) {
     }
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    render_use_threads(run.options.threads);
     static const struct accel_choice choice = {ACCEL_BVH, true};
     struct accel_world *w =
         accel_world_create_at_rung(&run.scene, &choice, FAST_BVH_RUNG_DEFAULT, run.err, sizeof run.err);
@@ -200,7 +199,8 @@ int main(int argc, char **argv) {
     if (animation.frames > 0 && run.options.pov == NULL) {
         run.status = render_frames(&run, w, in);
     } else if (cli_render_sampled(&run, trace_soft, &w->world, &shutter_sampler)) {
-        accel_report(w, &run.total, run.options.stats);
+        if (w->triangles.face_count > 0 || in == NULL) /* else the instances hold every triangle */
+            accel_report(w, &run.total, run.options.stats);
         if (in != NULL)
             instances_report(in, stdout, run.options.stats);
     }
