@@ -9,6 +9,7 @@
  * is only a hint: elsewhere, or when the kernel refuses it, the array is an ordinary one. */
 #include "big_alloc.h"
 
+#include <stdint.h>
 #include <stdlib.h>
 #include <sys/mman.h>
 
@@ -19,6 +20,8 @@
 #define BIG_ALLOC_ALIGNMENT 64
 
 void *big_alloc(size_t bytes, bool huge_pages) {
+    if (bytes > SIZE_MAX / 2)
+        return NULL; /* no machine has that much; and the roundings below would wrap around */
     if (bytes < BIG_ALLOC_HUGE_PAGE || !huge_pages) /* aligned_alloc wants a multiple of the alignment */
         return aligned_alloc(BIG_ALLOC_ALIGNMENT, (bytes / BIG_ALLOC_ALIGNMENT + 1) * BIG_ALLOC_ALIGNMENT);
     size_t rounded = (bytes + BIG_ALLOC_HUGE_PAGE - 1) / BIG_ALLOC_HUGE_PAGE * BIG_ALLOC_HUGE_PAGE;

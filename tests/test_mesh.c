@@ -12,8 +12,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "big_alloc.h"
 #include "mesh.h"
 #include "mesh_load.h"
+#include "mesh_read.h"
 
 #define DATA "tests/data/meshes/"
 #define SCRATCH "out/test/meshes/"
@@ -1108,4 +1110,32 @@ Test(mesh_transform, empty_mesh_is_left_alone) {
     struct mesh m = {0};
     mesh_transform(&m, 2, vec3_make(10, 20, 30), vec3_make(1, 2, 3));
     cr_assert_null(m.vertices);
+}
+
+/* ---- growing arrays (mesh_read.c) and big_alloc ------------------------------------------------ */
+
+Test(mesh_arrays, grow_keep_their_items_across_the_move_to_big_pages) {
+    /* From 16 items to past 2 MB (where big_alloc asks for 2 MB pages), one at a time as a reader
+     * grows them: every item written stays in place across each move. */
+    void *array = NULL;
+    size_t capacity = 0, count = 300000; /* 300,000 faces of 12 bytes: 3.6 MB */
+    for (size_t k = 0; k < count; k++) {
+        cr_assert(mesh_reserve(&array, &capacity, k + 1, sizeof(struct mesh_face)));
+        ((struct mesh_face *)array)[k] = (struct mesh_face){{(uint32_t)k, (uint32_t)(k + 1), (uint32_t)(k + 2)}};
+    }
+    cr_assert_geq(capacity, count);
+    const struct mesh_face *faces = array;
+    for (size_t k = 0; k < count; k++)
+        cr_assert(faces[k].v[0] == k && faces[k].v[2] == k + 2, "item %zu moved wrong", k);
+    free(array);
+}
+
+Test(mesh_arrays, refuse_sizes_no_machine_has_instead_of_wrapping_around) {
+    void *array = NULL;
+    size_t capacity = 0;
+    cr_assert_not(mesh_reserve(&array, &capacity, SIZE_MAX / 12 - 1, 12));
+    cr_assert_null(array);
+    cr_assert_eq(capacity, 0);
+    cr_assert_null(big_alloc(SIZE_MAX, true));
+    cr_assert_null(big_alloc(SIZE_MAX - 63, false)); /* rounded up to 64 bytes it would wrap to 0 */
 }
