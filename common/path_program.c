@@ -169,12 +169,17 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
             }
         }
         if (report && run->status == CLI_OK) {
-            printf("paths: %d a pixel (%s%s, seed %u); noise: a pixel's standard error is %.1f%% of the mean; "
-                   "%.0f paths and %.0f rays a second\n", s->paths.samples, path_strategy_name(s->paths.strategy),
-                   s->paths.sampler == PATH_SAMPLER_SOBOL ? ", sampler sobol" : "", (unsigned)s->paths.seed, 100 * path_image_noise(linear, error, tile.width, tile.height),
+            bool stratified = s->paths.sampler == PATH_SAMPLER_SOBOL;
+            printf("paths: %d a pixel (%s%s, seed %u); %.0f paths and %.0f rays a second\n", s->paths.samples,
+                   path_strategy_name(s->paths.strategy), stratified ? ", sampler sobol" : "", (unsigned)s->paths.seed,
                    run->total.primary_rays / run->render_seconds,
                    (run->total.primary_rays + run->total.shadow_rays + run->total.reflected_rays +
                     run->total.refracted_rays) / run->render_seconds);
+            /* The spread of a pixel's own paths, over their count, is the error of independent paths; the
+             * strata of sobol's paths cancel part of that spread, so for them it is an upper estimate. */
+            printf("noise: a pixel's standard error is %.1f%% of the mean%s\n",
+                   100 * path_image_noise(linear, error, tile.width, tile.height),
+                   stratified ? " for independent paths; these stratified ones have less" : "");
             accel_report(w, &run->total, run->options.stats);
         }
     }

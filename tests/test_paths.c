@@ -307,33 +307,50 @@ static float *render_cornell(int threads, int samples, int seed, const char *sam
     return linear;
 }
 
-/* The page's passes (web/renders.js): a pixel's sums taken on from 1 to 2 to 5 paths give path_pixel's mean
- * and variance at 5 paths to the bit, and fewer paths than the sum holds start it again. */
-Test(paths_resume, a_pixel_resumed_pass_after_pass_is_path_pixel_to_the_bit) {
+/* The page's passes (web/renders.js) over some pixels of chapter 15's scene drawn with `sampler`: a pixel's
+ * sums taken on pass after pass, up to totals[0], totals[1], ... paths, give path_pixel's mean and variance
+ * at the last total to the bit; then fewer paths than the sum holds start it again. */
+static void expect_passes_are_path_pixel(const char *sampler, const int *totals, int passes) {
     struct path_setup t;
-    char err[512] = "";
-    const char *sets[] = {"image=16 16", "paths.samples=5"};
+    char err[512] = "", set_sampler[64];
+    snprintf(set_sampler, sizeof set_sampler, "paths.sampler=%s", sampler);
+    const char *sets[] = {"image=16 16", set_sampler};
     cr_assert(path_setup_file(&t, "scenes/15-paths.scene", sets, 2, err, sizeof err), "%s", err);
+    int last = totals[passes - 1];
     for (int j = 4; j < 16; j += 5)
         for (int i = 3; i < 16; i += 6) {
             vec3 variance, resumed_variance = vec3_make(-1, -1, -1);
-            t.paths.settings.samples = 5;
+            t.paths.settings.samples = last;
             vec3 whole = path_pixel(&t.paths, i, j, &variance);
             struct path_pixel_sum sum = {vec3_make(0, 0, 0), vec3_make(0, 0, 0), 0};
             vec3 resumed = vec3_make(0, 0, 0);
-            for (int samples = 1; samples <= 5; samples = samples == 2 ? 5 : samples + 1) {
-                t.paths.settings.samples = samples;
+            for (int p = 0; p < passes; p++) {
+                t.paths.settings.samples = totals[p];
                 resumed = path_pixel_resume(&t.paths, i, j, &sum, &resumed_variance);
-                cr_expect_eq(sum.count, samples);
+                cr_expect_eq(sum.count, totals[p]);
             }
             cr_expect(memcmp(&whole, &resumed, sizeof whole) == 0 && memcmp(&variance, &resumed_variance, sizeof variance) == 0,
-                      "pixel (%d, %d): resumed (%.17g %.17g %.17g), whole (%.17g %.17g %.17g)", i, j, resumed.x, resumed.y,
-                      resumed.z, whole.x, whole.y, whole.z);
+                      "%s, pixel (%d, %d): resumed (%.17g %.17g %.17g), whole (%.17g %.17g %.17g)", sampler, i, j,
+                      resumed.x, resumed.y, resumed.z, whole.x, whole.y, whole.z);
             t.paths.settings.samples = 2; /* fewer than the sum holds: from zero again */
             vec3 again = path_pixel_resume(&t.paths, i, j, &sum, NULL), two = path_pixel(&t.paths, i, j, NULL);
-            cr_expect(memcmp(&again, &two, sizeof two) == 0 && sum.count == 2, "pixel (%d, %d) started again", i, j);
+            cr_expect(memcmp(&again, &two, sizeof two) == 0 && sum.count == 2, "%s, pixel (%d, %d) started again",
+                      sampler, i, j);
         }
     path_setup_free(&t);
+}
+
+/* Independent paths taken on from 1 to 2 to 5 paths. */
+Test(paths_resume, a_pixel_resumed_pass_after_pass_is_path_pixel_to_the_bit) {
+    const int totals[] = {1, 2, 5};
+    expect_passes_are_path_pixel("independent", totals, 3);
+}
+
+/* Stratified paths, as chapter 15's own scene draws them, in passes of 1, 2, 4 and 1 paths (paths 0, 1 .. 2,
+ * 3 .. 6 and 7): a path's numbers depend on its number in the pixel, not on the pass that draws it. */
+Test(paths_resume, sobol_passes_of_1_2_4_and_1_paths_are_path_pixel_at_8_to_the_bit) {
+    const int totals[] = {1, 3, 7, 8};
+    expect_passes_are_path_pixel("sobol", totals, 4);
 }
 
 Test(paths_threads, one_and_two_threads_give_the_same_radiance_to_the_bit) {

@@ -165,7 +165,8 @@ bool path_proof_neighbour_correlation(double *correlation, char *err, size_t err
 /* The Cornell box of `scene` with its two balls made white, seen below the lamp: the caustics of glass
  * and mirror come from rare bright paths, and each pixel on the lamp's edge is a coin toss between 17
  * and the ceiling's 0.05; either would make a few pixels most of the error, and the error of a few
- * samples a poor guide to the trend. */
+ * samples a poor guide to the trend. Independent paths, whatever the scene says: their error falls as
+ * 1 / sqrt(N), and the reference's own variance is its paths' spread over their count. */
 static bool setup_cornell(struct path_setup *t, const char *scene, int side, int samples, int seed, char *err,
                           size_t err_size) {
     char image[64], set_samples[64], set_seed[64];
@@ -174,8 +175,8 @@ static bool setup_cornell(struct path_setup *t, const char *scene, int side, int
     snprintf(set_seed, sizeof set_seed, "paths.seed=%d", seed);
     const char *sets[] = {image, "material.glass.transmit=0", "material.glass.diffuse=1", "material.mirror.reflection=0",
                           "material.mirror.diffuse=1", set_samples, set_seed, "paths.strategy=mis", "camera.fov=28",
-                          "camera.target=278 200 0"};
-    return path_setup_file(t, scene, sets, 10, err, err_size);
+                          "camera.target=278 200 0", "paths.sampler=independent"};
+    return path_setup_file(t, scene, sets, 11, err, err_size);
 }
 
 bool path_proof_convergence(const char *scene, double *slope, double rmse[5], char *err, size_t err_size) {

@@ -7,7 +7,8 @@
 # The scene is chapter 15's Cornell box (scenes/15-paths.scene: diffuse walls, the lamp, the mirror ball
 # and the glass ball) at BENCH_SIZE x BENCH_SIZE pixels. Each renderer draws it at each sample count
 # (default 16, 64 and 256 a pixel) with two seeds, on THREADS threads: ours is CHAPTER15 (its PFM), once
-# with its default sampler (independent numbers) and once with `--set paths.sampler=sobol`, Cycles
+# as the scene ships (`sampler sobol`: stratified paths, the headline row) and once with
+# `--set paths.sampler=independent` (the program's default, for comparison), Cycles
 # is tools/cycles/render.py with `smooth` (the balls as a sharp Glossy and a sharp Glass BSDF on smoothly
 # shaded meshes), sampling its lights as it does by default, as ours does (multiple importance).
 #
@@ -29,8 +30,8 @@
 # Time to equal noise: RMSE ~ c / sqrt(samples) for an unbiased estimator, so c is fitted per renderer
 # (the geometric mean of RMSE sqrt(samples) over the counts), the target is Cycles' RMSE at the largest
 # count, and each renderer's time is (c / target)^2 samples at its cost per sample. Writes a table and
-#   paths vs Cycles at equal noise (N threads, wall): ours X s, Cycles Y s, ratio X/Y
-# for each of our samplers
+#   paths vs Cycles at equal noise (N threads, wall, sampler S): ours X s, Cycles Y s, ratio X/Y
+# for each of our samplers, the scene's own (sobol) first
 # to OUT_DIR/report.txt (and standard output, among Blender's own messages).
 import math
 import os
@@ -112,11 +113,13 @@ def main():
     with open(SCENE) as source, open(scene, "w") as bench:
         for line in source:
             bench.write("image %d %d\n" % (BENCH_SIZE, BENCH_SIZE) if line.startswith("image ") else line)
-    runs = {"ours": [], "ours, sobol": [], "Cycles": []}  # (samples, wall, cpu, noise)
+    # (samples, wall, cpu, noise); ours as chapter 15's scene ships, then with the program's default sampler
+    runs = {"ours (sobol)": [], "ours, independent": [], "Cycles": []}
+    samplers = (("ours (sobol)", "sobol"), ("ours, independent", "independent"))
     for n in counts:
         paths = {name: [] for name in runs}
         for seed in SEEDS:  # the renderers in turn, so that a drift of the machine's speed hits all
-            for name, sampler in (("ours", "independent"), ("ours, sobol", "sobol")):
+            for name, sampler in samplers:
                 wall, cpu, path = run_ours(chapter, scene, n, seed, threads, "%s/%s-%d-%d" % (out, sampler, n, seed),
                                            sampler)
                 runs[name].append([n, wall, cpu])
@@ -155,7 +158,7 @@ def main():
     say("target RMSE %.4f (Cycles' at %d samples)" % (target, largest))
     for clock, k in (("wall", 1), ("processor", 2)):
         times = {name: (fit[0] / target) ** 2 * fit[k] for name, fit in fits.items()}
-        for ours, sampler in (("ours", "independent"), ("ours, sobol", "sobol")):
+        for ours, sampler in samplers:
             say("paths vs Cycles at equal noise (%d thread%s, %s, sampler %s): ours %.2f s, Cycles %.2f s, ratio %.2f" %
                 (threads, "" if threads == 1 else "s", clock, sampler, times[ours], times["Cycles"],
                  times[ours] / times["Cycles"]))

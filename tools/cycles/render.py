@@ -17,9 +17,10 @@
 # building here) are printed as `render.py: rendered in S s, C s of processor time` (C: every thread's).
 #
 # It reads the subset of the scene format that Cycles can draw exactly as chapters 15 and 17 do: the
-# camera, image size, background (a uniform world), the paths line's bounces, materials with colour *
-# diffuse (a Diffuse BSDF) and emission (an Emission shader, strength 1), triangles, boxes, spheres (a fine
-# mesh: Blender has no exact spheres) and area lights (an emitting rectangle, as chapter 15 makes them).
+# camera, image size, background (a uniform world), the paths line's bounces (its strategy and sampler
+# are how ours draws, and are passed over), materials with colour * diffuse (a Diffuse BSDF) and emission
+# (an Emission shader, strength 1), triangles, boxes, spheres (a fine mesh: Blender has no exact spheres)
+# and area lights (an emitting rectangle, as chapter 15 makes them).
 # Chapter 17's rough surfaces too: a rough mirror (`reflection` with `roughness` above 0, `metal none`,
 # `lobe ggx`) is a Glossy BSDF (GGX) of that colour and Roughness added to the diffuse part, and rough glass
 # (`transmit 1`, `roughness` above 0) a Glass BSDF (GGX) of white colour, that Roughness and the `ior`:
@@ -88,7 +89,8 @@ def read_scene(path, smooth=False):
         elif what == "background":
             scene["background"] = [float(w) for w in rest]
         elif what == "paths":
-            v = keys(rest, {"samples": 1, "seed": 1, "roulette": 1, "bounces": 1, "strategy": 0})
+            # the strategy and the sampler are how ours draws its paths; Cycles keeps its own
+            v = keys(rest, {"samples": 1, "seed": 1, "roulette": 1, "bounces": 1, "strategy": 0, "sampler": 0})
             scene["bounces"] = int(v.get("bounces", [256])[0])
         elif what == "material":
             v = keys(rest[1:], {"colour": 3, "ambient": 1, "diffuse": 1, "phong": 1, "phong_size": 1, "reflection": 1,
