@@ -176,7 +176,7 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
                    (run->total.primary_rays + run->total.shadow_rays + run->total.reflected_rays +
                     run->total.refracted_rays) / run->render_seconds);
             /* The spread of a pixel's own paths, over their count, is the error of independent paths; the
-             * strata of sobol's paths cancel part of that spread, so for them it is an upper estimate. */
+             * strata of sobol's paths cancel part of that spread, so for them it overstates the error. */
             printf("noise: a pixel's standard error is %.1f%% of the mean%s\n",
                    100 * path_image_noise(linear, error, tile.width, tile.height),
                    stratified ? " for independent paths; these stratified ones have less" : "");
