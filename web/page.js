@@ -194,6 +194,7 @@ function render(coarse) {
         return;
     const job = {id: state.nextId++, coarse, text, scenePath: scenePath(), args: commandArgs(text, coarse)};
     if (!state.running) {
+        state.pending = null; // an older request still waiting (a picture was being shown) is out of date
         run(job);
     } else if (!state.running.coarse) {
         Renders.stop(); // a full picture is being drawn: stop it
@@ -228,6 +229,8 @@ async function finished(job, result) {
     if (job.coarse && result.status === 0)
         state.coarse = Math.min(COARSE_MAX, Math.max(COARSE_MIN, state.coarse * Math.sqrt(result.ms / COARSE_MS)));
     await show(job, result, ms);
+    if (state.running)
+        return; // a request came while the picture was being shown and is being drawn: it is the newest
     if (state.pending) {
         const next = state.pending;
         state.pending = null;

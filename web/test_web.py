@@ -340,7 +340,41 @@ def test_progressive_paths(page, build):
     compare_with_native(page, build, 15, "chapter 15 after its passes, 8 paths a pixel")
 
 
+def test_release_while_a_picture_is_shown(page):
+    """A drag released while a coarse picture is being put on the canvas, with a newer coarse request
+    waiting behind it, still ends in the full picture. (The waiting request used to start after the full
+    one and take its place: the full picture never came.) Putting a picture on the canvas is slowed to
+    300 ms, so the release surely falls in that moment."""
+    open_page(page, "chapter=8")
+    n = page.full_shown()
+    page.driver.execute_async_script("""
+        const done = arguments[arguments.length - 1], canvas = document.getElementById('picture');
+        const decode = window.createImageBitmap, before = window.whitted.renders.length;
+        window.createImageBitmap = (...a) => new Promise(r => setTimeout(() => r(decode(...a)), 300));
+        const pointer = (type, x) => canvas.dispatchEvent(new PointerEvent(type,
+            {pointerId: 1, pointerType: 'mouse', clientX: x, clientY: 20, button: 0, bubbles: true}));
+        pointer('pointerdown', 100);
+        pointer('pointermove', 110); // the first coarse picture starts
+        pointer('pointermove', 120); // the second waits for it
+        const released = () => {
+            if (window.whitted.renders.length === before)
+                return setTimeout(released, 1);
+            pointer('pointerup', 120); // the first is drawn and being shown, the second still waits
+            window.createImageBitmap = decode;
+            done();
+        };
+        released();""")
+    try:
+        page.wait_idle(n + 1, timeout=60)
+        came = True
+    except TimeoutError:
+        came = False
+    renders = page.js("return window.whitted.renders.slice(-3).map(r => r.coarse ? 'coarse' : 'full')")
+    check(came, f"a release while a coarse picture is shown ends in the full picture (last renders: {renders})")
+
+
 def test_engine(page, build):
+    test_release_while_a_picture_is_shown(page)
     test_workers_same_bytes(page, build)
     test_progressive_paths(page, build)
     test_teapot(page, build)
