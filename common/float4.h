@@ -6,8 +6,10 @@
 #ifndef WHITTED_FLOAT4_H
 #define WHITTED_FLOAT4_H
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #if defined(__SSE__)
 #include <xmmintrin.h>
@@ -56,6 +58,31 @@ static inline unsigned lanes4_true(int4 m) {
 #endif
 }
 
+/* The float one step below f and one step above it, for f not a NaN (and, below, not -infinity; above,
+ * not infinity): nextafterf(f, -INFINITY) and nextafterf(f, INFINITY), without a call into the maths
+ * library. A finite float's neighbours are one step of its bit pattern away: the next integer down
+ * for a positive float is the next smaller float, for a negative one the next larger in size. Zero's
+ * neighbours are the smallest subnormals, of either sign. */
+static inline float float_step_down(float f) {
+    if (f == 0.0f)
+        return -FLT_TRUE_MIN;
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    bits = f > 0.0f ? bits - 1 : bits + 1;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+static inline float float_step_up(float f) {
+    if (f == 0.0f)
+        return FLT_TRUE_MIN;
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    bits = f > 0.0f ? bits + 1 : bits - 1;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
 /* The largest float <= x and the smallest float >= x: a float box built from these holds the double
  * box exactly. A NaN (from a corner at infinity) gives the infinity on the safe side, so that no NaN
  * reaches a box. */
@@ -63,14 +90,14 @@ static inline float float_below(double x) {
     if (isnan(x))
         return -INFINITY; /* a corner beyond double's range: a box open on that side holds it */
     float f = (float)x;
-    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+    return (double)f > x ? float_step_down(f) : f;
 }
 
 static inline float float_above(double x) {
     if (isnan(x))
         return INFINITY;
     float f = (float)x;
-    return (double)f < x ? nextafterf(f, INFINITY) : f;
+    return (double)f < x ? float_step_up(f) : f;
 }
 
 #endif

@@ -17,6 +17,7 @@
  * degenerate, coincident and axis-aligned triangles, a tessellated sphere, stacked axis-aligned grids,
  * and the bunny and the small teapot when scenes/models has them. */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <omp.h>
 #include <stdint.h>
@@ -28,6 +29,7 @@
 #include "fast_bvh.h"
 #include "fast_bvh_build.h"
 #include "fast_bvh_eight.h"
+#include "float4.h"
 #include "fast_bvh_lean.h"
 #include "float_triangle.h"
 #include "kdtree.h"
@@ -1323,4 +1325,37 @@ Test(accel, rung_9_lays_its_triangles_out_in_blocks_of_four_and_is_rung_6_withou
     fast_bvh_free(lean);
     fast_bvh_free(eight);
     mesh_free(&m);
+}
+
+/* float4.h's steps to the next float, on which every float box's outward rounding rests: the neighbours
+ * nextafterf gives, at zero, the subnormals, the normal range's ends, infinity, and floats of every
+ * exponent and sign. */
+static void check_steps(float f) {
+    float down = nextafterf(f, -INFINITY), up = nextafterf(f, INFINITY);
+    if (f != -INFINITY)
+        cr_assert(memcmp(&(float){float_step_down(f)}, &down, sizeof down) == 0, "below %a: %a, not %a", (double)f,
+                  (double)float_step_down(f), (double)down);
+    if (f != INFINITY)
+        cr_assert(memcmp(&(float){float_step_up(f)}, &up, sizeof up) == 0, "above %a: %a, not %a", (double)f,
+                  (double)float_step_up(f), (double)up);
+}
+
+Test(accel, float_steps_are_nextafterf_at_zero_subnormals_range_ends_and_every_exponent) {
+    const float edges[] = {0.0f, -0.0f, FLT_TRUE_MIN, -FLT_TRUE_MIN, 2 * FLT_TRUE_MIN, FLT_MIN, -FLT_MIN,
+                           nextafterf(FLT_MIN, 0.0f), FLT_MAX, -FLT_MAX, INFINITY, -INFINITY, 1.0f, -1.0f, 0.5f};
+    for (size_t k = 0; k < sizeof edges / sizeof edges[0]; k++)
+        check_steps(edges[k]);
+    uint32_t bits = 12345u;
+    for (int k = 0; k < 200000; k++) {
+        bits = bits * 1664525u + 1013904223u;
+        float f;
+        memcpy(&f, &bits, sizeof f);
+        if (!isnan(f))
+            check_steps(f);
+    }
+    /* And the outward roundings built on them: the nearest floats on either side of a double. */
+    cr_assert(float_below(0x1.000001p0) == 1.0f && float_above(0x1.000001p0) == nextafterf(1.0f, 2.0f));
+    cr_assert(float_below(-0x1p-160) == -FLT_TRUE_MIN && float_above(-0x1p-160) == -0.0f);
+    cr_assert(float_below(1e300) == FLT_MAX && float_above(1e300) == INFINITY);
+    cr_assert(float_above(-1e300) == -FLT_MAX && float_below(-1e300) == -INFINITY);
 }
