@@ -11,7 +11,10 @@
 #include "text_escape.h"
 #include "triangle.h"
 
-/* Copies every triangle of s into one mesh, with each face's material beside it. */
+/* Copies every triangle of s into one mesh, with each face's material beside it. A scene whose only
+ * triangles are one mesh's has them gathered already: that mesh is used as it is (borrowed from the
+ * scene, not copied), which spares copying the large models (a copy of the 350k-triangle teapot's
+ * 8 MB took 6 to 25 ms, as the fresh pages came). */
 static bool gather_triangles(struct accel_world *w, const struct scene *s) {
     const struct shape_list *lines = scene_shapes(s, &triangle_syntax); /* the `triangle` lines */
     const struct triangle *triangles = lines->items;
@@ -23,10 +26,19 @@ static bool gather_triangles(struct accel_world *w, const struct scene *s) {
     if (vertices > UINT32_MAX)
         return false;
     struct mesh *all = &w->triangles;
-    all->vertices = big_alloc((vertices + 1) * sizeof *all->vertices, true); /* big_alloc.h: 2 MB pages */
+    w->materials = big_alloc((faces + 1) * sizeof *w->materials, true); /* big_alloc.h: 2 MB pages */
+    if (w->materials == NULL)
+        return false;
+    if (lines->count == 0 && s->mesh_count == 1 && faces > 0) {
+        *all = s->meshes[0].mesh;
+        w->triangles_borrowed = true;
+        for (size_t f = 0; f < faces; f++)
+            w->materials[f] = s->meshes[0].material;
+        return true;
+    }
+    all->vertices = big_alloc((vertices + 1) * sizeof *all->vertices, true);
     all->faces = big_alloc((faces + 1) * sizeof *all->faces, true);
-    w->materials = big_alloc((faces + 1) * sizeof *w->materials, true);
-    if (all->vertices == NULL || all->faces == NULL || w->materials == NULL)
+    if (all->vertices == NULL || all->faces == NULL)
         return false;
     size_t v = 0, f = 0;
     for (size_t k = 0; k < lines->count; k++, f++) {
@@ -72,7 +84,8 @@ void accel_world_free(struct accel_world *w) {
     if (w->structure != NULL && w->free_structure != NULL)
         w->free_structure(w->structure);
     world_free(&w->world);
-    mesh_free(&w->triangles);
+    if (!w->triangles_borrowed)
+        mesh_free(&w->triangles);
     free(w->materials);
     memset(w, 0, sizeof *w);
 }

@@ -27,6 +27,7 @@ struct accel_world {
     struct world world;        /* first, so a struct accel_world * can be used as a struct world * */
     struct world_accel accel;  /* the queries of the structure in use */
     struct mesh triangles;     /* every triangle of the scene: `triangle` directives first, then meshes */
+    bool triangles_borrowed;   /* triangles is the scene's one mesh itself (its only triangles), not a copy */
     int *materials;            /* the material of each face of `triangles` */
     void *structure;           /* the kd-tree or BVH; NULL when triangles are tested one by one */
     void (*free_structure)(void *structure);

@@ -271,6 +271,34 @@ Test(world, a_structures_faces_keep_their_objects_after_a_gathered_mesh_is_freed
     release(&f);
 }
 
+Test(world, a_lone_mesh_is_borrowed_by_the_structure_and_more_are_copied) {
+    /* A scene whose only triangles are one mesh's: the structure is built over that mesh itself (the
+     * same arrays, not a copy), and destroying the world leaves it to the scene. With a triangle line
+     * or a second mesh beside it, the triangles are gathered into a copy. Each finds the same face. */
+    const char *scenes[] = {"mesh octahedron.obj translate 0 0 -5\n",
+                            "triangle a 10 10 -9 b 11 10 -9 c 10 11 -9\nmesh octahedron.obj translate 0 0 -5\n",
+                            "mesh octahedron.obj translate 0 0 -5\nmesh octahedron.obj translate 3 0 -5\n"};
+    for (int k = 0; k < 3; k++) {
+        struct fixture f;
+        build(&f, scenes[k]);
+        char err[512] = "";
+        struct accel_world *w = accel_world_create(&f.scene, &(struct accel_choice){ACCEL_KDTREE, true}, err, sizeof err);
+        cr_assert_not_null(w, "%s", err);
+        const struct mesh *m = &f.scene.meshes[0].mesh;
+        bool shared = w->triangles.vertices == m->vertices && w->triangles.faces == m->faces;
+        cr_assert_eq(w->triangles_borrowed, k == 0, "scene %d: borrowed %d", k, w->triangles_borrowed);
+        cr_assert_eq(shared, k == 0, "scene %d: the structure's arrays are the mesh's: %d", k, shared);
+        ray r = ray_along(vec3_make(0, 0.1, 0), vec3_make(0, 0, -1));
+        struct hit h = hit_nothing(INFINITY);
+        cr_assert(world_closest(&w->world, &r, RAY_T_MIN, &h));
+        cr_assert(h.object == world_mesh_object_number(&f.scene, 0) && fabs(h.t - 4.1) < 1e-9, "scene %d: object %d at %g", k,
+                  h.object, h.t);
+        accel_world_destroy(w);
+        cr_assert(m->face_count == 8 && m->vertices[0].x == m->vertices[0].x, "the scene's mesh is still there");
+        release(&f); /* frees the mesh once: AddressSanitizer would see a second free */
+    }
+}
+
 Test(world, bounds_of_a_mesh_without_vertices_are_the_empty_box) {
     struct mesh empty = {NULL, 0, NULL, 0};
     struct aabb b = world_mesh_bounds(&empty);

@@ -40,9 +40,10 @@ static int parse_option(const char *option, const char *value) {
 /* Rung 7: frees the scene's meshes once w has gathered their triangles, so that the program does not
  * hold them twice. Afterwards the world reads only the gathered copy, except where a transparent
  * mesh's inside is asked for (interior.c) and where the POV-Ray twin writes the meshes out (--pov):
- * those meshes, or then all of them, are kept. */
-static void free_gathered_meshes(struct scene *s, bool writing_twin) {
-    for (size_t k = 0; k < s->mesh_count && !writing_twin; k++) {
+ * those meshes, or then all of them, are kept. A scene's only mesh is not copied (w borrows it): it is
+ * held once already. */
+static void free_gathered_meshes(struct scene *s, const struct accel_world *w, bool writing_twin) {
+    for (size_t k = 0; k < s->mesh_count && !writing_twin && !w->triangles_borrowed; k++) {
         const struct material *m = &s->materials[s->meshes[k].material];
         if (!(m->filter > 0.0 || m->transmit > 0.0)) /* opaque, as interior.c tells */
             mesh_free(&s->meshes[k].mesh);
@@ -54,7 +55,7 @@ static void free_gathered_meshes(struct scene *s, bool writing_twin) {
 static struct accel_world *prepare(struct scene *s, bool writing_twin, char *err, size_t err_size) {
     struct accel_world *w = accel_world_create(s, &choice, err, err_size);
     if (w != NULL && choice.kind == ACCEL_BVH && rung == FAST_BVH_RUNG_COMPACT)
-        free_gathered_meshes(s, writing_twin);
+        free_gathered_meshes(s, w, writing_twin);
     if (w != NULL && choice.kind == ACCEL_BVH &&
         !accel_world_use_fast_bvh(w, choice.sah ? BVH_SPLIT_SAH : BVH_SPLIT_MEDIAN, rung, err, err_size)) {
         accel_world_destroy(w);
