@@ -195,9 +195,12 @@ bool mesh_parse_integer(struct mesh_token token, long long *value) {
 bool mesh_reserve(void **array, size_t *capacity, size_t wanted, size_t item_size) {
     if (wanted <= *capacity)
         return true;
-    size_t new_capacity = *capacity < 16 ? 16 : *capacity;
-    while (new_capacity < wanted)
-        new_capacity = new_capacity > SIZE_MAX / 2 ? wanted : new_capacity * 2;
+    /* Twice the room, for an array grown an item at a time; or, asked for more than that at once (a
+     * PLY reader knows its counts), exactly what is wanted: a power of two above it would leave up to
+     * half the array unused, and the 2 MB page it ends in resident all the same. */
+    size_t new_capacity = *capacity < 8 ? 16 : *capacity <= SIZE_MAX / 2 ? 2 * *capacity : SIZE_MAX;
+    if (new_capacity < wanted)
+        new_capacity = wanted;
     if (new_capacity > SIZE_MAX / item_size)
         return false;
     void *grown = big_alloc(new_capacity * item_size, true); /* a big model's arrays on 2 MB pages */

@@ -87,8 +87,8 @@ bool mesh_parse_double(struct mesh_token token, double *value);
 /* Reads the whole token as a decimal integer. Returns false if it is not one or does not fit. */
 bool mesh_parse_integer(struct mesh_token token, long long *value);
 
-/* Makes room for `wanted` items of `item_size` bytes in *array (allocated length *capacity items),
- * doubling the capacity as needed; an array of 2 MB or more is moved to 2 MB pages (big_alloc.h), and
+/* Makes room for `wanted` items of `item_size` bytes in *array (allocated length *capacity items):
+ * twice the capacity (16 at first), or `wanted` exactly when that is more; an array of 2 MB or more is moved to 2 MB pages (big_alloc.h), and
  * any is released with free(). Returns false, leaving the array as it was, when out of memory.
  * Callers pass the address of a void pointer: `void *a = m->faces; ok = mesh_reserve(&a, ...);
  * m->faces = a;`, or use the wrapper below. */

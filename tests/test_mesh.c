@@ -1130,6 +1130,26 @@ Test(mesh_arrays, grow_keep_their_items_across_the_move_to_big_pages) {
     free(array);
 }
 
+Test(mesh_arrays, double_when_grown_by_one_and_take_exactly_what_is_asked_at_once) {
+    /* Item by item the capacity doubles (16, 32, 64); a reader that asks for all its items at once
+     * (the PLY reader's faces) gets exactly that many, not the next power of two (349,872 faces would
+     * have taken room for 524,288, and the model two more megabytes resident). */
+    void *array = NULL;
+    size_t capacity = 0;
+    size_t seen[3] = {0};
+    for (size_t k = 0; k < 40; k++) {
+        cr_assert(mesh_reserve(&array, &capacity, k + 1, 12));
+        if (k == 0 || k == 16 || k == 32)
+            seen[k / 16] = capacity;
+    }
+    cr_assert(seen[0] == 16 && seen[1] == 32 && seen[2] == 64, "capacities %zu %zu %zu", seen[0], seen[1], seen[2]);
+    cr_assert(mesh_reserve(&array, &capacity, 349872, 12));
+    cr_assert_eq(capacity, 349872);
+    cr_assert(mesh_reserve(&array, &capacity, 349873, 12)); /* one more: doubled again */
+    cr_assert_eq(capacity, 2 * 349872);
+    free(array);
+}
+
 Test(mesh_arrays, refuse_sizes_no_machine_has_instead_of_wrapping_around) {
     void *array = NULL;
     size_t capacity = 0;
