@@ -65,9 +65,10 @@ static bool gather_triangles(struct accel_world *w, const struct scene *s) {
     return true;
 }
 
-bool accel_world_init(struct accel_world *w, const struct scene *s, char *err, size_t err_size) {
+bool accel_world_init(struct accel_world *w, const struct scene *s, bool structure_follows, char *err,
+                      size_t err_size) {
     memset(w, 0, sizeof *w);
-    if (!world_init(&w->world, s, err, err_size))
+    if (!(structure_follows ? world_init_for_structure : world_init)(&w->world, s, err, err_size))
         return false;
     if (!gather_triangles(w, s)) {
         accel_world_free(w);
@@ -92,7 +93,7 @@ void accel_world_free(struct accel_world *w) {
 
 struct accel_world *accel_world_create(struct scene *s, const struct accel_choice *c, char *err, size_t err_size) {
     struct accel_world *w = malloc(sizeof *w);
-    if (w == NULL || !accel_world_init(w, s, err, err_size)) {
+    if (w == NULL || !accel_world_init(w, s, c->kind != ACCEL_NONE, err, err_size)) {
         if (w == NULL)
             snprintf(err, err_size, "out of memory");
         free(w);

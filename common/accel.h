@@ -35,8 +35,11 @@ struct accel_world {
 };
 
 /* Sets up w for scene s (meshes loaded) with no structure yet: triangles by brute force behind the
- * per-mesh bounding boxes, as in chapter 5. Returns false with "out of memory" in err on failure. */
-bool accel_world_init(struct accel_world *w, const struct scene *s, char *err, size_t err_size);
+ * per-mesh bounding boxes, as in chapter 5. With structure_follows, the caller will give w a
+ * structure before any query, and the meshes' boxes the brute force needs are not made
+ * (world_init_for_structure). Returns false with "out of memory" in err on failure. */
+bool accel_world_init(struct accel_world *w, const struct scene *s, bool structure_follows, char *err,
+                      size_t err_size);
 
 /* Frees everything w owns. Safe on a zeroed accel_world. */
 void accel_world_free(struct accel_world *w);

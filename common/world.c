@@ -56,7 +56,8 @@ static void add_shapes(struct world *w, const struct shape_list *list) {
         w->unbounded[w->unbounded_count++] = shapes;
 }
 
-bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size) {
+/* The world of s, with the cull box of every mesh (every_box) or of those light passes through alone. */
+static bool init(struct world *w, const struct scene *s, bool every_box, char *err, size_t err_size) {
     memset(w, 0, sizeof *w);
     w->scene = s;
     for (size_t k = 0; k < s->kind_count; k++) {
@@ -79,10 +80,21 @@ bool world_init(struct world *w, const struct scene *s, char *err, size_t err_si
     }
     w->mesh_first_face[0] = w->triangles.count;
     for (size_t k = 0; k < s->mesh_count; k++) {
-        w->mesh_bounds[k] = world_mesh_cull_bounds(&s->meshes[k].mesh);
+        const struct material *m = &s->materials[s->meshes[k].material];
+        bool passes_light = m->filter > 0.0 || m->transmit > 0.0;
+        w->mesh_bounds[k] = every_box || passes_light ? world_mesh_cull_bounds(&s->meshes[k].mesh)
+                                                      : (struct aabb){{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
         w->mesh_first_face[k + 1] = w->mesh_first_face[k] + s->meshes[k].mesh.face_count;
     }
     return true;
+}
+
+bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size) {
+    return init(w, s, true, err, err_size);
+}
+
+bool world_init_for_structure(struct world *w, const struct scene *s, char *err, size_t err_size) {
+    return init(w, s, false, err, err_size);
 }
 
 void world_free(struct world *w) {

@@ -84,6 +84,12 @@ struct world {
  * "scene: 2 spheres of no kind ..." for shapes whose list has no kind. */
 bool world_init(struct world *w, const struct scene *s, char *err, size_t err_size);
 
+/* world_init for a world whose triangles a structure will answer for (chapter 9 on: accel.c), where a
+ * mesh's bounding box is read only to test a point against the inside of a mesh that light passes
+ * through (interior.c): only those meshes' boxes are computed, the others left as the box of all
+ * space, which nothing reads. The boxes of the 350k-triangle teapot took 5 to 9 ms, one thread. */
+bool world_init_for_structure(struct world *w, const struct scene *s, char *err, size_t err_size);
+
 /* Frees what world_init allocated. Safe on a zeroed world. */
 void world_free(struct world *w);
 

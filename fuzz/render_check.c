@@ -460,7 +460,7 @@ static bool check_ray(struct checker *c, const ray *r, int pixel) {
 static bool build_worlds(struct checker *c, const struct scene *s) {
     char err[256];
     for (int k = 0; k < WORLD_COUNT; k++)
-        if (!accel_world_init(&c->worlds[k], s, err, sizeof err))
+        if (!accel_world_init(&c->worlds[k], s, k != WORLD_BRUTE, err, sizeof err)) /* a structure follows */
             return broken(c, "%s: %s", world_names[k], err);
     bool built = accel_world_use_kdtree(&c->worlds[WORLD_KD_SEED], KD_SPLIT_SEED, err, sizeof err) &&
                  accel_world_use_kdtree(&c->worlds[WORLD_KD_SAH], KD_SPLIT_SAH, err, sizeof err) &&
@@ -617,7 +617,8 @@ static bool check_paths(struct checker *c, const char *name, const char *text, i
         int side_w = s.width < RENDER_CHECK_SAMPLED_SIDE ? s.width : RENDER_CHECK_SAMPLED_SIDE;
         int side_h = s.height < RENDER_CHECK_SAMPLED_SIDE ? s.height : RENDER_CHECK_SAMPLED_SIDE;
         built = camera_init(&cam, s.eye, s.target, s.up, s.fov, side_w, side_h, err, sizeof err) &&
-                accel_world_init(&worlds[0], &s, err, sizeof err) && accel_world_init(&worlds[1], &s, err, sizeof err);
+                accel_world_init(&worlds[0], &s, false, err, sizeof err) &&
+                accel_world_init(&worlds[1], &s, true, err, sizeof err);
         built = built && (k == WORLD_KD_SEED || k == WORLD_KD_SAH
                               ? accel_world_use_kdtree(&worlds[1], k == WORLD_KD_SEED ? KD_SPLIT_SEED : KD_SPLIT_SAH,
                                                        err, sizeof err)

@@ -271,6 +271,26 @@ Test(world, a_structures_faces_keep_their_objects_after_a_gathered_mesh_is_freed
     release(&f);
 }
 
+Test(world, under_a_structure_only_meshes_light_passes_through_get_a_box) {
+    /* world_init_for_structure: a structure answers for the triangles, so an opaque mesh's cull box is
+     * never read and is left as all of space; a glass mesh's is made, for interior.c's inside test. */
+    struct fixture f;
+    build(&f, "material glass colour 1 1 1 filter 0.9 ior 1.5\n"
+              "mesh octahedron.obj translate 0 0 -5\nmesh octahedron.obj translate 3 0 -5 material glass\n");
+    struct world w;
+    char err[512] = "";
+    cr_assert(world_init_for_structure(&w, &f.scene, err, sizeof err), "%s", err);
+    cr_assert(isinf(w.mesh_bounds[0].min.x) && w.mesh_bounds[0].min.x < 0 && isinf(w.mesh_bounds[0].max.z),
+              "the opaque mesh's box: all of space");
+    for (int a = 0; a < 2; a++) { /* the glass mesh's box is world_init's, to the bit */
+        const struct aabb *got = a == 0 ? &w.mesh_bounds[1] : &f.world.mesh_bounds[1];
+        cr_assert(memcmp(got, &f.world.mesh_bounds[1], sizeof *got) == 0 && got->min.x > 1.9 && got->max.x < 4.1);
+    }
+    cr_assert(w.mesh_first_face[2] == 16 && f.world.mesh_first_face[2] == 16);
+    world_free(&w);
+    release(&f);
+}
+
 Test(world, a_lone_mesh_is_borrowed_by_the_structure_and_more_are_copied) {
     /* A scene whose only triangles are one mesh's: the structure is built over that mesh itself (the
      * same arrays, not a copy), and destroying the world leaves it to the scene. With a triangle line
