@@ -729,10 +729,45 @@ static bool add_fan(struct ply_reader *r, const unsigned char *p, size_t corners
     return true;
 }
 
+/* The commonest face of all, as is_plain_float_xyz's is the commonest vertex: the corner list alone, a
+ * uint8 count and int32 or uint32 corners in the machine's byte order (13 bytes a triangle). */
+#define PLY_PLAIN_TRIANGLE_SIZE 13
+
+static bool is_plain_triangle_list(const struct ply_property *properties, size_t count, bool swap) {
+    return count == 1 && !swap && properties[0].role == ROLE_CORNERS && properties[0].count_type == PLY_UINT8 &&
+           (properties[0].type == PLY_INT32 || properties[0].type == PLY_UINT32);
+}
+
+/* Reads the faces of a plain triangle list, each a triangle; false (declined: r and the mesh's faces as
+ * they were) at a face of other than three corners, a corner out of range or the file's end, which
+ * read_faces_fast's loop then reads, or the general reader reports. A corner copied as uint32: an int32
+ * below zero becomes 2^31 or more, above any vertex count. */
+static bool read_plain_triangles(struct ply_reader *r, const struct ply_element *e, size_t vertex_count) {
+    const unsigned char *p = (const unsigned char *)r->in->data + r->next;
+    struct mesh *m = r->mesh;
+    if (e->count > (r->in->size - r->next) / PLY_PLAIN_TRIANGLE_SIZE ||
+        !mesh_reserve_faces(m, &r->face_capacity, m->face_count + e->count))
+        return false;
+    struct mesh_face *out = m->faces + m->face_count;
+    for (size_t f = 0; f < e->count; f++, p += PLY_PLAIN_TRIANGLE_SIZE) {
+        uint32_t corner[3];
+        memcpy(corner, p + 1, sizeof corner);
+        if (p[0] != 3 || corner[0] >= vertex_count || corner[1] >= vertex_count || corner[2] >= vertex_count)
+            return false;
+        out[f] = (struct mesh_face){{corner[0], corner[1], corner[2]}};
+    }
+    m->face_count += e->count;
+    r->next += e->count * PLY_PLAIN_TRIANGLE_SIZE;
+    return true;
+}
+
 /* Reads every face of a binary file whose face properties are the corner list and single values; false
  * (declined: r and the mesh's faces as they were) otherwise or at the first fault. */
 static bool read_faces_fast(struct ply_reader *r, const struct ply_element *e, size_t vertex_count) {
     const struct ply_property *properties = &r->header->properties[e->first_property];
+    if (is_plain_triangle_list(properties, e->property_count, must_swap(r->header->format)) &&
+        read_plain_triangles(r, e, vertex_count))
+        return true;
     for (size_t k = 0; k < e->property_count; k++)
         if (properties[k].count_type != PLY_NOT_A_TYPE && properties[k].role != ROLE_CORNERS)
             return false;
