@@ -587,22 +587,21 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
         return false;
 
     /* Partition, gathering each side's centroid box on the way; the boxes are the unions of the slots'. */
-    *left = (struct build_range){r->begin, r->begin, float_box_empty(), float_box_empty()};
-    *right = (struct build_range){r->end, r->end, float_box_empty(), float_box_empty()};
+    struct float_box left_centroids = float_box_empty(), right_centroids = float_box_empty();
     uint32_t i = r->begin, j = r->end; /* [begin,i) go left, [j,end) go right */
     while (i < j) {
         struct float_box p = prim_box(bd, i);
         float4 c = centroid_of(&p);
         if (bins_of(c, r->centroids.lo, scale, slots)[best_axis] < best_plane) {
-            float_box_grow(&left->centroids, c, c);
+            float_box_grow(&left_centroids, c, c);
             i++;
         } else {
-            float_box_grow(&right->centroids, c, c);
+            float_box_grow(&right_centroids, c, c);
             swap_prims(bd, i, --j);
         }
     }
-    left->end = i;
-    right->begin = i;
+    *left = (struct build_range){r->begin, i, float_box_empty(), left_centroids};
+    *right = (struct build_range){i, r->end, float_box_empty(), right_centroids};
     for (int k = 0; k < slots; k++) {
         struct build_range *side = k < best_plane ? left : right;
         float_box_grow(&side->box, bins[0][best_axis][k].box.lo, bins[0][best_axis][k].box.hi);
