@@ -25,6 +25,12 @@ static inline struct aabb aabb_empty(void) {
     return (struct aabb){{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
 }
 
+/* Returns the box of all space (min = -infinity, max = +infinity): it holds every point, and every ray
+ * enters it. */
+static inline struct aabb aabb_everything(void) {
+    return (struct aabb){{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+}
+
 /* Returns the smallest box holding b and the point p (p's NaN coordinates left out). */
 static inline struct aabb aabb_grow(struct aabb b, vec3 p) {
     return (struct aabb){vec3_min(p, b.min), vec3_max(p, b.max)};

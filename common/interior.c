@@ -54,7 +54,7 @@ double interior_cross(struct interior_list *list, int object, double ior) {
 /* ---- a camera inside glass --------------------------------------------------------------------- */
 
 static bool is_transparent(const struct scene *s, int material) {
-    return s->materials[material].filter > 0.0 || s->materials[material].transmit > 0.0;
+    return material_passes_light(&s->materials[material]);
 }
 
 /* Pushes every transparent shape of one kind that contains `point`. A kind without an inside (a

@@ -89,7 +89,7 @@ static void write_lights(FILE *out, const struct scene *s, enum pov_lighting lig
 
 /* Does this material let light through, in the chapters that draw transparency? */
 static bool is_transparent(const struct material *m, enum pov_lighting lighting) {
-    return lighting == POV_WHITTED && (m->filter > 0.0 || m->transmit > 0.0);
+    return lighting == POV_WHITTED && material_passes_light(m);
 }
 
 /* One texture per material, declared once as M<index>. Each lighting keeps only the terms its chapter

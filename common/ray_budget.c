@@ -59,7 +59,7 @@ static double rays_to_depth(const struct scene *s) {
     int branches = 0;
     for (size_t k = 0; k < s->material_count; k++) {
         const struct material *m = &s->materials[k];
-        int here = (m->reflection > 0.0) + (m->filter > 0.0 || m->transmit > 0.0);
+        int here = (m->reflection > 0.0) + material_passes_light(m);
         if (here > branches)
             branches = here;
     }

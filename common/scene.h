@@ -61,6 +61,10 @@ struct material {
     enum scene_lobe lobe;   /* the rough surface's distribution (chapter 17; default SCENE_LOBE_GGX) */
 };
 
+/* True when light passes through material m (a filter or a transmit above 0): a shape of it is glass,
+ * with an inside a ray can be in (interior.c), and its shadows are filtered. */
+static inline bool material_passes_light(const struct material *m) { return m->filter > 0.0 || m->transmit > 0.0; }
+
 struct light {
     vec3 position; /* of the point light, or of an area light's centre */
     vec3 colour;   /* intensity per channel; no fall-off with distance */

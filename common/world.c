@@ -27,7 +27,7 @@ struct aabb world_mesh_cull_bounds(const struct mesh *m) {
     for (size_t k = 0; k < m->face_count; k++) {
         const uint32_t *v = m->faces[k].v;
         if (triangle_is_sliver(m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]]))
-            return (struct aabb){{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+            return aabb_everything();
     }
     return aabb_pad(world_mesh_bounds(m), triangle_box_pad(m));
 }
@@ -80,10 +80,8 @@ static bool init(struct world *w, const struct scene *s, bool every_box, char *e
     }
     w->mesh_first_face[0] = w->triangles.count;
     for (size_t k = 0; k < s->mesh_count; k++) {
-        const struct material *m = &s->materials[s->meshes[k].material];
-        bool passes_light = m->filter > 0.0 || m->transmit > 0.0;
-        w->mesh_bounds[k] = every_box || passes_light ? world_mesh_cull_bounds(&s->meshes[k].mesh)
-                                                      : (struct aabb){{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+        bool passes_light = material_passes_light(&s->materials[s->meshes[k].material]);
+        w->mesh_bounds[k] = every_box || passes_light ? world_mesh_cull_bounds(&s->meshes[k].mesh) : aabb_everything();
         w->mesh_first_face[k + 1] = w->mesh_first_face[k] + s->meshes[k].mesh.face_count;
     }
     return true;

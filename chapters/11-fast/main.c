@@ -44,8 +44,7 @@ static int parse_option(const char *option, const char *value) {
  * held once already. */
 static void free_gathered_meshes(struct scene *s, const struct accel_world *w, bool writing_twin) {
     for (size_t k = 0; k < s->mesh_count && !writing_twin && !w->triangles_borrowed; k++) {
-        const struct material *m = &s->materials[s->meshes[k].material];
-        if (!(m->filter > 0.0 || m->transmit > 0.0)) /* opaque, as interior.c tells */
+        if (!material_passes_light(&s->materials[s->meshes[k].material])) /* opaque: interior.c never asks */
             mesh_free(&s->meshes[k].mesh);
     }
 }
