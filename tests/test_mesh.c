@@ -1150,6 +1150,59 @@ Test(mesh_arrays, double_when_grown_by_one_and_take_exactly_what_is_asked_at_onc
     free(array);
 }
 
+/* The kernel's word on the mapping that holds address a (/proc/self/smaps): 1 when it may back it with
+ * 2 MB pages (THPeligible), 0 when not, -1 when smaps does not say. */
+static int big_pages_eligible(const void *a) {
+    FILE *f = fopen("/proc/self/smaps", "r");
+    if (f == NULL)
+        return -1;
+    char line[512];
+    bool inside = false;
+    int eligible = -1;
+    while (fgets(line, sizeof line, f) != NULL) {
+        unsigned long start, end;
+        if (sscanf(line, "%lx-%lx ", &start, &end) == 2 && strchr(line, '-') < strchr(line, ' '))
+            inside = start <= (uintptr_t)a && (uintptr_t)a < end;
+        else if (inside && sscanf(line, "THPeligible: %d", &eligible) == 1)
+            break;
+    }
+    fclose(f);
+    return eligible;
+}
+
+Test(mesh_arrays, big_arrays_and_last_parts_of_half_a_big_page_or_more_are_on_big_pages) {
+    /* big_alloc asks for 2 MB pages from 1 MB on, over the whole big pages an array fills and over its last
+     * part when that fills half a big page or more; a shorter last part stays in small pages. Only where
+     * the kernel gives 2 MB pages when asked (transparent_hugepage [madvise]) can it be seen. */
+    FILE *mode = fopen("/sys/kernel/mm/transparent_hugepage/enabled", "r");
+    char modes[128] = "";
+    if (mode != NULL) {
+        if (fgets(modes, sizeof modes, mode) == NULL)
+            modes[0] = 0;
+        fclose(mode);
+    }
+    if (strstr(modes, "[madvise]") == NULL)
+        cr_skip("2 MB pages are not given on request here (%s)", modes[0] ? modes : "no transparent_hugepage");
+    const size_t MB = (size_t)1 << 20;
+    char *long_tail = big_alloc(3 * MB + MB / 2, true), *short_tail = big_alloc(2 * MB + MB / 4, true);
+    char *one = big_alloc(MB + MB / 4, true), *small = big_alloc(MB / 2, true);
+    cr_assert(long_tail && short_tail && one && small);
+    if (big_pages_eligible(long_tail) < 0)
+        cr_skip("/proc/self/smaps does not say THPeligible");
+    cr_assert_eq((uintptr_t)long_tail % (2 * MB), 0);
+    cr_assert_eq((uintptr_t)one % (2 * MB), 0);
+    cr_assert_eq(big_pages_eligible(long_tail), 1);
+    cr_assert_eq(big_pages_eligible(long_tail + 3 * MB), 1, "a last part of 1.5 MB in small pages");
+    cr_assert_eq(big_pages_eligible(short_tail), 1);
+    cr_assert_eq(big_pages_eligible(short_tail + 2 * MB), 0, "a last part of 0.25 MB on a big page");
+    cr_assert_eq(big_pages_eligible(one), 1, "an array of 1.25 MB in small pages");
+    cr_assert_eq(big_pages_eligible(small), 0, "an array of 0.5 MB on a big page");
+    free(long_tail);
+    free(short_tail);
+    free(one);
+    free(small);
+}
+
 Test(mesh_arrays, refuse_sizes_no_machine_has_instead_of_wrapping_around) {
     void *array = NULL;
     size_t capacity = 0;
