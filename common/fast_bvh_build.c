@@ -368,7 +368,7 @@ struct builder {
     struct packed_grid grid;
     uint32_t *faces;             /* the face number of each prim, reordered along with them */
     struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (on more than one thread,
-                                    in the order the tasks made the nodes: pack_node reorders them) */
+                                    in the order the tasks made the nodes: order_nodes reorders them) */
     bool parallel;               /* whether big nodes build their children in tasks (more than one thread) */
     /* Nodes written to store so far: the next one's index, taken atomically. On a cache line of its own,
      * so that a task taking it does not evict the fields above, which every task reads all the time. */
@@ -654,7 +654,7 @@ static void build_child(struct builder *bd, const struct slot *s, uint32_t *chil
 /* Builds the children of a node, whose slots are given, filling child[] and count[]: one after the other,
  * or, for a big node when there are threads, each in a task of its own. The tasks take their nodes'
  * indices as they come (build_node), so that the nodes are not in the order one thread writes them
- * until pack_node has put them there. */
+ * until order_nodes has put them there. */
 static void build_children(struct builder *bd, const struct slot *slots, int used, uint32_t *child, uint32_t *count) {
     uint32_t prims = 0;
     for (int k = 0; k < used; k++)
@@ -726,22 +726,48 @@ static bool store_alloc(struct node_store *store, bool eight, size_t count, bool
     return store->nodes != NULL || store->nodes8 != NULL;
 }
 
-/* Copies node `index` of from, and everything below it, into to, from node *next on, each node before
- * its children's subtrees, slot by slot: the order in which one thread makes them. Returns its index in
- * to. The parallel build's nodes are in the order the tasks made them (build_children); packed, they
- * are the same array, byte for byte, as one thread's. */
-static uint32_t pack_node(struct node_store to, struct node_store from, uint32_t index, uint32_t *next) {
-    uint32_t out = (*next)++;
-    if (to.nodes8 != NULL)
-        to.nodes8[out] = from.nodes8[index];
-    else
-        to.nodes[out] = from.nodes[index];
-    uint32_t *child = to.nodes8 != NULL ? to.nodes8[out].child : to.nodes[out].child;
-    const uint32_t *count = to.nodes8 != NULL ? to.nodes8[out].count : to.nodes[out].count;
-    for (int k = 0; k < store_width(to); k++)
+/* Numbers node `index` of store and everything below it, from *next on, in the order in which one thread
+ * makes them: each node before its children's subtrees, slot by slot. Writes each node's number in
+ * order[its index] and its children's numbers over their indices in it; returns its number. */
+static uint32_t number_node(struct node_store store, uint32_t index, uint32_t *next, uint32_t *order) {
+    uint32_t number = (*next)++;
+    order[index] = number;
+    uint32_t *child = store.nodes8 != NULL ? store.nodes8[index].child : store.nodes[index].child;
+    const uint32_t *count = store.nodes8 != NULL ? store.nodes8[index].count : store.nodes[index].count;
+    for (int k = 0; k < store_width(store); k++)
         if (count[k] == 0 && child[k] != FAST_BVH_NO_CHILD)
-            child[k] = pack_node(to, from, child[k], next);
-    return out;
+            child[k] = number_node(store, child[k], next, order);
+    return number;
+}
+
+static void swap_nodes(struct node_store store, uint32_t i, uint32_t j) {
+    if (store.nodes8 != NULL) {
+        struct fast_bvh_node8 node = store.nodes8[i];
+        store.nodes8[i] = store.nodes8[j];
+        store.nodes8[j] = node;
+    } else {
+        struct fast_bvh_node node = store.nodes[i];
+        store.nodes[i] = store.nodes[j];
+        store.nodes[j] = node;
+    }
+}
+
+/* Puts the node_count nodes of store, in the order the parallel build's tasks made them (build_children),
+ * in the order one thread makes them, in place: the same array, byte for byte, as one thread's. The
+ * nodes are numbered from the root, node 0 (number_node), then each is swapped to its number, cycle by
+ * cycle of the renaming, so that every swap puts one node where it belongs. `order` is room for
+ * node_count numbers. In place, and not copied into a second store, because fresh memory costs a page
+ * fault every 4 KB or 2 MB (big_alloc.c): a second store is most of the parallel build's new memory. */
+static void order_nodes(struct node_store store, uint32_t node_count, uint32_t *order) {
+    uint32_t next = 0;
+    number_node(store, 0, &next, order); /* every node the build made is in the tree: next == node_count */
+    for (uint32_t i = 0; i < node_count; i++)
+        while (order[i] != i) { /* the node at i belongs at order[i]: swap it there */
+            uint32_t j = order[i];
+            swap_nodes(store, i, j);
+            order[i] = order[j];
+            order[j] = j;
+        }
 }
 
 /* The box of slot k of node `index` of store, widened back to double (exactly). */
@@ -892,11 +918,6 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
 
     bd.faces = b->faces;
     bd.store = store;
-    if (bd.parallel && !store_alloc(&bd.store, eight, most_nodes, true)) { /* in any order, then packed into store */
-        free(bd.prims);
-        free(bd.packed);
-        return false;
-    }
     struct build_range root = {0, (uint32_t)tree, float_box_empty(), float_box_empty()}, halves[2];
     range_bounds(&bd, &root);
     b->root_box = float_box_widened(&root.box);
@@ -906,22 +927,19 @@ static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed
 #pragma omp single
     if (tree > 0 && (root_splits = split(&bd, &root, 0, &halves[0], &halves[1])))
         b->root_child = build_node(&bd, &halves[0], &halves[1], 0);
-    free(bd.prims); /* before the nodes are packed, so that the peak memory holds the one or the other */
+    /* The build's boxes are done with; their memory, room for n numbers and more, is touched already (no
+     * page faults), so it holds order_nodes' numbering. */
+    void *boxes = bd.packed != NULL ? (void *)bd.packed : (void *)bd.prims;
+    if (root_splits && bd.parallel)
+        order_nodes(store, bd.node_count, boxes);
+    free(bd.prims);
     free(bd.packed);
     if (root_splits) {
-        if (bd.parallel) {
-            uint32_t packed = 0;
-            b->root_child = pack_node(store, bd.store, b->root_child, &packed);
-        }
         count_child(&shape, b->root_box, 0, 0);
         measure_node(store, b->root_child, 0, &shape);
     } else if (tree > 0) {
         count_child(&shape, b->root_box, (uint32_t)tree, 0); /* the whole tree is one leaf */
         b->root_count = (uint32_t)tree;
-    }
-    if (bd.parallel) {
-        free(bd.store.nodes);
-        free(bd.store.nodes8);
     }
     b->node_count = bd.node_count;
     b->info = (struct bvh_info){shape.node_count + shape.leaves, shape.leaves, shape.max_depth, 0.0,
