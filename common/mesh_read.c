@@ -192,13 +192,16 @@ bool mesh_parse_integer(struct mesh_token token, long long *value) {
 
 /* ---- growing arrays --------------------------------------------------------------------------- */
 
+/* The room an empty array gets first, in items: enough for a small model's first lines. */
+#define MESH_FIRST_CAPACITY 16
+
 bool mesh_reserve(void **array, size_t *capacity, size_t wanted, size_t item_size) {
     if (wanted <= *capacity)
         return true;
     /* Twice the room, for an array grown an item at a time; or, asked for more than that at once (a
      * PLY reader knows its counts), exactly what is wanted: a power of two above it would leave up to
      * half the array unused, and the 2 MB page it ends in resident all the same. */
-    size_t new_capacity = *capacity < 8 ? 16 : *capacity <= SIZE_MAX / 2 ? 2 * *capacity : SIZE_MAX;
+    size_t new_capacity = *capacity == 0 ? MESH_FIRST_CAPACITY : *capacity <= SIZE_MAX / 2 ? 2 * *capacity : SIZE_MAX;
     if (new_capacity < wanted)
         new_capacity = wanted;
     if (new_capacity > SIZE_MAX / item_size)
