@@ -88,7 +88,7 @@ bool mesh_parse_double(struct mesh_token token, double *value);
 bool mesh_parse_integer(struct mesh_token token, long long *value);
 
 /* Makes room for `wanted` items of `item_size` bytes in *array (allocated length *capacity items):
- * twice the capacity (16 at first), or `wanted` exactly when that is more; an array of 2 MB or more is
+ * twice the capacity (16 at first), or `wanted` exactly when that is more; an array of 1 MB or more is
  * moved to 2 MB pages (big_alloc.h), and any is released with free(). Returns false, leaving the array
  * as it was, when out of memory. Callers pass the address of a void pointer:
  * `void *a = m->faces; ok = mesh_reserve(&a, ...); m->faces = a;`, or use the wrapper below. */

@@ -1115,7 +1115,7 @@ Test(mesh_transform, empty_mesh_is_left_alone) {
 /* ---- growing arrays (mesh_read.c) and big_alloc ------------------------------------------------ */
 
 Test(mesh_arrays, grow_keep_their_items_across_the_move_to_big_pages) {
-    /* From 16 items to past 2 MB (where big_alloc asks for 2 MB pages), one at a time as a reader
+    /* From 16 items to past 2 MB (big_alloc asks for 2 MB pages from 1 MB on), one at a time as a reader
      * grows them: every item written stays in place across each move. */
     void *array = NULL;
     size_t capacity = 0, count = 300000; /* 300,000 faces of 12 bytes: 3.6 MB */
