@@ -13,7 +13,8 @@ static bool box_make(const struct key_values *kv, void *item, char *why, size_t 
         snprintf(why, why_size, "box min must be below max on every axis");
         return false;
     }
-    return true;
+    return key_vec3_within(b->min, KEY_MAX_COORD, "box min", why, why_size) &&
+           key_vec3_within(b->max, KEY_MAX_COORD, "box max", why, why_size);
 }
 
 /* Writes the box for POV-Ray: box { <min>, <max> */

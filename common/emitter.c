@@ -147,7 +147,9 @@ bool emitter_list_build(struct emitter_list *list, const struct accel_world *w, 
         list->cumulative[k] = sum;
     }
     list->total_power = sum;
-    if (!isfinite(sum)) { /* a sphere of radius 1e200: its area alone is beyond double's range */
+    /* A sphere of radius 1e200 would make this sum infinite; the scene reader now refuses such a radius
+     * (at most KEY_MAX_COORD, as every coordinate), so this is the last line of defence, not the first. */
+    if (!isfinite(sum)) {
         snprintf(err, err_size, "%s: the emitters' total power (emission times area) is beyond double's range: "
                  "an emitter is too large for its emission", s->path);
         emitter_list_free(list);

@@ -45,6 +45,19 @@ static bool plane_make(const struct key_values *kv, void *item, char *why, size_
         }
         point = given[PLANE_POINT] ? key_vec3(kv, PLANE_POINT) : point;
     }
+    /* Every point in range (and so the distance derived from it, at most sqrt(3) times as far): a plane
+     * 1e300 away would make every hit point, and the shading's squares of it, overflow. */
+    static const char *const point_names[] = {"plane point", "plane a", "plane b", "plane c"};
+    static const int point_keys[] = {PLANE_POINT, PLANE_A, PLANE_B, PLANE_C};
+    for (int k = 0; k < 4; k++)
+        if (given[point_keys[k]] &&
+            !key_vec3_within(key_vec3(kv, point_keys[k]), KEY_MAX_COORD, point_names[k], why, why_size))
+            return false;
+    if (by_distance && !(fabs(kv->number[PLANE_DISTANCE][0]) <= KEY_MAX_COORD)) {
+        snprintf(why, why_size, "plane distance must stay within -%g .. %g, got " KEY_NUMBER_SHOWN, KEY_MAX_COORD,
+                 KEY_MAX_COORD, kv->number[PLANE_DISTANCE][0]);
+        return false;
+    }
     struct plane *plane = item;
     /* Divide by the largest component first: |normal| of components like 1e200 would overflow. */
     double largest = fmax(fabs(normal.x), fmax(fabs(normal.y), fabs(normal.z)));

@@ -199,9 +199,15 @@ static bool parse_camera(const struct parser *p, struct scene *s, char **tok, in
     s->target = key_vec3(&kv, TARGET);
     s->up = kv.present[UP] ? key_vec3(&kv, UP) : vec3_make(0, 1, 0);
     s->fov = kv.number[FOV][0];
+    /* Points in range, so that the view direction and what is derived from it stay finite (an eye at
+     * 1e200 would square to infinity and look like a zero up vector). */
+    char why[256];
+    if (!key_vec3_within(s->eye, KEY_MAX_COORD, "camera eye", why, sizeof why) ||
+        !key_vec3_within(s->target, KEY_MAX_COORD, "camera target", why, sizeof why) ||
+        !key_vec3_within(s->up, KEY_MAX_COORD, "camera up", why, sizeof why))
+        return fail(p, "%s", why);
     /* The camera's own checks, so that a camera that loads is a camera that renders. */
     struct camera probe;
-    char why[256];
     if (!camera_init(&probe, s->eye, s->target, s->up, s->fov, 1, 1, why, sizeof why))
         return fail(p, "%s", why);
     key_values_slice(&kv, LENS, LENS_KEY_COUNT, &lens_kv);
@@ -326,9 +332,10 @@ static bool parse_light(const struct parser *p, struct scene *s, char **tok, int
     if (!key_vec3_within(light->colour, SCENE_MAX_LIGHT, "light colour", why, sizeof why))
         return fail(p, "%s", why);
     light->area = area;
-    /* An area light is a rectangle chapter 15 draws as two triangles: its corners stay in range. */
-    if (area_light_is_area(&area) && !key_vec3_within(light->position, KEY_MAX_COORD, "an area light's position", why,
-                                                      sizeof why))
+    /* A light's position in range, so that the direction to it from any point stays finite; an area light
+     * is besides a rectangle chapter 15 draws as two triangles, whose corners stay in range. */
+    if (!key_vec3_within(light->position, KEY_MAX_COORD,
+                         area_light_is_area(&area) ? "an area light's position" : "light position", why, sizeof why))
         return fail(p, "%s", why);
     return true;
 }

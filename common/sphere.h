@@ -9,9 +9,15 @@
 #include "ray.h"
 #include "shape.h"
 
+/* The smallest radius a scene may give (the largest is KEY_MAX_COORD, and the centre within it too): the
+ * same 10^-18 a placed mesh must at least measure across, so that r^2 and an emitting sphere's area
+ * 4 pi r^2, and 1 / that area, stay well inside double's range (at a radius of 1e-160 the area is a
+ * subnormal number whose reciprocal is infinite). */
+#define SPHERE_MIN_RADIUS 1e-18
+
 struct sphere {
     vec3 centre;
-    double radius; /* > 0 */
+    double radius; /* SPHERE_MIN_RADIUS .. KEY_MAX_COORD */
     int material;  /* index into scene.materials */
 };
 

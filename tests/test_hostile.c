@@ -253,7 +253,8 @@ static const struct hostile non_finite[] = {
      "", 0, NULL},
     {15, VIEW "light position 1e300 3 0 axis1 1 0 0 axis2 0 0 1 samples 2 2\nsphere centre 0 0 0 radius 1\n", "", 1,
      "SCENE:4: an area light's position is (1e+300, 3, 0); it must stay within -1e+18 .. 1e+18"},
-    /* emitters: a sum of powers that would be infinite */
+    /* emitters: a sum of powers that would be infinite (a radius past KEY_MAX_COORD is refused first),
+     * and the largest emitter in range drawn */
     {15, VIEW "material e emission 1e308 1e308 1e308\nsphere centre 0 0 0 radius 1 material e\n", "", 1,
      "SCENE:4: material 'e': emission must be at most 1e+18 in each channel, got 1e+308 1e+308 1e+308"},
     {15, VIEW "light position 0 3 0 colour 1e300 1 1 axis1 1 0 0 axis2 0 0 1 samples 2 2\n"
@@ -261,8 +262,9 @@ static const struct hostile non_finite[] = {
      "SCENE:4: light colour is (1e+300, 1, 1); it must stay within -1e+18 .. 1e+18"},
     {15, VIEW "material e emission 1e18 1e18 1e18\nsphere centre 0 0 -1e200 radius 1e199 material e\n"
               "sphere centre 0 0 0 radius 1\n", "", 1,
-     "SCENE: the emitters' total power (emission times area) is beyond double's range: an emitter is too large "
-     "for its emission"},
+     "SCENE:5: sphere radius must be between 1e-18 and 1e+18, got 1e+199"},
+    {15, VIEW "material e emission 1e18 1e18 1e18\nsphere centre 0 0 -1e18 radius 1e18 material e\n"
+              "sphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
     {15, VIEW "material e emission 1e18 1e18 1e18\nsphere centre 0 3 0 radius 0.5 material e\n"
               "sphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
     /* nothing at all gives off light: not a black picture with exit 0, but a reason */

@@ -356,6 +356,31 @@ Test(scene_errors, nan_and_infinity_are_refused) {
 Test(scene_errors, values_out_of_range) {
     expect_line3_error("sphere centre 0 0 0 radius -1", "sphere radius must be positive, got -1");
     expect_line3_error("sphere centre 0 0 0 radius 0", "sphere radius must be positive, got 0");
+    /* Finite, but past what the program can compute with: each would overflow a square or a product. */
+    expect_line3_error("sphere centre 0 0 0 radius 1e200", "sphere radius must be between 1e-18 and 1e+18, got 1e+200");
+    expect_line3_error("sphere centre 0 0 0 radius 1e-19", "sphere radius must be between 1e-18 and 1e+18, got 1e-19");
+    expect_line3_error("sphere centre 0 -2e18 0 radius 1",
+                       "sphere centre is (0, -2e+18, 0); it must stay within -1e+18 .. 1e+18");
+    expect_line3_error("box min -1e300 0 0 max 1 1 1", "box min is (-1e+300, 0, 0); it must stay within -1e+18 .. 1e+18");
+    expect_line3_error("box min 0 0 0 max 1 1 1e19", "box max is (1, 1, 1e+19); it must stay within -1e+18 .. 1e+18");
+    expect_line3_error("plane normal 0 1 0 distance -1e300",
+                       "plane distance must stay within -1e+18 .. 1e+18, got -1e+300");
+    expect_line3_error("plane normal 0 1 0 point 0 1e19 0", "plane point is (0, 1e+19, 0); it must stay within -1e+18 .. 1e+18");
+    expect_line3_error("plane a 0 0 0 b 1 0 0 c 0 0 1e19", "plane c is (0, 0, 1e+19); it must stay within -1e+18 .. 1e+18");
+    expect_error("camera eye 0 0 1e200 target 0 0 0 fov 40\n",
+                 NAME ":1: camera eye is (0, 0, 1e+200); it must stay within -1e+18 .. 1e+18");
+    expect_error("camera eye 0 0 5 target 0 0 -1e19 fov 40\n",
+                 NAME ":1: camera target is (0, 0, -1e+19); it must stay within -1e+18 .. 1e+18");
+    expect_error("camera eye 0 0 5 target 0 0 0 up 0 1e300 0 fov 40\n",
+                 NAME ":1: camera up is (0, 1e+300, 0); it must stay within -1e+18 .. 1e+18");
+    expect_line3_error("light position 0 5e18 5", "light position is (0, 5e+18, 5); it must stay within -1e+18 .. 1e+18");
+    /* The limits themselves are in range. */
+    struct scene s;
+    parse_ok(HEAD "sphere centre 1e18 -1e18 0 radius 1e18\nsphere centre 0 0 0 radius 1e-18\n"
+                  "plane normal 0 1 0 distance -1e18\nlight position -1e18 1e18 1e18\n",
+             &s);
+    cr_assert_eq(scene_shapes(&s, &sphere_syntax)->count, 2);
+    scene_free(&s);
     expect_line3_error("max_depth 0", "'max_depth' must be between 1 and 64, got 0");
     expect_line3_error("max_depth 65", "'max_depth' must be between 1 and 64, got 65");
     expect_line3_error("mesh a.ply scale 0", "mesh scale must be positive, got 0");
@@ -474,8 +499,10 @@ Test(scene, plane_normal_of_any_finite_size_is_stored_as_a_unit_vector) {
 }
 
 Test(scene, plane_from_three_far_apart_points_has_a_unit_normal) {
-    /* (b - a) x (c - a) = (0, 1e400, 0) overflows to infinity, and normalising that gave NaNs. */
-    check_plane("plane a 0 0 0 b 1e200 0 0 c 0 0 -1e200", vec3_make(0, 1, 0), 0);
+    /* (b - a) x (c - a) = (0, 4e36, 0) is finite now that points stay within KEY_MAX_COORD, but the
+     * edges are scaled to at most 1 first all the same: at 1e200 the product overflowed to infinity, and
+     * normalising that gave NaNs. */
+    check_plane("plane a 0 0 0 b 1e18 0 0 c 0 0 -1e18", vec3_make(0, 1, 0), 0);
 }
 
 Test(scene_errors, plane_with_keys_of_two_forms) {
