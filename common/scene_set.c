@@ -7,12 +7,15 @@
  *   camera.fov=30                   a key of the one line of that directive
  *   material.glass.ior=1.45         a key of the material with that name
  *   sphere.2.radius=0.5             a key of the 2nd line of that directive (lights and shapes)
- * VALUE's words replace as many words after the key; a key the line does not have is added to it, and
+ * VALUE's words replace the key's old value, all of it (its numbers, or its one word: eye=3 leaves
+ * "eye 3", which the parser refuses, rather than eye 3 with the old y and z); a key the line does not
+ * have is added to it, and
  * a positional directive the scene does not have (max_depth, say) is added as a new line, as is an
  * optional line with keys (antialias.samples=4 adds "antialias samples 4"). */
 #include "scene_set.h"
 
 #include "scene.h"
+#include "shape.h"
 
 #include <ctype.h>
 #include <limits.h>
@@ -86,6 +89,22 @@ static bool find_line(const char *text, const char *directive, const char *name,
     return false;
 }
 
+/* Returns true when the whole of word reads as a number. */
+static bool is_number_word(const char *word) {
+    char *end;
+    strtod(word, &end);
+    return end != word && *end == '\0';
+}
+
+/* Returns how many of the words after words[key_at] are the key's old value: its numbers (a key has at
+ * most KEY_MAX_NUMBERS), or else one word (a name such as a material's). */
+static int old_value_count(char **words, int count, int key_at) {
+    int numbers = 0;
+    while (numbers < KEY_MAX_NUMBERS && key_at + 1 + numbers < count && is_number_word(words[key_at + 1 + numbers]))
+        numbers++;
+    return numbers > 0 ? numbers : (key_at + 1 < count ? 1 : 0);
+}
+
 /* Rewrites one line: `words` (count of them, the comment in `comment`) with `key` given `values`.
  * With key NULL, everything after the first `fixed` words is replaced by the values. Returns a new
  * string, or NULL when out of memory. */
@@ -107,9 +126,10 @@ static char *rewrite_line(char **words, int count, int fixed, const char *key, c
                 key_at = k;
                 break;
             }
+    int old_count = key_at >= 0 ? old_value_count(words, count, key_at) : 0;
     int keep = key == NULL ? fixed : count;
     for (int k = 0; k < keep; k++) {
-        if (key_at >= 0 && k > key_at && k <= key_at + value_count)
+        if (key_at >= 0 && k > key_at && k <= key_at + old_count)
             continue; /* an old value of the key */
         o += sprintf(o, "%s%s", o == line ? "" : " ", words[k]);
         if (k == key_at)

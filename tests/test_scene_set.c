@@ -46,6 +46,30 @@ Test(scene_set, a_missing_key_is_added_and_a_vector_replaces_three_words) {
     free(text);
 }
 
+Test(scene_set, too_few_values_replace_all_of_the_old_value_and_the_parser_says_so) {
+    /* "eye=3" must not quietly become eye 3 1 5 (the old y and z kept): the key's whole old value goes, and
+     * the parser names what is missing. */
+    char err[256];
+    char *text = changed("camera.eye=3", err, sizeof err);
+    cr_assert_not_null(strstr(text, "camera eye 3 target 0 0 0 fov 40  # the view\n"), "%s", text);
+    struct scene s;
+    cr_assert(!scene_parse("test.scene", text, NULL, &s, err, sizeof err));
+    cr_assert_str_eq(err, "test.scene:1: expected a number for 'eye', got 'target'");
+    free(text);
+    text = changed("camera.eye=3 4", err, sizeof err);
+    cr_assert_not_null(strstr(text, "camera eye 3 4 target 0 0 0 fov 40"), "%s", text);
+    free(text);
+    /* A word value (a material's name) is one word, whatever follows it. */
+    text = changed("sphere.2.material=glass", err, sizeof err);
+    cr_assert_not_null(strstr(text, "sphere centre 2 0 0 radius 0.5 material glass\n"), "%s", text);
+    free(text);
+    /* Negative numbers and exponents are numbers too. */
+    text = changed("camera.target=-1e-3 .5 -2", err, sizeof err);
+    cr_assert(scene_set_apply(&text, "camera.target=7", err, sizeof err), "%s", err);
+    cr_assert_not_null(strstr(text, "camera eye 0 1 5 target 7 fov 40"), "%s", text);
+    free(text);
+}
+
 Test(scene_set, a_material_is_found_by_name_and_a_shape_by_its_place) {
     char err[256];
     char *text = changed("material.glass.ior=1.33", err, sizeof err);
