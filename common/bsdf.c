@@ -18,6 +18,34 @@ struct bsdf bsdf_of_material(const struct material *m) {
     return b;
 }
 
+/* The largest channel of v. */
+static double largest_channel(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+
+bool bsdf_conserves_energy(const struct scene *s, const struct material *m, char *why, size_t why_size) {
+    double colour = largest_channel(m->colour); /* the largest channel of any colour the surface takes */
+    if (m->pigment >= 0) {
+        const struct pigment *p = &s->pigments[m->pigment];
+        colour = p->pattern == PIGMENT_IMAGE_MAP ? BSDF_MOST_REFLECTANCE /* texels are 0..1 */
+                                                 : fmax(largest_channel(p->colour[0]), largest_channel(p->colour[1]));
+    }
+    const double most = BSDF_MOST_REFLECTANCE + BSDF_REFLECTANCE_ROUNDING;
+    if (colour > most) {
+        snprintf(why, why_size, "material '%s': a colour channel of %g%s; a surface gives back at most the light "
+                 "that reaches it, so each channel must be at most 1", m->name, colour,
+                 m->pigment >= 0 ? " (its pigment's)" : "");
+        return false;
+    }
+    if (material_passes_light(m))
+        return true; /* transmit + filter * colour <= filter + transmit <= 1 */
+    double given_back = m->diffuse * colour + m->reflection;
+    if (given_back > most) {
+        snprintf(why, why_size, "material '%s': diffuse * colour + reflection is %g; a surface gives back at most "
+                 "the light that reaches it, so it must be at most 1", m->name, given_back);
+        return false;
+    }
+    return true;
+}
+
 double bsdf_fresnel(double cos_i, double eta) {
     double sin2_t = eta * eta * (1.0 - cos_i * cos_i);
     if (sin2_t >= 1.0)

@@ -29,6 +29,19 @@ struct bsdf {
 /* Returns the surface of material m (already painted by chapter 14's hook when the scene has one). */
 struct bsdf bsdf_of_material(const struct material *m);
 
+/* The most of the light reaching it that a surface may give back: all of it. */
+#define BSDF_MOST_REFLECTANCE 1.0
+/* What a sum such as 0.7 + 0.3 may exceed 1 by in rounding and still count as 1. */
+#define BSDF_REFLECTANCE_ROUNDING 1e-12
+
+/* Returns true when material m of scene s gives back at most the light that reaches it, as chapters 15
+ * and 17 read it: each channel of its colour (or of every colour its pigment takes) at most 1, and
+ * diffuse * colour + reflection at most 1 (glass: transmit + filter * colour, which then is). Else
+ * false with "material 'NAME': ..." in why. A path's weight then never grows from bounce to bounce;
+ * with a surface that gave back more, the picture's light would add up without bound (a colour of
+ * 1e300 seen through glass twice was infinite). */
+bool bsdf_conserves_energy(const struct scene *s, const struct material *m, char *why, size_t why_size);
+
 /* Returns the share of light a smooth dielectric reflects (Fresnel's equations for unpolarised light),
  * for a ray whose direction makes cos_i > 0 with the normal on its side, going from index n1 to n2,
  * eta = n1 / n2. 1 under total internal reflection. */

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "accel_fast_bvh.h"
+#include "bsdf.h"
 #include "emitter.h"
 #include "fast_bvh.h"
 #include "lens.h"
@@ -94,6 +95,14 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
     int chapter = run->chapter->number;
     struct scene *s = &run->scene;
     s->paint = texture_paint;
+    /* Every surface gives back at most the light that reaches it, or the paths' light adds up without bound. */
+    for (size_t k = 0; k < s->material_count; k++) {
+        char why[sizeof run->err - 64];
+        if (!bsdf_conserves_energy(s, &s->materials[k], why, sizeof why)) {
+            snprintf(run->err, sizeof run->err, "%s:%d: %s", s->path, s->materials[k].line, why);
+            return cli_fail(run);
+        }
+    }
     if (!texture_load_images(s, run->err, sizeof run->err) || !scene_load_meshes(s, run->err, sizeof run->err) ||
         !mesh_surface_prepare(s, run->err, sizeof run->err))
         return cli_fail(run);

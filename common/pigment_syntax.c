@@ -44,15 +44,23 @@ bool pigment_make_transform(const struct key_values *kv, int first, struct pigme
 
 enum { KEY_COLOUR, KEY_COLOUR2 }; /* the first two keys of the checker, gradient, brick and radial tables */
 
-/* Reads colour and colour2, which must not be negative. */
+/* Reads colour and colour2, each channel from 0 to KEY_MAX_SURFACE. */
 static bool make_colours(const struct key_values *kv, struct pigment *p, char *why, size_t why_size) {
     p->colour[0] = key_vec3(kv, KEY_COLOUR);
     p->colour[1] = key_vec3(kv, KEY_COLOUR2);
-    for (int k = 0; k < 2; k++)
-        if (p->colour[k].x < 0.0 || p->colour[k].y < 0.0 || p->colour[k].z < 0.0) {
+    for (int k = 0; k < 2; k++) {
+        vec3 c = p->colour[k];
+        if (c.x < 0.0 || c.y < 0.0 || c.z < 0.0) {
             snprintf(why, why_size, "pigment '%s': %s must not be negative", p->name, k == 0 ? "colour" : "colour2");
             return false;
         }
+        if (!(c.x <= KEY_MAX_SURFACE && c.y <= KEY_MAX_SURFACE && c.z <= KEY_MAX_SURFACE)) {
+            snprintf(why, why_size, "pigment '%s': %s must be at most %g in each channel, got " KEY_NUMBER_SHOWN " "
+                     KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, p->name, k == 0 ? "colour" : "colour2", KEY_MAX_SURFACE,
+                     c.x, c.y, c.z);
+            return false;
+        }
+    }
     return true;
 }
 

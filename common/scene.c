@@ -250,6 +250,7 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
         return false;
     struct material m = s->materials[0]; /* unspecified keys keep the defaults */
     snprintf(m.name, sizeof m.name, "%s", tok[0]);
+    m.line = p->line;
     double *scalars[] = {NULL, &m.ambient, &m.diffuse, &m.phong, &m.phong_size, &m.reflection,
                          &m.filter, &m.transmit, &m.ior};
     for (int k = AMBIENT; k <= IOR; k++)
@@ -265,8 +266,15 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
     for (int k = AMBIENT; k <= TRANSMIT; k++)
         if (*scalars[k] < 0.0)
             return fail(p, "material '%s': %s must not be negative", m.name, specs[k].name);
+    for (int k = AMBIENT; k <= REFLECTION; k++)
+        if (k != PHONG_SIZE && *scalars[k] > KEY_MAX_SURFACE)
+            return fail(p, "material '%s': %s must be at most %g, got " KEY_NUMBER_SHOWN, m.name, specs[k].name,
+                        KEY_MAX_SURFACE, *scalars[k]);
     if (m.colour.x < 0.0 || m.colour.y < 0.0 || m.colour.z < 0.0)
         return fail(p, "material '%s': colour must not be negative", m.name);
+    if (!(m.colour.x <= KEY_MAX_SURFACE && m.colour.y <= KEY_MAX_SURFACE && m.colour.z <= KEY_MAX_SURFACE))
+        return fail(p, "material '%s': colour must be at most %g in each channel, got " KEY_NUMBER_SHOWN " "
+                    KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, m.name, KEY_MAX_SURFACE, m.colour.x, m.colour.y, m.colour.z);
     if (kv.present[EMISSION])
         m.emission = key_vec3(&kv, EMISSION);
     vec3 e = m.emission;
@@ -670,10 +678,17 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
         return parse_int(p, args[0], "image width", 1, IMAGE_MAX_SIDE, &s->width) &&
                parse_int(p, args[1], "image height", 1, IMAGE_MAX_SIDE, &s->height);
     }
-    if (strcmp(directive, "background") == 0)
-        return parse_triple(p, "background", args, count, &s->background);
-    if (strcmp(directive, "ambient_light") == 0)
-        return parse_triple(p, "ambient_light", args, count, &s->ambient_light);
+    if (strcmp(directive, "background") == 0 || strcmp(directive, "ambient_light") == 0) {
+        /* Both are light, held to a light's range: a background of 1e300 was infinite in a float HDR file. */
+        bool background = strcmp(directive, "background") == 0;
+        vec3 *colour = background ? &s->background : &s->ambient_light;
+        char why[256];
+        if (!parse_triple(p, directive, args, count, colour))
+            return false;
+        if (!key_vec3_within(*colour, SCENE_MAX_LIGHT, directive, why, sizeof why))
+            return fail(p, "%s", why);
+        return true;
+    }
     if (strcmp(directive, "max_depth") == 0) {
         if (count != 1)
             return fail(p, "max_depth needs one whole number");

@@ -45,7 +45,7 @@ enum scene_lobe { SCENE_LOBE_GGX, SCENE_LOBE_PHONG };
 
 struct material {
     char name[SCENE_NAME_MAX];
-    vec3 colour;        /* pigment, each channel 0..1 */
+    vec3 colour;        /* each channel 0..KEY_MAX_SURFACE (0..1 for chapters 15 and 17, bsdf.h) */
     double ambient;     /* share of the ambient light reflected (POV-Ray finish ambient) */
     double diffuse;     /* Lambertian share (finish diffuse) */
     double phong;       /* highlight strength (finish phong) */
@@ -59,6 +59,7 @@ struct material {
     double roughness;   /* 0..1: 0 the smooth mirror and glass of chapter 15, 1 the roughest (chapter 17) */
     enum scene_metal metal; /* the rough mirror's Fresnel (chapter 17; SCENE_METAL_NONE: constant) */
     enum scene_lobe lobe;   /* the rough surface's distribution (chapter 17; default SCENE_LOBE_GGX) */
+    int line;               /* the scene file's line, for messages (0: the default material) */
 };
 
 /* True when light passes through material m (a filter or a transmit above 0): a shape of it is glass,

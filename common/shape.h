@@ -58,6 +58,13 @@ struct key_values {
  * lengths, boxes in float: triangle.h says why 1e18) stays finite. */
 #define KEY_MAX_COORD 1e18
 
+/* The largest share a surface may give: each channel of a colour (a material's, a pigment's), and a
+ * material's ambient, diffuse, phong and reflection. A real surface gives back at most the light that
+ * reaches it (1), and POV-Ray scenes go a little above 1 for a glow; at most 100, the weight of a ray
+ * 64 reflections or refractions deep (max_depth's most) stays below 100^64 = 1e128, far inside
+ * double's range, where a colour of 1e300 seen through glass twice was infinite. */
+#define KEY_MAX_SURFACE 100.0
+
 /* Returns true when every component of v is within -limit .. limit; otherwise false (NaN included), with
  * "WHAT is (x, y, z); it must stay within -limit .. limit" in why. For every vector a key gives, or that
  * is derived from keys, that must stay finite through what is computed from it. */

@@ -267,6 +267,30 @@ static const struct hostile non_finite[] = {
               "sphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
     {15, VIEW "material e emission 1e18 1e18 1e18\nsphere centre 0 3 0 radius 0.5 material e\n"
               "sphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
+    /* surfaces that give back more light than reaches them: a colour of 1e300 seen through glass twice was
+     * infinite; every chapter holds a surface's values to 100, and the path tracers to 1 */
+    {8, VIEW "material g colour 1e300 0 0 filter 0.9 ior 1.5\nsphere centre 0 0 0 radius 1 material g\n", "", 1,
+     "SCENE:4: material 'g': colour must be at most 100 in each channel, got 1e+300 0 0"},
+    {8, VIEW "material g colour 1 1 1 reflection 1e300\nsphere centre 0 0 0 radius 1 material g\n", "", 1,
+     "SCENE:4: material 'g': reflection must be at most 100, got 1e+300"},
+    {14, VIEW "pigment p checker colour 1 1 1 colour2 0 1e300 0\n", "", 1,
+     "SCENE:4: pigment 'p': colour2 must be at most 100 in each channel, got 0 1e+300 0"},
+    {15, VIEW "background 1e300 0 0\nsphere centre 0 0 0 radius 1\npaths samples 2\n", "", 1,
+     "SCENE:4: background is (1e+300, 0, 0); it must stay within -1e+18 .. 1e+18"},
+    {8, VIEW "material g colour 1 1 1 diffuse 0.8 reflection 0.5\nsphere centre 0 0 0 radius 1 material g\n", "", 0,
+     NULL}, /* POV-Ray's reflection comes on top of the rest */
+    {15, VIEW "material g colour 1 1 1 diffuse 0.8 reflection 0.5\nsphere centre 0 0 0 radius 1 material g\n"
+              "paths samples 2\nmaterial lamp emission 4 4 4\nsphere centre 3 3 3 radius 1 material lamp\n", "", 1,
+     "SCENE:4: material 'g': diffuse * colour + reflection is 1.3; a surface gives back at most the light that "
+     "reaches it, so it must be at most 1"},
+    {17, VIEW "pigment p checker colour 1 1 1 colour2 2 0 0\nmaterial g pigment p diffuse 0.5\n"
+              "sphere centre 0 0 0 radius 1 material g\npaths samples 2\nmaterial lamp emission 4 4 4\n"
+              "sphere centre 3 3 3 radius 1 material lamp\n", "", 1,
+     "SCENE:5: material 'g': a colour channel of 2 (its pigment's); a surface gives back at most the light that "
+     "reaches it, so each channel must be at most 1"},
+    {15, VIEW "material g colour 1 1 1 filter 1 ior 1.5\nsphere centre 0 0 0 radius 1 material g\n"
+              "paths samples 2\nmaterial lamp emission 4 4 4\nsphere centre 3 3 3 radius 1 material lamp\n"
+              "background 0.2 0.3 0.4\n", "", 0, NULL},
     /* nothing at all gives off light: not a black picture with exit 0, but a reason */
     {15, VIEW "sphere centre 0 0 0 radius 1\npaths samples 2\n", "", 1,
      "SCENE: nothing gives off light, so the picture would be black: no material has an emission, no light has an "

@@ -174,6 +174,7 @@ Test(scene, material_keys_left_out_keep_the_defaults) {
     snprintf(want.name, sizeof want.name, "red");
     want.colour = vec3_make(1, 0, 0);
     want.phong = 0.5;
+    want.line = 3; /* where it was read, for messages */
     cr_assert_eq(memcmp(&s.materials[1], &want, sizeof want), 0);
     scene_free(&s);
 }
@@ -374,10 +375,17 @@ Test(scene_errors, values_out_of_range) {
     expect_error("camera eye 0 0 5 target 0 0 0 up 0 1e300 0 fov 40\n",
                  NAME ":1: camera up is (0, 1e+300, 0); it must stay within -1e+18 .. 1e+18");
     expect_line3_error("light position 0 5e18 5", "light position is (0, 5e+18, 5); it must stay within -1e+18 .. 1e+18");
+    expect_line3_error("ambient_light 1e19 1 1", "ambient_light is (1e+19, 1, 1); it must stay within -1e+18 .. 1e+18");
+    expect_line3_error("background 0 -1e300 0", "background is (0, -1e+300, 0); it must stay within -1e+18 .. 1e+18");
+    expect_line3_error("material m ambient 100.5", "material 'm': ambient must be at most 100, got 100.5");
+    expect_line3_error("material m diffuse 1e300", "material 'm': diffuse must be at most 100, got 1e+300");
+    expect_line3_error("material m phong 101", "material 'm': phong must be at most 100, got 101");
+    expect_line3_error("material m colour 0 0 101", "material 'm': colour must be at most 100 in each channel, got 0 0 101");
     /* The limits themselves are in range. */
     struct scene s;
     parse_ok(HEAD "sphere centre 1e18 -1e18 0 radius 1e18\nsphere centre 0 0 0 radius 1e-18\n"
-                  "plane normal 0 1 0 distance -1e18\nlight position -1e18 1e18 1e18\n",
+                  "plane normal 0 1 0 distance -1e18\nlight position -1e18 1e18 1e18\nbackground -1e18 0 1e18\n"
+                  "material m colour 100 100 100 ambient 100 diffuse 100 phong 100 reflection 100 phong_size 1e300\n",
              &s);
     cr_assert_eq(scene_shapes(&s, &sphere_syntax)->count, 2);
     scene_free(&s);
