@@ -576,6 +576,10 @@ Test(command_line, animation_options_are_checked) {
     expect_chapter_run(16, "--frames 0", 2, "--frames needs a whole number from 1 to 100000, got '0'");
     expect_chapter_run(16, "--video", 2, "--video needs --frames N (at least 2) and all of them (no --frame)");
     expect_chapter_run(16, "--frames 2 -o -", 2, "--frames writes one file a frame");
+    expect_chapter_run(16, "--frames 3 --refit --rebuild", 2,
+                       "--refit and --rebuild say opposite things: give one of them (or neither, for the default rule)");
+    expect_chapter_run(16, "--refit", 2,
+                       "--refit and --rebuild choose what happens between frames: they need --frames N (at least 2)");
 }
 
 Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {

@@ -38,7 +38,8 @@ static struct {
     long frame;    /* --frame K: only frame K of the N; 0 for all */
     bool video;    /* --video */
     enum instances_update update;
-} animation = {0, 0, false, INSTANCES_AUTO};
+    int update_options; /* how many of --refit and --rebuild were given */
+} animation = {0, 0, false, INSTANCES_AUTO, 0};
 
 /* Reads a whole number from lo to hi for `option`, or says why not. */
 static bool read_count(const char *option, const char *value, long lo, long hi, long *out) {
@@ -61,9 +62,9 @@ static int parse_option(const char *option, const char *value) {
     if (strcmp(option, "--video") == 0)
         return animation.video = true, 1;
     if (strcmp(option, "--refit") == 0)
-        return animation.update = INSTANCES_REFIT, 1;
+        return animation.update = INSTANCES_REFIT, animation.update_options++, 1;
     if (strcmp(option, "--rebuild") == 0)
-        return animation.update = INSTANCES_REBUILD, 1;
+        return animation.update = INSTANCES_REBUILD, animation.update_options++, 1;
     return 0;
 }
 
@@ -83,6 +84,10 @@ static bool animation_options_valid(const struct cli_options *o) {
         problem = "--video needs --frames N (at least 2) and all of them (no --frame)";
     else if (animation.frames > 0 && strcmp(o->output, "-") == 0)
         problem = "--frames writes one file a frame: -o - (standard output) cannot take them";
+    else if (animation.update_options > 1)
+        problem = "--refit and --rebuild say opposite things: give one of them (or neither, for the default rule)";
+    else if (animation.update_options > 0 && animation.frames < 2)
+        problem = "--refit and --rebuild choose what happens between frames: they need --frames N (at least 2)";
     if (problem != NULL)
         fprintf(stderr, "%s\n", problem);
     return problem == NULL;
