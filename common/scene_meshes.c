@@ -14,6 +14,7 @@
  * limits, a factor of ten within that range: */
 #define SCENE_MESH_MAX_COORD TRIANGLE_MAX_COORD /* no coordinate beyond 1e18, so no side beyond 2e18 */
 #define SCENE_MESH_MIN_SIZE 1e-18 /* the mesh's largest side at least this */
+#define SCENE_MESH_ERROR_SIZE 4096 /* room for a mesh reader's message, which names its file */
 
 /* Checks that the placed mesh m lies within the limits above, and its texture coordinates too (so that
  * a point of a picture blended from three stays finite); otherwise writes "scene:line: mesh FILE placed
@@ -58,8 +59,11 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size) {
         if (m->mesh.vertices != NULL)
             continue; /* already loaded */
         /* Chapter 14 (which sets s->paint) keeps the corners' normals and (u, v); before, meshes are flat. */
-        if (!mesh_load_with_corners(m->path, &m->mesh, s->paint != NULL ? &m->corners : NULL, err, err_size))
+        char why[SCENE_MESH_ERROR_SIZE]; /* the reader's own "FILE:LINE: what is wrong", after the scene's line */
+        if (!mesh_load_with_corners(m->path, &m->mesh, s->paint != NULL ? &m->corners : NULL, why, sizeof why)) {
+            snprintf(err, err_size, "%s:%d: mesh: %s", s->path, m->line, why);
             return false;
+        }
         mesh_transform(&m->mesh, m->scale, m->rotate, m->translate);
         mesh_corners_turn(&m->corners, m->rotate);
         if (!placed_in_range(s, m, err, err_size))
