@@ -4,8 +4,9 @@
  * The tree and the float box test are rung 8's (fast_bvh_eight.c), eight children's slab tests in one
  * AVX2 instruction with rung 6's bound on the rounding (fast_bvh_walk.h). What changes is the work
  * around them:
- *  - one set-up of the ray in float for all three axes at once (lean_float_setup), and the root's box
- *    not tested at all: the first node's test of its children's boxes decides as much;
+ *  - the root's box tested first, in double, as rung 8 does, but before anything else: most rays of a
+ *    frame miss the model, and they leave for that one test (fast_bvh_lean_traverse);
+ *  - then one set-up of the ray in float for all three axes at once (lean_float_setup);
  *  - for the nearest hit, the children hit are ordered by a fixed network of eight-lane minima and
  *    maxima on integer keys made of their float entry distances (sort8), not by an insertion sort with
  *    a branch per step; the order only decides which subtree is walked first, never the answer;
@@ -404,7 +405,9 @@ static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struc
     s.count = b->root_count;
     s.top = 0;
     s.limit = (float)w.limit;
-    running = running && b->tree_count > 0; /* the root's box is not tested: the first node tests its children's */
+    /* The root's box: tested by fast_bvh_lean_traverse when no sliver lies outside the tree; else not at
+     * all, the first node's test of its children's boxes deciding as much. */
+    running = running && b->tree_count > 0;
     /* Down to the first leaf, before the triangles' set-up: many rays reach none. */
     while (running && s.count == 0) {
         visits++;
@@ -446,9 +449,10 @@ static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struc
 }
 
 /* traverse_lean specialised for each query, and for rung 11's float triangle test when b has its float
- * copy of the triangles; a ray rung 6's bound does not cover goes to rung 8 (in double). */
-AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max,
-                                 enum query kind, struct query_state *q) {
+ * copy of the triangles; a ray rung 6's bound does not cover goes to rung 8 (in double). Not inlined, so
+ * that a ray fast_bvh_lean_traverse sends away does not pay for this one's frame (its stack). */
+static AVX2 __attribute__((noinline)) bool lean_walk(const struct fast_bvh *b, const ray *r, double t_min,
+                                                     double t_max, enum query kind, struct query_state *q) {
     struct float_setup f;
     struct lean_ray l;
     if (!lean_float_setup(b, r, t_min, &l, &f))
@@ -471,6 +475,21 @@ AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double 
     default:
         return traverse_lean(b, r, t_min, t_max, QUERY_ALL, false, &l, &f, q);
     }
+}
+
+AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max,
+                                 enum query kind, struct query_state *q) {
+    /* Most rays of a frame miss the model. One slab test of the root's box in double, the test rung 8 and
+     * fast_bvh.c's walk begin with, sends them away for a fraction of the float set-up and the first node
+     * they would otherwise pay for (when no sliver lies outside the tree). */
+    if (b->triangle_count == b->tree_count &&
+        !(b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, aabb_inverse_direction(r->direction),
+                                        t_min > -DBL_MAX ? t_min : -DBL_MAX, t_max < DBL_MAX ? t_max : DBL_MAX, NULL))) {
+        q->found = false;
+        q->t = t_max;
+        return false;
+    }
+    return lean_walk(b, r, t_min, t_max, kind, q);
 }
 
 #else /* not x86: no AVX2, and rung 9 is always rung 6 */
