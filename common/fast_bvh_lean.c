@@ -482,9 +482,7 @@ AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double 
     /* Most rays of a frame miss the model. One slab test of the root's box in double, the test rung 8 and
      * fast_bvh.c's walk begin with, sends them away for a fraction of the float set-up and the first node
      * they would otherwise pay for (when no sliver lies outside the tree). */
-    if (b->triangle_count == b->tree_count &&
-        !(b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, aabb_inverse_direction(r->direction),
-                                        t_min > -DBL_MAX ? t_min : -DBL_MAX, t_max < DBL_MAX ? t_max : DBL_MAX, NULL))) {
+    if (b->triangle_count == b->tree_count && !root_box_entered(b, r, t_min, t_max)) {
         q->found = false;
         q->t = t_max;
         return false;

@@ -339,11 +339,19 @@ static void packet_walk_four_compact(const struct fast_bvh *b, struct packet *p,
 }
 
 /* Sets ray k of p up for ray r, as the single-ray walk sets itself up (fast_bvh.c's traverse): the
- * slivers tested, then the root's box in double. Returns false when the float test cannot cover r (the
- * caller then asks fast_bvh_closest); else true, with *inside telling whether r enters the root's box. */
+ * slivers tested, then the root's box in double; or, when no sliver lies outside the tree, the root's box
+ * first, so that a ray that misses the model costs that one test (as on rung 9). Returns false when the
+ * float test cannot cover r (the caller then asks fast_bvh_closest); else true, with *inside telling
+ * whether r enters the root's box (when it does not, the lane's answer, nothing found, is made). */
 static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, const ray *r, double t_min,
                              double t_max, uint64_t *tests, bool *inside) {
     struct lane *l = &p->lane[k];
+    bool root_first = b->triangle_count == b->tree_count;
+    if (root_first && !root_box_entered(b, r, t_min, t_max)) {
+        l->q = (struct query_state){.t = t_max};
+        *inside = false;
+        return true;
+    }
     if (!float_setup_make(b, r, t_min, &l->setup))
         return false;
     for (int a = 0; a < 3; a++) {
@@ -366,8 +374,8 @@ static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, 
         test_leaf_triangles(b, &l->ready, (uint32_t)b->tree_count, slivers, t_min, t_max, QUERY_CLOSEST, false,
                             &l->q, &l->box_max, tests);
     double root_entry;
-    *inside = b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, aabb_inverse_direction(r->direction), box_min,
-                                            l->box_max, &root_entry);
+    *inside = root_first || (b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, aabb_inverse_direction(r->direction),
+                                                           box_min, l->box_max, &root_entry));
     l->float_min = float_at_most(box_min);
     packet_narrow(p, k);
     return true;

@@ -212,6 +212,15 @@ static inline bool stack_pop_within(const struct walk_stack_entry *stack, int *t
     return false;
 }
 
+/* Whether ray r may meet a triangle of b's tree within [t_min, t_max]: the slab test of the root's box in
+ * double (aabb_hit) with which the walks begin, every window clamped to finite bounds as traverse does.
+ * Counts one box test. A ray it sends away meets none of the tree's triangles; the slivers outside the
+ * tree are the caller's. */
+static inline bool root_box_entered(const struct fast_bvh *b, const ray *r, double t_min, double t_max) {
+    return b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, aabb_inverse_direction(r->direction),
+                                         t_min > -DBL_MAX ? t_min : -DBL_MAX, t_max < DBL_MAX ? t_max : DBL_MAX, NULL);
+}
+
 /* Adds one walk's counters to the calling thread's (stats.h): once per ray, not once per node. */
 static inline void walk_counted(uint64_t visits, uint64_t boxes, uint64_t tests) {
     stats_thread.node_visits += visits;
