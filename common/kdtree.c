@@ -271,15 +271,21 @@ static void build(struct builder *bd, enum kd_split rule, struct triangles *t, s
 }
 
 /* The box of triangle a, b, c grown by pad and rounded outward to float. A bound that is not a number (a
- * corner at infinity or NaN) becomes infinite: the box still holds the triangle, and no cost is NaN. */
+ * corner at infinity or NaN) becomes infinite: the box still holds the triangle, and no cost is NaN.
+ * Where the pad is lost in rounding (a mesh a few units in the last place across, pad > 0 but
+ * x - pad == x), the bound still moves one float step outward: a box must never end exactly on its
+ * triangle's corner, or a plane there would leave the triangle on one side only. */
 static struct aabb padded_box(vec3 a, vec3 b, vec3 c, double pad) {
     vec3 lo = vec3_min(a, vec3_min(b, c)), hi = vec3_max(a, vec3_max(b, c));
     struct aabb box;
     for (int axis = 0; axis < 3; axis++) {
         double min = vec3_axis(lo, axis) - pad, max = vec3_axis(hi, axis) + pad;
+        bool min_moved = min < vec3_axis(lo, axis) || pad == 0.0, max_moved = max > vec3_axis(hi, axis) || pad == 0.0;
         float down = (float)min, up = (float)max;
-        set_axis(&box.min, axis, isnan(min) ? -INFINITY : down > min ? nextafterf(down, -INFINITY) : down);
-        set_axis(&box.max, axis, isnan(max) ? INFINITY : up < max ? nextafterf(up, INFINITY) : up);
+        set_axis(&box.min, axis,
+                 isnan(min) ? -INFINITY : down > min || (down == min && !min_moved) ? nextafterf(down, -INFINITY) : down);
+        set_axis(&box.max, axis,
+                 isnan(max) ? INFINITY : up < max || (up == max && !max_moved) ? nextafterf(up, INFINITY) : up);
     }
     return box;
 }

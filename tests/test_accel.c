@@ -1223,6 +1223,59 @@ Test(accel, rung_6_matches_brute_force_where_a_float_step_is_as_large_as_the_mes
     check_mesh("sphere of radius 3e-3 at (4096, -2048, 1024)", &sphere, 57);
 }
 
+/* The closed cube [1, 1 + 4 ulp]^3 (ulp = DBL_EPSILON, the step of doubles at 1), twelve triangles. So
+ * small that its pad (2^-20 of its size) is lost in rounding: the root's box of the fast BVH, rounded
+ * outward to float, has its low faces exactly on the cube's. */
+static struct mesh make_ulp_cube(void) {
+    struct builder b = {0};
+    const double lo = 1.0, hi = 1.0 + 4.0 * DBL_EPSILON;
+    for (int k = 0; k < 8; k++)
+        add_vertex(&b, vec3_make(k & 1 ? hi : lo, k & 2 ? hi : lo, k & 4 ? hi : lo));
+    static const uint32_t quads[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                         {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+    for (int q = 0; q < 6; q++) {
+        add_face(&b, quads[q][0], quads[q][1], quads[q][2]);
+        add_face(&b, quads[q][0], quads[q][2], quads[q][3]);
+    }
+    return b.m;
+}
+
+/* A ray that runs inside a face's plane of the root's box (an origin component on the plane, that
+ * direction component +-0) gets 0 * infinity = NaN in the slab test, which must constrain nothing
+ * (aabb.h): such a ray meets the walls standing on that face along their edge. The walks that test the
+ * root's box first (rungs 8 to 11, and rung 9's own test of its three slabs at once) must still find
+ * them, as the brute-force loop does. */
+Test(accel, rays_inside_the_root_boxs_faces_meet_the_walls_standing_on_them) {
+    struct mesh m = make_ulp_cube();
+    struct checker c;
+    checker_init(&c, "cube of 4 ulp at 1", &m);
+    const double lo = 1.0, hi = 1.0 + 4.0 * DBL_EPSILON, middle = 1.0 + 2.0 * DBL_EPSILON;
+    size_t rays = 0, hit = 0;
+    for (int plane = 0; plane < 3; plane++)       /* the ray runs inside plane x, y or z = lo */
+        for (int along = 0; along < 3; along++) { /* towards the cube along this axis */
+            if (along == plane)
+                continue;
+            for (int sign = -1; sign <= 1; sign += 2)
+                for (int zero = 0; zero < 2; zero++) { /* the plane's direction component +0 or -0 */
+                    vec3 origin = {middle, middle, middle}, direction = {0.0, 0.0, 0.0};
+                    set_axis(&origin, plane, lo);
+                    set_axis(&origin, along, sign > 0 ? lo - 8.0 * DBL_EPSILON : hi + 8.0 * DBL_EPSILON);
+                    set_axis(&direction, along, sign);
+                    set_axis(&direction, plane, zero ? -0.0 : 0.0);
+                    ray r = {origin, direction};
+                    trace_brute_force(&c, &r);
+                    hit += c.hit_count > 0;
+                    rays++;
+                    check_window(&c, &r, -INFINITY, INFINITY);
+                    check_window(&c, &r, 0.0, INFINITY);
+                }
+        }
+    cr_assert_eq(rays, 24);
+    cr_expect_eq(hit, rays, "the brute-force loop finds the walls' edges on %zu of %zu rays", hit, rays);
+    checker_free(&c);
+    mesh_free(&m);
+}
+
 /* Chapter 11's rungs: only 1 to 11, by number or name; fast_bvh_build builds 2 to 9 and nothing else. */
 Test(accel, fast_bvh_rungs_are_named_and_checked) {
     static const char *const names[] = {"plain", "wide",    "simd",  "prefetch", "build",      "float",
