@@ -482,9 +482,41 @@ static inline __attribute__((always_inline)) bool traverse_rung(const struct fas
     }
 }
 
+/* traverse_rung for each query, not inlined: their frames hold the walks' stacks, which a ray of rungs 9
+ * and 11 (walked in fast_bvh_lean.c) need not pay for. */
+static __attribute__((noinline)) bool traverse_rung_closest(const struct fast_bvh *b, const ray *r, double t_min,
+                                                            double t_max, struct query_state *q) {
+    return traverse_rung(b, r, t_min, t_max, QUERY_CLOSEST, q);
+}
+static __attribute__((noinline)) bool traverse_rung_any(const struct fast_bvh *b, const ray *r, double t_min,
+                                                        double t_max, struct query_state *q) {
+    return traverse_rung(b, r, t_min, t_max, QUERY_ANY, q);
+}
+static __attribute__((noinline)) bool traverse_rung_all(const struct fast_bvh *b, const ray *r, double t_min,
+                                                        double t_max, struct query_state *q) {
+    return traverse_rung(b, r, t_min, t_max, QUERY_ALL, q);
+}
+
+/* traverse_rung for query `kind` (a constant where this is inlined), with rungs 9 and 11 on an 8-wide
+ * tree sent straight to their walk. */
+static inline __attribute__((always_inline)) bool traverse_any_rung(const struct fast_bvh *b, const ray *r,
+                                                                    double t_min, double t_max, enum query kind,
+                                                                    struct query_state *q) {
+    if ((b->rung == FAST_BVH_RUNG_LEAN || b->rung == FAST_BVH_RUNG_EXACT) && b->nodes8 != NULL)
+        return fast_bvh_lean_traverse(b, r, t_min, t_max, kind, q);
+    switch (kind) {
+    case QUERY_CLOSEST:
+        return traverse_rung_closest(b, r, t_min, t_max, q);
+    case QUERY_ANY:
+        return traverse_rung_any(b, r, t_min, t_max, q);
+    default:
+        return traverse_rung_all(b, r, t_min, t_max, q);
+    }
+}
+
 bool fast_bvh_closest(const struct fast_bvh *b, const ray *r, double t_min, double t_max, double *t, uint32_t *face) {
     struct query_state q = {0};
-    if (!traverse_rung(b, r, t_min, t_max, QUERY_CLOSEST, &q))
+    if (!traverse_any_rung(b, r, t_min, t_max, QUERY_CLOSEST, &q))
         return false;
     *t = q.t;
     *face = q.face;
@@ -493,7 +525,7 @@ bool fast_bvh_closest(const struct fast_bvh *b, const ray *r, double t_min, doub
 
 bool fast_bvh_occluded(const struct fast_bvh *b, const ray *r, double t_min, double t_max) {
     struct query_state q = {0};
-    return traverse_rung(b, r, t_min, t_max, QUERY_ANY, &q);
+    return traverse_any_rung(b, r, t_min, t_max, QUERY_ANY, &q);
 }
 
 void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min, double t_max,
@@ -501,7 +533,7 @@ void fast_bvh_for_each_hit(const struct fast_bvh *b, const ray *r, double t_min,
     struct query_state q = {0};
     q.visit = visit;
     q.ctx = ctx;
-    traverse_rung(b, r, t_min, t_max, QUERY_ALL, &q);
+    traverse_any_rung(b, r, t_min, t_max, QUERY_ALL, &q);
 }
 
 /* ==== the rungs' names ======================================================================== */

@@ -4,9 +4,11 @@
  * The tree and the float box test are rung 8's (fast_bvh_eight.c), eight children's slab tests in one
  * AVX2 instruction with rung 6's bound on the rounding (fast_bvh_walk.h). What changes is the work
  * around them:
- *  - the root's box tested first, in double, as rung 8 does, but before anything else: most rays of a
- *    frame miss the model, and they leave for that one test (fast_bvh_lean_traverse);
- *  - then one set-up of the ray in float for all three axes at once (lean_float_setup);
+ *  - the root's box tested first, in double, as rung 8 does, but before anything else and its three
+ *    slabs at once: most rays of a frame miss the model, and they leave for that one test
+ *    (lean_root_entered);
+ *  - then one set-up of the ray in float for all three axes at once, with the root test's 1 / direction
+ *    (lean_float_setup);
  *  - for the nearest hit, the children hit are ordered by a fixed network of eight-lane minima and
  *    maxima on integer keys made of their float entry distances (sort8), not by an insertion sort with
  *    a branch per step; the order only decides which subtree is walked first, never the answer;
@@ -32,6 +34,7 @@
  * build makes rung 9's tree only when fast_bvh_eight_available() says the processor has AVX2. */
 #include "fast_bvh_lean.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -261,20 +264,62 @@ static inline AVX2 __attribute__((always_inline)) bool leaf_triangles_float8(
     return true;
 }
 
-/* Rung 6's float set-up of r (float_setup_make in fast_bvh_walk.h) for the three axes at once, in
- * four double lanes (the fourth a dummy axis with origin 0 and direction 1, which passes every check
- * and adds no slack): the same operations lane by lane, so the same float origin, the same float
- * 1 / direction and the same slack, written into the boxes' half of *l and into f->slack and
- * f->slack2 (f's other fields are not used by this walk). Returns false where float_setup_make would. */
-static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const ray *r, double t_min, struct lean_ray *l,
-                                         struct float_setup *f) {
+/* A ray in four double lanes: x, y, z and a dummy fourth axis with origin 0 and direction 1, which
+ * passes every check below, adds no slack and crosses an unbounded slab. Made once per ray for the
+ * root's box and the float set-up, which both need 1 / direction. */
+struct lean_start {
+    double4 origin, direction, inverse;
+};
+
+/* r in four lanes, 1 / direction as aabb_inverse_direction has it. */
+static inline AVX2 void lean_start_make(const ray *r, struct lean_start *s) {
+    s->origin = (double4){r->origin.x, r->origin.y, r->origin.z, 0.0};
+    s->direction = (double4){r->direction.x, r->direction.y, r->direction.z, 1.0};
+    s->inverse = broadcast4(1.0) / s->direction;
+}
+
+/* The largest and the smallest of four doubles, none of them NaN. */
+static inline AVX2 double largest4(double4 x) {
+    x = _mm256_max_pd(x, _mm256_permute4x64_pd(x, 0x4E)); /* lanes 0, 1 against 2, 3 */
+    return _mm256_cvtsd_f64(_mm256_max_pd(x, _mm256_permute_pd(x, 0x5)));
+}
+static inline AVX2 double smallest4(double4 x) {
+    x = _mm256_min_pd(x, _mm256_permute4x64_pd(x, 0x4E));
+    return _mm256_cvtsd_f64(_mm256_min_pd(x, _mm256_permute_pd(x, 0x5)));
+}
+
+/* root_box_entered (fast_bvh_walk.h) for the ray s, its three slabs at once: lane by lane the
+ * arithmetic of clip_to_slab (aabb.h), so each axis's entry and exit are the same doubles; a NaN (an
+ * origin on a slab's plane, the ray running in it) constrains nothing, as there (a maximum or minimum
+ * of a NaN and a number gives the number, its second operand); and the largest entry and the smallest
+ * exit do not depend on the order they are taken in. So the same answer. Counts one box test. */
+static inline AVX2 bool lean_root_entered(const struct fast_bvh *b, const struct lean_start *s, double t_min,
+                                          double t_max) {
+    stats_thread.box_tests++;
+    if (b->tree_count == 0)
+        return false;
+    const struct aabb *box = &b->root_box;
+    double4 lo = {box->min.x, box->min.y, box->min.z, -INFINITY}, hi = {box->max.x, box->max.y, box->max.z, INFINITY};
+    double4 t0 = (lo - s->origin) * s->inverse, t1 = (hi - s->origin) * s->inverse;
+    long4 swapped = s->inverse < broadcast4(0.0);
+    double4 enter = (double4)(((long4)t1 & swapped) | ((long4)t0 & ~swapped));
+    double4 leave = (double4)(((long4)t0 & swapped) | ((long4)t1 & ~swapped));
+    enter = _mm256_max_pd(enter, broadcast4(t_min > -DBL_MAX ? t_min : -DBL_MAX)); /* NaN: the window's end */
+    leave = _mm256_min_pd(leave, broadcast4(t_max < DBL_MAX ? t_max : DBL_MAX));
+    return largest4(enter) <= smallest4(leave);
+}
+
+/* Rung 6's float set-up (float_setup_make in fast_bvh_walk.h) of the ray s, for the three axes at once:
+ * the same operations lane by lane, so the same float origin, the same float 1 / direction and the same
+ * slack, written into the boxes' half of *l and into f->slack and f->slack2 (f's other fields are not
+ * used by this walk). Returns false where float_setup_make would. */
+static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const struct lean_start *s, double t_min,
+                                         struct lean_ray *l, struct float_setup *f) {
     if (!b->float_range || !(t_min >= 0.0 && t_min <= FAST_BVH_FLOAT_RANGE))
         return false;
     const double4 zero = broadcast4(0.0), range = broadcast4(FAST_BVH_FLOAT_RANGE);
     const long4 magnitude = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX}; /* all bits but the sign */
-    double4 origin = {r->origin.x, r->origin.y, r->origin.z, 0.0};
-    double4 direction = {r->direction.x, r->direction.y, r->direction.z, 1.0};
-    double4 inverse = broadcast4(1.0) / direction; /* as aabb_inverse_direction has it */
+    double4 origin = s->origin, direction = s->direction, inverse = s->inverse;
     __m128 rounded = _mm256_cvtpd_ps((__m256d)origin), inverse_f = _mm256_cvtpd_ps((__m256d)inverse);
     double4 shift = (double4)((long4)(origin - (double4)_mm256_cvtps_pd(rounded)) & magnitude); /* fabs */
     double4 size = (double4)((long4)inverse & magnitude);
@@ -451,11 +496,12 @@ static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struc
 /* traverse_lean specialised for each query, and for rung 11's float triangle test when b has its float
  * copy of the triangles; a ray rung 6's bound does not cover goes to rung 8 (in double). Not inlined, so
  * that a ray fast_bvh_lean_traverse sends away does not pay for this one's frame (its stack). */
-static AVX2 __attribute__((noinline)) bool lean_walk(const struct fast_bvh *b, const ray *r, double t_min,
-                                                     double t_max, enum query kind, struct query_state *q) {
+static AVX2 __attribute__((noinline)) bool lean_walk(const struct fast_bvh *b, const ray *r,
+                                                     const struct lean_start *start, double t_min, double t_max,
+                                                     enum query kind, struct query_state *q) {
     struct float_setup f;
     struct lean_ray l;
-    if (!lean_float_setup(b, r, t_min, &l, &f))
+    if (!lean_float_setup(b, start, t_min, &l, &f))
         return fast_bvh_eight_traverse(b, r, t_min, t_max, kind, q);
     if (b->float_corners != NULL) { /* rung 11 */
         switch (kind) {
@@ -481,13 +527,15 @@ AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double 
                                  enum query kind, struct query_state *q) {
     /* Most rays of a frame miss the model. One slab test of the root's box in double, the test rung 8 and
      * fast_bvh.c's walk begin with, sends them away for a fraction of the float set-up and the first node
-     * they would otherwise pay for (when no sliver lies outside the tree). */
-    if (b->triangle_count == b->tree_count && !root_box_entered(b, r, t_min, t_max)) {
+     * they would otherwise pay for (when no sliver lies outside the tree). Its 1 / direction is the set-up's. */
+    struct lean_start start;
+    lean_start_make(r, &start);
+    if (b->triangle_count == b->tree_count && !lean_root_entered(b, &start, t_min, t_max)) {
         q->found = false;
         q->t = t_max;
         return false;
     }
-    return lean_walk(b, r, t_min, t_max, kind, q);
+    return lean_walk(b, r, &start, t_min, t_max, kind, q);
 }
 
 #else /* not x86: no AVX2, and rung 9 is always rung 6 */
