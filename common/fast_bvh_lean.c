@@ -19,11 +19,11 @@
  *    triangle_crossing_prepared (triangle.h), in its order, each product rounded on its own (AVX2
  *    brings no fused multiply-add, and the Makefile's -ffp-contract=off forbids fusing): the same
  *    sheared corners, the same three edge functions, the same test of their signs (zero is inside) and
- *    of det == 0, bit for bit. So a lane that this filter drops is a triangle triangle_crossing_prepared
- *    rejects, and every lane it keeps is tested again by triangle_crossing_prepared itself, on the same
- *    doubles read back from the block, and handed to leaf_hit_taken (fast_bvh_walk.h), the code of the
- *    other rungs, which applies the window and the tie rule. The filter decides nothing; it only skips
- *    work.
+ *    of det == 0, and for the lanes that cross the same t, bit for bit. The one test it leaves out,
+ *    whether the corners lie exactly on a line, is triangle_corners_collinear, made on the crossing
+ *    lanes only, as triangle_crossing_prepared makes it. So each lane gives triangle_crossing_prepared's
+ *    answer, and its hits go to leaf_hit_taken (fast_bvh_walk.h), the code of the other rungs, which
+ *    applies the window and the tie rule.
  * A ray that rung 6's bound does not cover is walked by rung 8, in double.
  *
  * Rung 11 walks the same tree in the same way; only its leaves differ: their triangles are tested eight
@@ -177,13 +177,11 @@ static inline AVX2 void children_by_entry8(float8 entry, unsigned hit, uint32_t 
     __builtin_memcpy(order, &sorted, sizeof sorted);
 }
 
-/* Tests triangles [first, first + count) of the tree for query q, four at a time: lanes that
- * triangle_crossing_prepared would reject are dropped by its own arithmetic, lane by lane (see the top
- * of this file), and the others are tested again by triangle_crossing_prepared, which decides, and taken
- * by leaf_hit_taken. Returns false when the walk should stop, as test_leaf_triangles does. */
+/* Tests triangles [first, first + count) of the tree for query q, four at a time, each lane with
+ * triangle_crossing_prepared's arithmetic (see the top of this file), and hands the hits to
+ * leaf_hit_taken. Returns false when the walk should stop, as test_leaf_triangles does. */
 static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const struct fast_bvh *b,
                                                                        const struct lean_ray *l,
-                                                                       const struct triangle_ray *ready,
                                                                        uint32_t first, uint32_t count, double t_min,
                                                                        double t_max, enum query kind,
                                                                        struct query_state *q, double *box_max,
@@ -214,16 +212,19 @@ static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const str
             keep &= ~((1u << (first - k)) - 1u); /* the lanes before the leaf */
         if (end - k < FAST_BVH_LEAN_LANES)
             keep &= (1u << (end - k)) - 1u; /* the lanes past it */
-        for (; keep != 0; keep &= keep - 1) { /* the lanes kept, tested again from the same block */
+        if (keep == 0)
+            continue;
+        /* triangle_crossing_prepared's t, the same expression lane by lane. */
+        double4 t = (w_a * az + w_b * bz + w_c * cz) * l->sz * (broadcast4(1.0) / det);
+        for (; keep != 0; keep &= keep - 1) { /* the lanes that cross */
             int lane = __builtin_ctz(keep);
-            vec3 p[3]; /* the triangle's corners a, b and c */
+            vec3 p[3]; /* the triangle's corners a, b and c, for the one test the lanes left out */
             for (int c = 0; c < 3; c++)
                 p[c] = vec3_make(block[fast_bvh_lean_index((size_t)lane, c, 0)],
                                  block[fast_bvh_lean_index((size_t)lane, c, 1)],
                                  block[fast_bvh_lean_index((size_t)lane, c, 2)]);
-            double t, u, v;
-            if (triangle_crossing_prepared(p[0], p[1], p[2], ready, &t, &u, &v) &&
-                !leaf_hit_taken(kind, t, b->faces[k + (uint32_t)lane], t_min, t_max, q, box_max))
+            if (!triangle_corners_collinear(p[0], p[1], p[2]) &&
+                !leaf_hit_taken(kind, t[lane], b->faces[k + (uint32_t)lane], t_min, t_max, q, box_max))
                 return false;
         }
     }
@@ -473,8 +474,7 @@ static inline AVX2 __attribute__((always_inline)) bool traverse_lean(const struc
         } else {
             bool go_on = exact ? leaf_triangles_float8(b, l, &ready, s.child, s.count, t_min, t_max, kind, q,
                                                        &box_max, &tests, &counts)
-                               : leaf_triangles4(b, l, &ready, s.child, s.count, t_min, t_max, kind, q, &box_max,
-                                                 &tests);
+                               : leaf_triangles4(b, l, s.child, s.count, t_min, t_max, kind, q, &box_max, &tests);
             if (!go_on)
                 break;
             if (kind == QUERY_CLOSEST && box_max < w.limit_for) { /* a nearer hit: narrow the window */

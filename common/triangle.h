@@ -54,6 +54,13 @@ static inline double triangle_edge_function(double px, double py, double qx, dou
     return px * qy - py * qx;
 }
 
+/* Whether the corners a, b, c lie exactly on one line (or coincide): the cross product of two edges is
+ * zero. Such a triangle has no normal, and the watertight test below never reports it crossed. */
+static inline bool triangle_corners_collinear(vec3 a, vec3 b, vec3 c) {
+    vec3 area = vec3_cross(vec3_sub(b, a), vec3_sub(c, a));
+    return area.x == 0.0 && area.y == 0.0 && area.z == 0.0;
+}
+
 /* The watertight test on the triangle with corners a, b, c, the form the acceleration structures
  * store. Returns true and stores t, u and v (P = (1-u-v)a + ub + vc) when the ray's line crosses the
  * triangle, at any t (the caller checks its window). Points on edges and corners count as inside, for
@@ -86,8 +93,7 @@ static inline bool triangle_crossing_prepared(vec3 a, vec3 b, vec3 c, const stru
         return false;
     /* Exactly collinear corners have no normal to shade with, even if rounding gave their 2D image an
      * area. Checked here, on the rare path of a crossing, so the common path of a miss pays nothing. */
-    vec3 area = vec3_cross(vec3_sub(b, a), vec3_sub(c, a));
-    if (area.x == 0.0 && area.y == 0.0 && area.z == 0.0)
+    if (triangle_corners_collinear(a, b, c))
         return false;
 
     /* The depths of the corners along the ray, weighted by their barycentric coordinates. */
