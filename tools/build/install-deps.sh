@@ -6,8 +6,9 @@
 #                                             profile, fuzz, web, test-web, farm, video
 #
 #   build    gcc, pkg-config and stb (libstb-dev): enough for make chapter-N
-#   test     build + Criterion (libcriterion-dev), POV-Ray and gnuplot (gnuplot-nox): make test and
-#            make test-long, whose tests check make results' committed plots and run its quick mode
+#   test     build + Criterion (libcriterion-dev), POV-Ray, gnuplot (gnuplot-nox) and ffmpeg: make test
+#            and make test-long, whose tests check make results' committed plots, run its quick mode
+#            and make chapter 16's film
 #   compare  build + POV-Ray: make compare
 #   cycles   build + Blender (blender), for its Cycles renderer: make compare-cycles (chapter 15)
 #   results  build + POV-Ray and gnuplot: make results (which adds bench for its Embree table)
@@ -62,6 +63,7 @@ for need in "${needs[@]}"; do
         have_pkgconfig criterion || want libcriterion-dev
         have_command povray || want povray
         have_command gnuplot || want gnuplot-nox
+        have_command ffmpeg || want ffmpeg
         ;;
     results)
         have_command povray || want povray
