@@ -13,20 +13,17 @@ struct bsdf bsdf_of_material(const struct material *m) {
     }
     b.albedo = vec3_scale(m->colour, m->diffuse);
     b.mirror = m->reflection;
-    double diffuse_share = fmax(b.albedo.x, fmax(b.albedo.y, b.albedo.z));
+    double diffuse_share = vec3_largest(b.albedo);
     b.p_diffuse = diffuse_share + b.mirror > 0.0 ? diffuse_share / (diffuse_share + b.mirror) : 0.0;
     return b;
 }
 
-/* The largest channel of v. */
-static double largest_channel(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
-
 bool bsdf_conserves_energy(const struct scene *s, const struct material *m, char *why, size_t why_size) {
-    double colour = largest_channel(m->colour); /* the largest channel of any colour the surface takes */
+    double colour = vec3_largest(m->colour); /* the largest channel of any colour the surface takes */
     if (m->pigment >= 0) {
         const struct pigment *p = &s->pigments[m->pigment];
         colour = p->pattern == PIGMENT_IMAGE_MAP ? BSDF_MOST_REFLECTANCE /* texels are 0..1 */
-                                                 : fmax(largest_channel(p->colour[0]), largest_channel(p->colour[1]));
+                                                 : fmax(vec3_largest(p->colour[0]), vec3_largest(p->colour[1]));
     }
     const double most = BSDF_MOST_REFLECTANCE + BSDF_REFLECTANCE_ROUNDING;
     if (colour > most) {

@@ -21,8 +21,6 @@ void path_world_init(struct path_world *pw, const struct world *world, const str
     pw->surface = NULL;
 }
 
-static double largest(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
-
 /* The power heuristic with exponent 2: the weight of an estimate drawn with density `mine` when another
  * strategy could have drawn the same light with density `other`. */
 static double power_heuristic(double mine, double other) {
@@ -179,7 +177,7 @@ static vec3 radiance(const struct path_world *pw, ray r, struct interior_list in
             stats_thread.reflected_rays++;
         }
         if (bounce >= set->roulette) {
-            double keep = fmin(PATH_ROULETTE_MOST, largest(throughput));
+            double keep = fmin(PATH_ROULETTE_MOST, vec3_largest(throughput));
             if (!(sample_stream_next(rng) < keep))
                 return sum;
             throughput = vec3_scale(throughput, 1.0 / keep);

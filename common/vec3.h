@@ -62,6 +62,10 @@ static inline vec3 vec3_max(vec3 a, vec3 b) {
     return (vec3){a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
 }
 
+/* Returns the largest of a's three components (a colour's brightest channel); a NaN component is
+ * passed over, as fmax does. */
+static inline double vec3_largest(vec3 a) { return fmax(a.x, fmax(a.y, a.z)); }
+
 /* Returns true when every component is a finite number (not NaN, not infinite). */
 static inline _Bool vec3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 

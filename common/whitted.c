@@ -72,8 +72,6 @@ static vec3 spawn(struct tree *t, ray r, const struct interior_list *inside, int
     return trace(t, r, *inside, level, weight);
 }
 
-static double largest(vec3 v) { return fmax(v.x, fmax(v.y, v.z)); }
-
 /* The colour seen along r, a ray of the given level and weight inside the objects of `inside`.
  * A crossing into the same index of refraction goes straight on at the same level (POV-Ray's rule):
  * the loop follows it, adding what each surface contributes times the light let through so far. */
@@ -98,7 +96,7 @@ static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level,
          * grey value passes adc_bailout; the new ray's weight is this ray's times its largest channel. */
         vec3 filter = vec3_add_scaled(vec3_make(m->transmit, m->transmit, m->transmit), m->colour, m->filter);
         double grey = WHITTED_GREY_RED * filter.x + WHITTED_GREY_GREEN * filter.y + WHITTED_GREY_BLUE * filter.z;
-        double filter_weight = weight * largest(filter);
+        double filter_weight = weight * vec3_largest(filter);
         bool total_reflection = false, straight_on = false;
         struct interior_list beyond = inside;
         if (fmin(1.0, fabs(grey)) > s->adc_bailout) {
