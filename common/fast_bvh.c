@@ -19,8 +19,9 @@
  *    dependent load per triangle test.
  *  - FAST_BVH_RUNG_EIGHT: rung 6 on an 8-wide tree, walked by fast_bvh_eight.c with AVX2 when the
  *    processor has it; a tree built without it is rung 6's and walked here as rung 6.
- *  - FAST_BVH_RUNG_LEAN: rung 8's tree walked with less work per ray by fast_bvh_lean.c (its leaves'
- *    triangles also laid out to be tested four at a time); without AVX2, as rung 8 without it.
+ *  - FAST_BVH_RUNG_LEAN: rung 8's tree, its leaves priced by the SAH in tests of four triangles, walked
+ *    with less work per ray by fast_bvh_lean.c (its leaves' triangles also laid out to be tested four
+ *    at a time); without AVX2, as rung 8 without it.
  * The shared pieces (the float setup, the queries, the leaves' triangle test) are in fast_bvh_walk.h.
  * The traversal is one function specialised at compile time for each query and rung.
  *
@@ -468,7 +469,7 @@ static inline __attribute__((always_inline)) bool traverse_rung(const struct fas
         if (float_setup_make(b, r, t_min, &f))
             return traverse(b, r, t_min, t_max, kind, true, true, &f, false, q);
         return traverse(b, r, t_min, t_max, kind, true, true, NULL, false, q);
-    case FAST_BVH_RUNG_LEAN: /* rung 8's tree walked leaner (AVX2); else rung 6's */
+    case FAST_BVH_RUNG_LEAN: /* rung 8's kind of tree walked leaner (AVX2); else rung 6's */
     case FAST_BVH_RUNG_EXACT: /* the same, its triangles tested in float first (b->float_corners) */
         if (b->nodes8 != NULL)
             return fast_bvh_lean_traverse(b, r, t_min, t_max, kind, q);

@@ -34,8 +34,10 @@
  * Rung 8 builds as rung 5 (or collapses chapter 10's median tree) with eight children a node: the same
  * rule opens the widest child that splits until a node has eight (struct node_store says which width
  * is being written). Only when the processor has AVX2 (fast_bvh_eight_available), which its walk needs;
- * otherwise it builds rung 6's 4-wide tree, and the walk is rung 6's. Rung 9 builds rung 8's tree, and
- * then lays its triangles out once more for its walk (fast_bvh_lean_prepare). */
+ * otherwise it builds rung 6's 4-wide tree, and the walk is rung 6's. Rung 9 builds rung 8's tree with
+ * one change, since its walk tests a leaf's triangles four at a time: the SAH prices a leaf by its tests
+ * of four (leaf_tests), so a leaf of four costs what a leaf of one does; then it lays the triangles out
+ * once more for its walk (fast_bvh_lean_prepare). */
 #include "fast_bvh_build.h"
 
 #include <math.h>
@@ -370,6 +372,8 @@ struct builder {
     struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (on more than one thread,
                                     in the order the tasks made the nodes: order_nodes reorders them) */
     bool parallel;               /* whether big nodes build their children in tasks (more than one thread) */
+    uint32_t block;              /* how many triangles a leaf's test takes at once: the SAH prices a leaf by
+                                    its blocks of this many (4 for rung 9, whose lanes test four; else 1) */
     /* Nodes written to store so far: the next one's index, taken atomically. On a cache line of its own,
      * so that a task taking it does not evict the fields above, which every task reads all the time. */
     _Alignas(64) uint32_t node_count;
@@ -518,6 +522,11 @@ static void bin_in_parts(const struct builder *bd, const struct build_range *r, 
                 }
 }
 
+/* What the SAH counts for `count` triangles in a leaf: the tests it takes, bd->block triangles a test. */
+static inline float leaf_tests(const struct builder *bd, uint32_t count) {
+    return (float)((count + bd->block - 1) / bd->block);
+}
+
 /* Looks for the cheapest SAH split of r. Returns false, leaving the prims alone, when a leaf is
  * cheaper or no plane separates the centroids; otherwise partitions r into *left and *right. */
 /* TASK 10.2 ALSO: the binned SAH split, in float (chapter 11's builder) */
@@ -542,7 +551,7 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
             }
 
     /* For each axis, sweep from the right to get the area and count right of every plane, then from the
-     * left to price each plane. Cost: the sum of area * count over both sides. */
+     * left to price each plane. Cost: the sum of area * tests (leaf_tests of the count) over both sides. */
     float best_cost = INFINITY;
     int best_axis = -1, best_plane = 0;
     for (int a = 0; a < 3; a++) {
@@ -559,7 +568,7 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
             if (bins[0][a][k].count > 0) {
                 float_box_grow(&side, bins[0][a][k].box.lo, bins[0][a][k].box.hi);
                 count += bins[0][a][k].count;
-                cost = float_box_half_area(&side) * (float)count;
+                cost = float_box_half_area(&side) * leaf_tests(bd, count);
             }
             right_cost[k] = cost;
         }
@@ -570,7 +579,7 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
                 continue; /* the same split as the plane before */
             float_box_grow(&side, bins[0][a][k - 1].box.lo, bins[0][a][k - 1].box.hi);
             count += bins[0][a][k - 1].count;
-            cost = float_box_half_area(&side) * (float)count + right_cost[k];
+            cost = float_box_half_area(&side) * leaf_tests(bd, count) + right_cost[k];
             if (cost < best_cost) {
                 best_cost = cost;
                 best_axis = a;
@@ -583,7 +592,7 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
 
     double area = aabb_surface_area(float_box_widened(&r->box));
     double split_cost = area > 0.0 ? BVH_COST_TRAVERSAL + BVH_COST_TRIANGLE * 2.0 * best_cost / area : INFINITY;
-    if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_TRIANGLE * n <= split_cost)
+    if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_TRIANGLE * leaf_tests(bd, n) <= split_cost)
         return false;
 
     /* Partition, gathering each side's centroid box on the way; the boxes are the unions of the slots'. */
@@ -888,13 +897,13 @@ static size_t face_prims(struct builder *bd, uint32_t *faces, const struct mesh 
 /* Rung 5's build of b (its triangle_count set) over the faces of m, by the SAH: fills b's faces,
  * root, nodes and info. With `packed` (rung 7), the build's boxes are kept in 16 bytes each where the
  * mesh is within float's range (struct packed_box). With `eight` (rung 8), the nodes are 8-wide
- * (nodes8): the same splits, each node opening its widest children until it has eight. Returns false
- * when memory runs out. */
-static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed, bool eight) {
+ * (nodes8): the same splits, each node opening its widest children until it has eight. The SAH prices
+ * a leaf by its tests of `block` triangles at once (leaf_tests). Returns false when memory runs out. */
+static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed, bool eight, uint32_t block) {
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
     double pad = triangle_box_pad(m);
-    struct builder bd = {NULL, NULL, {{0}, {0}, {0}}, NULL, {NULL, NULL}, threads_to_share(), 0};
+    struct builder bd = {NULL, NULL, {{0}, {0}, {0}}, NULL, {NULL, NULL}, threads_to_share(), block, 0};
     if (packed) { /* the grid spans every face's box */
         struct float_box around;
         packed = faces_float_box(m, pad, &around) && packed_grid_make(&around, &bd.grid);
@@ -1024,7 +1033,8 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
     b->rung = rung;
     b->triangle_count = m->face_count;
     bool eight = eight_wide(rung);
-    if (!build_in_float(b, m, rung == FAST_BVH_RUNG_COMPACT, eight)) {
+    uint32_t block = rung == FAST_BVH_RUNG_LEAN && eight ? FAST_BVH_LEAN_LANES : 1;
+    if (!build_in_float(b, m, rung == FAST_BVH_RUNG_COMPACT, eight, block)) {
         fast_bvh_free(b);
         return NULL;
     }
