@@ -1372,9 +1372,9 @@ Test(accel, rung_9_prices_a_leaf_by_its_tests_of_four_triangles) {
     mesh_free(&g.m);
 }
 
-/* Rung 9 builds rung 8's tree with its leaves priced by the block (so fewer nodes) and lays the tree's
- * triangles out once more, in aligned blocks of four with zeros past the end, where the processor has
- * AVX2; without it (or told so), rung 6's tree and no copy. */
+/* Rung 9 builds rung 8's tree with its leaves priced by the block (so fewer nodes; rung 11 builds the
+ * same tree) and lays the tree's triangles out once more, in aligned blocks of four with zeros past the
+ * end, where the processor has AVX2; without it (or told so), rung 6's tree and no copy. */
 Test(accel, rung_9_lays_its_triangles_out_in_blocks_of_four_and_is_rung_6_without_avx2) {
     struct mesh m = make_soup(13, 3000);
     struct fast_bvh *lean = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN);
@@ -1385,6 +1385,12 @@ Test(accel, rung_9_lays_its_triangles_out_in_blocks_of_four_and_is_rung_6_withou
         cr_assert_not_null(lean->lean_corners);
         cr_expect_lt(lean->node_count, eight->node_count, "rung 9's leaves, priced by the block, are not fewer: %zu "
                      "nodes against rung 8's %zu", (size_t)lean->node_count, (size_t)eight->node_count);
+        struct fast_bvh *exact = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EXACT); /* walks rung 9's tree */
+        cr_assert_not_null(exact);
+        cr_assert_eq(exact->node_count, lean->node_count);
+        cr_expect_eq(memcmp(exact->nodes8, lean->nodes8, lean->node_count * sizeof *lean->nodes8), 0,
+                     "rung 11 built another tree than rung 9's");
+        fast_bvh_free(exact);
         size_t padded = (lean->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES * FAST_BVH_LEAN_LANES;
         cr_expect_eq((uintptr_t)lean->lean_corners % 32, 0, "the blocks are not aligned for AVX2's loads");
         for (size_t k = 0; k < padded; k++) {
