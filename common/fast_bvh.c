@@ -19,7 +19,7 @@
  *    dependent load per triangle test.
  *  - FAST_BVH_RUNG_EIGHT: rung 6 on an 8-wide tree, walked by fast_bvh_eight.c with AVX2 when the
  *    processor has it; a tree built without it is rung 6's and walked here as rung 6.
- *  - FAST_BVH_RUNG_LEAN: rung 8's tree, its leaves priced by the SAH in tests of four triangles, walked
+ *  - FAST_BVH_RUNG_LEAN: rung 8's tree, its leaves priced by the SAH in blocks of eight triangles, walked
  *    with less work per ray by fast_bvh_lean.c (its leaves' triangles also laid out to be tested four
  *    at a time); without AVX2, as rung 8 without it.
  * The shared pieces (the float setup, the queries, the leaves' triangle test) are in fast_bvh_walk.h.

@@ -35,9 +35,10 @@
  * rule opens the widest child that splits until a node has eight (struct node_store says which width
  * is being written). Only when the processor has AVX2 (fast_bvh_eight_available), which its walk needs;
  * otherwise it builds rung 6's 4-wide tree, and the walk is rung 6's. Rung 9 builds rung 8's tree with
- * one change, since its walk tests a leaf's triangles four at a time: the SAH prices a leaf by its tests
- * of four (leaf_tests), so a leaf of four costs what a leaf of one does; then it lays the triangles out
- * once more for its walk (fast_bvh_lean_prepare). */
+ * one change, since its walk tests a leaf's triangles four at a time from blocks of four that lie one
+ * after the other: the SAH prices a leaf by its blocks of eight triangles, two tests (leaf_tests and
+ * FAST_BVH_LEAN_PRICED), so that a leaf of eight costs what a leaf of one does; then it lays the
+ * triangles out once more for its walk (fast_bvh_lean_prepare). */
 #include "fast_bvh_build.h"
 
 #include <math.h>
@@ -372,8 +373,8 @@ struct builder {
     struct node_store store;     /* the 4-wide tree, or the 8-wide one for rung 8 (on more than one thread,
                                     in the order the tasks made the nodes: order_nodes reorders them) */
     bool parallel;               /* whether big nodes build their children in tasks (more than one thread) */
-    uint32_t block;              /* how many triangles a leaf's test takes at once: the SAH prices a leaf by
-                                    its blocks of this many (4 for rung 9, whose lanes test four; else 1) */
+    uint32_t block;              /* the SAH prices a leaf by its blocks of this many triangles
+                                    (FAST_BVH_LEAN_PRICED for rung 9; else 1, by its triangles) */
     /* Nodes written to store so far: the next one's index, taken atomically. On a cache line of its own,
      * so that a task taking it does not evict the fields above, which every task reads all the time. */
     _Alignas(64) uint32_t node_count;
@@ -522,19 +523,32 @@ static void bin_in_parts(const struct builder *bd, const struct build_range *r, 
                 }
 }
 
-/* What the SAH counts for `count` triangles in a leaf: the tests it takes, bd->block triangles a test. */
+/* Rung 9's SAH prices a leaf by its blocks of this many triangles: two of its walk's tests of four, on
+ * two blocks next to each other in memory, so that a leaf of up to eight costs what a leaf of one does.
+ * Priced by its tests of four instead, the teapot's tree had more nodes and its build 13 % more time,
+ * for a frame no faster (docs/fast-notes.md): the walk waits on memory more than on arithmetic, and a
+ * leaf's second block lies next to its first. At most BVH_MAX_LEAF_SIZE, a leaf's largest. */
+#define FAST_BVH_LEAN_PRICED (2 * FAST_BVH_LEAN_LANES)
+_Static_assert(FAST_BVH_LEAN_PRICED <= BVH_MAX_LEAF_SIZE, "a leaf holds a priced block");
+
+/* What the SAH counts for `count` triangles in a leaf: its blocks of bd->block triangles. */
 static inline float leaf_tests(const struct builder *bd, uint32_t count) {
     return (float)((count + bd->block - 1) / bd->block);
 }
 
 /* Looks for the cheapest SAH split of r, each side and the leaf priced by their leaf_tests (one a
- * triangle, but for rung 9 one for each four). Returns false, leaving the prims alone, when a leaf is
+ * triangle, but for rung 9 one for each eight). Returns false, leaving the prims alone, when a leaf is
  * cheaper or no plane separates the centroids; otherwise partitions r into *left and *right. */
 /* TASK 10.2 ALSO: the binned SAH split, in float (chapter 11's builder) */
 static bool split_sah(struct builder *bd, const struct build_range *r, struct build_range *left,
                       struct build_range *right) {
     struct bin bins[FAST_BVH_BIN_SETS][3][BVH_BINS]; /* [set][axis][slot]; the sets are summed into set 0 */
     uint32_t n = r->end - r->begin;
+    /* No more triangles than one block (rung 9: eight): the leaf costs one, and any split a node visit
+     * plus its sides' blocks, which is no less while a visit costs no less than a block. So the test
+     * below would choose the leaf: it is chosen without binning. */
+    if (n <= bd->block && n <= BVH_MAX_LEAF_SIZE && BVH_COST_TRAVERSAL >= BVH_COST_TRIANGLE)
+        return false;
     int slots = n < BVH_BINS ? (int)n : BVH_BINS; /* slots used per axis */
     int sets = n >= FAST_BVH_MANY_SETS_FROM ? FAST_BVH_BIN_SETS : 1;
     float4 extent = r->centroids.hi - r->centroids.lo, scale = {0, 0, 0, 0};
@@ -899,7 +913,7 @@ static size_t face_prims(struct builder *bd, uint32_t *faces, const struct mesh 
  * root, nodes and info. With `packed` (rung 7), the build's boxes are kept in 16 bytes each where the
  * mesh is within float's range (struct packed_box). With `eight` (rung 8), the nodes are 8-wide
  * (nodes8): the same splits, each node opening its widest children until it has eight. The SAH prices
- * a leaf by its tests of `block` triangles at once (leaf_tests). Returns false when memory runs out. */
+ * a leaf by its blocks of `block` triangles (leaf_tests). Returns false when memory runs out. */
 static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed, bool eight, uint32_t block) {
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
@@ -1034,7 +1048,7 @@ struct fast_bvh *fast_bvh_build(const struct mesh *m, enum bvh_split split, enum
     b->rung = rung;
     b->triangle_count = m->face_count;
     bool eight = eight_wide(rung);
-    uint32_t block = rung == FAST_BVH_RUNG_LEAN && eight ? FAST_BVH_LEAN_LANES : 1;
+    uint32_t block = rung == FAST_BVH_RUNG_LEAN && eight ? FAST_BVH_LEAN_PRICED : 1;
     if (!build_in_float(b, m, rung == FAST_BVH_RUNG_COMPACT, eight, block)) {
         fast_bvh_free(b);
         return NULL;

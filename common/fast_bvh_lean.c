@@ -53,7 +53,9 @@ bool fast_bvh_lean_prepare(struct fast_bvh *b) {
     double *corners = aligned_alloc(FAST_BVH_LEAN_ALIGN, bytes);
     if (corners == NULL)
         return false;
-    memset(corners, 0, bytes); /* the lanes past the last triangle */
+    /* The lanes past the last triangle, all in the last block (zeroing the whole array first would
+     * write it twice). */
+    memset(corners + (bytes / sizeof(double) - FAST_BVH_LEAN_BLOCK), 0, FAST_BVH_LEAN_BLOCK * sizeof(double));
     for (size_t k = 0; k < b->tree_count; k++) {
         const struct bvh_triangle *t = &b->triangles[k];
         const vec3 corner[3] = {t->a, t->b, t->c};

@@ -30,7 +30,7 @@ enum fast_bvh_rung {
     FAST_BVH_RUNG_EIGHT = 8,    /* rung 6 on an 8-wide tree: all eight children's float slab tests in one
                                    AVX2 instruction (fast_bvh_eight.c), when the processor has AVX2;
                                    without it, rung 6's tree and walk */
-    FAST_BVH_RUNG_LEAN = 9,     /* rung 8's tree, leaves priced in tests of four triangles, walked with
+    FAST_BVH_RUNG_LEAN = 9,     /* rung 8's tree, leaves priced in blocks of eight triangles, walked with
                                    less per ray (fast_bvh_lean.c): float root box,
                                    sorted entries, a stack of float entries, four triangles per test in
                                    double (AVX2); without AVX2, rung 6's tree and walk */

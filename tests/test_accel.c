@@ -1345,13 +1345,14 @@ Test(accel, rung_8_is_eight_wide_with_avx2_and_rung_6_without) {
     mesh_free(&m);
 }
 
-/* Rung 9's SAH prices a leaf by the tests of four triangles its lanes make, rung 8's by its triangles: four
- * small triangles at the corners of a large square are one leaf on rung 9 (one test, against a node and
- * two tests below it) and are split on rung 8 (four tests, against a node and four tiny boxes). */
-Test(accel, rung_9_prices_a_leaf_by_its_tests_of_four_triangles) {
+/* Rung 9's SAH prices a leaf by its blocks of eight triangles (two of its lanes' tests of four), rung
+ * 8's by its triangles: eight small triangles at the corners of a large cube are one leaf on rung 9 (one
+ * block, against a node and two blocks below it) and are split on rung 8 (eight tests, against a node
+ * and eight tiny boxes). */
+Test(accel, rung_9_prices_a_leaf_by_its_blocks_of_eight_triangles) {
     struct builder g = {0};
-    for (int k = 0; k < 4; k++) {
-        vec3 corner = vec3_make(100.0 * (k & 1), 100.0 * (k >> 1), 0.0);
+    for (int k = 0; k < 8; k++) {
+        vec3 corner = vec3_make(100.0 * (k & 1), 100.0 * ((k >> 1) & 1), 100.0 * (k >> 2));
         uint32_t a = add_vertex(&g, corner), b = add_vertex(&g, vec3_add(corner, vec3_make(0.01, 0, 0))),
                  c = add_vertex(&g, vec3_add(corner, vec3_make(0, 0.01, 0)));
         add_face(&g, a, b, c);
@@ -1360,12 +1361,12 @@ Test(accel, rung_9_prices_a_leaf_by_its_tests_of_four_triangles) {
     struct fast_bvh *eight = fast_bvh_build(&g.m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
     cr_assert(lean != NULL && eight != NULL);
     if (fast_bvh_eight_available()) {
-        cr_expect_eq(lean->root_count, 4, "rung 9's root is not one leaf of the four triangles");
+        cr_expect_eq(lean->root_count, 8, "rung 9's root is not one leaf of the eight triangles");
         cr_expect_eq(lean->node_count, 0, "rung 9 made %zu nodes", (size_t)lean->node_count);
     } else {
         cr_log_warn("this processor has no AVX2: rung 9 is rung 6 here");
     }
-    cr_expect_eq(eight->root_count, 0, "rung 8 made the four triangles one leaf");
+    cr_expect_eq(eight->root_count, 0, "rung 8 made the eight triangles one leaf");
     cr_expect_geq(eight->node_count, 1);
     fast_bvh_free(lean);
     fast_bvh_free(eight);
