@@ -37,6 +37,14 @@
  * below TRANSFORM_CONDITION_MAX = 1e10, so about 1e-6 of the numbers involved). */
 #define INSTANCES_BOX_PAD 1e-5
 
+/* How much a turn can worsen a pose's condition: for M = R S (a turn R of a diagonal scale S), the
+ * row-sum norms transform_invert uses give ||R S|| <= sqrt(3) max|s| and ||S^-1 R^T|| <= sqrt(3) / min|s|,
+ * so its condition is at most 3 max|s| / min|s| whatever the turn; the hundredth more covers the
+ * roundings of the turned axes and of the interpolated scale. Between two keys, whose turn is not known
+ * in advance, the scale factors of both keys must keep INSTANCES_TURN_SPREAD max|s| / min|s| within
+ * TRANSFORM_CONDITION_MAX. */
+#define INSTANCES_TURN_SPREAD 3.03
+
 /* How the top level follows the instances from one frame to the next. */
 enum instances_update {
     INSTANCES_REFIT,   /* keep the tree, recompute its boxes bottom-up */
@@ -96,7 +104,8 @@ struct instances {
 
 /* Loads the mesh of every object of scene s that an instance places (once, with the mesh readers of
  * scene_load_meshes; objects no instance places are left unloaded) and builds its tree, then places every instance (its keys checked: each pose's transform invertible within
- * TRANSFORM_CONDITION_MAX, no scale changing sign between keys, the placed object inside the range a
+ * TRANSFORM_CONDITION_MAX, no scale changing sign between keys, every pose between two keys invertible
+ * whatever its turn (INSTANCES_TURN_SPREAD), the placed object inside the range a
  * mesh may be placed in) and builds the top level over the interval [t0, t1]. Instance k's hits carry
  * object number first_object + k. Returns the instances (free with instances_free) or NULL with
  * "file:line: what is wrong" in err. */

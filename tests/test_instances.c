@@ -417,6 +417,11 @@ Test(two_level, refuses_transforms_it_cannot_carry_rays_through) {
         {"object self x.scene\ninstance self", "scenes/x.scene:4: object 'self': scenes/x.scene: no faces"},
         {"object none models/no-such-mesh.ply\ninstance none",
          "scenes/x.scene:4: object 'none': scenes/models/no-such-mesh.ply: "},
+        /* each key invertible (its turn keeps the thin axis on an axis), the pose half-way not */
+        {"object bunny models/bunny.ply\ninstance bunny scale 8 8 1e-9 id a\nkey a time 0\nkey a time 1 rotate 0 0 90",
+         "scenes/x.scene:7: instance of 'bunny': between the previous key and this one, a turn can make its "
+         "transform impossible to invert accurately (its scale factors differ by more than a third of what the "
+         "tracer can carry rays through)"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         cr_assert(parse_scene_lines("scenes/x.scene", HEAD, cases[k].lines, test_every_kind, &s, err, sizeof err), "%s",
@@ -435,6 +440,29 @@ Test(two_level, refuses_transforms_it_cannot_carry_rays_through) {
         cr_expect(strncmp(err, cases[k].message, strlen(cases[k].message)) == 0, "case %zu: '%s'", k, err);
         scene_free(&s);
     }
+}
+
+/* The bound behind INSTANCES_TURN_SPREAD: scale factors as far apart as it lets through between two keys
+ * invert at every turn (a grid of angles on all three axes), where three times as far apart the same
+ * scale, which inverts unturned, fails at some turn. */
+Test(two_level, scale_factors_within_the_turn_bound_invert_at_every_turn) {
+    double ratio = TRANSFORM_CONDITION_MAX / INSTANCES_TURN_SPREAD;
+    vec3 within = vec3_make(7.0, -7.0 * ratio, 7.0 * sqrt(ratio)), beyond = vec3_make(7.0, -7.0 * 3.0 * ratio, 7.0);
+    struct transform t, inverse;
+    t = transform_from_pose(beyond, vec3_make(0, 0, 0), vec3_make(0, 0, 0));
+    cr_assert(transform_invert(&t, &inverse), "three times as far apart, unturned, should still invert");
+    int beyond_fails = 0;
+    for (int x = 0; x < 360; x += 15)
+        for (int y = 0; y < 360; y += 15)
+            for (int z = 0; z < 360; z += 15) {
+                vec3 turn = vec3_make(x + 0.5, y + 0.25, z + 0.125);
+                t = transform_from_pose(within, turn, vec3_make(1e3, -2e3, 3e3));
+                cr_assert(transform_invert(&t, &inverse), "within the bound, turned %g %g %g: not invertible",
+                          turn.x, turn.y, turn.z);
+                t = transform_from_pose(beyond, turn, vec3_make(0, 0, 0));
+                beyond_fails += !transform_invert(&t, &inverse);
+            }
+    cr_assert_gt(beyond_fails, 0, "three times as far apart, no turn failed: the bound would not be needed");
 }
 
 /* ---- the time of a sample ----------------------------------------------------------------------- */
