@@ -129,11 +129,20 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
         accel_world_destroy(w);
         return cli_fail(run);
     }
-    /* A scene in which nothing gives off light would draw a black picture: say why instead. */
-    if (emitters.count == 0 && s->background.x == 0.0 && s->background.y == 0.0 && s->background.z == 0.0) {
-        snprintf(run->err, sizeof run->err, "%s: nothing gives off light, so the picture would be black: no material "
-                 "has an emission, no light has an area (chapter %d ignores %d point light%s) and the background "
-                 "is black", s->path, chapter, point_lights, point_lights == 1 ? "" : "s");
+    /* A scene in which nothing gives off light would draw a black picture: say why instead. Emitters whose
+     * power (emission times area) adds up to nothing, triangles with their corners in a line, give none:
+     * no ray can hit them, and the light sampler cannot pick them. */
+    bool black_background = s->background.x == 0.0 && s->background.y == 0.0 && s->background.z == 0.0;
+    if (black_background && !(emitters.total_power > 0.0)) {
+        if (emitters.count == 0)
+            snprintf(run->err, sizeof run->err, "%s: nothing gives off light, so the picture would be black: no "
+                     "material has an emission, no light has an area (chapter %d ignores %d point light%s) and the "
+                     "background is black", s->path, chapter, point_lights, point_lights == 1 ? "" : "s");
+        else
+            snprintf(run->err, sizeof run->err, "%s: nothing gives off light, so the picture would be black: the "
+                     "%zu emissive surface%s give%s no power (no area, its corners in a line, or an emission times "
+                     "area below double's range) and the background is black", s->path, emitters.count,
+                     emitters.count == 1 ? "" : "s", emitters.count == 1 ? "s" : "");
         emitter_list_free(&emitters);
         accel_world_destroy(w);
         return cli_fail(run);

@@ -296,6 +296,11 @@ static const struct hostile non_finite[] = {
      "SCENE: nothing gives off light, so the picture would be black: no material has an emission, no light has an "
      "area (chapter 15 ignores 1 point light) and the background is black"},
     {15, VIEW "background 0.2 0.3 0.4\nsphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
+    /* an emitter no ray can hit: a triangle with its corners in a line */
+    {17, VIEW "sphere centre 0 0 0 radius 1\npaths samples 2\nmaterial lamp emission 4 4 4\n"
+              "triangle a 0 3 0 b 1 4 1 c 2 5 2 material lamp\n", "", 1,
+     "SCENE: nothing gives off light, so the picture would be black: the 1 emissive surface gives no power (no "
+     "area, its corners in a line, or an emission times area below double's range) and the background is black"},
 };
 
 Test(hostile, numbers_that_are_in_range_make_nothing_that_is_not_finite, .timeout = 120) { RUN_ROWS(non_finite); }
