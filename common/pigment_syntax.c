@@ -92,11 +92,13 @@ static const int gradient_required[] = {KEY_COLOUR, KEY_COLOUR2, GRADIENT_AXIS, 
 static bool make_gradient(const struct key_values *kv, struct pigment *p, char *why, size_t why_size) {
     p->pattern = PIGMENT_GRADIENT;
     vec3 axis = key_vec3(kv, GRADIENT_AXIS);
-    if (vec3_length(axis) == 0.0) {
+    if (axis.x == 0.0 && axis.y == 0.0 && axis.z == 0.0) {
         snprintf(why, why_size, "pigment '%s': axis must not be 0 0 0", p->name);
         return false;
     }
-    p->axis = vec3_normalize(axis); /* POV-Ray normalises the gradient's vector too */
+    /* POV-Ray normalises the gradient's vector too; divided by its largest component first, so that
+     * squaring 1e200 does not overflow, nor 1e-200 vanish. */
+    p->axis = vec3_normalize(vec3_unit_max(axis));
     return make_colours(kv, p, why, why_size);
 }
 
