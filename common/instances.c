@@ -98,7 +98,7 @@ static bool place(struct instances *in, size_t k, char *err, size_t err_size) {
         return true;
     it->keys = malloc(si->key_count * sizeof *it->keys);
     if (it->keys == NULL)
-        return (snprintf(err, err_size, "out of memory"), false);
+        return instance_fail(in->scene, si, si->line, err, err_size, "out of memory for its keys");
     it->key_count = si->key_count;
     for (size_t n = 0; n < si->key_count; n++) {
         const struct scene_key *key = &si->keys[n];
@@ -154,7 +154,8 @@ static bool load_object(struct instances *in, struct scene *s, size_t k, char *e
     in->object_boxes[k] = aabb_pad(world_mesh_bounds(&o->mesh), triangle_box_pad(&o->mesh));
     in->objects[k] = fast_bvh_build(&o->mesh, BVH_SPLIT_SAH, FAST_BVH_RUNG_DEFAULT);
     if (in->objects[k] == NULL) {
-        snprintf(err, err_size, "out of memory building the BVH of object '%s'", o->name);
+        snprintf(err, err_size, "%s:%d: object '%s': out of memory building its BVH (%zu triangles)", s->path, o->line,
+                 o->name, o->mesh.face_count);
         return false;
     }
     const struct fast_bvh *b = in->objects[k];

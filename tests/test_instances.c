@@ -631,6 +631,39 @@ Test(command_line, a_bad_instance_is_a_bad_scene_with_its_line) {
                                                       "inverted accurately");
 }
 
+/* Objects that do not fit in memory: the error names the object's line, whether the memory runs out while
+ * its mesh is read or while its tree is built (limits on the address space that, on the machine this was
+ * written on, stop the first, second and fourth teapot, in its tree, its tree and its mesh; one thread, so
+ * that thread stacks do not count; not under the sanitizers, whose shadow memory the limit would refuse). */
+static const int instances_memory_limits_kb[] = {60000, 150000, 250000};
+
+Test(command_line, running_out_of_memory_for_an_object_names_its_line, .timeout = 60) {
+    const char *build = getenv("WHITTED_BUILD");
+    if (build != NULL && strstr(build, "san") != NULL)
+        cr_skip_test("the sanitizers reserve more address space than the limit");
+    remove(TEST_OUT "/heavy.png");
+    FILE *out = fopen(TEST_OUT "/heavy.scene", "w");
+    cr_assert_not_null(out);
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    fprintf(out, "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\n");
+    for (int k = 0; k < 40; k++)
+        fprintf(out, "object o%d %s/scenes/models/teapot-346k.ply\ninstance o%d\n", k, cwd, k);
+    fclose(out);
+    for (size_t k = 0; k < sizeof instances_memory_limits_kb / sizeof instances_memory_limits_kb[0]; k++) {
+        static char command[2048], output[16384];
+        snprintf(command, sizeof command, "ulimit -v %d; OMP_NUM_THREADS=1 exec %s %s --quiet -o %s",
+                 instances_memory_limits_kb[k], chapter_program(16), TEST_OUT "/heavy.scene", TEST_OUT "/heavy.png");
+        int status = run_capturing(command, output, sizeof output);
+        cr_log_info("%d KB: %s", instances_memory_limits_kb[k], output);
+        cr_assert_eq(status, 1, "'%s' exited with %d:\n%s", command, status, output);
+        cr_assert(strncmp(output, TEST_OUT "/heavy.scene:", strlen(TEST_OUT "/heavy.scene:")) == 0 &&
+                      strstr(output, ": object 'o") != NULL && strstr(output, "out of memory") != NULL,
+                  "'%s' said:\n%s", command, output);
+        cr_assert_eq(access(TEST_OUT "/heavy.png", F_OK), -1, "a picture was written");
+    }
+}
+
 static void spinning_key(size_t k, char *out, size_t size) {
     double t = (double)k / 999.0;
     snprintf(out, size, "key x time %.17g translate %.6f 0 0 rotate 0 %.3f 0\n", t, sin(20.0 * t), 3600.0 * t);
