@@ -460,7 +460,7 @@ unsigned fast_bvh_camera_packet(const struct camera *cam, int x, int y, int righ
         int i = x + k % FAST_BVH_PACKET_COLUMNS, j = y + k / FAST_BVH_PACKET_COLUMNS;
         if (i < right && j < bottom) {
             rays[k] = camera_ray(cam, i, j);
-            t_min[k] = ray_t_min(rays[k].origin); /* as whitted_trace asks */
+            t_min[k] = RAY_T_MIN; /* as whitted_trace asks of a camera ray (ray.h) */
             t_max[k] = INFINITY;
             active |= 1u << k;
         }

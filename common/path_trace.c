@@ -99,7 +99,7 @@ static vec3 radiance(const struct path_world *pw, ray r, struct interior_list in
     double p_scatter = 0.0; /* otherwise its density per solid angle */
     for (int bounce = 0;; bounce++) {
         struct hit h = hit_nothing(INFINITY);
-        if (!world_closest(pw->world, &r, ray_t_min(r.origin), &h))
+        if (!world_closest(pw->world, &r, bounce == 0 ? RAY_T_MIN : ray_t_min(r.origin), &h)) /* ray.h */
             return vec3_add(sum, vec3_mul(throughput, s->background));
         vec3 point = ray_at(r, h.t);
         const struct material *m = &s->materials[h.material];

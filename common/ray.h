@@ -56,7 +56,9 @@ typedef struct ray {
 static inline vec3 ray_at(ray r, double t) { return vec3_add_scaled(r.origin, r.direction, t); }
 
 /* Returns the nearest t a secondary ray leaving point p accepts: RAY_T_MIN, or more far from the
- * origin (RAY_T_MIN_RELATIVE above). */
+ * origin (RAY_T_MIN_RELATIVE above). A camera ray leaves the eye (or a point of the lens), not a
+ * surface: it has no surface of its own to get away from, and takes RAY_T_MIN wherever the eye is, so
+ * that a scene far from the origin keeps in view what lies within ray_t_min(eye) of the eye. */
 static inline double ray_t_min(vec3 p) {
     double largest = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
     return fmax(RAY_T_MIN, RAY_T_MIN_RELATIVE * largest);

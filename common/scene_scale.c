@@ -1,4 +1,5 @@
-/* scene_scale.c: the warning for scenes too small for the fixed distance margins (chapter 1). */
+/* scene_scale.c: the warning for scenes too small for the distance margins, or too far from the origin
+ * for their size (chapter 1). */
 #include "scene_scale.h"
 
 #include <math.h>
@@ -52,14 +53,30 @@ double scene_extent(const struct scene *s) {
     return longest_side(&e);
 }
 
+/* The margin ray_t_min sets at the corner of e farthest from the origin: the largest of the scene. */
+static double farthest_margin(const struct extent *e) {
+    vec3 far = vec3_max(vec3_make(fabs(e->min.x), fabs(e->min.y), fabs(e->min.z)),
+                        vec3_make(fabs(e->max.x), fabs(e->max.y), fabs(e->max.z)));
+    return ray_t_min(far);
+}
+
 bool scene_scale_warn(const struct scene *s, FILE *out) {
     struct extent e = {s->eye, s->eye};
     if (!grow_by_scene(&e, s))
         return false; /* nothing finite to measure (chapter 1 draws no shapes at all) */
     double extent = longest_side(&e);
     double smallest = SCENE_SCALE_MIN_MARGINS * SHADOW_T_MIN;
-    if (extent >= smallest)
+    double margin = farthest_margin(&e);
+    if (extent >= smallest && extent >= SCENE_SCALE_MIN_MARGINS * margin)
         return false;
+    if (extent >= smallest) {
+        fprintf(out,
+                "%s: warning: the scene is %g units across and reaches %g from the origin, where a ray leaving a "
+                "surface accepts hits only beyond %g (%g of that distance, for the rounding of its coordinates): "
+                "shadows and reflections between surfaces that close are lost; move the scene towards the origin\n",
+                s->path, extent, margin / RAY_T_MIN_RELATIVE, margin, RAY_T_MIN_RELATIVE);
+        return true;
+    }
     double factor = pow(10.0, ceil(log10(smallest / fmax(extent, 1e-300))));
     fprintf(out,
             "%s: warning: the scene is %g units across, only %g times the shadow-ray margin %g (and %g times "

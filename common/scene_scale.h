@@ -1,5 +1,5 @@
-/* scene_scale.h: a warning for scenes too small for the tracer's fixed distance margins (chapter 1;
- * the margins are explained in ray.h and chapter 7).
+/* scene_scale.h: a warning for scenes too small for the tracer's distance margins, or too far from the
+ * origin for their size (chapter 1; the margins are explained in ray.h and chapter 7).
  *
  * RAY_T_MIN and SHADOW_T_MIN are absolute distances, POV-Ray's, chosen for scenes of about unit size.
  * A scene modelled in millimetres as metres (a 30 mm marble as radius 0.015) puts the shadow margin at
@@ -23,8 +23,12 @@
 double scene_extent(const struct scene *s);
 
 /* When s has a finite shape and scene_extent(s) < SCENE_SCALE_MIN_MARGINS * SHADOW_T_MIN, prints one warning line to `out`
- * naming the extent, the margins and a factor to scale the scene up by, and returns true; otherwise
- * prints nothing and returns false. */
+ * naming the extent, the margins and a factor to scale the scene up by, and returns true. Otherwise,
+ * when the scene is under SCENE_SCALE_MIN_MARGINS of the margin a secondary ray takes at its point
+ * farthest from the origin (ray_t_min: 1e-9 of the distance, beyond 100,000 units), prints one warning
+ * line naming the extent, the distance and the margin, and returns true: shadows and reflections
+ * between its surfaces would be lost (camera rays still see them). Otherwise prints nothing and returns
+ * false. */
 bool scene_scale_warn(const struct scene *s, FILE *out);
 
 #endif

@@ -81,7 +81,8 @@ static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level,
     vec3 sum = vec3_make(0, 0, 0), through = vec3_make(1, 1, 1);
     for (int crossings = 0;; crossings++) {
         struct hit h = hit_nothing(INFINITY);
-        if (!world_closest(t->w, &r, ray_t_min(r.origin), &h))
+        bool camera_ray = level == 1 && crossings == 0; /* from the eye, not from a surface (ray.h) */
+        if (!world_closest(t->w, &r, camera_ray ? RAY_T_MIN : ray_t_min(r.origin), &h))
             return vec3_add(sum, vec3_mul(through, s->background));
         const struct material *m = &s->materials[h.material];
         vec3 point = ray_at(r, h.t);

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "image_test_support.h"
 #include "interior.h"
@@ -271,6 +272,65 @@ Test(scale, a_millimetre_scene_is_warned_about, .timeout = 60) {
                                    "shadow-ray margin 0.001 (and 2150 times the ray margin 0.0001)"), "%s", err);
     cr_assert_not_null(strstr(err, "scale the scene up 10 times or more"), "%s", err);
     free(err);
+}
+
+/* Writes, at `path`, a scene of `body` seen from 6 units away, everything moved `offset` along x. */
+static void write_offset_scene(const char *path, double offset, const char *body) {
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "camera eye %.17g 1 6 target %.17g 0 0 fov 40\nimage 40 30\nlight position %.17g 10 10\n", offset,
+            offset, offset - 5.0);
+    for (const char *at = body; *at != '\0'; at++) /* @ stands for the offset */
+        if (*at == '@')
+            fprintf(f, "%.17g", offset);
+        else
+            fputc(*at, f);
+    fclose(f);
+}
+
+/* A scene 10^12 units from the origin, where a secondary ray's margin (ray_t_min) is 1000 units, more
+ * than the whole scene: camera rays, which leave the eye and not a surface, still see it as they see
+ * the same scene at the origin (they were given that margin too, and the picture was background only),
+ * in chapter 8, in chapter 11's packets of camera rays and in chapter 15's paths; and the scale warning
+ * says that rays leaving its surfaces are blind to it. */
+Test(scale, a_scene_far_from_the_origin_is_seen_and_warned_about, .timeout = 120) {
+    char cwd[1024], body[2048];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    snprintf(body, sizeof body,
+             "sphere centre @ 0 0 radius 1 material m\nmesh %s/scenes/models/teapot-5k.ply scale 0.5 "
+             "translate @ 0 -2 material m\n", cwd);
+    /* chapter 15's surfaces only glow, so that its pictures are what its camera rays see (the light its
+     * surfaces send one another is what the far scene loses) */
+    static const struct {
+        int chapter;
+        const char *extra, *more;
+    } runs[] = {{8, "", "material m colour 0.8 0.3 0.2 ambient 0.5\n"},
+                {11, "--rung packet", "material m colour 0.8 0.3 0.2 ambient 0.5\n"},
+                {15, "", "paths samples 2\nmaterial m colour 0 0 0 ambient 0 diffuse 0 emission 2 1 0.5\n"}};
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+        char far[128], near[128], far_png[256], near_png[256], text[4096];
+        snprintf(far, sizeof far, TEST_OUT "/far-%d.scene", runs[k].chapter);
+        snprintf(near, sizeof near, TEST_OUT "/near-%d.scene", runs[k].chapter);
+        snprintf(far_png, sizeof far_png, "%s.png", far);
+        snprintf(near_png, sizeof near_png, "%s.png", near);
+        snprintf(text, sizeof text, "%s%s", runs[k].more, body);
+        write_offset_scene(far, 1e12, text);
+        write_offset_scene(near, 0.0, text);
+        char command[2048], log[256];
+        snprintf(command, sizeof command, "timeout 60 %s %s %s -o %s > /dev/null 2> %s.stderr", chapter_program(runs[k].chapter),
+                 far, runs[k].extra, far_png, far);
+        cr_assert_eq(system(command), 0, "%s", command);
+        cr_assert_eq(render_chapter(runs[k].chapter, near, near_png, runs[k].extra), 0);
+        struct image_difference d = compare_png(far_png, near_png);
+        cr_assert(image_difference_agrees(&d), "chapter %d: far and near differ: max %d, mean %.4f", runs[k].chapter,
+                  d.max, d.mean);
+        snprintf(log, sizeof log, "%s.stderr", far);
+        char *err = read_text_file(log);
+        cr_assert_not_null(strstr(err, "units across and reaches 1e+12 from the origin, where a ray leaving a surface "
+                                       "accepts hits only beyond 1000 (1e-09 of that distance"),
+                           "chapter %d: %s", runs[k].chapter, err);
+        free(err);
+    }
 }
 
 /* Runs chapter 11 (its default rung, which lets go of the scene's meshes once it has gathered them) on
