@@ -78,10 +78,14 @@ static inline vec3 vec3_unit_max(vec3 a) {
 }
 
 /* Returns the length of a without overflow or underflow on the way (vec3_length squares its
- * components: 1e200 would give infinity and 1e-170 zero). */
+ * components: 1e200 would give infinity and 1e-170 zero). Divided by its largest |component|, which
+ * makes that component exactly 1 (times 1 / largest would not always: 1e-18 gave a length just short
+ * of 1e-18), so that a vector along an axis has exactly its component's length. */
 static inline double vec3_length_scaled(vec3 a) {
     double largest = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
-    return largest > 0.0 && isfinite(largest) ? largest * vec3_length(vec3_scale(a, 1.0 / largest)) : vec3_length(a);
+    return largest > 0.0 && isfinite(largest)
+               ? largest * vec3_length(vec3_make(a.x / largest, a.y / largest, a.z / largest))
+               : vec3_length(a);
 }
 
 /* Returns true when a and b are parallel (or either is zero), whatever their lengths: the sine of the

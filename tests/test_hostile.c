@@ -248,6 +248,12 @@ static const struct hostile non_finite[] = {
      "SCENE:4: light axis1 and axis2 are parallel: the area light has no rectangle"},
     {13, VIEW "light position 0 3 0 axis1 1e-17 0 0 axis2 0 0 1e-17 samples 3 3\nsphere centre 0 0 0 radius 1\n", "", 0,
      NULL},
+    /* the least length itself is enough (it was measured just short of it, and refused as "1e-18 long; an
+     * axis must be at least 1e-18 long"); a little less is not */
+    {13, VIEW "light position 0 3 0 axis1 1e-18 0 0 axis2 0 0 1e-18 samples 2 2\nsphere centre 0 0 0 radius 1\n", "", 0,
+     NULL},
+    {13, VIEW "light position 0 3 0 axis1 0 -9.9e-19 0 axis2 0 0 1e-18 samples 2 2\nsphere centre 0 0 0 radius 1\n", "", 1,
+     "SCENE:4: light axis1 is 9.9e-19 long; an axis must be at least 1e-18 long"},
     {15, VIEW "light position 0 3 0 axis1 1e-17 0 0 axis2 0 0 1e-17 samples 3 3\nsphere centre 0 0 0 radius 1\n"
               "paths samples 2\nmaterial lamp emission 4 4 4\nsphere centre 3 3 3 radius 1 material lamp\n",
      "", 0, NULL},
