@@ -58,11 +58,13 @@ static bool fail(const struct parser *p, const char *format, ...) {
 
 /* ---- numbers ----------------------------------------------------------------------------------- */
 
+/* A number is decimal, with an exponent or not (docs/scene-format.md), as POV-Ray reads it: strtod
+ * would also take C's hexadecimal (0x28, 0x1p5), which a POV-Ray twin of the scene could not hold. */
 static bool parse_number(const struct parser *p, const char *token, const char *what, double *out) {
     char *end = NULL;
     errno = 0;
     double value = strtod(token, &end);
-    if (end == token || *end != '\0')
+    if (end == token || *end != '\0' || strpbrk(token, "xX") != NULL)
         return fail(p, "expected a number for '%s', got '%s'", what, token);
     if (!isfinite(value)) /* ERANGE alone may be a harmless underflow to a tiny number */
         return fail(p, "'%s' is not a finite number (for '%s')", token, what);

@@ -342,6 +342,8 @@ Test(scene_errors, too_few_numbers) {
 Test(scene_errors, words_that_are_not_numbers) {
     expect_line3_error("sphere centre 0 0 0 radius one", "expected a number for 'radius', got 'one'");
     expect_line3_error("sphere centre 1,2 0 0 radius 1", "expected a number for 'centre', got '1,2'");
+    expect_line3_error("sphere centre 0 0 0 radius 0x1p5", "expected a number for 'radius', got '0x1p5'");
+    expect_line3_error("sphere centre 0x28 0 0 radius 1", "expected a number for 'centre', got '0x28'");
     expect_line3_error("background 0 0 black", "expected a number for 'background', got 'black'");
     expect_line3_error("max_depth 2.5", "expected a whole number for 'max_depth', got '2.5'");
     expect_line3_error("shadow_offset yes", "shadow_offset needs 'on' or 'off'");
