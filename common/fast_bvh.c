@@ -451,6 +451,16 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
 static inline __attribute__((always_inline)) bool traverse_rung(const struct fast_bvh *b, const ray *r, double t_min,
                                                                 double t_max, enum query kind, struct query_state *q) {
     struct float_setup f;
+    /* From rung 6 on, a ray that misses the root's box, and so every triangle of the tree
+     * (root_box_entered), is sent away before its set-up, the float one (float_setup_make) and the
+     * double one (ray_setup_make), which cost it more than that one slab test: most rays of a frame miss
+     * the model. Only when no sliver lies outside the tree (a walk tests those first). */
+    if (b->rung >= FAST_BVH_RUNG_FLOAT && b->triangle_count == b->tree_count &&
+        !root_box_entered(b, r, t_min, t_max)) {
+        q->found = false;
+        q->t = t_max;
+        return false;
+    }
     switch (b->rung) {
     case FAST_BVH_RUNG_WIDE:
         return traverse(b, r, t_min, t_max, kind, false, false, NULL, false, q);
