@@ -73,7 +73,8 @@ bool scene_scale_warn(const struct scene *s, FILE *out) {
         fprintf(out,
                 "%s: warning: the scene is %g units across and reaches %g from the origin, where a ray leaving a "
                 "surface accepts hits only beyond %g (%g of that distance, for the rounding of its coordinates): "
-                "shadows and reflections between surfaces that close are lost; move the scene towards the origin\n",
+                "reflections and refractions between surfaces that close are lost, and the path tracers' shadows "
+                "too; move the scene towards the origin\n",
                 s->path, extent, margin / RAY_T_MIN_RELATIVE, margin, RAY_T_MIN_RELATIVE);
         return true;
     }

@@ -26,8 +26,9 @@ double scene_extent(const struct scene *s);
  * naming the extent, the margins and a factor to scale the scene up by, and returns true. Otherwise,
  * when the scene is under SCENE_SCALE_MIN_MARGINS of the margin a secondary ray takes at its point
  * farthest from the origin (ray_t_min: 1e-9 of the distance, beyond 100,000 units), prints one warning
- * line naming the extent, the distance and the margin, and returns true: shadows and reflections
- * between its surfaces would be lost (camera rays still see them). Otherwise prints nothing and returns
+ * line naming the extent, the distance and the margin, and returns true: reflections and refractions
+ * between its surfaces would be lost, and the path tracers' shadows (camera rays still see them, and a
+ * Whitted shadow ray keeps its fixed margin). Otherwise prints nothing and returns
  * false. */
 bool scene_scale_warn(const struct scene *s, FILE *out);
 
