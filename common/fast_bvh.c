@@ -376,9 +376,8 @@ static inline __attribute__((always_inline)) bool traverse(const struct fast_bvh
     struct walk_stack_entry stack[FAST_BVH_STACK_SIZE];
     int top = 0;
     uint32_t child = b->root_child, count = b->root_count;
-    double root_entry;
-    running = running && b->tree_count > 0 &&
-              aabb_hit(&b->root_box, r->origin, s.inverse, box_min, box_max, &root_entry);
+    running = running && b->tree_count > 0 && /* the root's box, unless traverse_rung has tested it */
+              (root_box_tested_first(b) || aabb_hit(&b->root_box, r->origin, s.inverse, box_min, box_max, NULL));
     /* Rung 6: the window in float, rounded outward, and the limit a put-aside entry must be within. */
     bool in_float = f != NULL;
     struct walk_window w = window_up_to(f, in_float ? float_at_most(box_min) : 0.0f, box_max);
@@ -455,8 +454,7 @@ static inline __attribute__((always_inline)) bool traverse_rung(const struct fas
      * (root_box_entered), is sent away before its set-up, the float one (float_setup_make) and the
      * double one (ray_setup_make), which cost it more than that one slab test: most rays of a frame miss
      * the model. Only when no sliver lies outside the tree (a walk tests those first). */
-    if (b->rung >= FAST_BVH_RUNG_FLOAT && b->triangle_count == b->tree_count &&
-        !root_box_entered(b, r, t_min, t_max)) {
+    if (root_box_tested_first(b) && !root_box_entered(b, r, t_min, t_max)) {
         q->found = false;
         q->t = t_max;
         return false;

@@ -149,8 +149,8 @@ static inline AVX2 __attribute__((always_inline)) bool traverse8(const struct fa
     struct walk_stack_entry stack[FAST_BVH_STACK_SIZE_EIGHT];
     int top = 0;
     uint32_t child = b->root_child, count = b->root_count;
-    double root_entry;
-    running = running && b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, inverse, box_min, box_max, &root_entry);
+    running = running && b->tree_count > 0 && /* the root's box, unless the caller has tested it */
+              (root_box_tested_first(b) || aabb_hit(&b->root_box, r->origin, inverse, box_min, box_max, NULL));
     bool in_float = f != NULL;
     struct walk_window w = window_up_to(f, in_float ? float_at_most(box_min) : 0.0f, box_max);
     while (running) {

@@ -532,7 +532,7 @@ AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double 
      * they would otherwise pay for (when no sliver lies outside the tree). Its 1 / direction is the set-up's. */
     struct lean_start start;
     lean_start_make(r, &start);
-    if (b->triangle_count == b->tree_count && !lean_root_entered(b, &start, t_min, t_max)) {
+    if (root_box_tested_first(b) && !lean_root_entered(b, &start, t_min, t_max)) {
         q->found = false;
         q->t = t_max;
         return false;

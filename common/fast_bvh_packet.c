@@ -346,7 +346,7 @@ static void packet_walk_four_compact(const struct fast_bvh *b, struct packet *p,
 static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, const ray *r, double t_min,
                              double t_max, uint64_t *tests, bool *inside) {
     struct lane *l = &p->lane[k];
-    bool root_first = b->triangle_count == b->tree_count;
+    bool root_first = root_box_tested_first(b);
     if (root_first && !root_box_entered(b, r, t_min, t_max)) {
         l->q = (struct query_state){.t = t_max};
         *inside = false;
@@ -373,9 +373,8 @@ static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, 
     else if (slivers > 0)
         test_leaf_triangles(b, &l->ready, (uint32_t)b->tree_count, slivers, t_min, t_max, QUERY_CLOSEST, false,
                             &l->q, &l->box_max, tests);
-    double root_entry;
     *inside = root_first || (b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, aabb_inverse_direction(r->direction),
-                                                           box_min, l->box_max, &root_entry));
+                                                           box_min, l->box_max, NULL));
     l->float_min = float_at_most(box_min);
     packet_narrow(p, k);
     return true;

@@ -221,6 +221,14 @@ static inline bool root_box_entered(const struct fast_bvh *b, const ray *r, doub
                                          t_min > -DBL_MAX ? t_min : -DBL_MAX, t_max < DBL_MAX ? t_max : DBL_MAX, NULL);
 }
 
+/* Whether the walks of b begin with the root's box tested before the ray's set-up: from rung 6 on, when
+ * no sliver lies outside the tree (a walk tests those first, whatever the root's box says). A ray that
+ * fails root_box_entered (or rung 9's lean_root_entered, the same test) is then sent away at once, and
+ * one that passes is walked from the root's children without testing the root's box again. */
+static inline bool root_box_tested_first(const struct fast_bvh *b) {
+    return b->rung >= FAST_BVH_RUNG_FLOAT && b->triangle_count == b->tree_count;
+}
+
 /* Adds one walk's counters to the calling thread's (stats.h): once per ray, not once per node. */
 static inline void walk_counted(uint64_t visits, uint64_t boxes, uint64_t tests) {
     stats_thread.node_visits += visits;
