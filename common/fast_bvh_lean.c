@@ -20,9 +20,10 @@
  *    brings no fused multiply-add, and the Makefile's -ffp-contract=off forbids fusing): the same
  *    sheared corners, the same three edge functions, the same test of their signs (zero is inside) and
  *    of det == 0, and for the lanes that cross the same t, bit for bit. The one test it leaves out,
- *    whether the corners lie exactly on a line, is triangle_corners_collinear, made on the crossing
- *    lanes only, as triangle_crossing_prepared makes it. So each lane gives triangle_crossing_prepared's
- *    answer, and its hits go to leaf_hit_taken (fast_bvh_walk.h), the code of the other rungs, which
+ *    whether the corners lie exactly on a line (triangle_corners_collinear), is made once, by
+ *    fast_bvh_lean_prepare, which writes such a triangle's corners as NaN: every comparison of its
+ *    lane fails, and it is never crossed, as triangle_crossing_prepared never crosses it. So each lane
+ *    gives triangle_crossing_prepared's answer, and its hits go to leaf_hit_taken (fast_bvh_walk.h), the code of the other rungs, which
  *    applies the window and the tie rule.
  * A ray that rung 6's bound does not cover is walked by rung 8, in double.
  *
@@ -59,9 +60,13 @@ bool fast_bvh_lean_prepare(struct fast_bvh *b) {
     for (size_t k = 0; k < b->tree_count; k++) {
         const struct bvh_triangle *t = &b->triangles[k];
         const vec3 corner[3] = {t->a, t->b, t->c};
+        /* A triangle whose corners lie exactly on a line is never crossed (triangle_crossing_prepared):
+         * its lane holds NaN, which fails every comparison of leaf_triangles4's sign test, so that the
+         * walk never asks the question itself. */
+        bool collinear = triangle_corners_collinear(t->a, t->b, t->c);
         for (int c = 0; c < 3; c++)
             for (int a = 0; a < 3; a++)
-                corners[fast_bvh_lean_index(k, c, a)] = vec3_axis(corner[c], a);
+                corners[fast_bvh_lean_index(k, c, a)] = collinear ? NAN : vec3_axis(corner[c], a);
     }
     b->lean_corners = corners;
     return true;
@@ -220,13 +225,7 @@ static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const str
         double4 t = (w_a * az + w_b * bz + w_c * cz) * l->sz * (broadcast4(1.0) / det);
         for (; keep != 0; keep &= keep - 1) { /* the lanes that cross */
             int lane = __builtin_ctz(keep);
-            vec3 p[3]; /* the triangle's corners a, b and c, for the one test the lanes left out */
-            for (int c = 0; c < 3; c++)
-                p[c] = vec3_make(block[fast_bvh_lean_index((size_t)lane, c, 0)],
-                                 block[fast_bvh_lean_index((size_t)lane, c, 1)],
-                                 block[fast_bvh_lean_index((size_t)lane, c, 2)]);
-            if (!triangle_corners_collinear(p[0], p[1], p[2]) &&
-                !leaf_hit_taken(kind, t[lane], b->faces[k + (uint32_t)lane], t_min, t_max, q, box_max))
+            if (!leaf_hit_taken(kind, t[lane], b->faces[k + (uint32_t)lane], t_min, t_max, q, box_max))
                 return false;
         }
     }

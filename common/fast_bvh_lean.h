@@ -14,7 +14,8 @@
  * (triangles 4 j to 4 j + 3 in block j), each block the nine coordinates (corner a, b, c; axis x, y, z)
  * of its four triangles side by side, FAST_BVH_LEAN_BLOCK doubles (288 bytes, 32-byte aligned), so
  * that one aligned load gives one coordinate of four triangles and a leaf's triangles are next to each
- * other in memory. The last block is padded with zeros. */
+ * other in memory. A triangle whose corners lie exactly on a line, which no ray crosses, is nine NaNs
+ * instead. The last block is padded with zeros. */
 #define FAST_BVH_LEAN_LANES 4
 #define FAST_BVH_LEAN_BLOCK (9 * FAST_BVH_LEAN_LANES)
 

@@ -1375,7 +1375,8 @@ Test(accel, rung_9_prices_a_leaf_by_its_blocks_of_eight_triangles) {
 
 /* Rung 9 builds rung 8's tree with its leaves priced by the block (so fewer nodes; rung 11 builds the
  * same tree) and lays the tree's triangles out once more, in aligned blocks of four with zeros past the
- * end, where the processor has AVX2; without it (or told so), rung 6's tree and no copy. */
+ * end and NaN for a triangle whose corners lie on a line (the soup has some), where the processor has
+ * AVX2; without it (or told so), rung 6's tree and no copy. */
 Test(accel, rung_9_lays_its_triangles_out_in_blocks_of_four_and_is_rung_6_without_avx2) {
     struct mesh m = make_soup(13, 3000);
     struct fast_bvh *lean = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_LEAN);
@@ -1394,16 +1395,22 @@ Test(accel, rung_9_lays_its_triangles_out_in_blocks_of_four_and_is_rung_6_withou
         fast_bvh_free(exact);
         size_t padded = (lean->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES * FAST_BVH_LEAN_LANES;
         cr_expect_eq((uintptr_t)lean->lean_corners % 32, 0, "the blocks are not aligned for AVX2's loads");
+        size_t collinear = 0;
         for (size_t k = 0; k < padded; k++) {
             const struct bvh_triangle *t = k < lean->tree_count ? &lean->triangles[k] : NULL;
+            bool on_a_line = t != NULL && triangle_corners_collinear(t->a, t->b, t->c);
+            collinear += on_a_line;
             for (int c = 0; c < 3; c++)
                 for (int a = 0; a < 3; a++) {
-                    double want = t == NULL ? 0.0 : vec3_axis(c == 0 ? t->a : c == 1 ? t->b : t->c, a);
+                    double want = t == NULL    ? 0.0
+                                  : on_a_line ? NAN
+                                              : vec3_axis(c == 0 ? t->a : c == 1 ? t->b : t->c, a);
                     double got = lean->lean_corners[fast_bvh_lean_index(k, c, a)];
                     cr_assert_eq(memcmp(&got, &want, sizeof got), 0, "triangle %zu corner %d axis %d: %a, want %a", k,
                                  c, a, got, want);
                 }
         }
+        cr_expect_gt(collinear, 0, "the soup put no triangle with corners on a line in the tree");
     } else {
         cr_log_warn("this processor has no AVX2: rung 9's walk is not tested here");
     }
