@@ -56,6 +56,7 @@ Test(pigment_line, keys_transform_and_povrays_brick_defaults_are_read) {
     cr_expect(g->axis.x == 0 && g->axis.y == 1 && g->axis.z == 0, "the axis is normalised, as POV-Ray does");
     cr_expect(g->scale.x == 2 && g->translate.x == 1);
     cr_expect_eq(s.materials[1].pigment, 1);
+    cr_expect_eq(s.materials[0].pigment, -1, "the default material is plain");
     scene_free(&s);
     /* an axis whose length would overflow or vanish when squared keeps its direction */
     cr_assert(parse_lines("pigment h gradient axis 1e200 1e200 0 colour 0 0 0 colour2 1 1 1\n"
@@ -67,7 +68,6 @@ Test(pigment_line, keys_transform_and_povrays_brick_defaults_are_read) {
               "axis 1e200 1e200 0 became %g %g %g", s.pigments[0].axis.x, s.pigments[0].axis.y, s.pigments[0].axis.z);
     cr_expect(s.pigments[1].axis.x == 0 && s.pigments[1].axis.y == 0 && s.pigments[1].axis.z == -1,
               "axis 0 0 -1e-200 became %g %g %g", s.pigments[1].axis.x, s.pigments[1].axis.y, s.pigments[1].axis.z);
-    cr_expect_eq(s.materials[0].pigment, -1, "the default material is plain");
     scene_free(&s);
 }
 
