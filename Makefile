@@ -73,7 +73,7 @@ CRITERION = $(shell pkg-config --cflags --libs criterion)
 # ---- what each chapter introduces ----------------------------------------------------------------
 MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens instance_syntax pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap ray_budget cli
 MODULES_02 := $(MODULES_01) sphere headlight
-MODULES_03 := $(MODULES_02) big_alloc triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
+MODULES_03 := $(MODULES_02) big_alloc memory_budget triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
 MODULES_04 := $(MODULES_03) plane
 MODULES_05 := $(MODULES_04) aabb box world
 MODULES_06 := $(MODULES_05) phong

@@ -3,6 +3,7 @@
  * placed out of range, 100,000 materials, and the memory a large picture takes. */
 #include <criterion/criterion.h>
 #include <limits.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,7 @@
 
 #include "image.h"
 #include "image_test_support.h"
+#include "mesh.h"
 #include "name_index.h"
 #include "outfile.h"
 #include "scene.h"
@@ -358,6 +360,97 @@ Test(io, a_mesh_at_the_edge_of_the_range_renders) {
     char arguments[512];
     snprintf(arguments, sizeof arguments, "%s -o " TEST_OUT "/io-edge.png --quiet", scene);
     expect_chapter_run(10, arguments, 0, "");
+}
+
+/* ---- the memory a scene's meshes take ------------------------------------------------------------ */
+
+/* A flat grid of IO_GRID x IO_GRID vertices, two triangles a square, as a binary PLY file: its arrays (115
+ * and 118 KB) are small enough for malloc to take from its heap, so that under `ulimit -v` the address
+ * space grows by what the meshes count and no more (a big array takes whole 2 MB pages, big_alloc.c). */
+#define IO_GRID 70
+#define IO_GRID_LIMIT_KB 300000 /* ulimit -v for the runs */
+#define IO_GRID_SHARE 0.0625    /* of the memory, for the meshes (scene_meshes.c) */
+
+static const char *grid_ply(void) {
+    const char *path = fresh("io-grid.ply");
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    fprintf(f, "ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n"
+               "property float z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n",
+            IO_GRID * IO_GRID, 2 * (IO_GRID - 1) * (IO_GRID - 1));
+    for (int j = 0; j < IO_GRID; j++) /* little-endian floats: the machines the tests run on are */
+        for (int i = 0; i < IO_GRID; i++) {
+            float p[3] = {(float)i / (IO_GRID - 1), (float)j / (IO_GRID - 1), 0.0f};
+            fwrite(p, sizeof p, 1, f);
+        }
+    for (int j = 0; j + 1 < IO_GRID; j++)
+        for (int i = 0; i + 1 < IO_GRID; i++) {
+            int32_t a = j * IO_GRID + i, corners[2][3] = {{a, a + 1, a + IO_GRID + 1}, {a, a + IO_GRID + 1, a + IO_GRID}};
+            for (int t = 0; t < 2; t++) {
+                fputc(3, f);
+                fwrite(corners[t], sizeof corners[t], 1, f);
+            }
+        }
+    cr_assert_eq(fclose(f), 0);
+    return path;
+}
+
+/* Renders `scene` with chapter n under `ulimit -v IO_GRID_LIMIT_KB` (one thread, so that no thread's
+ * stack counts), into `png`; returns the exit status and the output in output[size]. */
+static int run_under_limit(int n, const char *scene, const char *png, char *output, size_t size) {
+    char command[1024];
+    snprintf(command, sizeof command, "ulimit -v %d; OMP_NUM_THREADS=1 " IO_TIMEOUT " %s %s --quiet -o %s",
+             IO_GRID_LIMIT_KB, chapter_program(n), scene, png);
+    return run_capturing(command, output, size);
+}
+
+/* Writes a scene of `count` mesh lines naming the grid (beside it); returns its path. */
+static const char *grid_scene(const char *name, int count) {
+    const char *grid = "io-grid.ply";
+    size_t size = 256 + (size_t)count * (strlen(grid) + 8), used = 0;
+    char *text = malloc(size);
+    cr_assert_not_null(text);
+    used += (size_t)snprintf(text, size, "camera eye 0.5 0.5 3 target 0.5 0.5 0 fov 40\nimage 8 8\n"
+                                         "light position 0 0 5 colour 1 1 1\n");
+    for (int k = 0; k < count; k++)
+        used += (size_t)snprintf(text + used, size - used, "mesh %s\n", grid);
+    const char *path = text_file(name, text);
+    free(text);
+    return path;
+}
+
+Test(io, meshes_beyond_their_share_of_memory_are_refused_at_the_line_that_goes_over, .timeout = 120) {
+    const char *build = getenv("WHITTED_BUILD");
+    if (build != NULL && strstr(build, "san") != NULL)
+        cr_skip_test("the sanitizers reserve more address space than the limit");
+    const char *grid = grid_ply();
+    /* What each grid counts (its vertices in double, its faces as three numbers), and the first line whose
+     * mesh takes the total over the share: the meshes start on line 4. */
+    double bytes = IO_GRID * IO_GRID * sizeof(vec3) + 2.0 * (IO_GRID - 1) * (IO_GRID - 1) * sizeof(struct mesh_face);
+    double budget = IO_GRID_SHARE * IO_GRID_LIMIT_KB * 1024.0;
+    int fitting = (int)(budget / bytes), over = fitting + 1;
+    const char *heavy = grid_scene("io-heavy.scene", 3 * over);
+    char expected[1024];
+    snprintf(expected, sizeof expected,
+             "%s:%d: mesh %s: the scene's meshes take %.1f MB up to this line, more than 6.25%% of the %.1f MB of "
+             "memory this program may use (the machine's, or ulimit -v's)",
+             heavy, 3 + over, grid, over * bytes / 1e6, IO_GRID_LIMIT_KB * 1024.0 / 1e6);
+    static char output[16384];
+    for (int n = 3; n <= 11; n += 4) { /* brute force, the kd-tree's gathered copy, chapter 11 */
+        const char *png = fresh("io-heavy.png");
+        int status = run_under_limit(n, heavy, png, output, sizeof output);
+        cr_assert_eq(status, 1, "chapter %d exited with %d:\n%s", n, status, output);
+        cr_assert_not_null(strstr(output, expected), "chapter %d said\n%s\nnot\n%s", n, output, expected);
+        cr_assert_eq(access(png, F_OK), -1, "chapter %d wrote a picture", n);
+    }
+    /* One mesh fewer than the refused line is drawn, under the same limit. */
+    const char *fits = grid_scene("io-fits.scene", fitting);
+    for (int n = 3; n <= 11; n += 8) {
+        const char *png = fresh("io-fits.png");
+        int status = run_under_limit(n, fits, png, output, sizeof output);
+        cr_assert_eq(status, 0, "chapter %d exited with %d:\n%s", n, status, output);
+        expect_png(png, 8, 8);
+    }
 }
 
 /* ---- many materials ---------------------------------------------------------------------------- */
