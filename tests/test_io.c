@@ -436,7 +436,9 @@ Test(io, meshes_beyond_their_share_of_memory_are_refused_at_the_line_that_goes_o
              "memory this program may use (the machine's, or ulimit -v's)",
              heavy, 3 + over, grid, over * bytes / 1e6, IO_GRID_LIMIT_KB * 1024.0 / 1e6);
     static char output[16384];
-    for (int n = 3; n <= 11; n += 4) { /* brute force, the kd-tree's gathered copy, chapter 11 */
+    static const int chapters[] = {3, 9, 11}; /* brute force, the kd-tree's gathered copy, chapter 11 */
+    for (size_t k = 0; k < sizeof chapters / sizeof chapters[0]; k++) {
+        int n = chapters[k];
         const char *png = fresh("io-heavy.png");
         int status = run_under_limit(n, heavy, png, output, sizeof output);
         cr_assert_eq(status, 1, "chapter %d exited with %d:\n%s", n, status, output);
