@@ -8,6 +8,7 @@
 
 #include "clock.h"
 #include "fast_bvh_build.h"
+#include "memory_budget.h"
 #include "mesh_load.h"
 #include "stats.h"
 #include "triangle.h"
@@ -136,12 +137,21 @@ static struct aabb instance_box(const struct instances *in, size_t k, double t0,
 
 /* ---- loading ------------------------------------------------------------------------------------ */
 
-/* Loads object k's mesh (once) and builds its tree. */
-static bool load_object(struct instances *in, struct scene *s, size_t k, char *err, size_t err_size) {
+/* Loads object k's mesh (once) and builds its tree. *meshes_taken, the bytes of the scene's meshes so
+ * far, grows by the object's, which may not take it over the meshes' share of memory (memory_budget.h). */
+static bool load_object(struct instances *in, struct scene *s, size_t k, size_t *meshes_taken, char *err,
+                        size_t err_size) {
     struct scene_object *o = &s->objects[k];
     char why[INSTANCES_MESH_ERROR_SIZE];
     if (o->mesh.vertices == NULL && !mesh_load(o->path, &o->mesh, why, sizeof why)) {
         snprintf(err, err_size, "%s:%d: object '%s': %s", s->path, o->line, o->name, why);
+        return false;
+    }
+    *meshes_taken += mesh_bytes(&o->mesh);
+    if (*meshes_taken > memory_budget_share(MEMORY_BUDGET_MESH_SHARE)) {
+        snprintf(err, err_size, "%s:%d: object '%s': the scene's meshes take %.1f MB up to this line, more than "
+                 "%g%% of the %.1f MB of memory this program may use (the machine's, or ulimit -d's)", s->path,
+                 o->line, o->name, *meshes_taken / 1e6, 100 * MEMORY_BUDGET_MESH_SHARE, memory_budget_limit() / 1e6);
         return false;
     }
     for (size_t v = 0; v < o->mesh.vertex_count; v++)
@@ -222,9 +232,12 @@ struct instances *instances_create(struct scene *s, int first_object, double t0,
     }
     for (size_t n = 0; n < in->count; n++)
         placed[s->instances[n].object] = true;
+    size_t meshes_taken = 0; /* the mesh lines' first (scene_load_meshes), then the objects' */
+    for (size_t k = 0; k < s->mesh_count; k++)
+        meshes_taken += mesh_bytes(&s->meshes[k].mesh) + mesh_corners_bytes(&s->meshes[k].corners, s->meshes[k].mesh.face_count);
     for (size_t k = 0; ok && k < s->object_count; k++)
         if (placed[k])
-            ok = load_object(in, s, k, err, err_size);
+            ok = load_object(in, s, k, &meshes_taken, err, err_size);
     free(placed);
     in->info.object_build_ms = 1e3 * (clock_seconds() - started);
     for (size_t k = 0; ok && k < in->count; k++) {

@@ -18,7 +18,7 @@ size_t memory_budget_limit(void) {
     if (pages > 0 && page_size > 0)
         limit = (size_t)pages > SIZE_MAX / (size_t)page_size ? SIZE_MAX : (size_t)pages * (size_t)page_size;
     struct rlimit space;
-    if (getrlimit(RLIMIT_AS, &space) == 0 && space.rlim_cur != RLIM_INFINITY &&
+    if (getrlimit(RLIMIT_DATA, &space) == 0 && space.rlim_cur != RLIM_INFINITY &&
         (limit == 0 || space.rlim_cur < limit))
         limit = space.rlim_cur > SIZE_MAX ? SIZE_MAX : (size_t)space.rlim_cur;
     return limit;

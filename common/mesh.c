@@ -24,6 +24,16 @@ void mesh_corners_free(struct mesh_corners *c) {
 
 /* ---- placing ---------------------------------------------------------------------------------- */
 
+size_t mesh_bytes(const struct mesh *m) {
+    return m->vertex_count * sizeof *m->vertices + m->face_count * sizeof *m->faces;
+}
+
+size_t mesh_corners_bytes(const struct mesh_corners *c, size_t face_count) {
+    size_t faces = face_count * sizeof(struct mesh_face);
+    return c->normal_count * sizeof *c->normals + c->uv_count * sizeof *c->uvs +
+           (c->normal_faces != NULL ? faces : 0) + (c->uv_faces != NULL ? faces : 0);
+}
+
 /* Sine and cosine of an angle in degrees, exact for multiples of 90 so that axis-aligned meshes stay
  * exactly axis-aligned (cos(pi / 2) is 6e-17 in floating point, not 0). */
 static void sin_cos_degrees(double degrees, double *s, double *c) {

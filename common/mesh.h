@@ -47,6 +47,12 @@ struct mesh_corners {
 /* Frees the arrays of m and leaves it empty. Safe on an empty mesh. */
 void mesh_free(struct mesh *m);
 
+/* The bytes the arrays of m take. */
+size_t mesh_bytes(const struct mesh *m);
+
+/* The bytes the arrays of c take, for a mesh of face_count faces. */
+size_t mesh_corners_bytes(const struct mesh_corners *c, size_t face_count);
+
 /* Frees the arrays of c and leaves it empty. */
 void mesh_corners_free(struct mesh_corners *c);
 

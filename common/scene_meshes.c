@@ -17,21 +17,6 @@
 #define SCENE_MESH_MIN_SIZE 1e-18 /* the mesh's largest side at least this */
 #define SCENE_MESH_ERROR_SIZE 4096 /* room for a mesh reader's message, which names its file */
 
-/* A scene's meshes may take at most this share of the memory the program may use (memory_budget.h): what
- * the chapters build from them takes more, up to about 14 times the meshes' own memory (chapter 9: the
- * gathered copy and the kd-tree, at its peak, of four teapots of 350,000 triangles; chapters 12 to 17 4.4
- * times, chapter 11 3.4, chapters 3 to 8 none). On a machine of 8 GB, half a gigabyte of meshes: about 20
- * million triangles. */
-#define SCENE_MESH_MEMORY_SHARE 0.0625
-
-/* The bytes mesh m's arrays take. */
-static size_t mesh_bytes(const struct scene_mesh *m) {
-    size_t faces = m->mesh.face_count * sizeof(struct mesh_face);
-    return m->mesh.vertex_count * sizeof(vec3) + faces + m->corners.normal_count * sizeof(vec3) +
-           m->corners.uv_count * sizeof(struct mesh_uv) + (m->corners.normal_faces != NULL ? faces : 0) +
-           (m->corners.uv_faces != NULL ? faces : 0);
-}
-
 /* Checks that the placed mesh m lies within the limits above, and its texture coordinates too (so that
  * a point of a picture blended from three stays finite); otherwise writes "scene:line: mesh FILE placed
  * out of range: ..." (or "mesh FILE: texture coordinate ...") into err and returns false. */
@@ -70,11 +55,11 @@ static bool placed_in_range(const struct scene *s, const struct scene_mesh *m, c
 }
 
 bool scene_load_meshes(struct scene *s, char *err, size_t err_size) {
-    size_t budget = memory_budget_share(SCENE_MESH_MEMORY_SHARE), taken = 0;
+    size_t budget = memory_budget_share(MEMORY_BUDGET_MESH_SHARE), taken = 0;
     for (size_t k = 0; k < s->mesh_count; k++) {
         struct scene_mesh *m = &s->meshes[k];
         if (m->mesh.vertices != NULL) { /* already loaded */
-            taken += mesh_bytes(m);
+            taken += mesh_bytes(&m->mesh) + mesh_corners_bytes(&m->corners, m->mesh.face_count);
             continue;
         }
         /* Chapter 14 (which sets s->paint) keeps the corners' normals and (u, v); before, meshes are flat. */
@@ -83,11 +68,11 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size) {
             snprintf(err, err_size, "%s:%d: mesh: %s", s->path, m->line, why);
             return false;
         }
-        taken += mesh_bytes(m);
+        taken += mesh_bytes(&m->mesh) + mesh_corners_bytes(&m->corners, m->mesh.face_count);
         if (taken > budget) {
             snprintf(err, err_size, "%s:%d: mesh %s: the scene's meshes take %.1f MB up to this line, more than "
-                     "%g%% of the %.1f MB of memory this program may use (the machine's, or ulimit -v's)",
-                     s->path, m->line, m->path, taken / 1e6, 100 * SCENE_MESH_MEMORY_SHARE,
+                     "%g%% of the %.1f MB of memory this program may use (the machine's, or ulimit -d's)",
+                     s->path, m->line, m->path, taken / 1e6, 100 * MEMORY_BUDGET_MESH_SHARE,
                      memory_budget_limit() / 1e6);
             return false;
         }

@@ -3,6 +3,7 @@
  * placed out of range, 100,000 materials, and the memory a large picture takes. */
 #include <criterion/criterion.h>
 #include <limits.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -364,12 +365,12 @@ Test(io, a_mesh_at_the_edge_of_the_range_renders) {
 
 /* ---- the memory a scene's meshes take ------------------------------------------------------------ */
 
-/* A flat grid of IO_GRID x IO_GRID vertices, two triangles a square, as a binary PLY file: its arrays (115
- * and 118 KB) are small enough for malloc to take from its heap, so that under `ulimit -v` the address
- * space grows by what the meshes count and no more (a big array takes whole 2 MB pages, big_alloc.c). */
-#define IO_GRID 70
-#define IO_GRID_LIMIT_KB 300000 /* ulimit -v for the runs */
-#define IO_GRID_SHARE 0.0625    /* of the memory, for the meshes (scene_meshes.c) */
+/* A flat grid of IO_GRID x IO_GRID vertices, two triangles a square, as a binary PLY file: its arrays, and
+ * chapter 16's tree over it, are small enough for malloc to take from its heap, so that under `ulimit -d`
+ * the data grow by about what the meshes count (a big array takes whole 2 MB pages, big_alloc.c). */
+#define IO_GRID 50
+#define IO_GRID_LIMIT_KB 300000 /* ulimit -d for the runs */
+#define IO_GRID_SHARE 0.0625    /* of the memory, for the meshes (memory_budget.h) */
 
 static const char *grid_ply(void) {
     const char *path = fresh("io-grid.ply");
@@ -395,25 +396,26 @@ static const char *grid_ply(void) {
     return path;
 }
 
-/* Renders `scene` with chapter n under `ulimit -v IO_GRID_LIMIT_KB` (one thread, so that no thread's
- * stack counts), into `png`; returns the exit status and the output in output[size]. */
+/* Renders `scene` with chapter n under `ulimit -d IO_GRID_LIMIT_KB` (one thread, so that no other
+ * thread's stack counts), into `png`; returns the exit status and the output in output[size]. */
 static int run_under_limit(int n, const char *scene, const char *png, char *output, size_t size) {
     char command[1024];
-    snprintf(command, sizeof command, "ulimit -v %d; OMP_NUM_THREADS=1 " IO_TIMEOUT " %s %s --quiet -o %s",
+    snprintf(command, sizeof command, "ulimit -d %d; OMP_NUM_THREADS=1 " IO_TIMEOUT " %s %s --quiet -o %s",
              IO_GRID_LIMIT_KB, chapter_program(n), scene, png);
     return run_capturing(command, output, size);
 }
 
-/* Writes a scene of `count` mesh lines naming the grid (beside it); returns its path. */
-static const char *grid_scene(const char *name, int count) {
-    const char *grid = "io-grid.ply";
-    size_t size = 256 + (size_t)count * (strlen(grid) + 8), used = 0;
+/* Writes a scene of `count` lines naming the grid beside it, `mesh` lines or, with `objects`, an `object`
+ * line and an `instance` line for each; returns its path. */
+static const char *grid_scene(const char *name, int count, bool objects) {
+    size_t size = 256 + (size_t)count * 64, used = 0;
     char *text = malloc(size);
     cr_assert_not_null(text);
     used += (size_t)snprintf(text, size, "camera eye 0.5 0.5 3 target 0.5 0.5 0 fov 40\nimage 8 8\n"
                                          "light position 0 0 5 colour 1 1 1\n");
     for (int k = 0; k < count; k++)
-        used += (size_t)snprintf(text + used, size - used, "mesh %s\n", grid);
+        used += (size_t)(objects ? snprintf(text + used, size - used, "object o%d io-grid.ply\ninstance o%d\n", k, k)
+                                 : snprintf(text + used, size - used, "mesh io-grid.ply\n"));
     const char *path = text_file(name, text);
     free(text);
     return path;
@@ -422,34 +424,43 @@ static const char *grid_scene(const char *name, int count) {
 Test(io, meshes_beyond_their_share_of_memory_are_refused_at_the_line_that_goes_over, .timeout = 120) {
     const char *build = getenv("WHITTED_BUILD");
     if (build != NULL && strstr(build, "san") != NULL)
-        cr_skip_test("the sanitizers reserve more address space than the limit");
-    const char *grid = grid_ply();
-    /* What each grid counts (its vertices in double, its faces as three numbers), and the first line whose
-     * mesh takes the total over the share: the meshes start on line 4. */
+        cr_skip_test("the sanitizers reserve more memory than the limit");
+    char grid[256], meshes[256], objects[256]; /* fresh's buffers are reused */
+    snprintf(grid, sizeof grid, "%s", grid_ply());
+    /* What each grid counts (its vertices in double, its faces as three numbers), and how many fit in the
+     * share: the next one's line is refused. The scenes' first mesh or object is on line 4. */
     double bytes = IO_GRID * IO_GRID * sizeof(vec3) + 2.0 * (IO_GRID - 1) * (IO_GRID - 1) * sizeof(struct mesh_face);
     double budget = IO_GRID_SHARE * IO_GRID_LIMIT_KB * 1024.0;
     int fitting = (int)(budget / bytes), over = fitting + 1;
-    const char *heavy = grid_scene("io-heavy.scene", 3 * over);
-    char expected[1024];
-    snprintf(expected, sizeof expected,
-             "%s:%d: mesh %s: the scene's meshes take %.1f MB up to this line, more than 6.25%% of the %.1f MB of "
-             "memory this program may use (the machine's, or ulimit -v's)",
-             heavy, 3 + over, grid, over * bytes / 1e6, IO_GRID_LIMIT_KB * 1024.0 / 1e6);
+    snprintf(meshes, sizeof meshes, "%s", grid_scene("io-heavy.scene", 3 * over, false));
+    snprintf(objects, sizeof objects, "%s", grid_scene("io-heavy-objects.scene", 3 * over, true));
+    static const int chapters[] = {3, 9, 11, 16}; /* brute force, the kd-tree's gathered copy, 11, objects */
     static char output[16384];
-    static const int chapters[] = {3, 9, 11}; /* brute force, the kd-tree's gathered copy, chapter 11 */
     for (size_t k = 0; k < sizeof chapters / sizeof chapters[0]; k++) {
         int n = chapters[k];
+        char expected[2048], line[1024];
+        if (n == 16)
+            snprintf(line, sizeof line, "%s:%d: object 'o%d'", objects, 4 + 2 * fitting, fitting);
+        else
+            snprintf(line, sizeof line, "%s:%d: mesh %s", meshes, 3 + over, grid);
+        snprintf(expected, sizeof expected,
+                 "%s: the scene's meshes take %.1f MB up to this line, more than 6.25%% of the %.1f MB of memory "
+                 "this program may use (the machine's, or ulimit -d's)",
+                 line, over * bytes / 1e6, IO_GRID_LIMIT_KB * 1024.0 / 1e6);
         const char *png = fresh("io-heavy.png");
-        int status = run_under_limit(n, heavy, png, output, sizeof output);
+        int status = run_under_limit(n, n == 16 ? objects : meshes, png, output, sizeof output);
         cr_assert_eq(status, 1, "chapter %d exited with %d:\n%s", n, status, output);
         cr_assert_not_null(strstr(output, expected), "chapter %d said\n%s\nnot\n%s", n, output, expected);
         cr_assert_eq(access(png, F_OK), -1, "chapter %d wrote a picture", n);
     }
-    /* One mesh fewer than the refused line is drawn, under the same limit. */
-    const char *fits = grid_scene("io-fits.scene", fitting);
-    for (int n = 3; n <= 11; n += 8) {
+    /* As many as fit are drawn, under the same limit. */
+    char fits[2][256];
+    snprintf(fits[0], sizeof fits[0], "%s", grid_scene("io-fits.scene", fitting, false));
+    snprintf(fits[1], sizeof fits[1], "%s", grid_scene("io-fits-objects.scene", fitting, true));
+    for (int k = 0; k < 3; k++) {
+        int n = k == 2 ? 16 : 3 + 8 * k;
         const char *png = fresh("io-fits.png");
-        int status = run_under_limit(n, fits, png, output, sizeof output);
+        int status = run_under_limit(n, fits[n == 16], png, output, sizeof output);
         cr_assert_eq(status, 0, "chapter %d exited with %d:\n%s", n, status, output);
         expect_png(png, 8, 8);
     }
