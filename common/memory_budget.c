@@ -17,10 +17,11 @@ size_t memory_budget_limit(void) {
     long pages = sysconf(_SC_PHYS_PAGES), page_size = sysconf(_SC_PAGESIZE);
     if (pages > 0 && page_size > 0)
         limit = (size_t)pages > SIZE_MAX / (size_t)page_size ? SIZE_MAX : (size_t)pages * (size_t)page_size;
-    struct rlimit space;
-    if (getrlimit(RLIMIT_DATA, &space) == 0 && space.rlim_cur != RLIM_INFINITY &&
-        (limit == 0 || space.rlim_cur < limit))
-        limit = space.rlim_cur > SIZE_MAX ? SIZE_MAX : (size_t)space.rlim_cur;
+#ifndef __EMSCRIPTEN__ /* the browser's page has no ulimit (and its C library warns on the console when asked) */
+    struct rlimit data;
+    if (getrlimit(RLIMIT_DATA, &data) == 0 && data.rlim_cur != RLIM_INFINITY && (limit == 0 || data.rlim_cur < limit))
+        limit = data.rlim_cur > SIZE_MAX ? SIZE_MAX : (size_t)data.rlim_cur;
+#endif
     return limit;
 }
 
