@@ -44,8 +44,9 @@ enum pigment_mapping {
 /* The pixels of an image map once chapter 14 has read the file (image_map.c): linear light. */
 struct pigment_image {
     int width, height;
-    float *texels; /* width * height * 4 floats (red, green, blue, alpha), top row first; owned */
+    float *texels; /* width * height * 4 floats (red, green, blue, alpha), top row first; owned unless borrowed */
     bool opaque;   /* every alpha is 1: the file has no alpha channel, or every pixel's is at its largest */
+    bool borrowed; /* texels are an earlier pigment's, read from the same file (texture_load_images) */
 };
 
 struct pigment {

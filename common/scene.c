@@ -861,7 +861,8 @@ bool scene_load(const char *path, const struct shape_kind *const *kinds, struct 
 static void drop_pigments(struct scene *s) {
     for (size_t k = 0; k < s->pigment_count; k++) {
         free(s->pigments[k].file);
-        free(s->pigments[k].image.texels);
+        if (!s->pigments[k].image.borrowed)
+            free(s->pigments[k].image.texels);
     }
     free(s->pigments);
     s->pigments = NULL;

@@ -4,9 +4,11 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "hit.h"
 #include "image_map.h"
+#include "memory_budget.h"
 #include "mesh_surface.h"
 #include "world.h"
 
@@ -18,6 +20,10 @@
 #define TEXTURE_WAVE_PERIOD 1.00001
 /* Radial: within this distance of the y axis the angle is meaningless and POV-Ray uses 0.25. */
 #define TEXTURE_RADIAL_AXIS 0.001
+/* The images of a scene's pigments may take at most this share of the memory the program may use
+ * (memory_budget.h): nothing is built from them, but an image of the largest size image_map.h allows
+ * takes 1 GiB as floats, from a file of a few hundred kilobytes when its pixels are all alike. */
+#define TEXTURE_IMAGE_MEMORY_SHARE 0.5
 
 /* Turns p by -degrees about one axis: the inverse of mesh_transform's turns (POV-Ray's sense). */
 static vec3 unturn_x(vec3 p, double degrees) {
@@ -198,14 +204,45 @@ const struct material *texture_paint_shadow(const struct scene *s, struct hit *h
     return texture_paint(s, h, point, painted);
 }
 
+/* The bytes image's texels take. */
+static size_t image_bytes(const struct pigment_image *image) {
+    return (size_t)image->width * (size_t)image->height * 4 * sizeof *image->texels;
+}
+
+/* An earlier pigment of s than k that has read the image file p names, or NULL. */
+static const struct pigment *read_before(const struct scene *s, size_t k, const struct pigment *p) {
+    for (size_t j = 0; j < k; j++)
+        if (s->pigments[j].pattern == PIGMENT_IMAGE_MAP && s->pigments[j].image.texels != NULL &&
+            strcmp(s->pigments[j].file, p->file) == 0)
+            return &s->pigments[j];
+    return NULL;
+}
+
 bool texture_load_images(struct scene *s, char *err, size_t err_size) {
+    size_t budget = memory_budget_share(TEXTURE_IMAGE_MEMORY_SHARE), taken = 0;
     for (size_t k = 0; k < s->pigment_count; k++) {
         struct pigment *p = &s->pigments[k];
-        if (p->pattern != PIGMENT_IMAGE_MAP || p->image.texels != NULL)
+        if (p->pattern != PIGMENT_IMAGE_MAP)
             continue;
-        char why[1024];
-        if (!image_map_read(p->file, &p->image, why, sizeof why)) {
-            snprintf(err, err_size, "%s:%d: pigment '%s': %s", s->path, p->line, p->name, why);
+        if (p->image.texels == NULL) {
+            const struct pigment *same = read_before(s, k, p);
+            if (same != NULL) { /* the same file again: one copy of its pixels */
+                p->image = same->image;
+                p->image.borrowed = true;
+                continue;
+            }
+            char why[1024];
+            if (!image_map_read(p->file, &p->image, why, sizeof why)) {
+                snprintf(err, err_size, "%s:%d: pigment '%s': %s", s->path, p->line, p->name, why);
+                return false;
+            }
+        }
+        taken += p->image.borrowed ? 0 : image_bytes(&p->image);
+        if (taken > budget) {
+            snprintf(err, err_size, "%s:%d: pigment '%s': the scene's images take %.1f MB up to this line, more "
+                     "than %g%% of the %.1f MB of memory this program may use (the machine's, or ulimit -d's)",
+                     s->path, p->line, p->name, taken / 1e6, 100 * TEXTURE_IMAGE_MEMORY_SHARE,
+                     memory_budget_limit() / 1e6);
             return false;
         }
     }

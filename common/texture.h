@@ -62,8 +62,10 @@ const struct material *texture_paint(const struct scene *s, struct hit *h, vec3 
 const struct material *texture_paint_shadow(const struct scene *s, struct hit *h, vec3 point,
                                             struct material *painted);
 
-/* Reads the image of every image_map pigment of s (image_map.h). Returns false at the first that
- * fails, with "scene:line: pigment 'name': what is wrong" in err. */
+/* Reads the image of every image_map pigment of s (image_map.h), once a file: pigments naming a file an
+ * earlier one has read borrow its pixels. Returns false at the first that fails, or that takes the
+ * images over their share of memory (memory_budget.h), with "scene:line: pigment 'name': what is
+ * wrong" in err. */
 bool texture_load_images(struct scene *s, char *err, size_t err_size);
 
 #endif

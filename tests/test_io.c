@@ -405,26 +405,46 @@ static int run_under_limit(int n, const char *scene, const char *png, char *outp
     return run_capturing(command, output, size);
 }
 
-/* Writes a scene of `count` lines naming the grid beside it, `mesh` lines or, with `objects`, an `object`
- * line and an `instance` line for each; returns its path. */
-static const char *grid_scene(const char *name, int count, bool objects) {
+/* What the memory tests repeat, the k-th time (k from 0): a mesh line naming the grid, an object line and
+ * an instance of it, an image_map pigment naming io-image-K.png, or one naming io-image-0.png each time. */
+enum repeated_line { REPEAT_MESH, REPEAT_OBJECT, REPEAT_IMAGE, REPEAT_ONE_IMAGE };
+
+/* Writes a scene of a camera, an 8 x 8 image and a light (lines 1 to 3), then `count` repeated lines of
+ * `what`, and for pigments a sphere painted by the last; returns its path. */
+static const char *repeated_scene(const char *name, enum repeated_line what, int count) {
     size_t size = 256 + (size_t)count * 64, used = 0;
     char *text = malloc(size);
     cr_assert_not_null(text);
     used += (size_t)snprintf(text, size, "camera eye 0.5 0.5 3 target 0.5 0.5 0 fov 40\nimage 8 8\n"
                                          "light position 0 0 5 colour 1 1 1\n");
-    for (int k = 0; k < count; k++)
-        used += (size_t)(objects ? snprintf(text + used, size - used, "object o%d io-grid.ply\ninstance o%d\n", k, k)
-                                 : snprintf(text + used, size - used, "mesh io-grid.ply\n"));
+    for (int k = 0; k < count; k++) {
+        char *at = text + used;
+        size_t room = size - used;
+        if (what == REPEAT_MESH)
+            used += (size_t)snprintf(at, room, "mesh io-grid.ply\n");
+        else if (what == REPEAT_OBJECT)
+            used += (size_t)snprintf(at, room, "object o%d io-grid.ply\ninstance o%d\n", k, k);
+        else
+            used += (size_t)snprintf(at, room, "pigment p%d image_map file io-image-%d.png\n", k,
+                                     what == REPEAT_ONE_IMAGE ? 0 : k);
+    }
+    if (what == REPEAT_IMAGE || what == REPEAT_ONE_IMAGE)
+        snprintf(text + used, size - used, "material m pigment p%d\nsphere centre 0.5 0.5 0 radius 1 material m\n",
+                 count - 1);
     const char *path = text_file(name, text);
     free(text);
     return path;
 }
 
-Test(io, meshes_beyond_their_share_of_memory_are_refused_at_the_line_that_goes_over, .timeout = 120) {
+/* Skips the current test in the sanitizers' build, whose shadow memory no such limit allows. */
+static void skip_under_sanitizers(void) {
     const char *build = getenv("WHITTED_BUILD");
     if (build != NULL && strstr(build, "san") != NULL)
         cr_skip_test("the sanitizers reserve more memory than the limit");
+}
+
+Test(io, meshes_beyond_their_share_of_memory_are_refused_at_the_line_that_goes_over, .timeout = 120) {
+    skip_under_sanitizers();
     char grid[256], meshes[256], objects[256]; /* fresh's buffers are reused */
     snprintf(grid, sizeof grid, "%s", grid_ply());
     /* What each grid counts (its vertices in double, its faces as three numbers), and how many fit in the
@@ -432,8 +452,8 @@ Test(io, meshes_beyond_their_share_of_memory_are_refused_at_the_line_that_goes_o
     double bytes = IO_GRID * IO_GRID * sizeof(vec3) + 2.0 * (IO_GRID - 1) * (IO_GRID - 1) * sizeof(struct mesh_face);
     double budget = IO_GRID_SHARE * IO_GRID_LIMIT_KB * 1024.0;
     int fitting = (int)(budget / bytes), over = fitting + 1;
-    snprintf(meshes, sizeof meshes, "%s", grid_scene("io-heavy.scene", 3 * over, false));
-    snprintf(objects, sizeof objects, "%s", grid_scene("io-heavy-objects.scene", 3 * over, true));
+    snprintf(meshes, sizeof meshes, "%s", repeated_scene("io-heavy.scene", REPEAT_MESH, 3 * over));
+    snprintf(objects, sizeof objects, "%s", repeated_scene("io-heavy-objects.scene", REPEAT_OBJECT, 3 * over));
     static const int chapters[] = {3, 9, 11, 16}; /* brute force, the kd-tree's gathered copy, 11, objects */
     static char output[16384];
     for (size_t k = 0; k < sizeof chapters / sizeof chapters[0]; k++) {
@@ -455,8 +475,8 @@ Test(io, meshes_beyond_their_share_of_memory_are_refused_at_the_line_that_goes_o
     }
     /* As many as fit are drawn, under the same limit. */
     char fits[2][256];
-    snprintf(fits[0], sizeof fits[0], "%s", grid_scene("io-fits.scene", fitting, false));
-    snprintf(fits[1], sizeof fits[1], "%s", grid_scene("io-fits-objects.scene", fitting, true));
+    snprintf(fits[0], sizeof fits[0], "%s", repeated_scene("io-fits.scene", REPEAT_MESH, fitting));
+    snprintf(fits[1], sizeof fits[1], "%s", repeated_scene("io-fits-objects.scene", REPEAT_OBJECT, fitting));
     for (int k = 0; k < 3; k++) {
         int n = k == 2 ? 16 : 3 + 8 * k;
         const char *png = fresh("io-fits.png");
@@ -464,6 +484,46 @@ Test(io, meshes_beyond_their_share_of_memory_are_refused_at_the_line_that_goes_o
         cr_assert_eq(status, 0, "chapter %d exited with %d:\n%s", n, status, output);
         expect_png(png, 8, 8);
     }
+}
+
+/* Images: IO_IMAGE_SIDE pixels square, 16 MiB each as floats (image_map.h), against their share. */
+#define IO_IMAGE_SIDE 1024
+#define IO_IMAGE_SHARE 0.5 /* of the memory, for the images (texture.c) */
+
+Test(io, images_beyond_their_share_of_memory_are_refused_and_a_file_named_again_is_read_once, .timeout = 120) {
+    skip_under_sanitizers();
+    double bytes = (double)IO_IMAGE_SIDE * IO_IMAGE_SIDE * 4 * sizeof(float);
+    int fitting = (int)(IO_IMAGE_SHARE * IO_GRID_LIMIT_KB * 1024.0 / bytes), over = fitting + 1;
+    uint8_t *rgb = malloc((size_t)3 * IO_IMAGE_SIDE * IO_IMAGE_SIDE);
+    cr_assert_not_null(rgb);
+    for (size_t k = 0; k < (size_t)3 * IO_IMAGE_SIDE * IO_IMAGE_SIDE; k++)
+        rgb[k] = (uint8_t)(k % 3 == 0 ? 200 : 90);
+    for (int k = 0; k < over; k++) {
+        char name[64], err[512];
+        snprintf(name, sizeof name, "io-image-%d.png", k);
+        cr_assert(image_write_png_bytes(rgb, IO_IMAGE_SIDE, IO_IMAGE_SIDE, fresh(name), err, sizeof err), "%s", err);
+    }
+    free(rgb);
+    char scene[256], expected[2048];
+    snprintf(scene, sizeof scene, "%s", repeated_scene("io-images.scene", REPEAT_IMAGE, over));
+    snprintf(expected, sizeof expected,
+             "%s:%d: pigment 'p%d': the scene's images take %.1f MB up to this line, more than 50%% of the %.1f MB "
+             "of memory this program may use (the machine's, or ulimit -d's)",
+             scene, 4 + fitting, fitting, over * bytes / 1e6, IO_GRID_LIMIT_KB * 1024.0 / 1e6);
+    static char output[16384];
+    for (int n = 14; n <= 15; n++) {
+        const char *png = fresh("io-images.png");
+        int status = run_under_limit(n, scene, png, output, sizeof output);
+        cr_assert_eq(status, 1, "chapter %d exited with %d:\n%s", n, status, output);
+        cr_assert_not_null(strstr(output, expected), "chapter %d said\n%s\nnot\n%s", n, output, expected);
+        cr_assert_eq(access(png, F_OK), -1, "chapter %d wrote a picture", n);
+    }
+    /* Thirty pigments naming one file take its pixels once: well within the share. */
+    snprintf(scene, sizeof scene, "%s", repeated_scene("io-one-image.scene", REPEAT_ONE_IMAGE, 30));
+    const char *png = fresh("io-one-image.png");
+    int status = run_under_limit(14, scene, png, output, sizeof output);
+    cr_assert_eq(status, 0, "chapter 14 exited with %d:\n%s", status, output);
+    expect_png(png, 8, 8);
 }
 
 /* ---- many materials ---------------------------------------------------------------------------- */

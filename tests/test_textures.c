@@ -214,7 +214,7 @@ static struct pigment two_by_two(int interpolate, bool once) {
     p.mapping = PIGMENT_MAP_PLANAR;
     p.interpolate = interpolate;
     p.once = once;
-    p.image = (struct pigment_image){2, 2, texels, false};
+    p.image = (struct pigment_image){2, 2, texels, false, false};
     return p;
 }
 
@@ -608,7 +608,7 @@ Test(texture, a_shadow_ray_through_glass_takes_the_pigment_but_povrays_opaque_uv
                           &s, err, sizeof err),
               "%s", err);
     static float white[4] = {1, 1, 1, 1};
-    s.pigments[1].image = (struct pigment_image){1, 1, white, true};
+    s.pigments[1].image = (struct pigment_image){1, 1, white, true, false};
     struct material painted;
     struct hit h = {1, {0, 1, 0}, 1, -1, -1};
     const struct material *m = texture_paint_shadow(&s, &h, vec3_make(1.5, 0.5, 0.5), &painted);
