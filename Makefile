@@ -254,7 +254,7 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader microfacet_long/* doc_
               accel/*_soups_of_3000_triangles accel/*_soups_of_5000_triangles accel/*_outside_float_range \
               accel/*_corners_at_infinity_or_nan acceleration/every_structure_draws_the_brute_force_picture \
               acceleration/every_rung_of_chapter_11_draws_the_brute_force_picture \
-              mesh_fuzz/* io/a_large_picture_takes_a_few_bytes_per_pixel \
+              mesh_fuzz/* io/a_large_picture_takes_a_few_bytes_per_pixel io/a_picture_whose_pixels_are_not_numbers_is_not_written \
               layering/no_chapter_links_with_the_previous_chapters_modules \
               layering/every_chapter_links_with_its_own_modules \
               build/make_bench_after_make_test_links_bench_accel_with_embree \

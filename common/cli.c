@@ -11,6 +11,7 @@
 #include "text_escape.h"
 
 #include <errno.h>
+#include <inttypes.h>
 #include <stdarg.h>
 #include <limits.h>
 #include <stdio.h>
@@ -384,6 +385,15 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
     double started = clock_seconds();
     render_image(&job, &img, &run->total);
     run->render_seconds = clock_seconds() - started;
+    if (run->total.non_finite_pixels > 0) {
+        complain("%s: %" PRIu64 " pixel%s came out not a number or infinite, a fault of chapter %d's renderer that "
+                 "this scene brings out; nothing written", s->path, run->total.non_finite_pixels,
+                 run->total.non_finite_pixels == 1 ? "" : "s", ch->number);
+        image_free(&img);
+        image_free(&heatmap);
+        run->status = CLI_BAD_INPUT;
+        return false;
+    }
     bool written = write_window(&img, window, NULL, o->output, err, sizeof err);
     if (written && o->heatmap != NULL)
         written = write_window(&heatmap, window, sampler != NULL ? sampler->heatmap : &heatmap_cost_scale,

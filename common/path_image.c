@@ -32,6 +32,7 @@ static void render_paths(const struct render_job *job, struct image *img, int le
                                            : path_pixel(picture->paths, i, j, &variance);
             for (int k = 0; k < 3; k++)
                 picture->linear[at + k] = (float)vec3_axis(c, k);
+            stats_thread.non_finite_pixels += !vec3_is_finite(c);
             for (int k = 0; picture->error != NULL && k < 3; k++)
                 picture->error[at + k] = (float)sqrt(vec3_axis(variance, k) / picture->paths->settings.samples);
             image_set(img, i, j, vec3_make(path_image_display(c.x), path_image_display(c.y), path_image_display(c.z)));

@@ -147,7 +147,9 @@ static void render_row(const struct render_job *job, struct image *img, struct r
         ray r = camera_ray(job->camera, i, j);
         uint64_t cost_before = render_thread_cost();
         stats_thread.primary_rays++;
-        image_set(img, i, j, job->trace(job->world, &r));
+        vec3 colour = job->trace(job->world, &r);
+        stats_thread.non_finite_pixels += !vec3_is_finite(colour);
+        image_set(img, i, j, colour);
         if (job->heatmap != NULL) {
             uint64_t cost = render_thread_cost() - cost_before;
             image_set(job->heatmap, i, j, heatmap_colour(cost > UINT32_MAX ? UINT32_MAX : (uint32_t)cost));

@@ -313,6 +313,9 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
         return fail(p, "material '%s': phong_size must be positive", m.name);
     if (!(m.ior > 0.0))
         return fail(p, "material '%s': ior must be positive", m.name);
+    if (!(m.ior >= SCENE_MIN_IOR && m.ior <= SCENE_MAX_IOR))
+        return fail(p, "material '%s': ior %g is out of range (from %g to %g)", m.name, m.ior, SCENE_MIN_IOR,
+                    SCENE_MAX_IOR);
     struct material *slot = grow(&s->materials, &s->material_count, sizeof *slot);
     if (slot == NULL || !name_index_add(p->materials, m.name, (int)(s->material_count - 1)))
         return fail(p, "out of memory");

@@ -24,6 +24,11 @@
 /* The brightest light colour or emission, in each channel: a sum of powers (emission times area, over
  * every emitter) stays finite. */
 #define SCENE_MAX_LIGHT 1e18
+/* A material's ior lies within these, so that the ratio of two, squared (Snell's law and Fresnel's
+ * equations square it), stays far within double's range: at 1e-155 the square of 1e155 overflowed,
+ * and a refraction head-on (sine 0 times infinity) gave chapter 17 NaN pixels. */
+#define SCENE_MIN_IOR 1e-50
+#define SCENE_MAX_IOR 1e50
 #define SCENE_NAME_MAX 64 /* longest material name, including the terminating zero */
 #define ROUGH_CHAPTER 17  /* the chapter that draws a material's roughness, metal and lobe */
 

@@ -27,6 +27,7 @@ void stats_add(struct stats *into, const struct stats *from) {
     into->crossings_capped += from->crossings_capped;
     into->budget_cut += from->budget_cut;
     into->interior_overflows += from->interior_overflows;
+    into->non_finite_pixels += from->non_finite_pixels;
 }
 
 void stats_reset_thread(void) { memset(&stats_thread, 0, sizeof stats_thread); }

@@ -35,6 +35,10 @@ struct stats {
     uint64_t crossings_capped;   /* rays stopped after RAY_MAX_CROSSINGS pass-throughs */
     uint64_t budget_cut;         /* secondary rays not traced, the camera ray's RAY_TREE_BUDGET spent */
     uint64_t interior_overflows; /* objects entered but not remembered, the interior list being full */
+    /* Pixels whose colour came out not a number or infinite: none, unless the renderer has a fault that
+     * the scene brings out. The picture is then not written (cli.c), rather than written with those
+     * pixels black. */
+    uint64_t non_finite_pixels;
 };
 
 /* The calling thread's counters. Intersection code increments fields directly:

@@ -231,6 +231,7 @@ void supersample_render_view(const struct render_job *job, const struct sample_v
     for (int j = top; j < bottom; j++)
         for (int i = left; i < right; i++) {
             int k = (j - top) * w + (i - left);
+            stats_thread.non_finite_pixels += !vec3_is_finite(colours[k]);
             image_set(img, i, j, colours[k]);
             if (job->heatmap != NULL)
                 image_set(job->heatmap, i, j, heatmap_colour_on(&supersample_ray_scale, (uint32_t)rays[k]));

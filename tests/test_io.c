@@ -2,7 +2,9 @@
  * FIFOs as inputs, one file named twice, over-long names, control characters in messages, meshes
  * placed out of range, 100,000 materials, and the memory a large picture takes. */
 #include <criterion/criterion.h>
+#include <inttypes.h>
 #include <limits.h>
+#include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -14,6 +16,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "camera.h"
+#include "render.h"
+#include "stats.h"
 #include "image.h"
 #include "image_test_support.h"
 #include "mesh.h"
@@ -524,6 +529,52 @@ Test(io, images_beyond_their_share_of_memory_are_refused_and_a_file_named_again_
     int status = run_under_limit(14, scene, png, output, sizeof output);
     cr_assert_eq(status, 0, "chapter 14 exited with %d:\n%s", status, output);
     expect_png(png, 8, 8);
+}
+
+/* ---- pixels that are not numbers ------------------------------------------------------------------- */
+
+/* A trace that answers NaN for rays leaning right and up, and grey for the others. */
+static vec3 nan_up_right(const void *world, const ray *r) {
+    (void)world;
+    return r->direction.x > 0.0 && r->direction.y > 0.0 ? vec3_make(NAN, 0.5, 0.5) : vec3_make(0.5, 0.5, 0.5);
+}
+
+Test(io, the_renderer_counts_the_pixels_that_are_not_numbers) {
+    struct camera cam;
+    char err[256];
+    cr_assert(camera_init(&cam, vec3_make(0, 0, 5), vec3_make(0, 0, 0), vec3_make(0, 1, 0), 40, 8, 6, err, sizeof err),
+              "%s", err);
+    for (int threads = 1; threads <= 2; threads++) {
+        struct image img;
+        cr_assert(image_create(&img, 8, 6));
+        struct render_job job = {.camera = &cam, .trace = nan_up_right, .threads = threads};
+        struct stats total = {0};
+        render_image(&job, &img, &total);
+        cr_assert_eq(total.non_finite_pixels, 4 * 3, "%" PRIu64 " on %d threads", total.non_finite_pixels, threads);
+        image_free(&img);
+    }
+}
+
+Test(io, a_picture_whose_pixels_are_not_numbers_is_not_written) {
+    /* Chapter 8 built with tests/mutants/nan-colour.patch, where total internal reflection comes out NaN,
+     * inside a glass sphere looking out at a slant: every ray is reflected back inside. */
+    const char *scene = text_file("io-nan.scene", "camera eye 0 0 9 target 1 0 9 fov 60\nimage 16 12\n"
+                                                  "light position 0 20 0 colour 1 1 1\n"
+                                                  "material glass colour 1 1 1 ambient 0 diffuse 0.05 transmit 0.9 "
+                                                  "ior 1.5\nsphere centre 0 0 0 radius 10 material glass\n");
+    char command[1024], output[4096], expected[512];
+    snprintf(expected, sizeof expected, "%s: 192 pixels came out not a number or infinite, a fault of chapter 8's "
+                                        "renderer that this scene brings out; nothing written", scene);
+    const char *png = fresh("io-nan.png");
+    snprintf(command, sizeof command, IO_TIMEOUT " %s %s --quiet -o %s", mutant_program("nan-colour"), scene, png);
+    int status = run_capturing(command, output, sizeof output);
+    cr_assert_eq(status, 1, "%s exited with %d:\n%s", command, status, output);
+    cr_assert_not_null(strstr(output, expected), "it said:\n%s", output);
+    cr_assert_eq(access(png, F_OK), -1, "a picture was written");
+    /* The chapter itself draws the scene. */
+    snprintf(command, sizeof command, IO_TIMEOUT " %s %s --quiet -o %s", chapter_program(8), scene, png);
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    expect_png(png, 16, 12);
 }
 
 /* ---- many materials ---------------------------------------------------------------------------- */

@@ -441,6 +441,8 @@ Test(scene_errors, bad_material_values) {
     expect_line3_error("material m colour 1 -0.5 0", "material 'm': colour must not be negative");
     expect_line3_error("material m phong_size 0", "material 'm': phong_size must be positive");
     expect_line3_error("material m ior 0", "material 'm': ior must be positive");
+    expect_line3_error("material m ior 1e-51", "material 'm': ior 1e-51 is out of range (from 1e-50 to 1e+50)");
+    expect_line3_error("material m ior 2e50", "material 'm': ior 2e+50 is out of range (from 1e-50 to 1e+50)");
     expect_line3_error("material", "material needs a name");
 }
 
