@@ -217,7 +217,8 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
 static bool within_budget(struct cli_run *run) {
     const struct scene *s = &run->scene;
     struct ray_budget b;
-    double rays = ray_budget_estimate(s, run->chapter->number, &b);
+    long pictures = run->chapter->pictures != NULL ? run->chapter->pictures() : 1;
+    double rays = ray_budget_estimate(s, run->chapter->number, &b) * (double)pictures;
     bool over = rays > RAY_BUDGET_LIMIT && !run->options.no_limit;
     if (rays <= RAY_BUDGET_LARGE || (run->options.quiet && !over))
         return true;
@@ -227,6 +228,10 @@ static bool within_budget(struct cli_run *run) {
     else
         snprintf(where, sizeof where, "%s", s->path);
     ray_budget_describe(&b, s, run->chapter->number, factors, sizeof factors);
+    if (pictures > 1) {
+        size_t used = strlen(factors);
+        snprintf(factors + used, sizeof factors - used, ", %ld pictures", pictures);
+    }
     if (!over) {
         complain("%s: note: the scene asks for up to about %.2g rays (%s); this may take a while", where, rays,
                  factors);

@@ -58,6 +58,9 @@ struct chapter {
      * standard output (the counters then go to standard error), never the file of another output. Its
      * value is in cli_options.chapter_output; the chapter describes it in options_help. */
     const char *output_option;
+    /* Optional: how many pictures the run renders, given the chapter's options (chapter 16's --frames N,
+     * or 1 with --frame K); NULL: one. The ray budget counts the rays of all of them. */
+    long (*pictures)(void);
 };
 
 #define CLI_ERROR_SIZE (PATH_MAX + 1024) /* longest error message kept: a whole path and the reason */

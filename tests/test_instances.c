@@ -610,6 +610,28 @@ Test(command_line, animation_options_are_checked) {
                        "--refit and --rebuild choose what happens between frames: they need --frames N (at least 2)");
 }
 
+Test(command_line, the_ray_budget_counts_every_frame) {
+    /* About 1.5e7 rays a frame (1089 a pixel, 37 through the lens, a shadow ray and a reflection each): ten
+     * frames are well within the limit, a hundred thousand over it. */
+    FILE *out = fopen(TEST_OUT "/frames.scene", "w");
+    cr_assert_not_null(out);
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    fprintf(out, "camera eye 0 1 6 target 0 0.5 0 fov 40 aperture 0.2 focal_point 0 0.5 0 blur_samples 37\n"
+                 "image 16 12\nantialias method recursive samples 6\nlight position -4 6 5\n"
+                 "object bunny %s/" BUNNY "\ninstance bunny scale 0.2 0.2 0.2 id a\n"
+                 "key a time 0 translate -1 0 0\nkey a time 1 translate 1 0 0\n", cwd);
+    fclose(out);
+    expect_chapter_run(16, TEST_OUT "/frames.scene --frames 100000 -o " TEST_OUT "/frames.png", 1,
+                       TEST_OUT "/frames.scene:3: the scene asks for up to about 1.5e+12 rays (16 x 12 pixels, "
+                       "antialias recursive depth 6: up to 1089 rays a pixel, blur_samples 37, 1 light: 1 shadow ray "
+                       "a hit, max_depth 5: up to 2 rays a camera ray, 100000 pictures), over the limit of 1e+12; "
+                       "pass --no-limit to render it anyway");
+    /* One frame of the hundred thousand is one picture's rays. */
+    expect_chapter_run(16, TEST_OUT "/frames.scene --frames 100000 --frame 7 --quiet -o " TEST_OUT "/frames.png", 0,
+                       "");
+}
+
 Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {
     remove(TEST_OUT "/film.mp4");
     cr_assert_eq(render_chapter(16, chapter_scene(16), TEST_OUT "/film.png", "--frames 4 --video --width 64 --height 40"),

@@ -102,6 +102,10 @@ static bool frame_file(const char *output, long k, char *name, size_t size) {
     return written > 0 && (size_t)written < size;
 }
 
+/* The pictures the run renders, for the ray budget (cli.h): --frames N of them, or one (--frame K, or
+ * no --frames). */
+static long pictures(void) { return animation.frames > 0 && animation.frame == 0 ? animation.frames : 1; }
+
 /* Runs ffmpeg over the frames (the output's name with -%04d) into the output's name with .mp4 for .png.
  * Returns false with the reason in err. */
 static bool make_video(const char *output, char *err, size_t err_size) {
@@ -167,6 +171,7 @@ int main(int argc, char **argv) {
         .kinds = kinds,
         .lighting = POV_WHITTED,
         .parse_option = parse_option,
+        .pictures = pictures,
         .options_help = "  --frames N       render N frames (1 to 100000) at clock 0 .. 1, to the output's\n"
                         "                   name with -0001, -0002, ... before .png\n"
                         "  --frame K        only frame K (1 .. N) of the N\n"
