@@ -218,9 +218,10 @@ static bool within_budget(struct cli_run *run) {
     const struct scene *s = &run->scene;
     struct ray_budget b;
     long pictures = run->chapter->pictures != NULL ? run->chapter->pictures() : 1;
-    double rays = ray_budget_estimate(s, run->chapter->number, &b) * (double)pictures;
-    bool over = rays > RAY_BUDGET_LIMIT && !run->options.no_limit;
-    if (rays <= RAY_BUDGET_LARGE || (run->options.quiet && !over))
+    double rays = ray_budget_estimate(s, run->chapter->number, &b) * (double)pictures, tests = b.tests * (double)pictures;
+    bool many_rays = rays > RAY_BUDGET_LARGE, many_tests = tests > RAY_BUDGET_TEST_LARGE;
+    bool over = (rays > RAY_BUDGET_LIMIT || tests > RAY_BUDGET_TEST_LIMIT) && !run->options.no_limit;
+    if ((!many_rays && !many_tests) || (run->options.quiet && !over))
         return true;
     char where[PATH_MAX + 32], factors[1024];
     if (b.line > 0)
@@ -231,6 +232,20 @@ static bool within_budget(struct cli_run *run) {
     if (pictures > 1) {
         size_t used = strlen(factors);
         snprintf(factors + used, sizeof factors - used, ", %ld pictures", pictures);
+    }
+    if (rays <= RAY_BUDGET_LIMIT && (many_tests && (!many_rays || tests > RAY_BUDGET_TEST_LIMIT))) {
+        /* the shapes each ray tests are what makes it long */
+        if (!over) {
+            complain("%s: note: the scene asks for up to about %.2g rays (%s), each testing %.0f shapes that no "
+                     "structure holds: about %.2g tests; this may take a while", where, rays, factors, b.shapes_per_ray,
+                     tests);
+            return true;
+        }
+        complain("%s: the scene asks for up to about %.2g rays (%s), each testing %.0f shapes that no structure "
+                 "holds: about %.2g tests, over the limit of %.0e; pass --no-limit to render it anyway", where, rays,
+                 factors, b.shapes_per_ray, tests, RAY_BUDGET_TEST_LIMIT);
+        run->status = CLI_BAD_INPUT;
+        return false;
     }
     if (!over) {
         complain("%s: note: the scene asks for up to about %.2g rays (%s); this may take a while", where, rays,

@@ -11,6 +11,7 @@
 #include "lens.h"
 #include "path_settings.h"
 #include "ray.h"
+#include "triangle.h"
 
 /* The most camera samples the antialias method takes for the whole picture, from how supersample.c
  * spends them in its blocks of ANTIALIAS_BLOCK pixels a side; *per_pixel gets the most for one pixel. */
@@ -70,6 +71,20 @@ static double rays_to_depth(const struct scene *s) {
     return ldexp(1.0, s->max_depth) - 1.0;
 }
 
+/* The shapes every ray of chapter `chapter` tests, no structure holding them: the spheres, boxes and
+ * planes it draws, and before RAY_BUDGET_GATHER_CHAPTER its triangle lines; at least 1. (A mesh's
+ * triangles are tested only by rays that meet its box before chapter 9, and are in the tree after.) */
+static double shapes_every_ray_tests(const struct scene *s, int chapter) {
+    double shapes = 0.0;
+    for (size_t k = 0; scene_syntaxes[k] != NULL; k++) {
+        const struct shape_list *list = scene_shapes(s, scene_syntaxes[k]);
+        bool in_a_tree = scene_syntaxes[k] == &triangle_syntax && chapter >= RAY_BUDGET_GATHER_CHAPTER;
+        if (list != NULL && list->kind != NULL && !in_a_tree)
+            shapes += (double)list->count;
+    }
+    return shapes > 1.0 ? shapes : 1.0;
+}
+
 double ray_budget_estimate(const struct scene *s, int chapter, struct ray_budget *b) {
     double pixels = (double)s->width * s->height;
     b->line = 0;
@@ -101,6 +116,8 @@ double ray_budget_estimate(const struct scene *s, int chapter, struct ray_budget
             b->line = s->antialias.line;
     }
     b->total = b->camera_rays * b->tree_rays;
+    b->shapes_per_ray = shapes_every_ray_tests(s, chapter);
+    b->tests = b->total * b->shapes_per_ray;
     return b->total;
 }
 

@@ -18,7 +18,10 @@
  * area light's grid (the adaptive rule's worst case: every point). Chapter 15's paths replace all that:
  *   rays = pixels x samples x (bounces + 2 rays of a path + bounces + 1 shadow rays, none for scatter).
  * Passes straight through surfaces of equal index (ray.h's RAY_MAX_CROSSINGS) are not counted: they
- * spend the same budget. The numbers are doubles, so no product overflows. */
+ * spend the same budget. A ray's own cost is bounded too: it tests every sphere, box and plane the scene
+ * draws (no structure holds them) and, before chapter 9 gathers them into its tree, every triangle line,
+ * so the tests are rays x those shapes, with limits of their own. The numbers are doubles, so no product
+ * overflows. */
 #ifndef WHITTED_RAY_BUDGET_H
 #define WHITTED_RAY_BUDGET_H
 
@@ -32,6 +35,12 @@
 /* A scene that asks for more than this gets a note on standard error (unless --quiet): at ten million
  * rays a second, more than a quarter of an hour. */
 #define RAY_BUDGET_LARGE 1e10
+/* The same for the tests of the shapes every ray tests (at 3e8 tests a second, as two cores test
+ * spheres, more than a day and a quarter of an hour). */
+#define RAY_BUDGET_TEST_LIMIT 3e13
+#define RAY_BUDGET_TEST_LARGE 3e11
+/* The chapter from which triangle lines are gathered into a tree with the meshes (chapter 9's). */
+#define RAY_BUDGET_GATHER_CHAPTER 9
 /* The chapters that add shadow rays (7) and the tree of reflected and refracted rays (8). */
 #define RAY_BUDGET_SHADOW_CHAPTER 7
 #define RAY_BUDGET_TREE_CHAPTER 8
@@ -44,6 +53,8 @@ struct ray_budget {
     double tree_rays;       /* rays of one camera ray's tree, its shadow rays included (chapter 15: a
                                path's rays) */
     double total;           /* camera_rays x tree_rays */
+    double shapes_per_ray;  /* the shapes every ray tests, no structure holding them (at least 1) */
+    double tests;           /* total x shapes_per_ray */
     int line;               /* the scene line of the key that contributes most, 0 when not known */
 };
 

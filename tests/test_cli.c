@@ -12,6 +12,7 @@
 #include "ray_budget.h"
 #include "ray.h"
 #include "scene.h"
+#include "sphere.h"
 #include "test_support.h"
 
 /* Writes `text` to a scene file in the test folder and returns its path. */
@@ -308,6 +309,62 @@ Test(budget, the_tree_budget_caps_the_bound_and_nothing_overflows) {
     scene_free(&s);
     cr_assert_float_eq(rays, 256.0 * 256 * 256 * (64 + 2 + 65), 0);
     cr_assert(rays < RAY_BUDGET_LARGE, "%g", rays);
+}
+
+Test(budget, every_ray_tests_the_shapes_no_structure_holds) {
+    /* Two spheres, a box and a plane, each tested by every ray; the triangle line too until chapter 9
+     * gathers it into its tree. */
+    const char *text = "camera eye 0 0 5 target 0 0 0 fov 40\nimage 10 10\nmax_depth 1\n"
+                       "sphere centre 0 0 0 radius 1\nsphere centre 2 0 0 radius 1\nbox min 0 0 0 max 1 1 1\n"
+                       "plane normal 0 1 0 distance -1\ntriangle a 0 0 0 b 1 0 0 c 0 1 0\n";
+    static const struct shape_kind *const spheres_only[] = {&sphere_kind, NULL}; /* as chapter 2 draws */
+    static const struct {
+        int chapter;
+        const struct shape_kind *const *kinds;
+        double shapes;
+    } cases[] = {{2, spheres_only, 2}, {8, test_every_kind, 5}, {9, test_every_kind, 4}, {15, test_every_kind, 4}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        struct scene s;
+        char err[1024];
+        cr_assert(scene_parse("shapes.scene", text, cases[k].kinds, &s, err, sizeof err), "%s", err);
+        scene_drop_unsupported(&s, cases[k].chapter, NULL);
+        struct ray_budget b;
+        double rays = ray_budget_estimate(&s, cases[k].chapter, &b);
+        scene_free(&s);
+        cr_assert_float_eq(b.shapes_per_ray, cases[k].shapes, 0, "chapter %d: %g", cases[k].chapter, b.shapes_per_ray);
+        cr_assert_float_eq(b.tests, rays * cases[k].shapes, 0);
+    }
+    struct ray_budget b;
+    bound_of("camera eye 0 0 5 target 0 0 0 fov 40\nimage 10 10\n", 8, &b); /* nothing: the ray itself */
+    cr_assert_float_eq(b.shapes_per_ray, 1, 0);
+}
+
+Test(budget, a_hundred_thousand_spheres_under_an_area_light_are_refused_by_their_tests) {
+    /* 640 x 480 camera rays, each with 1089 shadow rays, each ray testing 100,000 spheres: 3.3e13 tests,
+     * weeks of work, though its 3.3e8 rays are well within the rays' limit. */
+    size_t size = 200 + 100000 * 48, used = 0;
+    char *text = malloc(size);
+    cr_assert_not_null(text);
+    used += (size_t)snprintf(text, size, "camera eye 50 50 120 target 50 50 0 fov 60\nimage 640 480\n"
+                                         "light position 50 50 150 axis1 10 0 0 axis2 0 10 0 samples 33 33\n");
+    for (int k = 0; k < 100000; k++)
+        used += (size_t)snprintf(text + used, size - used, "sphere centre %d %d %d radius 0.3\n", k % 100,
+                                 k / 100 % 100, -(k / 10000));
+    FILE *out = fopen(TEST_OUT "/spheres.scene", "w");
+    cr_assert_not_null(out);
+    fputs(text, out);
+    fclose(out);
+    free(text);
+    expect_chapter_run(13, TEST_OUT "/spheres.scene -o " TEST_OUT "/spheres.png", 1,
+                       TEST_OUT "/spheres.scene: the scene asks for up to about 3.3e+08 rays (640 x 480 pixels, 1 "
+                       "light (area light 33 x 33): 1089 shadow rays a hit, max_depth 5: up to 1090 rays a camera "
+                       "ray), each testing 100000 shapes that no structure holds: about 3.3e+13 tests, over the "
+                       "limit of 3e+13; pass --no-limit to render it anyway");
+    /* At 64 x 48 pixels, a hundredth of the tests: a note, and the run goes on (cut short here by --tile
+     * to one pixel, whose rays the bound does not know). */
+    expect_chapter_run(13, TEST_OUT "/spheres.scene --width 64 --height 48 --tile 0 0 1 1 -o " TEST_OUT
+                           "/spheres.png", 0,
+                       "each testing 100000 shapes that no structure holds: about 3.3e+11 tests; this may take a while");
 }
 
 /* A deep tree of glass panes lit by a 33 x 33 area light: every hit sends 1089 shadow rays. They are
