@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "accel_fast_bvh.h"
 #include "bsdf.h"
@@ -134,10 +135,17 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
      * no ray can hit them, and the light sampler cannot pick them. */
     bool black_background = s->background.x == 0.0 && s->background.y == 0.0 && s->background.z == 0.0;
     if (black_background && !(emitters.total_power > 0.0)) {
+        size_t areas = s->light_count - (size_t)point_lights; /* area lights, their colours not above 0 here */
+        char lights[128];
+        if (areas > 0)
+            snprintf(lights, sizeof lights, "the area light%s give%s off nothing (%s colour not above 0)",
+                     areas == 1 ? "" : "s", areas == 1 ? "s" : "", areas == 1 ? "its" : "their");
+        else
+            snprintf(lights, sizeof lights, "no light has an area");
         if (emitters.count == 0)
             snprintf(run->err, sizeof run->err, "%s: nothing gives off light, so the picture would be black: no "
-                     "material has an emission, no light has an area (chapter %d ignores %d point light%s) and the "
-                     "background is black", s->path, chapter, point_lights, point_lights == 1 ? "" : "s");
+                     "material has an emission, %s (chapter %d ignores %d point light%s) and the "
+                     "background is black", s->path, lights, chapter, point_lights, point_lights == 1 ? "" : "s");
         else
             snprintf(run->err, sizeof run->err, "%s: nothing gives off light, so the picture would be black: the "
                      "%zu emissive surface%s give%s no power (no area, its corners in a line, or an emission times "
@@ -175,7 +183,7 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
         }
         if (run->status == CLI_OK && run->options.pov == NULL && hdr_path != NULL) {
             size_t length = strlen(hdr_path);
-            bool pfm = length >= 4 && strcmp(hdr_path + length - 4, ".pfm") == 0;
+            bool pfm = length >= 4 && strcasecmp(hdr_path + length - 4, ".pfm") == 0; /* .PFM too */
             if (!(pfm ? path_image_write_pfm : path_image_write_hdr)(linear, tile.width, tile.height, hdr_path, run->err,
                                                                      sizeof run->err)) {
                 fprintf(stderr, "%s\n", run->err);

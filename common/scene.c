@@ -56,6 +56,9 @@ static bool fail(const struct parser *p, const char *format, ...) {
     return false;
 }
 
+/* The bytes of U+FEFF, the byte-order mark, as UTF-8. */
+#define SCENE_UTF8_BOM "\xef\xbb\xbf"
+
 /* ---- numbers ----------------------------------------------------------------------------------- */
 
 /* A number is decimal, with an exponent or not (docs/scene-format.md), as POV-Ray reads it: strtod
@@ -785,6 +788,8 @@ bool scene_parse(const char *name, const char *text, const struct shape_kind *co
     strcpy(copy, text);
     bool ok = true, camera_seen = false, image_seen = false;
     char *line = copy;
+    if (strncmp(line, SCENE_UTF8_BOM, strlen(SCENE_UTF8_BOM)) == 0)
+        line += strlen(SCENE_UTF8_BOM); /* some editors start a UTF-8 file with it; it is no part of a word */
     while (ok && line != NULL) {
         char *newline = strchr(line, '\n');
         if (newline != NULL)

@@ -302,6 +302,15 @@ static const struct hostile non_finite[] = {
      "SCENE: nothing gives off light, so the picture would be black: no material has an emission, no light has an "
      "area (chapter 15 ignores 1 point light) and the background is black"},
     {15, VIEW "background 0.2 0.3 0.4\nsphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
+    /* an area light of a negative colour: it has an area, but gives off nothing */
+    {15, VIEW "sphere centre 0 0 0 radius 1\npaths samples 2\n"
+              "light position 0 3 0 colour -1 -1 -1 axis1 1 0 0 axis2 0 0 1 samples 2 2\n", "", 1,
+     "SCENE: nothing gives off light, so the picture would be black: no material has an emission, the area light "
+     "gives off nothing (its colour not above 0) (chapter 15 ignores 1 point light) and the background is black"},
+    /* an ior so small that the square of the ratio of two overflowed (NaN pixels in chapter 17) */
+    {17, VIEW "material g colour 1 1 1 ambient 0 diffuse 0 transmit 1 ior 1e-155 roughness 0.5\n"
+              "sphere centre 0 0 0 radius 1 material g\n", "", 1,
+     "SCENE:4: material 'g': ior 1e-155 is out of range (from 1e-50 to 1e+50)"},
     /* an emitter no ray can hit: a triangle with its corners in a line */
     {17, VIEW "sphere centre 0 0 0 radius 1\npaths samples 2\nmaterial lamp emission 4 4 4\n"
               "triangle a 0 3 0 b 1 4 1 c 2 5 2 material lamp\n", "", 1,
@@ -359,6 +368,8 @@ static const struct hostile loose_numbers[] = {
      "SCENE:4: antialias samples must be a whole number from 1 to 16 for method grid, got 1234567"},
     {13, VIEW "light position 0 3 0 axis1 1 0 0 axis2 0 0 1 samples 1234567 2\nsphere centre 0 0 0 radius 1\n", "", 1,
      "SCENE:4: light samples must be whole numbers from 1 to 33, got 1234567 2"},
+    /* a byte-order mark before the first word, as some editors write UTF-8 */
+    {2, "\xef\xbb\xbf" VIEW "sphere centre 0 0 0 radius 1\n", "", 0, NULL},
 };
 
 Test(hostile, numbers_are_read_strictly_and_shown_exactly, .timeout = 120) { RUN_ROWS(loose_numbers); }

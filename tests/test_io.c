@@ -577,6 +577,18 @@ Test(io, a_picture_whose_pixels_are_not_numbers_is_not_written) {
     expect_png(png, 16, 12);
 }
 
+Test(io, a_pfm_name_in_capitals_is_a_pfm) {
+    const char *pfm = fresh("io-radiance.PFM");
+    char arguments[512];
+    snprintf(arguments, sizeof arguments, "%s --width 8 --height 6 --set paths.samples=1 --quiet -o %s --hdr %s",
+             chapter_scene(15), fresh("io-radiance.png"), pfm);
+    expect_chapter_run(15, arguments, 0, "");
+    size_t size = 0;
+    char *bytes = read_file(pfm, &size);
+    cr_assert(size > 3 && strncmp(bytes, "PF\n", 3) == 0, "%s does not start as a colour PFM", pfm);
+    free(bytes);
+}
+
 /* ---- many materials ---------------------------------------------------------------------------- */
 
 #define IO_MANY 100000 /* materials, and spheres using them: a linear search took 17 s for the materials */

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/wait.h>
 
 #include "accel_fast_bvh.h"
@@ -97,7 +98,7 @@ static bool animation_options_valid(const struct cli_options *o) {
  * its end). Returns false when it does not fit. */
 static bool frame_file(const char *output, long k, char *name, size_t size) {
     size_t length = strlen(output);
-    size_t stem = length >= 4 && strcmp(output + length - 4, ".png") == 0 ? length - 4 : length;
+    size_t stem = length >= 4 && strcasecmp(output + length - 4, ".png") == 0 ? length - 4 : length;
     int written = snprintf(name, size, "%.*s-%04ld%s", (int)stem, output, k, output + stem);
     return written > 0 && (size_t)written < size;
 }
@@ -111,7 +112,7 @@ static long pictures(void) { return animation.frames > 0 && animation.frame == 0
 static bool make_video(const char *output, char *err, size_t err_size) {
     char pattern[PATH_MAX], film[PATH_MAX];
     size_t length = strlen(output);
-    size_t stem = length >= 4 && strcmp(output + length - 4, ".png") == 0 ? length - 4 : length;
+    size_t stem = length >= 4 && strcasecmp(output + length - 4, ".png") == 0 ? length - 4 : length;
     if (snprintf(pattern, sizeof pattern, "%.*s-%%04d%s", (int)stem, output, output + stem) >= (int)sizeof pattern ||
         snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film)
         return (snprintf(err, err_size, "%s: the film's name is too long", output), false);
