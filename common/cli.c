@@ -280,6 +280,15 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
         run->status = CLI_OUTPUT_FAILED;
         return false;
     }
+    /* The files the run will write, tried now rather than after the render: a folder that is not there. */
+    const char *written[] = {o->pov, o->pov == NULL && o->output_given ? o->output : NULL,
+                             o->pov == NULL ? o->heatmap : NULL, o->pov == NULL ? o->chapter_output : NULL};
+    for (int k = 0; k < 4; k++)
+        if (written[k] != NULL && !outfile_can_create(written[k], run->err, sizeof run->err)) {
+            complain("%s", run->err);
+            run->status = CLI_OUTPUT_FAILED;
+            return false;
+        }
     struct scene *s = &run->scene;
     bool bad_option = false;
     if (!scene_load_changed(o->scene, o->sets, o->set_count, ch->kinds, s, &bad_option, run->err, sizeof run->err)) {

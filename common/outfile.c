@@ -143,6 +143,26 @@ bool outfile_commit(struct outfile *f, char *err, size_t err_size) {
     return ok;
 }
 
+bool outfile_can_create(const char *path, char *err, size_t err_size) {
+    if (strcmp(path, "-") == 0)
+        return true;
+    struct outfile f = {.path = path, .target = follow_links(path)};
+    struct stat info;
+    bool exists = f.target != NULL && stat(f.target, &info) == 0;
+    if (exists && !S_ISREG(info.st_mode) && !S_ISDIR(info.st_mode)) { /* written directly */
+        free(f.target);
+        return true;
+    }
+    errno = f.target == NULL ? ENOMEM : exists && S_ISDIR(info.st_mode) ? EISDIR : 0;
+    if (errno == 0 && (f.file = open_temporary(&f)) != NULL) {
+        outfile_abandon(&f);
+        return true;
+    }
+    snprintf(err, err_size, "%s: cannot create: %s", path, strerror(errno));
+    free(f.target);
+    return false;
+}
+
 void outfile_abandon(struct outfile *f) {
     fclose(f->file);
     if (f->temp_path != NULL)

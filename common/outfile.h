@@ -44,6 +44,12 @@ bool outfile_commit(struct outfile *f, char *err, size_t err_size);
  * directly to a FIFO, device or standard output cannot be taken back.) */
 void outfile_abandon(struct outfile *f);
 
+/* Returns true when outfile_open could create `path` now: "-", an existing FIFO or device, or a name
+ * whose folder takes a temporary file (one is made and removed at once). Otherwise returns false with
+ * outfile_open's message, "path: cannot create: reason", in err: so that a program can say so before it
+ * renders rather than after. A FIFO is not opened, which would wait for its reader. */
+bool outfile_can_create(const char *path, char *err, size_t err_size);
+
 /* Returns true when `path` is short enough to be written: its temporary name fits in PATH_MAX. A longer
  * name would be cut by the system, so callers refuse it before any work is done. */
 bool outfile_name_fits(const char *path);

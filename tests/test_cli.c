@@ -1,6 +1,7 @@
 /* test_cli.c: the chapter programs from the outside: options, exit codes, messages for bad input,
  * and no half-written output. */
 #include <criterion/criterion.h>
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +12,7 @@
 #include "image_test_support.h"
 #include "ray_budget.h"
 #include "ray.h"
+#include "outfile.h"
 #include "scene.h"
 #include "sphere.h"
 #include "test_support.h"
@@ -80,6 +82,28 @@ Test(cli, a_mesh_error_names_the_mesh_file_and_line) {
 Test(cli, an_unwritable_output_fails_and_leaves_nothing_behind) {
     expect_chapter_run(2, "-o " TEST_OUT "/no/such/folder/x.png", 3,
                TEST_OUT "/no/such/folder/x.png: cannot create: No such file or directory");
+}
+
+Test(cli, an_output_that_cannot_be_created_is_found_before_anything_else_is_done) {
+    /* Before the scene is read, let alone rendered: its own error would come first otherwise. */
+    expect_chapter_run(15, TEST_OUT "/no-such.scene -o " TEST_OUT "/x.png --hdr " TEST_OUT "/no/such/folder/x.pfm", 3,
+                       TEST_OUT "/no/such/folder/x.pfm: cannot create: No such file or directory");
+    expect_chapter_run(2, TEST_OUT "/no-such.scene -o " TEST_OUT, 3, TEST_OUT ": cannot create: Is a directory");
+    /* Only the outputs that will be written: with --pov, the picture's is not. */
+    expect_chapter_run(2, "--pov " TEST_OUT "/early.pov -o " TEST_OUT "/no/such/folder/x.png --quiet", 0, "");
+    /* The trial leaves nothing behind in the folder it tried. */
+    cr_assert_eq(system("rm -rf " TEST_OUT "/trial"), 0);
+    mkdir(TEST_OUT "/trial", 0755);
+    char err[256];
+    cr_assert(outfile_can_create(TEST_OUT "/trial/x.png", err, sizeof err), "%s", err);
+    DIR *folder = opendir(TEST_OUT "/trial");
+    cr_assert_not_null(folder);
+    struct dirent *entry;
+    int entries = 0;
+    while ((entry = readdir(folder)) != NULL)
+        entries += strcmp(entry->d_name, ".") != 0 && strcmp(entry->d_name, "..") != 0;
+    closedir(folder);
+    cr_assert_eq(entries, 0, "the trial left %d files", entries);
 }
 
 Test(cli, a_failed_render_keeps_the_previous_picture) {
