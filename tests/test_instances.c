@@ -12,6 +12,7 @@
 
 #include <stb_image.h>
 
+#include "image.h"
 #include "image_test_support.h"
 #include "instances.h"
 #include "mesh_load.h"
@@ -630,6 +631,24 @@ Test(command_line, the_ray_budget_counts_every_frame) {
     /* One frame of the hundred thousand is one picture's rays. */
     expect_chapter_run(16, TEST_OUT "/frames.scene --frames 100000 --frame 7 --quiet -o " TEST_OUT "/frames.png", 0,
                        "");
+}
+
+Test(command_line, each_frame_has_its_own_heat_map_and_keeps_the_outputs_capitals, .timeout = 60) {
+    const char *names[] = {TEST_OUT "/caps-0001.PNG", TEST_OUT "/caps-0002.PNG", TEST_OUT "/caps-heat-0001.png",
+                           TEST_OUT "/caps-heat-0002.png"};
+    for (int k = 0; k < 4; k++)
+        remove(names[k]);
+    cr_assert_eq(render_chapter(16, chapter_scene(16), TEST_OUT "/caps.PNG",
+                                "--frames 2 --width 32 --height 20 --heatmap " TEST_OUT "/caps-heat.png"),
+                 0);
+    for (int k = 0; k < 4; k++) {
+        char err[256];
+        int width = 0, height = 0;
+        uint8_t *rgb = image_read_rgb(names[k], &width, &height, err, sizeof err);
+        cr_assert_not_null(rgb, "%s", err);
+        cr_assert_eq(width, 32);
+        free(rgb);
+    }
 }
 
 Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {

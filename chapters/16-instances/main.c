@@ -135,13 +135,14 @@ static bool make_video(const char *output, char *err, size_t err_size) {
 
 /* Renders the frames asked for: frame k of N at clock (k - 1) / (N - 1), its top level moved there. */
 static int render_frames(struct cli_run *run, struct accel_world *w, struct instances *in) {
-    const char *output = run->options.output;
+    const char *output = run->options.output, *heatmap = run->options.heatmap;
     long first = animation.frame > 0 ? animation.frame : 1, last = animation.frame > 0 ? animation.frame : animation.frames;
-    static char name[PATH_MAX];
+    static char name[PATH_MAX], heat_name[PATH_MAX];
     for (long k = first; k <= last && run->status == CLI_OK; k++) {
         double clock = animation.frames == 1 ? 0.0 : (double)(k - 1) / (double)(animation.frames - 1);
-        if (!frame_file(output, k, name, sizeof name)) {
-            fprintf(stderr, "%s: the name of frame %ld is too long\n", output, k);
+        bool fits = frame_file(output, k, name, sizeof name);
+        if (!fits || (heatmap != NULL && !frame_file(heatmap, k, heat_name, sizeof heat_name))) {
+            fprintf(stderr, "%s: the name of frame %ld is too long\n", fits ? heatmap : output, k);
             return CLI_USAGE;
         }
         if (in != NULL && !instances_set_interval(in, clock, clock + run->scene.shutter, animation.update, run->err,
@@ -151,6 +152,8 @@ static int render_frames(struct cli_run *run, struct accel_world *w, struct inst
         }
         w->world.time = clock;
         run->options.output = name;
+        if (heatmap != NULL)
+            run->options.heatmap = heat_name; /* each frame's heat-map beside it, numbered as it is */
         run->total = (struct stats){0};
         if (cli_render_sampled(run, trace_soft, &w->world, &shutter_sampler) && run->options.stats && in != NULL)
             instances_report(in, stdout, true);
