@@ -218,7 +218,8 @@ static bool within_budget(struct cli_run *run) {
     const struct scene *s = &run->scene;
     struct ray_budget b;
     long pictures = run->chapter->pictures != NULL ? run->chapter->pictures() : 1;
-    double rays = ray_budget_estimate(s, run->chapter->number, &b) * (double)pictures, tests = b.tests * (double)pictures;
+    double rays = ray_budget_estimate(s, run->chapter->number, &b) * (double)pictures;
+    double tests = b.tests * (double)pictures;
     bool many_rays = rays > RAY_BUDGET_LARGE, many_tests = tests > RAY_BUDGET_TEST_LARGE;
     bool over = (rays > RAY_BUDGET_LIMIT || tests > RAY_BUDGET_TEST_LIMIT) && !run->options.no_limit;
     if ((!many_rays && !many_tests) || (run->options.quiet && !over))

@@ -233,8 +233,10 @@ struct instances *instances_create(struct scene *s, int first_object, double t0,
     for (size_t n = 0; n < in->count; n++)
         placed[s->instances[n].object] = true;
     size_t meshes_taken = 0; /* the mesh lines' first (scene_load_meshes), then the objects' */
-    for (size_t k = 0; k < s->mesh_count; k++)
-        meshes_taken += mesh_bytes(&s->meshes[k].mesh) + mesh_corners_bytes(&s->meshes[k].corners, s->meshes[k].mesh.face_count);
+    for (size_t k = 0; k < s->mesh_count; k++) {
+        const struct scene_mesh *m = &s->meshes[k];
+        meshes_taken += mesh_bytes(&m->mesh) + mesh_corners_bytes(&m->corners, m->mesh.face_count);
+    }
     for (size_t k = 0; ok && k < s->object_count; k++)
         if (placed[k])
             ok = load_object(in, s, k, &meshes_taken, err, err_size);

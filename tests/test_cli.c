@@ -388,7 +388,8 @@ Test(budget, a_hundred_thousand_spheres_under_an_area_light_are_refused_by_their
      * to one pixel, whose rays the bound does not know). */
     expect_chapter_run(13, TEST_OUT "/spheres.scene --width 64 --height 48 --tile 0 0 1 1 -o " TEST_OUT
                            "/spheres.png", 0,
-                       "each testing 100000 shapes that no structure holds: about 3.3e+11 tests; this may take a while");
+                       "each testing 100000 shapes that no structure holds: about 3.3e+11 tests; this may take a "
+                       "while");
 }
 
 /* A deep tree of glass panes lit by a 33 x 33 area light: every hit sends 1089 shadow rays. They are

@@ -391,7 +391,8 @@ static const char *grid_ply(void) {
         }
     for (int j = 0; j + 1 < IO_GRID; j++)
         for (int i = 0; i + 1 < IO_GRID; i++) {
-            int32_t a = j * IO_GRID + i, corners[2][3] = {{a, a + 1, a + IO_GRID + 1}, {a, a + IO_GRID + 1, a + IO_GRID}};
+            int32_t a = j * IO_GRID + i, b = a + IO_GRID; /* the square's corners a, a + 1, b + 1, b */
+            int32_t corners[2][3] = {{a, a + 1, b + 1}, {a, b + 1, b}};
             for (int t = 0; t < 2; t++) {
                 fputc(3, f);
                 fwrite(corners[t], sizeof corners[t], 1, f);
