@@ -129,7 +129,9 @@ static void render_in_packets(const struct render_job *job, struct image *img, i
                 answer = (struct packet_answer){seen->accel, rays[k], t_min[k], found >> k & 1, t[k], face[k]};
                 cost_before = render_thread_cost();
                 stats_thread.primary_rays++;
-                image_set(img, i, j, job->trace(&world, &rays[k]));
+                vec3 colour = job->trace(&world, &rays[k]);
+                stats_thread.non_finite_pixels += !vec3_is_finite(colour); /* cli.c writes no such picture */
+                image_set(img, i, j, colour);
                 if (job->heatmap != NULL) { /* the packet's walk shared out among its rays */
                     uint64_t cost = render_thread_cost() - cost_before + packet_cost;
                     image_set(job->heatmap, i, j, heatmap_colour(cost > UINT32_MAX ? UINT32_MAX : (uint32_t)cost));
