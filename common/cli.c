@@ -281,8 +281,11 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
         run->status = CLI_OUTPUT_FAILED;
         return false;
     }
-    /* The files the run will write, tried now rather than after the render: a folder that is not there. */
-    const char *written[] = {o->pov, o->pov == NULL && o->output_given ? o->output : NULL,
+    /* The files the run will write, tried now rather than after the render: a folder that is not there. The
+     * default output's folder is made first (if this fails, trying the output says why). */
+    if (!o->output_given && o->pov == NULL)
+        mkdir("out", 0755);
+    const char *written[] = {o->pov, o->pov == NULL ? o->output : NULL,
                              o->pov == NULL ? o->heatmap : NULL, o->pov == NULL ? o->chapter_output : NULL};
     for (int k = 0; k < 4; k++)
         if (written[k] != NULL && !outfile_can_create(written[k], run->err, sizeof run->err)) {
@@ -410,8 +413,6 @@ static bool render_and_write(struct cli_run *run, render_trace_fn trace, const v
         run->status = CLI_OUTPUT_FAILED;
         return false;
     }
-    if (!o->output_given)
-        mkdir("out", 0755); /* the default folder; if this fails, writing the PNG says why */
     double started = clock_seconds();
     render_image(&job, &img, &run->total);
     run->render_seconds = clock_seconds() - started;

@@ -2,6 +2,7 @@
  * and no half-written output. */
 #include <criterion/criterion.h>
 #include <dirent.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -82,6 +83,20 @@ Test(cli, a_mesh_error_names_the_mesh_file_and_line) {
 Test(cli, an_unwritable_output_fails_and_leaves_nothing_behind) {
     expect_chapter_run(2, "-o " TEST_OUT "/no/such/folder/x.png", 3,
                TEST_OUT "/no/such/folder/x.png: cannot create: No such file or directory");
+}
+
+Test(cli, the_default_folder_is_made_before_the_outputs_are_tried) {
+    /* In a folder with no out/ yet (a fresh clone, the page's file system): the picture goes to the
+     * default out/chapter-02.png, and a heat-map named into out/ too must not be refused as in a folder
+     * that is not there. */
+    char cwd[1024], command[4096], output[4096];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    cr_assert_eq(system("rm -rf " TEST_OUT "/fresh-folder && mkdir -p " TEST_OUT "/fresh-folder"), 0);
+    snprintf(command, sizeof command, "cd " TEST_OUT "/fresh-folder && %s/%s %s/%s --heatmap out/heat.png --quiet", cwd,
+             chapter_program(2), cwd, chapter_scene(2));
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    cr_assert_eq(access(TEST_OUT "/fresh-folder/out/chapter-02.png", F_OK), 0);
+    cr_assert_eq(access(TEST_OUT "/fresh-folder/out/heat.png", F_OK), 0);
 }
 
 Test(cli, an_output_that_cannot_be_created_is_found_before_anything_else_is_done) {
