@@ -428,7 +428,7 @@ Test(coursework_long, every_task_fails_on_its_stub_and_passes_with_its_reference
     /* Pixels stored mirrored left to right (render.c, not a task, so the unit checks pass): the picture
      * check draws and names the difference. */
     plant(dir, log, "1.1", "");
-    cr_assert_eq(run(log, "sed -i 's|image_set(img, i, j, job|image_set(img, img->width - 1 - i, j, job|' "
+    cr_assert_eq(run(log, "sed -i 's|image_set(img, i, j, colour)|image_set(img, img->width - 1 - i, j, colour)|' "
                           "%1$s/common/render.c && grep -q 'width - 1 - i' %1$s/common/render.c", dir),
                  0, "cannot mirror the picture: see %s", log);
     build_in(dir, log, 1);
