@@ -234,8 +234,10 @@ static bool within_budget(struct cli_run *run) {
         size_t used = strlen(factors);
         snprintf(factors + used, sizeof factors - used, ", %ld pictures", pictures);
     }
-    if (rays <= RAY_BUDGET_LIMIT && (many_tests && (!many_rays || tests > RAY_BUDGET_TEST_LIMIT))) {
-        /* the shapes each ray tests are what makes it long */
+    /* The shapes each ray tests make the scene long when the tests are many while the rays are within
+     * their limit and either not many or outdone by tests over the tests' own limit; else the rays do. */
+    bool tests_make_it_long = rays <= RAY_BUDGET_LIMIT && many_tests && (!many_rays || tests > RAY_BUDGET_TEST_LIMIT);
+    if (tests_make_it_long) {
         if (!over) {
             complain("%s: note: the scene asks for up to about %.2g rays (%s), each testing %.0f shapes that no "
                      "structure holds: about %.2g tests; this may take a while", where, rays, factors, b.shapes_per_ray,

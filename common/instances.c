@@ -149,9 +149,8 @@ static bool load_object(struct instances *in, struct scene *s, size_t k, size_t 
     }
     *meshes_taken += mesh_bytes(&o->mesh);
     if (*meshes_taken > memory_budget_share(MEMORY_BUDGET_MESH_SHARE)) {
-        snprintf(err, err_size, "%s:%d: object '%s': the scene's meshes take %.1f MB up to this line, more than "
-                 "%g%% of the %.1f MB of memory this program may use (the machine's, or ulimit -d's)", s->path,
-                 o->line, o->name, *meshes_taken / 1e6, 100 * MEMORY_BUDGET_MESH_SHARE, memory_budget_limit() / 1e6);
+        memory_budget_explain(why, sizeof why, "meshes", *meshes_taken, MEMORY_BUDGET_MESH_SHARE);
+        snprintf(err, err_size, "%s:%d: object '%s': %s", s->path, o->line, o->name, why);
         return false;
     }
     for (size_t v = 0; v < o->mesh.vertex_count; v++)

@@ -9,6 +9,7 @@
 #include "memory_budget.h"
 
 #include <stdint.h>
+#include <stdio.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -31,4 +32,10 @@ size_t memory_budget_share(double share) {
         return SIZE_MAX;
     double bytes = share * (double)limit;
     return bytes >= (double)SIZE_MAX ? SIZE_MAX : (size_t)bytes;
+}
+
+void memory_budget_explain(char *out, size_t size, const char *what, size_t taken, double share) {
+    snprintf(out, size, "the scene's %s take %.1f MB up to this line, more than %g%% of the %.1f MB of memory "
+             "this program may use (the machine's, or ulimit -d's)", what, taken / 1e6, 100 * share,
+             memory_budget_limit() / 1e6);
 }

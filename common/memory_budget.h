@@ -24,4 +24,13 @@ size_t memory_budget_limit(void);
  * be told: models taking more than this are refused. */
 size_t memory_budget_share(double share);
 
+/* Room for memory_budget_explain's sentence. */
+#define MEMORY_BUDGET_EXPLAIN_SIZE 256
+
+/* Writes into out (size bytes, always terminated) why a scene line is refused: "the scene's WHAT take
+ * X MB up to this line, more than P% of the Y MB of memory this program may use (...)", where WHAT names
+ * what is counted ("meshes", "images"), taken its bytes so far and share the share they went over. The
+ * caller puts "FILE:LINE: what the line names: " before it. */
+void memory_budget_explain(char *out, size_t size, const char *what, size_t taken, double share);
+
 #endif

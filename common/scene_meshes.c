@@ -70,10 +70,8 @@ bool scene_load_meshes(struct scene *s, char *err, size_t err_size) {
         }
         taken += mesh_bytes(&m->mesh) + mesh_corners_bytes(&m->corners, m->mesh.face_count);
         if (taken > budget) {
-            snprintf(err, err_size, "%s:%d: mesh %s: the scene's meshes take %.1f MB up to this line, more than "
-                     "%g%% of the %.1f MB of memory this program may use (the machine's, or ulimit -d's)",
-                     s->path, m->line, m->path, taken / 1e6, 100 * MEMORY_BUDGET_MESH_SHARE,
-                     memory_budget_limit() / 1e6);
+            memory_budget_explain(why, sizeof why, "meshes", taken, MEMORY_BUDGET_MESH_SHARE);
+            snprintf(err, err_size, "%s:%d: mesh %s: %s", s->path, m->line, m->path, why);
             return false;
         }
         mesh_transform(&m->mesh, m->scale, m->rotate, m->translate);

@@ -239,10 +239,9 @@ bool texture_load_images(struct scene *s, char *err, size_t err_size) {
         }
         taken += p->image.borrowed ? 0 : image_bytes(&p->image);
         if (taken > budget) {
-            snprintf(err, err_size, "%s:%d: pigment '%s': the scene's images take %.1f MB up to this line, more "
-                     "than %g%% of the %.1f MB of memory this program may use (the machine's, or ulimit -d's)",
-                     s->path, p->line, p->name, taken / 1e6, 100 * TEXTURE_IMAGE_MEMORY_SHARE,
-                     memory_budget_limit() / 1e6);
+            char why[MEMORY_BUDGET_EXPLAIN_SIZE];
+            memory_budget_explain(why, sizeof why, "images", taken, TEXTURE_IMAGE_MEMORY_SHARE);
+            snprintf(err, err_size, "%s:%d: pigment '%s': %s", s->path, p->line, p->name, why);
             return false;
         }
     }
