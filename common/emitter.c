@@ -127,9 +127,11 @@ bool emitter_list_build(struct emitter_list *list, const struct accel_world *w, 
     for (size_t k = 0; ok && planes != NULL && planes->kind != NULL && k < planes->count; k++) {
         const struct plane *p = &((const struct plane *)planes->items)[k];
         if (emits(&s->materials[p->material])) {
+            /* shapes keep no line of their own: the message points at the material's, which gives off the light */
             snprintf(err, err_size,
-                     "%s: plane %zu has the emissive material '%s': an infinite surface cannot be an emitter "
-                     "(give the emission to a box or triangles)", s->path, k + 1, s->materials[p->material].name);
+                     "%s:%d: plane %zu has the emissive material '%s': an infinite surface cannot be an emitter "
+                     "(give the emission to a box or triangles)", s->path, s->materials[p->material].line, k + 1,
+                     s->materials[p->material].name);
             emitter_list_free(list);
             return false;
         }

@@ -157,7 +157,7 @@ Test(emitters, an_emissive_plane_is_refused) {
     char err[512] = "";
     cr_expect(!path_setup_text(&t, SCENE_HEAD "material sky emission 1 1 1\nplane normal 0 1 0 distance 0 material sky\n",
                                err, sizeof err));
-    cr_expect_str_eq(err, "paths.scene: plane 1 has the emissive material 'sky': an infinite surface cannot be an "
+    cr_expect_str_eq(err, "paths.scene:3: plane 1 has the emissive material 'sky': an infinite surface cannot be an "
                           "emitter (give the emission to a box or triangles)");
 }
 
