@@ -609,6 +609,20 @@ Test(command_line, animation_options_are_checked) {
                        "--refit and --rebuild say opposite things: give one of them (or neither, for the default rule)");
     expect_chapter_run(16, "--refit", 2,
                        "--refit and --rebuild choose what happens between frames: they need --frames N (at least 2)");
+    expect_chapter_run(16, "--frames 2 --video -o " TEST_OUT "/film", 2,
+                       "--video makes its film from the frames' PNG files: -o must name a .png file");
+}
+
+Test(command_line, video_without_ffmpeg_is_refused_before_any_frame) {
+    /* ffmpeg missing from the PATH is found before the frames are drawn, not after: none is written */
+    remove(TEST_OUT "/no-ffmpeg-0001.png");
+    char command[1024], output[4096];
+    snprintf(command, sizeof command, "env PATH=/nonexistent %s --frames 2 --video --width 16 --height 10 -o "
+             TEST_OUT "/no-ffmpeg.png", chapter_program(16));
+    cr_assert_eq(run_capturing(command, output, sizeof output), 3, "%s", output);
+    cr_expect_not_null(strstr(output, "--video: cannot find ffmpeg, which makes the film (install it with "
+                                      "tools/build/install-deps.sh video)"), "%s", output);
+    cr_expect_eq(access(TEST_OUT "/no-ffmpeg-0001.png", F_OK), -1, "a frame was drawn before ffmpeg was looked for");
 }
 
 Test(command_line, the_ray_budget_counts_every_frame) {
@@ -652,11 +666,12 @@ Test(command_line, each_frame_has_its_own_heat_map_and_keeps_the_outputs_capital
 }
 
 Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {
-    remove(TEST_OUT "/film.mp4");
-    cr_assert_eq(render_chapter(16, chapter_scene(16), TEST_OUT "/film.png", "--frames 4 --video --width 64 --height 40"),
+    /* a % in the name, which ffmpeg's pattern of the frames' names must take as itself */
+    remove(TEST_OUT "/film%d.mp4");
+    cr_assert_eq(render_chapter(16, chapter_scene(16), TEST_OUT "/film%d.png", "--frames 4 --video --width 64 --height 40"),
                  0);
     size_t size = 0;
-    free(read_file(TEST_OUT "/film.mp4", &size));
+    free(read_file(TEST_OUT "/film%d.mp4", &size));
     cr_assert_gt(size, 1000, "the film has %zu bytes", size);
 }
 

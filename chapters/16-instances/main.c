@@ -16,6 +16,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "accel_fast_bvh.h"
 #include "box.h"
@@ -74,6 +75,12 @@ static vec3 trace_soft(const void *world, const ray *r) {
     return whitted_trace_shadowed(world, r, soft_shadow_filtered);
 }
 
+/* True when name ends in .png (in any case). */
+static bool names_png(const char *name) {
+    size_t length = strlen(name);
+    return length >= 4 && strcasecmp(name + length - 4, ".png") == 0;
+}
+
 /* Checks the animation options against each other; prints why not and returns false. */
 static bool animation_options_valid(const struct cli_options *o) {
     const char *problem = NULL;
@@ -85,6 +92,8 @@ static bool animation_options_valid(const struct cli_options *o) {
         problem = "--video needs --frames N (at least 2) and all of them (no --frame)";
     else if (animation.frames > 0 && strcmp(o->output, "-") == 0)
         problem = "--frames writes one file a frame: -o - (standard output) cannot take them";
+    else if (animation.video && !names_png(o->output))
+        problem = "--video makes its film from the frames' PNG files: -o must name a .png file";
     else if (animation.update_options > 1)
         problem = "--refit and --rebuild say opposite things: give one of them (or neither, for the default rule)";
     else if (animation.update_options > 0 && animation.frames < 2)
@@ -107,13 +116,41 @@ static bool frame_file(const char *output, long k, char *name, size_t size) {
  * no --frames). */
 static long pictures(void) { return animation.frames > 0 && animation.frame == 0 ? animation.frames : 1; }
 
+/* Returns true when `program` is an executable file in a folder of the PATH, so that --video can say it
+ * is missing before the frames are rendered rather than after. */
+static bool on_path(const char *program) {
+#ifdef __EMSCRIPTEN__ /* the browser's build runs no other program */
+    (void)program;
+    return false;
+#else
+    const char *path = getenv("PATH");
+    while (path != NULL && *path != '\0') {
+        const char *end = strchr(path, ':');
+        size_t length = end != NULL ? (size_t)(end - path) : strlen(path);
+        char file[PATH_MAX];
+        int written = snprintf(file, sizeof file, "%.*s/%s", (int)length, length > 0 ? path : ".", program);
+        if (written > 0 && (size_t)written < sizeof file && access(file, X_OK) == 0)
+            return true;
+        path = end != NULL ? end + 1 : NULL;
+    }
+    return false;
+#endif
+}
+
 /* Runs ffmpeg over the frames (the output's name with -%04d) into the output's name with .mp4 for .png.
  * Returns false with the reason in err. */
 static bool make_video(const char *output, char *err, size_t err_size) {
-    char pattern[PATH_MAX], film[PATH_MAX];
-    size_t length = strlen(output);
-    size_t stem = length >= 4 && strcasecmp(output + length - 4, ".png") == 0 ? length - 4 : length;
-    if (snprintf(pattern, sizeof pattern, "%.*s-%%04d%s", (int)stem, output, output + stem) >= (int)sizeof pattern ||
+    char pattern[2 * PATH_MAX], film[PATH_MAX];
+    size_t stem = strlen(output) - 4; /* the output ends in .png (animation_options_valid) */
+    /* ffmpeg reads the frames' names as a pattern, in which a % of the output's own name is written %% */
+    size_t used = 0;
+    for (size_t k = 0; k < stem && used + 2 < sizeof pattern; k++) {
+        if (output[k] == '%')
+            pattern[used++] = '%';
+        pattern[used++] = output[k];
+    }
+    if (used + 2 >= sizeof pattern ||
+        snprintf(pattern + used, sizeof pattern - used, "-%%04d%s", output + stem) >= (int)(sizeof pattern - used) ||
         snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film)
         return (snprintf(err, err_size, "%s: the film's name is too long", output), false);
 #ifdef __EMSCRIPTEN__ /* the browser's build runs no other program */
@@ -191,6 +228,12 @@ int main(int argc, char **argv) {
         return cli_finish(&run);
     if (!animation_options_valid(&run.options)) {
         run.status = CLI_USAGE;
+        return cli_finish(&run);
+    }
+    if (animation.video && !on_path("ffmpeg")) {
+        fprintf(stderr, "--video: cannot find ffmpeg, which makes the film (install it with "
+                        "tools/build/install-deps.sh video)\n");
+        run.status = CLI_OUTPUT_FAILED;
         return cli_finish(&run);
     }
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
