@@ -123,7 +123,7 @@ int main(int argc, char **argv) {
             usage();
         }
     }
-    if (a + 1 != argc)
+    if (a + 1 != argc || argv[a][0] == '-') /* an option left over (--help, say) is no file name */
         usage();
     const char *path = argv[a];
     size_t length = strlen(path) + sizeof ".tmp";
