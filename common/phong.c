@@ -29,7 +29,8 @@ vec3 phong_shade(const struct scene *s, const struct phong_surface *at, phong_sh
                 continue;
         }
         vec3 diffuse = vec3_scale(m->colour, m->diffuse * cosine * at->opacity);
-        double alignment = vec3_dot(mirror, to_light);
+        /* at most 1 but for rounding, which pow would blow up to infinity when phong_size is large */
+        double alignment = fmin(vec3_dot(mirror, to_light), 1.0);
         double highlight = (m->phong > 0.0 && alignment > 0.0) ? m->phong * pow(alignment, m->phong_size) : 0.0;
         vec3 shine = vec3_make(highlight, highlight, highlight); /* white: tinted only by the light */
         vec3 surface = vec3_add(diffuse, shine);

@@ -2,7 +2,9 @@
  *
  * A point P is on the sphere when |P - C|^2 = r^2. Putting P = O + tD with |D| = 1 gives
  * t^2 + 2bt + c = 0 with b = (O - C).D and c = |O - C|^2 - r^2, so t = -b -+ sqrt(b^2 - c). This
- * "half b" form saves the factors of 2 and 4 of the textbook formula. */
+ * "half b" form saves the factors of 2 and 4 of the textbook formula. The discriminant b^2 - c is
+ * computed as r^2 - |O - C - bD|^2, the same number by Pythagoras (O - C - bD runs from the centre to the
+ * line's nearest point), which keeps its digits when the sphere is small beside its distance. */
 #include "sphere.h"
 
 #include "hit.h"
@@ -13,8 +15,8 @@ bool sphere_intersect(const struct sphere *s, const ray *r, double t_min, double
     stats_thread.sphere_tests++;
     vec3 oc = vec3_sub(r->origin, s->centre);
     double b = vec3_dot(oc, r->direction);
-    double c = vec3_dot(oc, oc) - s->radius * s->radius;
-    double discriminant = b * b - c;
+    vec3 across = vec3_sub(oc, vec3_scale(r->direction, b)); /* from the centre to the line's nearest point */
+    double discriminant = s->radius * s->radius - vec3_dot(across, across); /* b^2 - c */
     if (discriminant < 0.0)
         return false; /* the line passes the sphere by */
     double root = sqrt(discriminant);

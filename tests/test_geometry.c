@@ -241,6 +241,19 @@ Test(sphere, ray_passing_by_misses) {
                  -1.0);
 }
 
+Test(sphere, a_sphere_small_beside_its_distance_keeps_its_size) {
+    /* Radius 1e-9, 8 away: b^2 - c computed as written loses every digit (r^2 is 1e-18 of |O - C|^2, under
+     * double's 1.1e-16), and rays passing at many radii would hit. A ray passing at 0.6 r hits 0.8 r before
+     * the centre; one at 2 r misses, and so does one at 1.001 r. */
+    struct sphere tiny = {{0, 0, -8}, 1e-9, 0};
+    cr_assert_float_eq(sphere_t(&tiny, ray_down_z_from(0.6e-9, 0), RAY_T_MIN, INFINITY), 8 - 0.8e-9, 1e-15);
+    cr_assert_eq(sphere_t(&tiny, ray_down_z_from(2e-9, 0), RAY_T_MIN, INFINITY), -1.0);
+    cr_assert_eq(sphere_t(&tiny, ray_down_z_from(0, 1.001e-9), RAY_T_MIN, INFINITY), -1.0);
+    /* the same on a slant: from (0, 1, 0) towards a point 2 r beside the centre */
+    vec3 aim = vec3_normalize(vec3_sub(vec3_make(2e-9, 0, -8), vec3_make(0, 1, 0)));
+    cr_assert_eq(sphere_t(&tiny, make_ray(vec3_make(0, 1, 0), aim), RAY_T_MIN, INFINITY), -1.0);
+}
+
 Test(sphere, ray_from_inside_hits_far_side) {
     ray r = make_ray(vec3_make(0, 0, -5), vec3_make(0, 0, -1));
     cr_assert_eq(sphere_t(&ahead_sphere, r, RAY_T_MIN, INFINITY), 1.0);
