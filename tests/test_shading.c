@@ -549,6 +549,25 @@ Test(phong, light_behind_the_surface_leaves_only_the_ambient_term) {
                   "colour");
 }
 
+Test(phong, a_highlight_rounded_past_full_alignment_stays_finite) {
+    /* A light straight along the mirror direction: R.L is 1 exactly in real numbers, but rounded it can be
+     * 1 + 2e-16, and that to the power 1e300 is infinite. Some such direction is found among a few
+     * hundred; the highlight there must be phong times the light, 1, not infinity. */
+    struct material m = finish(earthy, 0.0, 0.0, 1.0, 1e300);
+    int found = 0;
+    for (int k = 1; k < 100000 && !found; k++) {
+        vec3 direction = vec3_normalize(vec3_make(sin(k), cos(0.7 * k), -1.0 - 0.001 * k));
+        vec3 mirror = phong_reflect(direction, up_normal);
+        struct light light = light_towards(mirror, grey(1));
+        if (vec3_dot(mirror, vec3_normalize(light.position)) <= 1.0)
+            continue;
+        found = k;
+        vec3 colour = shade(&m, direction, &light, 1, grey(0), 1.0);
+        cr_assert(isfinite(colour.x) && fabs(colour.x - 1.0) < 1e-9, "direction %d: highlight %g", k, colour.x);
+    }
+    cr_assert(found > 0, "no direction rounds past full alignment");
+}
+
 Test(phong, diffuse_at_60_degrees_is_half_of_kd_times_the_colour) {
     /* N.L = cos 60 = 0.5: 0.5 * 0.6 * C = (0.24, 0.12, 0.06). */
     struct material m = finish(earthy, 0.0, 0.6, 0.0, 40.0);
