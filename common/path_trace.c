@@ -135,7 +135,7 @@ static vec3 radiance(const struct path_world *pw, ray r, struct interior_list in
             direction = scattered.direction;
             throughput = vec3_mul(throughput, scattered.weight);
             p_scatter = scattered.pdf;
-            delta = false;
+            delta = scattered.delta;
             if (scattered.crossed) {
                 inside = beyond;
                 stats_thread.refracted_rays++;

@@ -41,8 +41,11 @@
 struct path_scatter {
     vec3 direction; /* unit length */
     vec3 weight;    /* f |cos| / pdf: what the path's throughput is multiplied by */
-    double pdf;     /* the density per solid angle with which sample draws it, over all its lobes (> 0) */
+    double pdf;     /* the density per solid angle with which sample draws it, over all its lobes (> 0;
+                     * not used when delta) */
     bool crossed;   /* the direction goes through the surface, into or out of the object */
+    bool delta;     /* the only direction the surface sends the light in, as a smooth mirror's or glass's:
+                     * it has no density, and an emitter it finds counts whole (no MIS) */
 };
 
 /* Surfaces this chapter does not know, plugged in by a later one: chapter 17's rough surfaces

@@ -89,6 +89,14 @@ static bool sample_in_form(enum microfacet_form form, const struct material *m, 
     struct rough_surface r = rough_surface_in_form(m, eta, form);
     if (r.p_diffuse == 0.0 && vec3_dot(r.scale, r.scale) == 0.0)
         return false; /* black: nothing scatters */
+    if (r.glass && eta == 1.0) {
+        /* The same index on both sides: no facet bends the light or reflects any (Fresnel is 0), so it goes
+         * straight through, tinted, whatever the roughness. The microfacet lobe cannot say so: its half
+         * vector wo + wi is 0 there, and would give the direction no density and end the path. */
+        *out = (struct path_scatter){.direction = vec3_scale(wo, -1.0), .weight = r.lobe.tint, .pdf = 1.0,
+                                     .crossed = true, .delta = true};
+        return true;
+    }
     struct frame f = frame_about(normal);
     vec3 lo = to_local(&f, wo), li;
     if (u_lobe < r.p_diffuse)
@@ -108,6 +116,7 @@ static bool sample_in_form(enum microfacet_form form, const struct material *m, 
     out->weight = vec3_scale(f_cos, 1.0 / pdf);
     out->pdf = pdf;
     out->crossed = li.z < 0.0;
+    out->delta = false;
     return true;
 }
 

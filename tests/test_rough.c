@@ -128,6 +128,34 @@ Test(rough_smooth, roughness_0_draws_chapter_15s_picture_exactly) {
     free(b);
 }
 
+Test(rough_smooth, a_rough_glass_between_equal_indices_lets_the_light_through_unbent) {
+    /* A white furnace and a frosted ball of ior 1, the default: no facet bends or reflects anything, so
+     * every path goes straight through, and every pixel is the background's 1 exactly (with the
+     * microfacet lobe, whose half vector is 0 there, paths died in the ball: a mean of 0.9, pixels of
+     * 0.19). A tint (colour 0.8, filter 0.8: transmit 0.2 + 0.8 x 0.8) is met twice, going in and out. */
+    const char *tints[] = {"colour 1 1 1 transmit 1", "colour 0.8 0.8 0.8 filter 0.8 transmit 0.2"};
+    const double inside[] = {1.0, (0.2 + 0.8 * 0.8) * (0.2 + 0.8 * 0.8)};
+    for (int k = 0; k < 2; k++) {
+        char text[1024];
+        snprintf(text, sizeof text, "camera eye 0 0 6 target 0 0 0 fov 40\nimage 24 16\nbackground 1 1 1\n"
+                 "paths samples 8 bounces 8\nmaterial g %s ambient 0 diffuse 0 roughness 0.5\n"
+                 "sphere centre 0 0 0 radius 1.5 material g\n", tints[k]);
+        vec3 *means, *variances;
+        int w, h;
+        render(text, &rough_surface_hook, &means, &variances, &w, &h);
+        int through = 0;
+        for (int i = 0; i < w * h; i++) {
+            /* n of the pixel's 8 paths (jittered over it) through the ball, the others past it */
+            double n = (1.0 - means[i].x) / (1.0 - inside[k]) * 8.0;
+            cr_assert(k == 0 ? means[i].x == 1.0 : fabs(n - round(n)) < 1e-9, "%s, pixel %d: %.17g", tints[k], i,
+                      means[i].x);
+            through += means[i].x != 1.0;
+        }
+        cr_expect((k == 0) == (through == 0), "tint %s: %d pixels through the ball", tints[k], through);
+        free(means);
+    }
+}
+
 /* A roughness of 0.01 (alpha 1e-4) is a mirror or a glass for every purpose a picture has: its picture and
  * chapter 15's agree within the noise, block by block. */
 static void expect_smooth_limit(const char *ball) {
