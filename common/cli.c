@@ -4,7 +4,9 @@
 
 #include "clock.h"
 #include "heatmap.h"
+#include "instance_syntax.h"
 #include "outfile.h"
+#include "path_settings.h"
 #include "ray_budget.h"
 #include "scene_scale.h"
 #include "scene_set.h"
@@ -261,6 +263,56 @@ static bool within_budget(struct cli_run *run) {
     return false;
 }
 
+static bool is_black(vec3 c) { return c.x == 0.0 && c.y == 0.0 && c.z == 0.0; }
+
+/* Whether s has no shape, mesh or instance at all: it draws its background, as it says. */
+static bool draws_nothing(const struct scene *s) {
+    size_t drawn = s->mesh_count + s->instance_count;
+    for (size_t k = 0; k < s->kind_count; k++)
+        drawn += s->shapes[k].syntax != NULL ? s->shapes[k].count : 0;
+    return drawn == 0;
+}
+
+/* Whether a shape, mesh or instance of s has a material with an ambient term (the default material has
+ * one, 0.1, as POV-Ray's). */
+static bool drawn_with_ambient(const struct scene *s) {
+    for (size_t k = 0; k < s->kind_count; k++) {
+        const struct shape_list *list = &s->shapes[k];
+        for (size_t i = 0; list->syntax != NULL && i < list->count; i++)
+            if (s->materials[shape_material(list->syntax, shape_item(list->syntax, list->items, i))].ambient > 0.0)
+                return true;
+    }
+    for (size_t k = 0; k < s->mesh_count; k++)
+        if (s->materials[s->meshes[k].material].ambient > 0.0)
+            return true;
+    for (size_t k = 0; k < s->instance_count; k++)
+        if (s->materials[s->instances[k].material].ambient > 0.0)
+            return true;
+    return false;
+}
+
+/* Chapters 6 to 14 and 16 light a surface by the scene's lights and its ambient light, and what it
+ * reflects or lets through ends at the background: with none of them the picture would be black, so it
+ * is refused with the reason (`emitting`, the materials whose emission the chapter ignores, are named:
+ * such a scene was written for chapters 15 and 17, whose path_program.c checks their own light).
+ * Returns true when something lights the scene; chapters 1 to 5 light every surface from the eye. */
+static bool lit_by_something(struct cli_run *run, size_t emitting) {
+    const struct chapter *ch = run->chapter;
+    const struct scene *s = &run->scene;
+    bool by_lights = ch->lighting == POV_PHONG || ch->lighting == POV_PHONG_SHADOWS || ch->lighting == POV_WHITTED;
+    if (!by_lights || instance_chapter_draws(ch->number, PATH_CHAPTER) || s->light_count > 0 ||
+        !is_black(s->background) || draws_nothing(s) || (!is_black(s->ambient_light) && drawn_with_ambient(s)))
+        return true;
+    char ignored[160] = "";
+    if (emitting > 0)
+        snprintf(ignored, sizeof ignored, " (chapter %d ignores the emission of %zu material%s: chapters 15 and 17 "
+                 "draw it)", ch->number, emitting, emitting == 1 ? "" : "s");
+    complain("%s: nothing lights the scene, so the picture would be black: no light line, no ambient light "
+             "(ambient_light black, or no material drawn with an ambient) and a black background%s", s->path, ignored);
+    run->status = CLI_BAD_INPUT;
+    return false;
+}
+
 bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv) {
     memset(run, 0, sizeof *run);
     run->chapter = ch;
@@ -314,8 +366,11 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
         run->status = CLI_USAGE;
         return false;
     }
+    size_t emitting = 0;
+    for (size_t k = 0; k < s->material_count; k++)
+        emitting += !is_black(s->materials[k].emission);
     scene_drop_unsupported(s, ch->number, o->quiet ? NULL : stderr);
-    return o->pov != NULL || within_budget(run);
+    return o->pov != NULL || (lit_by_something(run, emitting) && within_budget(run));
 }
 
 int cli_fail(struct cli_run *run) {

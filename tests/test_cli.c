@@ -140,6 +140,33 @@ Test(cli, a_chapter_ignores_shapes_it_does_not_know_and_says_so_once) {
     expect_chapter_run(2, arguments, 0, "scenes/08-recursion.scene: chapter 2 ignores 1 mesh, 2 planes (not introduced yet)");
 }
 
+Test(cli, a_scene_that_nothing_lights_is_refused_with_why) {
+    /* Veach's plates are lit only by emitting spheres, which chapters before 15 (and 16) do not draw: no
+     * light line, no ambient and a black background would make a black picture with exit 0. */
+    for (int chapter = 6; chapter <= 16; chapter++) {
+        if (chapter == 9 || chapter == 10 || chapter == 11 || chapter == 15)
+            continue; /* 9 to 11 draw as 8 does; 15 draws the emission */
+        char expected[512];
+        snprintf(expected, sizeof expected, "scenes/17-veach.scene: nothing lights the scene, so the picture would be "
+                 "black: no light line, no ambient light (ambient_light black, or no material drawn with an ambient) "
+                 "and a black background (chapter %d ignores the emission of 5 materials: chapters 15 and 17 draw it)",
+                 chapter);
+        expect_chapter_run(chapter, "scenes/17-veach.scene --quiet -o " TEST_OUT "/unlit.png", 1, expected);
+    }
+    /* One ambient term on a drawn shape is light enough; so is a light, or a background to reflect. */
+    expect_chapter_run(8, "scenes/17-veach.scene --quiet -o " TEST_OUT "/unlit.png --set material.backdrop.ambient=0.1 "
+                       "--set 'ambient_light=1 1 1'", 0, "");
+    expect_chapter_run(8, "scenes/17-veach.scene --quiet -o " TEST_OUT "/unlit.png --set 'background=0 0 0.1'", 0, "");
+    /* chapter 2 lights every surface from the eye */
+    expect_chapter_run(2, "scenes/17-veach.scene --quiet -o " TEST_OUT "/unlit.png", 0, "");
+    /* a scene with nothing in it draws its black background, as it says */
+    FILE *f = fopen(TEST_OUT "/empty.scene", "w");
+    cr_assert_not_null(f);
+    fprintf(f, "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 6\nbackground 0 0 0\nambient_light 0 0 0\n");
+    fclose(f);
+    expect_chapter_run(8, TEST_OUT "/empty.scene --quiet -o " TEST_OUT "/unlit.png", 0, "");
+}
+
 Test(cli, the_counters_are_printed) {
     char arguments[256];
     snprintf(arguments, sizeof arguments, "-o " TEST_OUT "/counted.png");
