@@ -268,6 +268,24 @@ double instance_bvh_sah_cost(const struct instance_bvh *b) {
     return cost;
 }
 
+double instance_bvh_expected_instances(const struct instance_bvh *b, uint32_t *crowded) {
+    if (b->node_count == 0)
+        return 0.0;
+    double root_area = aabb_surface_area(b->nodes[0].box), sum = 0.0, most = -1.0;
+    for (size_t k = 0; k < b->node_count; k++) {
+        const struct instance_bvh_node *node = &b->nodes[k];
+        if (node->count == 0)
+            continue;
+        double share = (root_area > 0.0 ? aabb_surface_area(node->box) / root_area : 1.0) * node->count;
+        sum += share;
+        if (share > most && crowded != NULL) {
+            most = share;
+            *crowded = b->instances[node->first];
+        }
+    }
+    return sum;
+}
+
 /* Checks node `index`'s children or instances, marking what it reaches in reached[] (nodes) and
  * placed[] (instances). Returns false with the fault in why. */
 static bool node_is_valid(const struct instance_bvh *b, const struct aabb *boxes, size_t index, unsigned char *reached,

@@ -94,6 +94,13 @@ void instance_bvh_walk(const struct instance_bvh *b, const ray *r, double t_min,
  * instances. */
 double instance_bvh_sah_cost(const struct instance_bvh *b);
 
+/* Returns how many instances a ray that meets the root's box is expected to carry into their objects,
+ * by the SAH's measure: the sum over the leaves of their counts times their boxes' areas over the
+ * root's (every ratio 1 when the root's area is 0). About log n for instances spread apart, n for n
+ * instances on top of each other. When crowded is not NULL, stores in it an instance of the leaf that
+ * adds the most. 0 for no instances. */
+double instance_bvh_expected_instances(const struct instance_bvh *b, uint32_t *crowded);
+
 /* The structure checker: returns true when b is a well-formed tree over boxes[0 .. count): every node
  * reached once from the root, every child after its parent, every leaf holding 1 to
  * INSTANCE_BVH_LEAF_MAX instances, every instance index in exactly one leaf, every interior box holding

@@ -135,6 +135,15 @@ static struct aabb instance_box(const struct instances *in, size_t k, double t0,
     return pad_world_box(world);
 }
 
+double instances_expected_tests(const struct instances *in, int *line) {
+    uint32_t crowded = 0;
+    double in_tree = in->top != NULL ? instance_bvh_expected_instances(in->top, &crowded) : 0.0;
+    *line = in->count == 0 ? 0
+            : in->outside_count > in_tree ? in->scene->instances[in->outside[0]].line
+                                          : in->scene->instances[crowded].line;
+    return in_tree + (double)in->outside_count;
+}
+
 /* ---- loading ------------------------------------------------------------------------------------ */
 
 /* Loads object k's mesh (once) and builds its tree. *meshes_taken, the bytes of the scene's meshes so

@@ -675,6 +675,34 @@ Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {
     cr_assert_gt(size, 1000, "the film has %zu bytes", size);
 }
 
+Test(command_line, instances_on_top_of_each_other_count_in_the_ray_budget) {
+    /* 20,000 bunnies in one place: every ray is carried into each of them, 2.6e12 times in a picture of
+     * 1000 x 1000 pixels, 64 camera rays each and their shadow rays, more than a day; refused at once, naming the crowded place's
+     * line. The same instances spread apart are met a few at a time. */
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    for (int spread = 0; spread < 2; spread++) {
+        FILE *out = fopen(TEST_OUT "/crowd.scene", "w");
+        cr_assert_not_null(out);
+        fprintf(out, "camera eye 0 1 6 target 0 0.5 0 fov 40\nimage 1000 1000\nantialias method grid samples 8\n"
+                     "light position -4 6 5\nobject bunny %s/" BUNNY "\n", cwd);
+        for (int k = 0; k < 20000; k++)
+            fprintf(out, "instance bunny translate %g 0 %g\n", spread ? (k % 200) * 2.0 : 0.0,
+                    spread ? (k / 200) * -2.0 : 0.0);
+        fclose(out);
+        if (spread == 0) {
+            expect_chapter_run(16, TEST_OUT "/crowd.scene -o " TEST_OUT "/crowd.png", 1,
+                               TEST_OUT "/crowd.scene:6: a ray is carried into about 20000 instances, their boxes lying "
+                               "over each other here: about 2.6e+12 for the scene's 1.3e+08 rays, over the limit of "
+                               "1e+12; pass --no-limit to render it anyway");
+        } else {
+            /* spread: no note, and a picture (small, to be quick) */
+            expect_chapter_run(16, TEST_OUT "/crowd.scene --width 8 --height 8 -o " TEST_OUT "/crowd.png", 0,
+                               "chapter 16 (instances): wrote");
+        }
+    }
+}
+
 Test(command_line, a_bad_instance_is_a_bad_scene_with_its_line) {
     FILE *out = fopen(TEST_OUT "/flat.scene", "w");
     cr_assert_not_null(out);

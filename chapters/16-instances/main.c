@@ -24,6 +24,7 @@
 #include "fast_bvh.h"
 #include "instances.h"
 #include "plane.h"
+#include "ray_budget.h"
 #include "shutter.h"
 #include "soft_shadow.h"
 #include "sphere.h"
@@ -170,6 +171,26 @@ static bool make_video(const char *output, char *err, size_t err_size) {
 #endif
 }
 
+/* The scene's rays (ray_budget.h, every frame's) times the instances each is expected to be carried into:
+ * more than INSTANCES_TEST_LIMIT is refused without --no-limit, more than INSTANCES_TEST_LARGE noted
+ * (instances.h). The ray budget, worked out before the instances are placed, counts them as a tree's
+ * logarithm; instances on top of one another are each met by every ray. */
+static bool instances_within_budget(struct cli_run *run, const struct instances *in) {
+    struct ray_budget b;
+    double rays = ray_budget_estimate(&run->scene, 16, &b) * (double)pictures();
+    int line = 0;
+    double per_ray = instances_expected_tests(in, &line), tests = rays * per_ray;
+    bool over = tests > INSTANCES_TEST_LIMIT && !run->options.no_limit;
+    if (tests <= INSTANCES_TEST_LARGE || (run->options.quiet && !over))
+        return true;
+    fprintf(stderr, "%s:%d: %sa ray is carried into about %.0f instances, their boxes lying over each other here: "
+            "about %.2g for the scene's %.2g rays, %s\n", run->scene.path, line, over ? "" : "note: ", per_ray, tests,
+            rays, over ? "over the limit of 1e+12; pass --no-limit to render it anyway" : "which may take a while");
+    if (over)
+        run->status = CLI_BAD_INPUT;
+    return !over;
+}
+
 /* Renders the frames asked for: frame k of N at clock (k - 1) / (N - 1), its top level moved there. */
 static int render_frames(struct cli_run *run, struct accel_world *w, struct instances *in) {
     const char *output = run->options.output, *heatmap = run->options.heatmap;
@@ -252,6 +273,11 @@ int main(int argc, char **argv) {
             return cli_fail(&run);
         }
         w->world.instances = &in->hook;
+        if (run.options.pov == NULL && !instances_within_budget(&run, in)) {
+            instances_free(in);
+            accel_world_destroy(w);
+            return cli_finish(&run);
+        }
     }
     if (animation.frames > 0 && run.options.pov == NULL) {
         run.status = render_frames(&run, w, in);
