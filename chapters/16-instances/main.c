@@ -107,8 +107,7 @@ static bool animation_options_valid(const struct cli_options *o) {
 /* Writes into name[size] the file of frame k (1-based): `output` with "-kkkk" before its ".png" (or at
  * its end). Returns false when it does not fit. */
 static bool frame_file(const char *output, long k, char *name, size_t size) {
-    size_t length = strlen(output);
-    size_t stem = length >= 4 && strcasecmp(output + length - 4, ".png") == 0 ? length - 4 : length;
+    size_t stem = strlen(output) - (names_png(output) ? 4 : 0);
     int written = snprintf(name, size, "%.*s-%04ld%s", (int)stem, output, k, output + stem);
     return written > 0 && (size_t)written < size;
 }
@@ -177,15 +176,18 @@ static bool make_video(const char *output, char *err, size_t err_size) {
  * logarithm; instances on top of one another are each met by every ray. */
 static bool instances_within_budget(struct cli_run *run, const struct instances *in) {
     struct ray_budget b;
-    double rays = ray_budget_estimate(&run->scene, 16, &b) * (double)pictures();
+    double rays = ray_budget_estimate(&run->scene, run->chapter->number, &b) * (double)pictures();
     int line = 0;
     double per_ray = instances_expected_tests(in, &line), tests = rays * per_ray;
     bool over = tests > INSTANCES_TEST_LIMIT && !run->options.no_limit;
     if (tests <= INSTANCES_TEST_LARGE || (run->options.quiet && !over))
         return true;
     fprintf(stderr, "%s:%d: %sa ray is carried into about %.0f instances, their boxes lying over each other here: "
-            "about %.2g for the scene's %.2g rays, %s\n", run->scene.path, line, over ? "" : "note: ", per_ray, tests,
-            rays, over ? "over the limit of 1e+12; pass --no-limit to render it anyway" : "which may take a while");
+            "about %.2g for the scene's %.2g rays, ", run->scene.path, line, over ? "" : "note: ", per_ray, tests, rays);
+    if (over)
+        fprintf(stderr, "over the limit of %.0e; pass --no-limit to render it anyway\n", INSTANCES_TEST_LIMIT);
+    else
+        fprintf(stderr, "which may take a while\n");
     if (over)
         run->status = CLI_BAD_INPUT;
     return !over;
