@@ -1451,4 +1451,22 @@ Test(accel, float_steps_are_nextafterf_at_zero_subnormals_range_ends_and_every_e
     cr_assert(float_below(-0x1p-160) == -FLT_TRUE_MIN && float_above(-0x1p-160) == -0.0f);
     cr_assert(float_below(1e300) == FLT_MAX && float_above(1e300) == INFINITY);
     cr_assert(float_above(-1e300) == -FLT_MAX && float_below(-1e300) == -INFINITY);
+    cr_assert(float_below(NAN) == -INFINITY && float_above(NAN) == INFINITY);
+    /* Doubles of every exponent and sign, and the floats themselves: below is the largest float <= x, above
+     * the smallest >= x. */
+    uint64_t wide = 987654321u;
+    for (int k = 0; k < 200000; k++) {
+        wide = wide * 6364136223846793005u + 1442695040888963407u;
+        double x;
+        memcpy(&x, &wide, sizeof x);
+        if (k % 4 == 0)
+            x = (double)(float)x; /* a float: both give it back */
+        if (isnan(x))
+            continue;
+        float below = float_below(x), above = float_above(x);
+        cr_assert((double)below <= x && (below == INFINITY || (double)nextafterf(below, INFINITY) > x),
+                  "below %a: %a", x, (double)below);
+        cr_assert((double)above >= x && (above == -INFINITY || (double)nextafterf(above, -INFINITY) < x),
+                  "above %a: %a", x, (double)above);
+    }
 }
