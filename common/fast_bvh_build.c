@@ -610,13 +610,20 @@ static bool split_sah(struct builder *bd, const struct build_range *r, struct bu
     if (n <= BVH_MAX_LEAF_SIZE && BVH_COST_TRIANGLE * leaf_tests(bd, n) <= split_cost)
         return false;
 
-    /* Partition, gathering each side's centroid box on the way; the boxes are the unions of the slots'. */
+    /* Partition, gathering each side's centroid box on the way; the boxes are the unions of the slots'.
+     * A prim goes left when its slot on the chosen axis is below best_plane. Its slot is x = (centroid -
+     * origin) * scale clamped to [0, slots - 1] and truncated (bins_of); best_plane is a whole number
+     * from 1 to slots - 1, so the slot is below it exactly when x is not at least best_plane (a negative
+     * x or a NaN has slot 0, an x past the last slot is not below it): one compare on one axis, the
+     * same answer as bins_of's. */
+    float origin = r->centroids.lo[best_axis], axis_scale = scale[best_axis], plane = (float)best_plane;
     struct float_box left_centroids = float_box_empty(), right_centroids = float_box_empty();
     uint32_t i = r->begin, j = r->end; /* [begin,i) go left, [j,end) go right */
     while (i < j) {
         struct float_box p = prim_box(bd, i);
         float4 c = centroid_of(&p);
-        if (bins_of(c, r->centroids.lo, scale, slots)[best_axis] < best_plane) {
+        float x = (c[best_axis] - origin) * axis_scale;
+        if (!(x >= plane)) {
             float_box_grow(&left_centroids, c, c);
             i++;
         } else {
