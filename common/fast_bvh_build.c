@@ -862,23 +862,46 @@ static bool face_float_box(const struct mesh *m, size_t f, double pad, struct fl
     return true;
 }
 
-/* The box around the corners of every face of m, grown by pad and moved outward to float as a face's
- * (face_bounds), in *box: it holds every face's box (face_float_box; the padding and the moving are
- * monotonic, so the least of the faces' low bounds is the low bound of the least corner), and is found
- * by one pass over the corners, cheaper than their boxes. False when a corner is not finite (a NaN
- * would not be held by any box). */
-static bool faces_float_box(const struct mesh *m, double pad, struct float_box *box) {
-    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
-    bool finite = true;
-    for (size_t f = 0; f < m->face_count; f++)
-        for (int c = 0; c < 3; c++) {
-            vec3 p = m->vertices[m->faces[f].v[c]];
-            finite = finite && isfinite(p.x) && isfinite(p.y) && isfinite(p.z);
-            lo = vec3_min(p, lo);
-            hi = vec3_max(p, hi);
+/* The box around the corners of some faces, as triangle_box_pad makes it (a NaN coordinate left out),
+ * and whether every one of those corners is finite. */
+struct corners {
+    vec3 lo, hi;
+    bool finite;
+};
+
+/* The corners of faces [begin, end) of m. */
+static struct corners corners_of(const struct mesh *m, size_t begin, size_t end) {
+    struct corners c = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}, true};
+    for (size_t f = begin; f < end; f++)
+        for (int k = 0; k < 3; k++) {
+            vec3 p = m->vertices[m->faces[f].v[k]];
+            c.finite = c.finite && vec3_is_finite(p);
+            c.lo = vec3_min(p, c.lo); /* p first: a NaN coordinate of p leaves lo alone */
+            c.hi = vec3_max(p, c.hi);
         }
-    *box = face_bounds(aabb_pad((struct aabb){lo, hi}, pad));
-    return finite && m->face_count > 0;
+    return c;
+}
+
+/* The faces' corners are boxed in this many parts, shared among the threads (faces_corners). */
+#define FAST_BVH_CORNER_PARTS 8
+
+/* The corners of every face of m, in one pass shared among the threads (with `parallel`): the box
+ * triangle_box_pad measures, since the least and the greatest of the same numbers do not depend on the
+ * order in which they are compared, and the box the grid of rung 7 spans (build_in_float). */
+static struct corners faces_corners(const struct mesh *m, bool parallel) {
+    (void)parallel; /* read by the pragma alone, which the browser's build (no OpenMP) leaves out */
+    struct corners part[FAST_BVH_CORNER_PARTS];
+    size_t n = m->face_count;
+#pragma omp parallel for if (parallel) schedule(static) default(none) shared(m, part, n)
+    for (int k = 0; k < FAST_BVH_CORNER_PARTS; k++)
+        part[k] = corners_of(m, n * (size_t)k / FAST_BVH_CORNER_PARTS, n * (size_t)(k + 1) / FAST_BVH_CORNER_PARTS);
+    struct corners all = part[0];
+    for (int k = 1; k < FAST_BVH_CORNER_PARTS; k++) {
+        all.lo = vec3_min(part[k].lo, all.lo);
+        all.hi = vec3_max(part[k].hi, all.hi);
+        all.finite = all.finite && part[k].finite;
+    }
+    return all;
 }
 
 /* True when the build may run in parallel: OpenMP is compiled in (not in the browser's build) and gives
@@ -948,11 +971,13 @@ static size_t face_prims(struct builder *bd, uint32_t *faces, const struct mesh 
 static bool build_in_float(struct fast_bvh *b, const struct mesh *m, bool packed, bool eight, uint32_t block) {
     size_t n = m->face_count;
     size_t most_nodes = n > 1 ? n - 1 : 1; /* a tree of n leaves has at most n - 1 interior nodes */
-    double pad = triangle_box_pad(m);
     struct builder bd = {NULL, NULL, {{0}, {0}, {0}}, NULL, {NULL, NULL}, threads_to_share(), block, 0};
-    if (packed) { /* the grid spans every face's box */
-        struct float_box around;
-        packed = faces_float_box(m, pad, &around) && packed_grid_make(&around, &bd.grid);
+    struct corners corners = faces_corners(m, bd.parallel);
+    double pad = n > 0 ? triangle_box_pad_between(corners.lo, corners.hi) : 0.0; /* triangle_box_pad(m) */
+    if (packed) { /* the grid spans every face's box: the padding and the moving to float (face_bounds) are
+                   * monotonic, so the least of the faces' low bounds is the low bound of the least corner */
+        struct float_box around = face_bounds(aabb_pad((struct aabb){corners.lo, corners.hi}, pad));
+        packed = corners.finite && n > 0 && packed_grid_make(&around, &bd.grid);
     }
     if (packed)
         bd.packed = big_alloc((n ? n : 1) * sizeof *bd.packed, true);

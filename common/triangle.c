@@ -146,8 +146,12 @@ double triangle_box_pad(const struct mesh *m) {
             lo = vec3_min(p, lo); /* p first: a NaN coordinate of p compares false and leaves lo alone */
             hi = vec3_max(p, hi);
         }
+    return m->face_count > 0 ? triangle_box_pad_between(lo, hi) : 0.0;
+}
+
+double triangle_box_pad_between(vec3 lo, vec3 hi) {
     vec3 side = vec3_sub(hi, lo);
-    return m->face_count > 0 ? TRIANGLE_BOX_PAD * fmax(side.x, fmax(side.y, side.z)) : 0.0;
+    return TRIANGLE_BOX_PAD * fmax(side.x, fmax(side.y, side.z));
 }
 
 bool triangle_is_sliver(vec3 a, vec3 b, vec3 c) {

@@ -153,6 +153,10 @@ vec3 triangle_normal(vec3 a, vec3 b, vec3 c);
  * NaN, left out); 0 when m has no faces. */
 double triangle_box_pad(const struct mesh *m);
 
+/* Returns triangle_box_pad's pad for faces whose corners the box from lo to hi holds (the least and
+ * greatest of their coordinates, NaN left out): TRIANGLE_BOX_PAD times its longest side. */
+double triangle_box_pad_between(vec3 lo, vec3 hi);
+
 /* The exception to that bound: a triangle whose edges b - a and c - a are this close to parallel (the
  * sine of the angle between them is below it, yet not zero). Its test divides by a value that is
  * mostly rounding noise and can report a hit far outside the triangle (measured: 2.6e-4 away, for a
