@@ -219,7 +219,7 @@ static const struct accel accels[] = {
     {"rung 7 compact", "rung-7", FAST_BVH, FAST_BVH_RUNG_COMPACT, 9},
     {"rung 8 eight", "rung-8", FAST_BVH, FAST_BVH_RUNG_EIGHT, 9}, /* rung 6 on eight lanes: compared with 6 */
     {"rung 9 lean", "rung-9", FAST_BVH, FAST_BVH_RUNG_LEAN, 11},  /* rung 8's kind of tree, less per ray: with 8 */
-    {"rung 10 packet", "rung-10", FAST_BVH_PACKETS, FAST_BVH_RUNG_EIGHT, 11}, /* rung 8's tree: compared with 8 */
+    {"rung 10 packet", "rung-10", FAST_BVH_PACKETS, FAST_BVH_RUNG_LEAN, 12}, /* rung 9's tree: compared with 9 */
     {"rung 11 exact-float", "rung-11", FAST_BVH, FAST_BVH_RUNG_EXACT, 12}, /* rung 9's tree: compared with 9 */
 };
 #define ACCEL_COUNT (sizeof accels / sizeof accels[0])

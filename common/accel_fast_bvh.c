@@ -28,7 +28,7 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
     if (rung == FAST_BVH_RUNG_PLAIN) /* chapter 10's hierarchy, unchanged */
         return accel_world_use_bvh(w, split, err, err_size);
     double started = clock_seconds();
-    int tree_rung = rung == FAST_BVH_RUNG_PACKET ? FAST_BVH_RUNG_EIGHT : rung; /* rung 10 walks rung 8's tree */
+    int tree_rung = rung == FAST_BVH_RUNG_PACKET ? FAST_BVH_RUNG_LEAN : rung; /* rung 10 walks rung 9's tree */
     struct fast_bvh *bvh = fast_bvh_build(&w->triangles, (enum bvh_split)split, (enum fast_bvh_rung)tree_rung);
     double build_ms = 1e3 * (clock_seconds() - started);
     if (bvh == NULL) {
@@ -54,7 +54,7 @@ bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *
         {"fast BVH, rung 9 lean without AVX2: rung 6's tree and walk (median split)",
          "fast BVH, rung 9 lean without AVX2: rung 6's tree and walk (binned SAH)"},
     };
-    /* Rung 10, camera rays in packets (chapter 11 renders them), over rung 8's tree or its fallback. */
+    /* Rung 10, camera rays in packets (chapter 11 renders them), over rung 9's tree or its fallback. */
     static const char *const packet[2][2] = {
         {"fast BVH, rung 10 packet without AVX2: rung 6's tree (median split)",
          "fast BVH, rung 10 packet without AVX2: rung 6's tree (binned SAH)"},

@@ -10,7 +10,7 @@
 /* Builds the hierarchy over all of w's triangles with the given split rule (an enum bvh_split) at the
  * given rung (an enum fast_bvh_rung; rung 1 is chapter 10's accel_world_use_bvh) and routes the world's
  * triangle queries through it. On rung 7 the hierarchy reads its triangles from w's gathered mesh,
- * which w keeps until the hierarchy is freed; rung 10 builds rung 8's tree (chapter 11 renders its camera rays in
+ * which w keeps until the hierarchy is freed; rung 10 builds rung 9's tree (chapter 11 renders its camera rays in
  * packets over it). Returns false with the reason in err when memory runs out or the rung
  * does not exist. */
 bool accel_world_use_fast_bvh(struct accel_world *w, int split, int rung, char *err, size_t err_size);

@@ -344,6 +344,20 @@ static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const struct 
     return true;
 }
 
+/* The triangles' half of *l (rung 9's double lanes) from *ready, the ray made ready for
+ * triangle_crossing_prepared. */
+static inline AVX2 __attribute__((always_inline)) void lean_ray_triangles(const struct triangle_ray *ready,
+                                                                          struct lean_ray *l) {
+    const int axis[3] = {ready->kx, ready->ky, ready->kz};
+    for (int a = 0; a < 3; a++) {
+        l->o[a] = broadcast4(vec3_axis(ready->ray.origin, axis[a]));
+        l->axis[a] = fast_bvh_lean_index(0, 0, axis[a]);
+    }
+    l->sx = broadcast4(ready->sx);
+    l->sy = broadcast4(ready->sy);
+    l->sz = broadcast4(ready->sz);
+}
+
 /* Makes *ready for r and the triangles' half of *l from it: rung 9's double lanes, or with `exact` rung
  * 11's float ray over b. */
 static inline AVX2 __attribute__((always_inline)) void lean_ray_ready(const struct fast_bvh *b, const ray *r,
@@ -356,14 +370,7 @@ static inline AVX2 __attribute__((always_inline)) void lean_ray_ready(const stru
         float_triangle_ray_spread(&exact_ray, &l->exact);
         return;
     }
-    const int axis[3] = {ready->kx, ready->ky, ready->kz};
-    for (int a = 0; a < 3; a++) {
-        l->o[a] = broadcast4(vec3_axis(r->origin, axis[a]));
-        l->axis[a] = fast_bvh_lean_index(0, 0, axis[a]);
-    }
-    l->sx = broadcast4(ready->sx);
-    l->sy = broadcast4(ready->sy);
-    l->sz = broadcast4(ready->sz);
+    lean_ray_triangles(ready, l);
 }
 
 /* Where a walk is: the subtree it is at, the subtrees put aside, and how far one may be entered. */
@@ -524,6 +531,14 @@ static AVX2 __attribute__((noinline)) bool lean_walk(const struct fast_bvh *b, c
     }
 }
 
+AVX2 bool fast_bvh_lean_leaf_closest(const struct fast_bvh *b, const struct triangle_ray *ready, uint32_t first,
+                                     uint32_t count, double t_min, double t_max, struct query_state *q,
+                                     double *box_max, uint64_t *tests) {
+    struct lean_ray l;
+    lean_ray_triangles(ready, &l);
+    return leaf_triangles4(b, &l, first, count, t_min, t_max, QUERY_CLOSEST, q, box_max, tests);
+}
+
 AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max,
                                  enum query kind, struct query_state *q) {
     /* Most rays of a frame miss the model. One slab test of the root's box in double, the test rung 8 and
@@ -540,6 +555,14 @@ AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double 
 }
 
 #else /* not x86: no AVX2, and rung 9 is always rung 6 */
+
+bool fast_bvh_lean_leaf_closest(const struct fast_bvh *b, const struct triangle_ray *ready, uint32_t first,
+                                uint32_t count, double t_min, double t_max, struct query_state *q, double *box_max,
+                                uint64_t *tests) {
+    (void)b, (void)ready, (void)first, (void)count, (void)t_min, (void)t_max, (void)box_max, (void)tests;
+    q->found = false;
+    abort(); /* never called: the build makes no 8-wide tree without AVX2 */
+}
 
 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max, enum query kind,
                             struct query_state *q) {

@@ -37,4 +37,13 @@ bool fast_bvh_lean_prepare(struct fast_bvh *b);
 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max, enum query kind,
                             struct query_state *q);
 
+/* Rung 10 on rung 9's tree: tests triangles [first, first + count) of b (built for rung 9, as for
+ * fast_bvh_lean_traverse) for the nearest hit of the ray that *ready was made for (triangle_ray_make),
+ * with t_min < t < t_max, four at a time as rung 9's walk does, into *q and *box_max as
+ * test_leaf_triangles does (fast_bvh_walk.h). Returns true (a nearest-hit query never stops early).
+ * Adds the triangles to *tests. */
+bool fast_bvh_lean_leaf_closest(const struct fast_bvh *b, const struct triangle_ray *ready, uint32_t first,
+                                uint32_t count, double t_min, double t_max, struct query_state *q, double *box_max,
+                                uint64_t *tests);
+
 #endif

@@ -5,8 +5,10 @@
  * same nodes. A packet walks the tree once for all of them: a node is visited when any of its rays enters
  * it, each ray keeps its own window, shortened by its own nearest hit so far, and a mask says which rays
  * are still in the walk of a subtree; a leaf's triangles are tested, in double, only for the rays whose
- * own box test entered it. The rays share the walk's bookkeeping: one stack, one ordering of the
- * children, one fetch of each node. The children of a node are tested in one of two ways:
+ * own box test entered it: on rung 9's tree (the one rung 10 walks) four at a time, by rung 9's own
+ * test of a leaf (fast_bvh_lean_leaf_closest), elsewhere one at a time (test_leaf_triangles). The rays
+ * share the walk's bookkeeping: one stack, one ordering of the children, one fetch of each node. The
+ * children of a node are tested in one of two ways:
  *  - each ray tests them itself with rung 8's (rung 6's) float test, all children in one instruction
  *    (lane_hits8, lane_hits4), exactly as its single-ray walk would;
  *  - a coherent packet (one float origin, the same signs of 1 / direction: camera rays) tests them once
@@ -20,15 +22,16 @@
  * origin, 1 / direction, slack and window (fast_bvh_walk.h), so it never refuses a box that the exact
  * test enters in the ray's window, by rung 6's argument; the interval test refuses nothing that a ray's
  * own test would enter (packet_hits8 says why). So every ray visits every leaf its single-ray walk would
- * need, and maybe more, and tests their triangles with test_leaf_triangles, keeping the nearest by
- * triangle_hit_wins. The order in which leaves are visited changes, the answer cannot: the nearest hit,
- * lowest face among equal t, is the same whatever the order. Rays the float test cannot cover (t_min < 0,
- * coordinates beyond FAST_BVH_FLOAT_RANGE) take fast_bvh_closest one by one.
+ * need, and maybe more, and tests their triangles as its single-ray walk does (rung 9's four lanes, each
+ * the double test's arithmetic, or test_leaf_triangles), keeping the nearest by triangle_hit_wins. The
+ * order in which leaves are visited changes, the answer cannot: the nearest hit, lowest face among equal
+ * t, is the same whatever the order. Rays the float test cannot cover (t_min < 0, coordinates beyond
+ * FAST_BVH_FLOAT_RANGE) take fast_bvh_closest one by one.
  *
- * The walk is written once with GCC's vector extension: on x86 it is compiled twice, for AVX2 (the
- * 8-wide tree of rung 8, which is built only when the processor has AVX2) and for the baseline (rung
- * 6's 4-wide tree, tested four children per SSE instruction); elsewhere (the browser's WebAssembly) only
- * the baseline. */
+ * The walk is written once with GCC's vector extension: on x86 it is compiled for AVX2 (the 8-wide
+ * trees of rungs 8 and 9, which are built only when the processor has AVX2; once for each kind of leaf)
+ * and for the baseline (rung 6's 4-wide tree, tested four children per SSE instruction); elsewhere (the
+ * browser's WebAssembly) only the baseline. */
 #include "fast_bvh_packet.h"
 
 /* The helpers below pass and return 8-float vectors; GCC and Clang warn that, without AVX, such values
@@ -48,6 +51,7 @@
 
 #include "aabb.h"
 #include "fast_bvh.h"
+#include "fast_bvh_lean.h"
 #include "float4.h"
 #include "fast_bvh_walk.h"
 #include "stats.h"
@@ -199,10 +203,13 @@ static inline unsigned packet_hits8(const struct packet *p, const struct fast_bv
 }
 
 /* Asks the memory system for a subtree put aside, so that it is in cache when the walk comes back to
- * it, as the single-ray walks do (rung 4): a node's cache lines, or a leaf's first triangles. */
-static inline void prefetch_subtree(const struct fast_bvh *b, uint32_t child, uint32_t count, bool eight) {
+ * it, as the single-ray walks do (rung 4): a node's cache lines, or a leaf's first triangles (with
+ * `lean`, rung 9's block that holds them). */
+static inline void prefetch_subtree(const struct fast_bvh *b, uint32_t child, uint32_t count, bool eight,
+                                    bool lean) {
     const char *at = count == 0 && eight ? (const char *)&b->nodes8[child]
                      : count == 0        ? (const char *)&b->nodes[child]
+                     : lean ? (const char *)&b->lean_corners[fast_bvh_lean_index(child, 0, 0)]
                      : b->triangles != NULL ? (const char *)&b->triangles[child]
                                           : NULL; /* rung 7: the mesh's corners, not prefetched */
     int lines = count == 0 && eight ? 4 : 2;
@@ -226,9 +233,10 @@ static inline int children_by_key(unsigned entered, const float key[FAST_BVH_WID
 }
 
 /* Walks the tree once for the rays of `lanes`, which p has set up and whose root box test passed, from
- * the root; `eight` when the tree is 8-wide (b->nodes8), `compact` for rung 7's leaves. */
+ * the root; `eight` when the tree is 8-wide (b->nodes8), `compact` for rung 7's leaves, `lean` for rung
+ * 9's (b->lean_corners, an 8-wide tree). */
 static inline __attribute__((always_inline)) void packet_walk(const struct fast_bvh *b, struct packet *p,
-                                                              unsigned lanes, bool eight, bool compact) {
+                                                              unsigned lanes, bool eight, bool compact, bool lean) {
     const int width = eight ? FAST_BVH_WIDTH_EIGHT : FAST_BVH_WIDTH;
     uint64_t visits = 0, boxes = 0, tests = 0;
     struct packet_stack_entry stack[PACKET_STACK_SIZE];
@@ -285,7 +293,7 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
                 for (int i = hits - 1; i > 0; i--) {
                     int c = order[i];
                     stack[top++] = (struct packet_stack_entry){children[c], counts[c], hit_lanes[c], key[c]};
-                    prefetch_subtree(b, children[c], counts[c], eight);
+                    prefetch_subtree(b, children[c], counts[c], eight, lean);
                 }
                 lanes = hit_lanes[order[0]];
                 child = children[order[0]];
@@ -296,8 +304,12 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
             for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
                 int k = __builtin_ctz(rest);
                 struct lane *l = &p->lane[k];
-                test_leaf_triangles(b, &l->ready, child, count, l->t_min, l->t_max, QUERY_CLOSEST, compact, &l->q,
-                                    &l->box_max, &tests);
+                if (lean)
+                    fast_bvh_lean_leaf_closest(b, &l->ready, child, count, l->t_min, l->t_max, &l->q, &l->box_max,
+                                               &tests);
+                else
+                    test_leaf_triangles(b, &l->ready, child, count, l->t_min, l->t_max, QUERY_CLOSEST, compact,
+                                        &l->q, &l->box_max, &tests);
                 if (l->box_max < l->limit_for) /* a nearer hit: narrow this ray's window */
                     packet_narrow(p, k);
             }
@@ -318,24 +330,32 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
 }
 
 #if defined(__x86_64__) || defined(__i386__)
-/* The walk of the 8-wide tree, compiled for AVX2 (as fast_bvh_eight.c is): called only when the tree is
- * 8-wide, which the build makes only when the processor has AVX2. */
+/* The walks of the 8-wide trees, rung 8's and rung 9's (lean leaves), compiled for AVX2 (as
+ * fast_bvh_eight.c and fast_bvh_lean.c are): called only when the tree is 8-wide, which the build makes
+ * only when the processor has AVX2. */
 __attribute__((target("avx2"))) static void packet_walk_eight(const struct fast_bvh *b, struct packet *p,
                                                                unsigned lanes) {
-    packet_walk(b, p, lanes, true, false);
+    packet_walk(b, p, lanes, true, false, false);
+}
+__attribute__((target("avx2"))) static void packet_walk_lean(const struct fast_bvh *b, struct packet *p,
+                                                              unsigned lanes) {
+    packet_walk(b, p, lanes, true, false, true);
 }
 #else
 static void packet_walk_eight(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
-    packet_walk(b, p, lanes, true, false);
+    packet_walk(b, p, lanes, true, false, false);
+}
+static void packet_walk_lean(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
+    packet_walk(b, p, lanes, true, false, true);
 }
 #endif
 
 static void packet_walk_four(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
-    packet_walk(b, p, lanes, false, false);
+    packet_walk(b, p, lanes, false, false, false);
 }
 
 static void packet_walk_four_compact(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
-    packet_walk(b, p, lanes, false, true);
+    packet_walk(b, p, lanes, false, true, false);
 }
 
 /* Sets ray k of p up for ray r, as the single-ray walk sets itself up (fast_bvh.c's traverse): the
@@ -434,7 +454,9 @@ unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_B
     }
     walk_counted(0, 0, tests);
     packet_make_interval(&p, walking);
-    if (walking != 0 && b->nodes8 != NULL)
+    if (walking != 0 && b->nodes8 != NULL && b->lean_corners != NULL)
+        packet_walk_lean(b, &p, walking);
+    else if (walking != 0 && b->nodes8 != NULL)
         packet_walk_eight(b, &p, walking);
     else if (walking != 0 && b->triangles == NULL)
         packet_walk_four_compact(b, &p, walking);

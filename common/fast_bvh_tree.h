@@ -34,9 +34,10 @@ enum fast_bvh_rung {
                                    less per ray (fast_bvh_lean.c): float root box,
                                    sorted entries, a stack of float entries, four triangles per test in
                                    double (AVX2); without AVX2, rung 6's tree and walk */
-    FAST_BVH_RUNG_PACKET = 10,  /* rung 8's tree, the camera rays walked through it eight at a time
-                                   (fast_bvh_packet.c); every other ray walked as on rung 8. Not a tree
-                                   of its own: fast_bvh_build makes rung 8's for it */
+    FAST_BVH_RUNG_PACKET = 10,  /* rung 9's tree, the camera rays walked through it eight at a time
+                                   (fast_bvh_packet.c), a leaf's triangles four at a time as on rung 9;
+                                   every other ray walked as on rung 9. Not a tree of its own:
+                                   fast_bvh_build makes rung 9's for it */
     FAST_BVH_RUNG_EXACT = 11,   /* rung 9's tree and walk, each leaf's triangles tested eight at a time in
                                    float with bounds on the rounding (float_triangle.h); only those the
                                    float test cannot rule out are tested in double. Built by
@@ -45,7 +46,7 @@ enum fast_bvh_rung {
 };
 #define FAST_BVH_RUNG_FIRST FAST_BVH_RUNG_WIDE
 #define FAST_BVH_RUNG_TOP FAST_BVH_RUNG_LEAN /* the top rung of its own tree (rung 11 is rung 9's, with float triangles) */
-/* The last rung a chapter accepts (--rung): rung 10 renders in packets over rung 8's tree, rung 11
+/* The last rung a chapter accepts (--rung): rung 10 renders in packets over rung 9's tree, rung 11
  * walks rung 9's tree with the float triangle test. */
 #define FAST_BVH_RUNG_LAST FAST_BVH_RUNG_EXACT
 /* The rung the chapters walk unless told otherwise: rung 7, which takes the least memory (80 bytes a

@@ -1297,7 +1297,7 @@ Test(accel, fast_bvh_rungs_are_named_and_checked) {
     cr_expect_str_eq(fast_bvh_rung_name(FAST_BVH_RUNG_LAST + 1), "?");
     struct mesh m = make_soup(7, 20);
     cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PLAIN), "rung 1 is chapter 10's, not built here");
-    cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PACKET), "rung 10 walks rung 8's tree");
+    cr_expect_null(fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_PACKET), "rung 10 walks rung 9's tree");
     struct fast_bvh *exact = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EXACT);
     cr_expect(exact != NULL && exact->rung == FAST_BVH_RUNG_EXACT, "rung 11 is rung 9's tree, built as rung 11");
     fast_bvh_free(exact);

@@ -1,8 +1,9 @@
 /* test_fast_bvh_packet.c: rung 10's packets give every ray exactly the answer of fast_bvh_closest, which
  * tests/test_accel.c proves equal to the brute-force loop's: coherent camera rays, scattered rays, rays
  * through corners and along edges (ties), rays edge-on to axis-aligned faces, windows ending or starting
- * exactly at a hit, some lanes off, on rung 8's 8-wide tree, on rung 6's (rung 8 without AVX2), on rung
- * 7's compact leaves and on rung 2's tree. */
+ * exactly at a hit, some lanes off, on rung 9's tree (the one rung 10 walks: its leaves tested four
+ * triangles at a time), on rung 8's 8-wide tree, on rung 6's (rung 8 without AVX2), on rung 7's compact
+ * leaves and on rung 2's tree. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
@@ -197,7 +198,8 @@ static void check_trees(const char *name, const struct mesh *m, uint64_t seed) {
         enum fast_bvh_rung rung;
         bool without_avx2;
         const char *what;
-    } trees[] = {{FAST_BVH_RUNG_EIGHT, false, "rung 8's tree"},
+    } trees[] = {{FAST_BVH_RUNG_LEAN, false, "rung 9's tree (rung 10's)"},
+                 {FAST_BVH_RUNG_EIGHT, false, "rung 8's tree"},
                  {FAST_BVH_RUNG_EIGHT, true, "rung 8's tree without AVX2 (rung 6's)"},
                  {FAST_BVH_RUNG_COMPACT, false, "rung 7's compact leaves"},
                  {FAST_BVH_RUNG_WIDE, false, "rung 2's tree"}};
@@ -207,9 +209,12 @@ static void check_trees(const char *name, const struct mesh *m, uint64_t seed) {
         struct fast_bvh *b = fast_bvh_build(m, BVH_SPLIT_SAH, trees[k].rung);
         cr_assert_eq(unsetenv(FAST_BVH_NO_AVX2_VARIABLE), 0);
         cr_assert_not_null(b);
-        if (trees[k].rung == FAST_BVH_RUNG_EIGHT)
+        if (trees[k].rung == FAST_BVH_RUNG_EIGHT || trees[k].rung == FAST_BVH_RUNG_LEAN)
             cr_assert_eq(b->nodes8 != NULL, !trees[k].without_avx2 && fast_bvh_eight_available(),
                          "%s: %s is not the tree asked for", name, trees[k].what);
+        if (trees[k].rung == FAST_BVH_RUNG_LEAN)
+            cr_assert_eq(b->lean_corners != NULL, b->nodes8 != NULL, "%s: %s has no lean leaves", name,
+                         trees[k].what);
         char label[160];
         snprintf(label, sizeof label, "%s, %s", name, trees[k].what);
         struct subject s = {b, label, 0, 0};
@@ -240,17 +245,16 @@ Test(packet, every_lane_is_the_single_rays_answer_on_axis_aligned_squares) {
 }
 
 /* The packet walks the tree once for its rays: on a camera's neighbouring pixels it visits fewer nodes
- * than its rays one by one (else it is no packet), and tests the same triangles or a few more. */
-Test(packet, a_packet_of_camera_rays_shares_its_walk) {
-    struct mesh m;
+ * than its rays one by one (else it is no packet), and tests the same triangles or a few more; on rung
+ * 8's tree and on rung 9's, which rung 10 walks. */
+static void check_shared_walk(const struct mesh *m, enum fast_bvh_rung rung, const char *what) {
     char err[512];
-    cr_assert(mesh_load("scenes/models/bunny.ply", &m, err, sizeof err), "%s", err);
-    struct fast_bvh *b = fast_bvh_build(&m, BVH_SPLIT_SAH, FAST_BVH_RUNG_EIGHT);
+    struct fast_bvh *b = fast_bvh_build(m, BVH_SPLIT_SAH, rung);
     cr_assert_not_null(b);
     vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t k = 0; k < m.vertex_count; k++) {
-        lo = vec3_min(lo, m.vertices[k]);
-        hi = vec3_max(hi, m.vertices[k]);
+    for (size_t k = 0; k < m->vertex_count; k++) {
+        lo = vec3_min(lo, m->vertices[k]);
+        hi = vec3_max(hi, m->vertices[k]);
     }
     vec3 centre = vec3_scale(vec3_add(lo, hi), 0.5);
     struct camera cam;
@@ -275,12 +279,22 @@ Test(packet, a_packet_of_camera_rays_shares_its_walk) {
                 fast_bvh_closest(b, &rays[k], t_min[k], t_max[k], &t[k], &face[k]);
             stats_add(&singles, &stats_thread);
         }
-    cr_log_info("bunny, 64 x 48 camera rays: %llu node visits in packets, %llu one by one; triangle tests %llu, %llu",
-                (unsigned long long)packets.node_visits, (unsigned long long)singles.node_visits,
+    cr_log_info("bunny, %s, 64 x 48 camera rays: %llu node visits in packets, %llu one by one; triangle tests %llu, "
+                "%llu", what, (unsigned long long)packets.node_visits, (unsigned long long)singles.node_visits,
                 (unsigned long long)packets.triangle_tests, (unsigned long long)singles.triangle_tests);
-    cr_expect_lt(2 * packets.node_visits, singles.node_visits, "packets visited %llu nodes, single rays %llu",
+    cr_expect_lt(2 * packets.node_visits, singles.node_visits, "%s: packets visited %llu nodes, single rays %llu", what,
                  (unsigned long long)packets.node_visits, (unsigned long long)singles.node_visits);
-    cr_expect_lt(packets.triangle_tests, singles.triangle_tests + singles.triangle_tests / 4);
+    cr_expect_lt(packets.triangle_tests, singles.triangle_tests + singles.triangle_tests / 4,
+                 "%s: packets tested %llu triangles, single rays %llu", what,
+                 (unsigned long long)packets.triangle_tests, (unsigned long long)singles.triangle_tests);
     fast_bvh_free(b);
+}
+
+Test(packet, a_packet_of_camera_rays_shares_its_walk) {
+    struct mesh m;
+    char err[512];
+    cr_assert(mesh_load("scenes/models/bunny.ply", &m, err, sizeof err), "%s", err);
+    check_shared_walk(&m, FAST_BVH_RUNG_EIGHT, "rung 8's tree");
+    check_shared_walk(&m, FAST_BVH_RUNG_LEAN, "rung 9's tree");
     mesh_free(&m);
 }

@@ -4,7 +4,7 @@
  * The fast hierarchy is in common/fast_bvh.c and is plugged into the world by common/accel_fast_bvh.c.
  * --rung N (1 to 11) or its name picks how far up the ladder to go: 1 is chapter 10's plain BVH, 6
  * float boxes, 7 the smallest and the default, 8 eight boxes at a time where the processor has AVX2, 9
- * the same tree walked with less work per ray, 10 rung 8 with the camera rays traced in packets of eight (render_in_packets,
+ * the same tree walked with less work per ray, 10 rung 9 with the camera rays traced in packets of eight (render_in_packets,
  * below), 11 rung 9 with its triangles tested in float first, and in double only where the float test
  * cannot rule a hit out. The picture is chapter 10's on every rung; only the time and the memory change. */
 #include <stdio.h>
@@ -157,7 +157,7 @@ int main(int argc, char **argv) {
                         "                   2 wide, 3 simd, 4 prefetch, 5 build, 6 float, 7 compact\n"
                         "                   (the default: the least memory), 8 eight (eight boxes at a\n"
                         "                   time with AVX2; rung 6 without it), 9 lean (rung 8 with\n"
-                        "                   fuller leaves, less work per ray), 10 packet (rung 8 with\n"
+                        "                   fuller leaves, less work per ray), 10 packet (rung 9 with\n"
                         "                   the camera rays traced eight at a time), 11 exact-float\n"
                         "                   (rung 9, its triangles tested in float first, in double\n"
                         "                   only where the float test cannot tell); a number or a name\n"
