@@ -8,6 +8,7 @@
 
 #include "clock.h"
 #include "fast_bvh_build.h"
+#include "infile.h"
 #include "memory_budget.h"
 #include "mesh_load.h"
 #include "stats.h"
@@ -180,6 +181,20 @@ static bool load_object(struct instances *in, struct scene *s, size_t k, size_t 
     in->info.object_triangles += o->mesh.face_count;
     in->info.object_bytes +=
         o->mesh.vertex_count * sizeof(vec3) + o->mesh.face_count * sizeof(struct mesh_face) + fast_bvh_bytes(b);
+    return true;
+}
+
+bool instances_objects_open(const struct scene *s, char *err, size_t err_size) {
+    for (size_t k = 0; k < s->object_count; k++) {
+        const struct scene_object *o = &s->objects[k];
+        char why[INSTANCES_MESH_ERROR_SIZE];
+        FILE *file = infile_open(o->path, why, sizeof why);
+        if (file == NULL) {
+            snprintf(err, err_size, "%s:%d: object '%s': %s", s->path, o->line, o->name, why);
+            return false;
+        }
+        fclose(file);
+    }
     return true;
 }
 

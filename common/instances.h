@@ -102,6 +102,11 @@ struct instances {
     struct instances_info info;
 };
 
+/* Whether the file of every object line of s opens (infile_open), placed by an instance or not: an
+ * object no instance places is never loaded (instances_create), but a file name that does not open is
+ * a mistake to report, not to pass over. Returns false with "file:line: object 'NAME': why" in err. */
+bool instances_objects_open(const struct scene *s, char *err, size_t err_size);
+
 /* Loads the mesh of every object of scene s that an instance places (once, with the mesh readers of
  * scene_load_meshes; objects no instance places are left unloaded) and builds its tree, then places every instance (its keys checked: each pose's transform invertible within
  * TRANSFORM_CONDITION_MAX, no scale changing sign between keys, every pose between two keys invertible

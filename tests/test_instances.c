@@ -715,6 +715,34 @@ Test(command_line, a_bad_instance_is_a_bad_scene_with_its_line) {
                                                       "inverted accurately");
 }
 
+/* An object line whose file does not open is an error at its line, whether an instance places the object
+ * (its mesh is then read) or not (it is never read, but its name is a mistake all the same), and no
+ * picture is written. */
+Test(command_line, an_object_whose_file_does_not_open_names_its_line) {
+    const struct {
+        const char *lines, *message;
+    } cases[] = {
+        {"object b no-such.ply\ninstance b\n", "/unopened.scene:3: object 'b': " TEST_OUT "/no-such.ply: cannot open: "
+                                                "No such file or directory"},
+        {"object b no-such.ply\n", "/unopened.scene:3: object 'b': " TEST_OUT "/no-such.ply: cannot open: No such "
+                                   "file or directory"},
+        {"object a no-such.ply\nobject b .\n", "/unopened.scene:3: object 'a': " TEST_OUT "/no-such.ply: cannot open: "
+                                                "No such file or directory"},
+        {"object b .\n", "/unopened.scene:3: object 'b': " TEST_OUT "/.: not a regular file (a directory)"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        remove(TEST_OUT "/unopened.png");
+        FILE *out = fopen(TEST_OUT "/unopened.scene", "w");
+        cr_assert_not_null(out);
+        fprintf(out, "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\n%s", cases[k].lines);
+        fclose(out);
+        char message[256];
+        snprintf(message, sizeof message, "%s%s", TEST_OUT, cases[k].message);
+        expect_chapter_run(16, TEST_OUT "/unopened.scene -o " TEST_OUT "/unopened.png", 1, message);
+        cr_assert_neq(access(TEST_OUT "/unopened.png", F_OK), 0, "case %zu wrote a picture", k);
+    }
+}
+
 /* Objects that do not fit in memory: the error names the object's line, whether the memory runs out while
  * its mesh is read or while its tree is built (limits on the address space that, on the machine this was
  * written on, stop the first, second and fourth teapot, in its tree, its tree and its mesh; one thread, so

@@ -259,7 +259,8 @@ int main(int argc, char **argv) {
         run.status = CLI_OUTPUT_FAILED;
         return cli_finish(&run);
     }
-    if (!scene_load_meshes(&run.scene, run.err, sizeof run.err))
+    if (!scene_load_meshes(&run.scene, run.err, sizeof run.err) ||
+        !instances_objects_open(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
     static const struct accel_choice choice = {ACCEL_BVH, true};
     struct accel_world *w =
