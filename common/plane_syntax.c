@@ -26,13 +26,9 @@ static bool plane_make(const struct key_values *kv, void *item, char *why, size_
     if (by_points) {
         point = key_vec3(kv, PLANE_A);
         vec3 ab = vec3_sub(key_vec3(kv, PLANE_B), point), ac = vec3_sub(key_vec3(kv, PLANE_C), point);
-        /* Scale both edges to at most 1 first, so that far-apart points cannot overflow the product. */
-        double ab_size = fmax(fabs(ab.x), fmax(fabs(ab.y), fabs(ab.z)));
-        double ac_size = fmax(fabs(ac.x), fmax(fabs(ac.y), fabs(ac.z)));
-        if (ab_size > 0.0 && ac_size > 0.0)
-            normal = vec3_cross(vec3_scale(ab, 1.0 / ab_size), vec3_scale(ac, 1.0 / ac_size));
-        else
-            normal = vec3_make(0, 0, 0);
+        /* Scale both edges to a largest component of 1 first, so that far-apart points cannot overflow
+         * the product, nor points a subnormal distance apart vanish in it (a zero edge stays zero). */
+        normal = vec3_cross(vec3_unit_max(ab), vec3_unit_max(ac));
         if (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0) {
             snprintf(why, why_size, "plane points a, b, c lie on one line");
             return false;
@@ -59,9 +55,9 @@ static bool plane_make(const struct key_values *kv, void *item, char *why, size_
         return false;
     }
     struct plane *plane = item;
-    /* Divide by the largest component first: |normal| of components like 1e200 would overflow. */
-    double largest = fmax(fabs(normal.x), fmax(fabs(normal.y), fabs(normal.z)));
-    plane->normal = vec3_normalize(vec3_scale(normal, 1.0 / largest));
+    /* Divide by the largest component first: |normal| of components like 1e200 would overflow, and of
+     * components like 1e-310 vanish. */
+    plane->normal = vec3_normalize(vec3_unit_max(normal));
     plane->distance = by_distance ? kv->number[PLANE_DISTANCE][0] : vec3_dot(plane->normal, point);
     return true;
 }

@@ -71,10 +71,15 @@ static inline _Bool vec3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.
 
 /* Returns a divided by its largest |component| (a itself when that is 0 or not finite): a vector of
  * the same direction whose length, between 1 and sqrt(3), and whose products with another such vector
- * neither overflow nor vanish, whatever a's scale. For tests that must not depend on scale. */
+ * neither overflow nor vanish, whatever a's scale. For tests that must not depend on scale, and for a
+ * direction given in a scene before it is normalised. Below about 5.6e-309 (subnormal), 1 / largest is
+ * infinite and the product would give NaN: such a vector is divided component by component instead. */
 static inline vec3 vec3_unit_max(vec3 a) {
     double largest = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
-    return largest > 0.0 && isfinite(largest) ? vec3_scale(a, 1.0 / largest) : a;
+    if (!(largest > 0.0 && isfinite(largest)))
+        return a;
+    double inverse = 1.0 / largest;
+    return isfinite(inverse) ? vec3_scale(a, inverse) : vec3_make(a.x / largest, a.y / largest, a.z / largest);
 }
 
 /* Returns the length of a without overflow or underflow on the way (vec3_length squares its

@@ -224,6 +224,15 @@ Test(scene, plane_in_all_three_forms_stores_unit_normal_and_distance) {
     check_plane("plane c 1 2 0 b 0 2 -1 a 0 2 0", vec3_make(0, -1, 0), -2); /* (0,0,-1) x (1,0,0) = (0,-1,0) */
 }
 
+/* A normal (or edges) below about 5.6e-309, subnormal: 1 / its largest component is infinite, and
+ * scaling by it once gave a NaN normal, a plane never drawn, with exit 0. */
+Test(scene, plane_of_a_subnormal_normal_or_points_a_subnormal_distance_apart_keeps_its_direction) {
+    check_plane("plane normal 0 0 1e-310 distance 2", vec3_make(0, 0, 1), 2);
+    check_plane("plane normal 0 -4.9e-324 0 point 0 3 0", vec3_make(0, -1, 0), -3);
+    check_plane("plane a 0 0 0 b 1e-310 0 0 c 0 1e-310 0", vec3_make(0, 0, 1), 0);
+    check_plane("plane a 1 0 0 b 1 1e-320 0 c 1 0 1e-315", vec3_make(1, 0, 0), 1);
+}
+
 Test(scene, plane_material_is_kept) {
     struct scene s = parse_with_head("material floor\nplane material floor normal 0 1 0 distance 0\n");
     const struct plane *planes = shapes_of(&s, &plane_syntax);

@@ -60,7 +60,8 @@ Test(pigment_line, keys_transform_and_povrays_brick_defaults_are_read) {
     scene_free(&s);
     /* an axis whose length would overflow or vanish when squared keeps its direction */
     cr_assert(parse_lines("pigment h gradient axis 1e200 1e200 0 colour 0 0 0 colour2 1 1 1\n"
-                          "pigment t gradient axis 0 0 -1e-200 colour 0 0 0 colour2 1 1 1",
+                          "pigment t gradient axis 0 0 -1e-200 colour 0 0 0 colour2 1 1 1\n"
+                          "pigment u gradient axis 1e-310 0 0 colour 0 0 0 colour2 1 1 1",
                           &s, err, sizeof err),
               "%s", err);
     cr_expect(fabs(s.pigments[0].axis.x - sqrt(0.5)) < 1e-15 && fabs(s.pigments[0].axis.y - sqrt(0.5)) < 1e-15 &&
@@ -68,6 +69,9 @@ Test(pigment_line, keys_transform_and_povrays_brick_defaults_are_read) {
               "axis 1e200 1e200 0 became %g %g %g", s.pigments[0].axis.x, s.pigments[0].axis.y, s.pigments[0].axis.z);
     cr_expect(s.pigments[1].axis.x == 0 && s.pigments[1].axis.y == 0 && s.pigments[1].axis.z == -1,
               "axis 0 0 -1e-200 became %g %g %g", s.pigments[1].axis.x, s.pigments[1].axis.y, s.pigments[1].axis.z);
+    /* subnormal: 1 / 1e-310 is infinite, and scaling by it once gave a NaN axis (another picture) */
+    cr_expect(s.pigments[2].axis.x == 1 && s.pigments[2].axis.y == 0 && s.pigments[2].axis.z == 0,
+              "axis 1e-310 0 0 became %g %g %g", s.pigments[2].axis.x, s.pigments[2].axis.y, s.pigments[2].axis.z);
     scene_free(&s);
 }
 
