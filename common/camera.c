@@ -7,12 +7,21 @@
 
 /* Up vectors closer than this to the viewing direction (|sin angle| below it) give no usable basis. */
 #define CAMERA_MIN_UP_SINE 1e-9
+/* The shortest view (eye to target) and up vector taken: below about 1e-154 the squares in a length
+ * vanish, and a vector of 1e-310 would be read as zero (or give NaN); no scene is drawn at such a
+ * scale (sizes end at 1e-18, as a mesh's or an area light's). */
+#define CAMERA_MIN_LENGTH 1e-18
 
 bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov_degrees, int width,
                  int height, char *err, size_t err_size) {
     vec3 view = vec3_sub(target, eye);
-    if (vec3_length(view) == 0.0) {
+    if (vec3_length_scaled(view) == 0.0) {
         snprintf(err, err_size, "camera eye and target are the same point");
+        return false;
+    }
+    if (vec3_length_scaled(view) < CAMERA_MIN_LENGTH) {
+        snprintf(err, err_size, "camera eye and target are " KEY_NUMBER_SHOWN " apart; they must be at least %g apart",
+                 vec3_length_scaled(view), CAMERA_MIN_LENGTH);
         return false;
     }
     if (!(vfov_degrees > 0.0 && vfov_degrees < 180.0)) {
@@ -23,9 +32,14 @@ bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov
         snprintf(err, err_size, "image size must be positive, got %d x %d", width, height);
         return false;
     }
+    double up_length = vec3_length_scaled(up);
+    if (up_length > 0.0 && up_length < CAMERA_MIN_LENGTH) {
+        snprintf(err, err_size, "camera up vector is " KEY_NUMBER_SHOWN " long; it must be at least %g long", up_length,
+                 CAMERA_MIN_LENGTH);
+        return false;
+    }
     vec3 forward = vec3_normalize(view);
     vec3 side = vec3_cross(forward, up);
-    double up_length = vec3_length(up);
     if (!(up_length > 0.0) || vec3_length(side) <= CAMERA_MIN_UP_SINE * up_length) {
         snprintf(err, err_size, "camera up vector is zero or parallel to the viewing direction");
         return false;

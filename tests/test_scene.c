@@ -2,12 +2,14 @@
  * error with its exact "file:line: message" text. On error the scene must be left empty; the sanitizer
  * run of this suite checks that nothing leaks on either path. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "box.h"
+#include "camera.h"
 #include "plane.h"
 #include "scene.h"
 #include "sphere.h"
@@ -484,6 +486,25 @@ Test(scene_errors, bad_cameras) {
                  NAME ":1: camera up vector is zero or parallel to the viewing direction");
     expect_error("camera eye 0 0 0 target 0 0 -1 up 0 0 0 fov 60\nimage 4 3\n",
                  NAME ":1: camera up vector is zero or parallel to the viewing direction");
+    /* Lengths whose squares vanish were read as zero, and an up of 1e-310 was called parallel. */
+    expect_error("camera eye 0 0 1e-200 target 0 0 0 fov 60\nimage 4 3\n",
+                 NAME ":1: camera eye and target are 1e-200 apart; they must be at least 1e-18 apart");
+    expect_error("camera eye 0 0 5 target 0 0 0 up 0 1e-200 0 fov 60\nimage 4 3\n",
+                 NAME ":1: camera up vector is 1e-200 long; it must be at least 1e-18 long");
+    expect_error("camera eye 0 0 5 target 0 0 0 up 0 1e-19 0 fov 60\nimage 4 3\n",
+                 NAME ":1: camera up vector is 1e-19 long; it must be at least 1e-18 long");
+}
+
+Test(scene, a_camera_of_tiny_but_allowed_lengths_keeps_its_basis) {
+    struct camera cam;
+    char err[256];
+    cr_assert(camera_init(&cam, vec3_make(0, 0, 1e-18), vec3_make(0, 0, 0), vec3_make(0, 1e-18, 0), 60, 4, 3, err,
+                          sizeof err),
+              "%s", err);
+    cr_expect(cam.forward.x == 0 && cam.forward.y == 0 && fabs(cam.forward.z + 1) < 1e-15, "forward %g %g %.17g",
+              cam.forward.x, cam.forward.y, cam.forward.z);
+    cr_expect(fabs(cam.up.x) < 1e-15 && fabs(cam.up.y - 1) < 1e-15 && fabs(cam.up.z) < 1e-15, "up %g %.17g %g",
+              cam.up.x, cam.up.y, cam.up.z);
 }
 
 Test(scene_errors, second_camera_missing_camera_and_missing_image) {
