@@ -236,3 +236,31 @@ Test(assemble, joins_tiles_and_refuses_overlaps_gaps_and_tiles_past_the_edge) {
     expect_assemble(folder, "tile-0-16.png", 1, "assemble: tile-0-16.png: cannot read image");
     expect_assemble(folder, "--size 0 4 tile-0-0.png", 2, "assemble: --size needs two whole numbers W H from 1 to 16384");
 }
+
+/* Runs `command` (a farm script's line) and expects exit 2 with `message` among what it prints. */
+static void expect_farm_usage_error(const char *command, const char *message) {
+    char log[FARM_LOG_SIZE];
+    int got = run_capturing(command, log, sizeof log);
+    cr_expect_eq(got, 2, "%s: exit %d, not 2: %s", command, got, log);
+    cr_expect(strstr(log, message) != NULL, "%s printed\n%s\nnot\n%s", command, log, message);
+}
+
+/* Bash's arithmetic reads 010 as octal (8) and refuses 08: farm.sh once submitted 8 tasks for
+ * --frames 010, which the chapter read as 10 frames, and said all 10 were there. Both scripts refuse
+ * such numbers before anything is submitted or rendered (no sbatch is needed to get there). */
+Test(farm, numbers_with_leading_zeros_or_too_many_digits_are_refused) {
+    const char *message = "needs whole numbers from 1 to 999999999, written without leading zeros, got '";
+    static const char *const options[] = {"--frames 010", "--frames 08", "--tile-size 64 064", "--size 0100 64",
+                                          "--frames 1000000000", "--frames 0"};
+    for (size_t k = 0; k < sizeof options / sizeof options[0]; k++) {
+        char command[256];
+        snprintf(command, sizeof command, "bash tools/farm/farm.sh %s -- /bin/true", options[k]);
+        expect_farm_usage_error(command, message);
+    }
+    expect_farm_usage_error("SLURM_ARRAY_TASK_ID=0 bash tools/farm/render.sbatch frames out/test 010 /bin/true",
+                            "render.sbatch: FRAMES must be a whole number from 1 to 999999999, written without leading "
+                            "zeros, got '010'");
+    expect_farm_usage_error("SLURM_ARRAY_TASK_ID=0 bash tools/farm/render.sbatch tiles out/test 64 64 0100 64 /bin/true",
+                            "render.sbatch: WIDTH must be a whole number from 1 to 999999999, written without leading "
+                            "zeros, got '0100'");
+}

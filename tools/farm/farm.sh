@@ -22,7 +22,9 @@ here=$(cd "$(dirname "$0")" && pwd)
 assemble=${WHITTED_ASSEMBLE:-$here/../../${WHITTED_BUILD:-build}/assemble}
 
 fail() { echo "farm.sh: $*" >&2; exit "${2:-2}"; }
-whole() { [[ $1 =~ ^[0-9]+$ ]] && [ "$1" -ge 1 ] || fail "$2 needs whole numbers from 1, got '$1'"; }
+# A whole number from 1, written in decimal: no leading zero (bash's arithmetic would read 010 as octal,
+# 8, and 08 not at all) and at most nine digits (so that products of two stay within its 64 bits).
+whole() { [[ $1 =~ ^[1-9][0-9]{0,8}$ ]] || fail "$2 needs whole numbers from 1 to 999999999, written without leading zeros, got '$1'"; }
 
 tile_w=64 tile_h=64 width= height= frames= dir=out/farm picture= extra=()
 while [ $# -gt 0 ]; do
