@@ -199,6 +199,71 @@ Test(io, the_picture_and_the_heat_map_may_not_share_a_file) {
 /* Chapter 15's --hdr is a third output with the same rules: a small, quick render of its scene. */
 #define IO_QUICK_PATHS "--width 8 --height 8 --set paths.samples=1"
 
+/* Runs chapter n with `arguments` and expects it refused (exit 2) with `message`, and the file at
+ * `kept` still holding `text` (the run reads it, so writing it would have destroyed it). */
+static void expect_input_kept(int n, const char *arguments, const char *message, const char *kept, const char *text) {
+    expect_chapter_run(n, arguments, 2, message);
+    char *now = read_text_file(kept);
+    cr_assert_not_null(now, "%s is gone", kept);
+    cr_expect_str_eq(now, text, "%s was overwritten", kept);
+    free(now);
+}
+
+/* An output that names a file the run reads: the scene, a mesh, an image map, an object's mesh. The
+ * picture is written after the render, so it used to replace that input, with exit status 0. */
+Test(io, an_output_that_names_a_file_the_run_reads_is_refused_and_the_file_kept) {
+    const char *head = "image 8 6\ncamera eye 0 0 5 target 0 0 0 fov 40\nlight position 5 8 4\n";
+    char text[512], arguments[1024], expected[1024];
+    snprintf(text, sizeof text, "%ssphere centre 0 0 0 radius 1\n", head);
+    const char *scene = text_file("io-reads.scene", text);
+    snprintf(arguments, sizeof arguments, "%s -o %s", scene, scene);
+    snprintf(expected, sizeof expected,
+             "-o names '%s', which the run reads (the scene file): writing it would destroy it; give another file",
+             scene);
+    expect_input_kept(12, arguments, expected, scene, text);
+    snprintf(arguments, sizeof arguments, "%s --pov " TEST_OUT "/./io-reads.scene", scene);
+    expect_input_kept(12, arguments, "--pov names 'out/test/./io-reads.scene', which the run reads (the scene file)",
+                      scene, text);
+    snprintf(arguments, sizeof arguments, IO_QUICK_PATHS " %s --hdr %s", scene, scene);
+    expect_input_kept(15, arguments, "--hdr names", scene, text);
+
+    const char *obj_text = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+    const char *obj = text_file("io-reads.obj", obj_text);
+    snprintf(text, sizeof text, "%smesh io-reads.obj\n", head);
+    scene = text_file("io-reads-mesh.scene", text);
+    snprintf(arguments, sizeof arguments, "%s -o %s --heatmap %s", scene, fresh("io-reads-mesh.png"), obj);
+    expect_input_kept(14, arguments, "--heatmap names 'out/test/io-reads.obj', which the run reads (the mesh of line 4)",
+                      obj, obj_text);
+    snprintf(text, sizeof text, "%sobject o io-reads.obj\ninstance o\n", head);
+    scene = text_file("io-reads-object.scene", text);
+    snprintf(arguments, sizeof arguments, "%s -o %s", scene, obj);
+    expect_input_kept(16, arguments, "-o names 'out/test/io-reads.obj', which the run reads (the mesh of object 'o')",
+                      obj, obj_text);
+
+    /* An image map: a file the chapter itself wrote, then named as its picture. */
+    const char *image = fresh("io-reads-image.png");
+    snprintf(arguments, sizeof arguments, "--width 4 --height 4 --quiet -o %s", image);
+    expect_chapter_run(2, arguments, 0, "");
+    size_t before_size, after_size;
+    char *before = read_file(image, &before_size);
+    cr_assert_not_null(before);
+    snprintf(text, sizeof text,
+             "%spigment p image_map file io-reads-image.png\nmaterial m pigment p\nsphere centre 0 0 0 radius 1 "
+             "material m\n",
+             head);
+    scene = text_file("io-reads-image.scene", text);
+    snprintf(arguments, sizeof arguments, "%s -o %s", scene, image);
+    expect_chapter_run(14, arguments, 2,
+                       "-o names 'out/test/io-reads-image.png', which the run reads (the image of pigment 'p')");
+    char *after = read_file(image, &after_size);
+    cr_assert_not_null(after);
+    cr_expect(after_size == before_size && memcmp(before, after, before_size) == 0, "the image was overwritten");
+    free(before);
+    free(after);
+    /* Chapter 13 does not read image maps: its picture may go there. */
+    expect_chapter_run(13, arguments, 0, "");
+}
+
 Test(io, the_linear_radiance_may_not_share_a_file_with_the_picture_or_the_heat_map) {
     const char *picture = fresh("io-hdr-twice.png"), *heat = fresh("io-hdr-heat.png");
     char arguments[1024], expected[512];
