@@ -286,6 +286,10 @@ bool image_map_check_header(const char *path, const uint8_t *bytes, size_t size,
         ok = false;
         snprintf(reason, sizeof reason, "its header declares %ld x %ld pixels, more than the %ld an image map may "
                  "have", width, height, IMAGE_MAP_MAX_PIXELS);
+    } else if (ok && (width > IMAGE_MAP_MAX_SIDE || height > IMAGE_MAP_MAX_SIDE)) {
+        ok = false;
+        snprintf(reason, sizeof reason, "its header declares %ld x %ld pixels: a side of more than %ld pixels, "
+                 "which the decoder does not take", width, height, IMAGE_MAP_MAX_SIDE);
     }
     *declared_width = width;
     *declared_height = height;
@@ -307,14 +311,23 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
         return false;
     }
     bool sixteen = stbi_is_16_bit_from_memory(bytes, (int)size);
+    /* stb_image keeps its last failure's reason until the next one, and some of its failures give none:
+     * a PNG whose compressed data is damaged showed the reason of the JPEG test stbi_info made before
+     * ("no SOI"). So the reason is first set to a known one, by asking about an empty buffer, and shown
+     * only when the decoder replaced it. */
+    int unused;
+    stbi_info_from_memory(bytes, 0, &unused, &unused, &unused);
+    const char *stale = stbi_failure_reason();
     void *pixels = sixteen ? (void *)stbi_load_16_from_memory(bytes, (int)size, &width, &height, &channels, 4)
                            : (void *)stbi_load_from_memory(bytes, (int)size, &width, &height, &channels, 4);
     size_t count = (size_t)width * (size_t)height * 4;
     image->texels = pixels == NULL ? NULL : malloc(count * sizeof *image->texels);
     if (image->texels == NULL) {
+        const char *reason = stbi_failure_reason();
         if (pixels == NULL)
-            snprintf(why, why_size, "%s: truncated or damaged: its pixels cannot be decoded (the decoder says: %s)",
-                     path, stbi_failure_reason());
+            snprintf(why, why_size, "%s: truncated or damaged: its pixels cannot be decoded (%s%s)", path,
+                     reason == stale ? "the decoder gives no reason" : "the decoder says: ",
+                     reason == stale ? "" : reason);
         else
             snprintf(why, why_size, "%s: out of memory", path);
         stbi_image_free(pixels);

@@ -21,6 +21,7 @@
 #include "pigment.h"
 
 #define IMAGE_MAP_MAX_PIXELS (64L * 1024 * 1024) /* larger images are refused: 1 GiB of floats */
+#define IMAGE_MAP_MAX_SIDE (16L * 1024 * 1024) /* longer sides are refused: stb_image's own limit */
 
 /* Returns the linear light of an sRGB-encoded value in [0, 1] (POV-Ray's SRGBGammaCurve::Decode). */
 float image_map_decode_srgb(float encoded);

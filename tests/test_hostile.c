@@ -92,6 +92,18 @@ static void make_files(char folder[64]) {
     memcpy(changed + 16, huge, sizeof huge);
     write_bytes(folder, "huge.png", changed, size);
     memcpy(changed, png, size);
+    const uint8_t wide[8] = {0x01, 0, 0, 0x01, 0, 0, 0, 1}; /* 16777217 x 1: a side past the decoder's */
+    memcpy(changed + 16, wide, sizeof wide);
+    write_bytes(folder, "wide.png", changed, size);
+    /* A whole header, then an image data chunk of a zlib header and 40 bytes no deflate stream starts
+     * with, then the end chunk (CRCs are not checked). */
+    uint8_t bad_zlib[33 + 12 + 42 + 12] = {0};
+    memcpy(bad_zlib, png, 33);
+    memcpy(bad_zlib + 33, (const uint8_t[]){0, 0, 0, 42, 'I', 'D', 'A', 'T', 0x78, 0x9c}, 10);
+    memset(bad_zlib + 43, 0xff, 40);
+    memcpy(bad_zlib + 33 + 12 + 42, (const uint8_t[]){0, 0, 0, 0, 'I', 'E', 'N', 'D'}, 8);
+    write_bytes(folder, "bad-zlib.png", bad_zlib, sizeof bad_zlib);
+    memcpy(changed, png, size);
     changed[25] = 5; /* colour type 5: none that PNG defines */
     write_bytes(folder, "kind.png", changed, size);
     free(changed);
@@ -335,6 +347,11 @@ static const struct hostile image_files[] = {
     REFUSED_IMAGE(15, "huffman.jpg", "a damaged JPEG: a Huffman table codes more than 256 symbols"),
     REFUSED_IMAGE(14, "huge.png", "its header declares 100000 x 100000 pixels, more than the 67108864 an image map "
                                   "may have"),
+    REFUSED_IMAGE(14, "wide.png", "its header declares 16777217 x 1 pixels: a side of more than 16777216 pixels, "
+                                  "which the decoder does not take"),
+    /* stb_image gives no reason of its own here; it once showed a JPEG test's stale one ("no SOI") */
+    REFUSED_IMAGE(14, "bad-zlib.png", "truncated or damaged: its pixels cannot be decoded (the decoder gives no "
+                                      "reason)"),
     REFUSED_IMAGE(15, "kind.png", "a kind of PNG that is not supported (colour type 5, bit depth 8, compression 0, "
                                   "filter 0, interlace 0)"),
     REFUSED_IMAGE(14, "grid.jpg", "a PNG named as a JPEG: POV-Ray reads an image map by its name (.jpg or .jpeg "
