@@ -43,7 +43,7 @@ bool antialias_make(const struct key_values *kv, struct antialias *a, char *why,
         if (!whole_in(n, 1, most)) {
             snprintf(why, why_size,
                      "antialias samples must be a whole number from 1 to %d for method %s, got " KEY_NUMBER_SHOWN,
-                     most, method_names[a->method], n);
+                     most, method_names[a->method], KEY_NUMBER(n));
             return false;
         }
         a->samples = (int)n;
@@ -52,7 +52,7 @@ bool antialias_make(const struct key_values *kv, struct antialias *a, char *why,
         double t = kv->number[KEY_THRESHOLD][0];
         if (!(t >= 0.0 && t <= ANTIALIAS_MAX_THRESHOLD)) {
             snprintf(why, why_size, "antialias threshold must be between 0 and %g, got " KEY_NUMBER_SHOWN,
-                     ANTIALIAS_MAX_THRESHOLD, t);
+                     ANTIALIAS_MAX_THRESHOLD, KEY_NUMBER(t));
             return false;
         }
         a->threshold = t;
@@ -61,7 +61,7 @@ bool antialias_make(const struct key_values *kv, struct antialias *a, char *why,
         double seed = kv->number[KEY_SEED][0];
         if (!whole_in(seed, 0, UINT32_MAX)) {
             snprintf(why, why_size, "antialias seed must be a whole number from 0 to %u, got " KEY_NUMBER_SHOWN,
-                     UINT32_MAX, seed);
+                     UINT32_MAX, KEY_NUMBER(seed));
             return false;
         }
         a->seed = (uint32_t)seed;

@@ -44,7 +44,7 @@ bool area_light_make(const struct key_values *kv, struct area_light *a, char *wh
     if (!whole_in(n[0], 1, AREA_LIGHT_MAX_SIZE) || !whole_in(n[1], 1, AREA_LIGHT_MAX_SIZE)) {
         snprintf(why, why_size,
                  "light samples must be whole numbers from 1 to %d, got " KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN,
-                 AREA_LIGHT_MAX_SIZE, n[0], n[1]);
+                 AREA_LIGHT_MAX_SIZE, KEY_NUMBER(n[0]), KEY_NUMBER(n[1]));
         return false;
     }
     a->axis1 = key_vec3(kv, KEY_AXIS1);
@@ -63,7 +63,7 @@ bool area_light_make(const struct key_values *kv, struct area_light *a, char *wh
             return false;
         if (!(length >= AREA_LIGHT_MIN_AXIS)) {
             snprintf(why, why_size, "%s is " KEY_NUMBER_SHOWN " long; an axis must be at least %g long", name,
-                     length, AREA_LIGHT_MIN_AXIS);
+                     KEY_NUMBER(length), AREA_LIGHT_MIN_AXIS);
             return false;
         }
     }
@@ -75,7 +75,7 @@ bool area_light_make(const struct key_values *kv, struct area_light *a, char *wh
         double level = kv->number[KEY_ADAPTIVE][0];
         if (!whole_in(level, 0, AREA_LIGHT_MAX_ADAPTIVE)) {
             snprintf(why, why_size, "light adaptive must be a whole number from 0 to %d, got " KEY_NUMBER_SHOWN,
-                     AREA_LIGHT_MAX_ADAPTIVE, level);
+                     AREA_LIGHT_MAX_ADAPTIVE, KEY_NUMBER(level));
             return false;
         }
         a->adaptive = (int)level;

@@ -21,11 +21,12 @@ bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov
     }
     if (vec3_length_scaled(view) < CAMERA_MIN_LENGTH) {
         snprintf(err, err_size, "camera eye and target are " KEY_NUMBER_SHOWN " apart; they must be at least %g apart",
-                 vec3_length_scaled(view), CAMERA_MIN_LENGTH);
+                 KEY_NUMBER(vec3_length_scaled(view)), CAMERA_MIN_LENGTH);
         return false;
     }
     if (!(vfov_degrees > 0.0 && vfov_degrees < 180.0)) {
-        snprintf(err, err_size, "camera fov must be between 0 and 180 degrees, got " KEY_NUMBER_SHOWN, vfov_degrees);
+        snprintf(err, err_size, "camera fov must be between 0 and 180 degrees, got " KEY_NUMBER_SHOWN,
+                 KEY_NUMBER(vfov_degrees));
         return false;
     }
     if (width <= 0 || height <= 0) {
@@ -34,7 +35,8 @@ bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov
     }
     double up_length = vec3_length_scaled(up);
     if (up_length > 0.0 && up_length < CAMERA_MIN_LENGTH) {
-        snprintf(err, err_size, "camera up vector is " KEY_NUMBER_SHOWN " long; it must be at least %g long", up_length,
+        snprintf(err, err_size, "camera up vector is " KEY_NUMBER_SHOWN " long; it must be at least %g long",
+                 KEY_NUMBER(up_length),
                  CAMERA_MIN_LENGTH);
         return false;
     }

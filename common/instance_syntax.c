@@ -37,7 +37,7 @@ bool instance_pose_make(const struct key_values *kv, const struct scene_pose *ba
     if (!scale_in_range(s.x) || !scale_in_range(s.y) || !scale_in_range(s.z)) {
         snprintf(why, why_size, "scale is " KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN
                  "; each factor's size must be between %g and %g (a zero scale flattens the object)",
-                 s.x, s.y, s.z, INSTANCE_SCALE_MIN, INSTANCE_SCALE_MAX);
+                 KEY_NUMBER(s.x), KEY_NUMBER(s.y), KEY_NUMBER(s.z), INSTANCE_SCALE_MIN, INSTANCE_SCALE_MAX);
         return false;
     }
     return key_vec3_within(pose->rotate, INSTANCE_ANGLE_MAX, "rotate", why, why_size) &&
@@ -46,12 +46,13 @@ bool instance_pose_make(const struct key_values *kv, const struct scene_pose *ba
 
 bool instance_key_time_valid(double time, double previous, bool has_previous, char *why, size_t why_size) {
     if (!(time >= 0.0 && time <= 1.0)) {
-        snprintf(why, why_size, "key time must be between 0 and 1, got " KEY_NUMBER_SHOWN, time);
+        snprintf(why, why_size, "key time must be between 0 and 1, got " KEY_NUMBER_SHOWN, KEY_NUMBER(time));
         return false;
     }
     if (has_previous && !(time > previous)) {
         snprintf(why, why_size, "key time " KEY_NUMBER_SHOWN " is not after the instance's previous key's ("
-                 KEY_NUMBER_SHOWN "): keys go in increasing time", time, previous);
+                 KEY_NUMBER_SHOWN "): keys go in increasing time", KEY_NUMBER(time),
+                 KEY_NUMBER(previous));
         return false;
     }
     return true;
@@ -60,6 +61,7 @@ bool instance_key_time_valid(double time, double previous, bool has_previous, ch
 bool instance_shutter_valid(double shutter, char *why, size_t why_size) {
     if (shutter >= 0.0 && shutter <= 1.0)
         return true;
-    snprintf(why, why_size, "camera shutter must be between 0 and 1 (clock units), got " KEY_NUMBER_SHOWN, shutter);
+    snprintf(why, why_size, "camera shutter must be between 0 and 1 (clock units), got " KEY_NUMBER_SHOWN,
+             KEY_NUMBER(shutter));
     return false;
 }

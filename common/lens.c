@@ -19,12 +19,12 @@ bool lens_make(const struct key_values *kv, vec3 eye, struct lens *l, char *why,
     }
     l->aperture = kv->number[KEY_APERTURE][0];
     if (l->aperture < 0.0) {
-        snprintf(why, why_size, "camera aperture must not be negative, got " KEY_NUMBER_SHOWN, l->aperture);
+        snprintf(why, why_size, "camera aperture must not be negative, got " KEY_NUMBER_SHOWN, KEY_NUMBER(l->aperture));
         return false;
     }
     if (l->aperture > LENS_MAX_APERTURE) {
         snprintf(why, why_size, "camera aperture must be at most %g, got " KEY_NUMBER_SHOWN, LENS_MAX_APERTURE,
-                 l->aperture);
+                 KEY_NUMBER(l->aperture));
         return false;
     }
     if (!kv->present[KEY_FOCAL_POINT]) {
@@ -43,7 +43,7 @@ bool lens_make(const struct key_values *kv, vec3 eye, struct lens *l, char *why,
         double n = kv->number[KEY_BLUR_SAMPLES][0];
         if (n != 7 && n != 19 && n != 37) {
             snprintf(why, why_size, "camera blur_samples must be 7, 19 or 37 (1, 2 or 3 rings of the lens's "
-                     "hexagonal grid), got " KEY_NUMBER_SHOWN, n);
+                     "hexagonal grid), got " KEY_NUMBER_SHOWN, KEY_NUMBER(n));
             return false;
         }
         l->blur_samples = (int)n;

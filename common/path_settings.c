@@ -51,7 +51,7 @@ static bool whole_key(const struct key_values *kv, int key, double lo, double hi
     double x = kv->number[key][0];
     if (!(x >= lo && x <= hi && x == floor(x))) {
         snprintf(why, why_size, "paths %s must be a whole number from %.0f to %.0f, got " KEY_NUMBER_SHOWN,
-                 path_keys[key].name, lo, hi, x);
+                 path_keys[key].name, lo, hi, KEY_NUMBER(x));
         return false;
     }
     *out = x;

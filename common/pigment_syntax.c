@@ -29,7 +29,7 @@ bool pigment_make_transform(const struct key_values *kv, int first, struct pigme
         if (!(fabs(scale[k]) >= PIGMENT_MIN_SCALE && fabs(scale[k]) <= PIGMENT_MAX_SCALE)) {
             snprintf(why, why_size,
                      "pigment '%s': scale " KEY_NUMBER_SHOWN " is out of range (its size must be from %g to %g)",
-                     p->name, scale[k], PIGMENT_MIN_SCALE, PIGMENT_MAX_SCALE);
+                     p->name, KEY_NUMBER(scale[k]), PIGMENT_MIN_SCALE, PIGMENT_MAX_SCALE);
             return false;
         }
     char what[PIGMENT_NAME_MAX + 32];
@@ -57,7 +57,7 @@ static bool make_colours(const struct key_values *kv, struct pigment *p, char *w
         if (!(c.x <= KEY_MAX_SURFACE && c.y <= KEY_MAX_SURFACE && c.z <= KEY_MAX_SURFACE)) {
             snprintf(why, why_size, "pigment '%s': %s must be at most %g in each channel, got " KEY_NUMBER_SHOWN " "
                      KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, p->name, k == 0 ? "colour" : "colour2", KEY_MAX_SURFACE,
-                     c.x, c.y, c.z);
+                     KEY_NUMBER(c.x), KEY_NUMBER(c.y), KEY_NUMBER(c.z));
             return false;
         }
     }
@@ -154,7 +154,7 @@ static bool make_image_map(const struct key_values *kv, struct pigment *p, char 
         double interpolate = kv->number[IMAGE_INTERPOLATE][0];
         if (interpolate != 0.0 && interpolate != 2.0) {
             snprintf(why, why_size, "pigment '%s': interpolate must be 0 (nearest) or 2 (bilinear), got " KEY_NUMBER_SHOWN,
-                     p->name, interpolate);
+                     p->name, KEY_NUMBER(interpolate));
             return false;
         }
         p->interpolate = (int)interpolate;

@@ -51,7 +51,7 @@ static bool plane_make(const struct key_values *kv, void *item, char *why, size_
             return false;
     if (by_distance && !(fabs(kv->number[PLANE_DISTANCE][0]) <= KEY_MAX_COORD)) {
         snprintf(why, why_size, "plane distance must stay within -%g .. %g, got " KEY_NUMBER_SHOWN, KEY_MAX_COORD,
-                 KEY_MAX_COORD, kv->number[PLANE_DISTANCE][0]);
+                 KEY_MAX_COORD, KEY_NUMBER(kv->number[PLANE_DISTANCE][0]));
         return false;
     }
     struct plane *plane = item;

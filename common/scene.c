@@ -45,6 +45,7 @@ struct parser {
 
 /* Writes "name:line: message" into the error buffer and returns false, so callers can
  * `return fail(p, ...)`. */
+static bool fail(const struct parser *p, const char *format, ...) __attribute__((format(printf, 2, 3)));
 static bool fail(const struct parser *p, const char *format, ...) {
     int used = snprintf(p->err, p->err_size, "%s:%d: ", p->name, p->line);
     if (used < 0 || (size_t)used >= p->err_size)
@@ -274,12 +275,13 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
     for (int k = AMBIENT; k <= REFLECTION; k++)
         if (k != PHONG_SIZE && *scalars[k] > KEY_MAX_SURFACE)
             return fail(p, "material '%s': %s must be at most %g, got " KEY_NUMBER_SHOWN, m.name, specs[k].name,
-                        KEY_MAX_SURFACE, *scalars[k]);
+                        KEY_MAX_SURFACE, KEY_NUMBER(*scalars[k]));
     if (m.colour.x < 0.0 || m.colour.y < 0.0 || m.colour.z < 0.0)
         return fail(p, "material '%s': colour must not be negative", m.name);
     if (!(m.colour.x <= KEY_MAX_SURFACE && m.colour.y <= KEY_MAX_SURFACE && m.colour.z <= KEY_MAX_SURFACE))
         return fail(p, "material '%s': colour must be at most %g in each channel, got " KEY_NUMBER_SHOWN " "
-                    KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, m.name, KEY_MAX_SURFACE, m.colour.x, m.colour.y, m.colour.z);
+                    KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, m.name, KEY_MAX_SURFACE, KEY_NUMBER(m.colour.x),
+                    KEY_NUMBER(m.colour.y), KEY_NUMBER(m.colour.z));
     if (kv.present[EMISSION])
         m.emission = key_vec3(&kv, EMISSION);
     vec3 e = m.emission;
@@ -287,14 +289,15 @@ static bool parse_material(const struct parser *p, struct scene *s, char **tok, 
         return fail(p, "material '%s': emission must be finite and not negative", m.name);
     if (!(e.x <= SCENE_MAX_LIGHT && e.y <= SCENE_MAX_LIGHT && e.z <= SCENE_MAX_LIGHT))
         return fail(p, "material '%s': emission must be at most %g in each channel, got " KEY_NUMBER_SHOWN " "
-                    KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, m.name, SCENE_MAX_LIGHT, e.x, e.y, e.z);
+                    KEY_NUMBER_SHOWN " " KEY_NUMBER_SHOWN, m.name, SCENE_MAX_LIGHT, KEY_NUMBER(e.x), KEY_NUMBER(e.y),
+                    KEY_NUMBER(e.z));
     if (m.filter + m.transmit > 1.0)
         return fail(p, "material '%s': filter + transmit must not exceed 1", m.name);
     if (kv.present[ROUGHNESS])
         m.roughness = kv.number[ROUGHNESS][0];
     if (!(m.roughness >= 0.0 && m.roughness <= 1.0))
         return fail(p, "material '%s': roughness must be between 0 and 1, got " KEY_NUMBER_SHOWN, m.name,
-                    m.roughness);
+                    KEY_NUMBER(m.roughness));
     if (kv.present[METAL]) {
         int metal = 0;
         while (metal < SCENE_METAL_COUNT && strcmp(kv.word[METAL], scene_metal_names[metal]) != 0)
@@ -452,7 +455,7 @@ static bool parse_mesh(const struct parser *p, struct scene *s, char **tok, int 
     }
     double scale = kv.present[SCALE] ? kv.number[SCALE][0] : 1.0;
     if (!(scale > 0.0))
-        return fail(p, "mesh scale must be positive, got " KEY_NUMBER_SHOWN, scale);
+        return fail(p, "mesh scale must be positive, got " KEY_NUMBER_SHOWN, KEY_NUMBER(scale));
     struct scene_mesh *mesh = grow(&s->meshes, &s->mesh_count, sizeof *mesh);
     if (mesh == NULL)
         return fail(p, "out of memory");

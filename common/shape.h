@@ -24,6 +24,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "ray.h"
@@ -48,10 +49,25 @@ struct key_values {
     const char *word[KEY_MAX];
 };
 
-/* How a message shows a number read from the scene ("got 1048577"): 15 significant digits, so that a
- * whole number up to 10^15 and any decimal written with 15 digits or fewer print as they were written
- * (%g's six would print 1048577 as 1.04858e+06, which looks in range). */
-#define KEY_NUMBER_SHOWN "%.15g"
+/* How a message shows a number read from the scene ("got 1048577"): KEY_NUMBER_SHOWN in the format,
+ * KEY_NUMBER(x) in the arguments. 15 significant digits, so that a whole number up to 10^15 and any
+ * decimal written with 15 digits or fewer print as they were written (%g's six would print 1048577 as
+ * 1.04858e+06, which looks in range); 16 or 17 where 15 would round x to another number, so that a
+ * value just past a limit never prints as the limit (1.0000000000000002 is not "1"). */
+#define KEY_NUMBER_SHOWN "%.*g"
+#define KEY_NUMBER(x) key_number_digits(x), (x)
+
+/* The fewest significant digits, from 15 to 17, that print x as a number that reads back as x (17
+ * always do; a NaN or an infinity takes 17, and prints as nan or inf). */
+static inline int key_number_digits(double x) {
+    for (int digits = 15; digits < 17; digits++) {
+        char text[32];
+        snprintf(text, sizeof text, "%.*g", digits, x);
+        if (strtod(text, NULL) == x)
+            return digits;
+    }
+    return 17;
+}
 
 /* The largest coordinate a point of the scene may have: a corner, a placed mesh's vertex, a focal
  * point, a texture's move. Within it, what the program derives (sums and differences of points,
@@ -72,7 +88,7 @@ static inline bool key_vec3_within(vec3 v, double limit, const char *what, char 
     if (fabs(v.x) <= limit && fabs(v.y) <= limit && fabs(v.z) <= limit)
         return true;
     snprintf(why, why_size, "%s is (" KEY_NUMBER_SHOWN ", " KEY_NUMBER_SHOWN ", " KEY_NUMBER_SHOWN
-             "); it must stay within -%g .. %g", what, v.x, v.y, v.z, limit, limit);
+             "); it must stay within -%g .. %g", what, KEY_NUMBER(v.x), KEY_NUMBER(v.y), KEY_NUMBER(v.z), limit, limit);
     return false;
 }
 

@@ -15,7 +15,7 @@ static bool sphere_make(const struct key_values *kv, void *item, char *why, size
     }
     if (s->radius < SPHERE_MIN_RADIUS || s->radius > KEY_MAX_COORD) {
         snprintf(why, why_size, "sphere radius must be between %g and %g, got " KEY_NUMBER_SHOWN, SPHERE_MIN_RADIUS,
-                 KEY_MAX_COORD, s->radius);
+                 KEY_MAX_COORD, KEY_NUMBER(s->radius));
         return false;
     }
     return key_vec3_within(s->centre, KEY_MAX_COORD, "sphere centre", why, why_size);

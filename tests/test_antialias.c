@@ -66,6 +66,8 @@ Test(antialias_line, bad_values_are_refused_with_file_and_line) {
     expect_refused("antialias method adaptive threshold -0.1",
                    "aa.scene:3: antialias threshold must be between 0 and 1, got -0.1");
     expect_refused("antialias threshold 1.5", "aa.scene:3: antialias threshold must be between 0 and 1, got 1.5");
+    expect_refused("antialias threshold 1.0000000000000002",
+                   "aa.scene:3: antialias threshold must be between 0 and 1, got 1.0000000000000002");
     expect_refused("antialias method jitter seed -1",
                    "aa.scene:3: antialias seed must be a whole number from 0 to 4294967295, got -1");
     expect_refused("antialias method grid\nantialias method jitter", "aa.scene:4: a second antialias line (a scene has one)");

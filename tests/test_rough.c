@@ -43,6 +43,9 @@ Test(rough_keys, are_read_with_their_defaults) {
 Test(rough_keys, bad_values_are_refused_with_file_and_line) {
     expect_refused("material a roughness 1.5", "rough.scene:3: material 'a': roughness must be between 0 and 1, got 1.5");
     expect_refused("material a roughness -0.1", "rough.scene:3: material 'a': roughness must be between 0 and 1, got -0.1");
+    /* just past 1: 15 digits would print it as "got 1", a message that contradicts itself */
+    expect_refused("material a roughness 1.0000000000000002",
+                   "rough.scene:3: material 'a': roughness must be between 0 and 1, got 1.0000000000000002");
     expect_refused("material a roughness nan", "rough.scene:3: 'nan' is not a finite number (for 'roughness')");
     expect_refused("material a metal tin",
                    "rough.scene:3: material 'a': unknown metal 'tin' (none, colour, gold, silver, copper or aluminium)");

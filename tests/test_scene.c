@@ -493,6 +493,9 @@ Test(scene_errors, bad_cameras) {
                  NAME ":1: camera up vector is 1e-200 long; it must be at least 1e-18 long");
     expect_error("camera eye 0 0 5 target 0 0 0 up 0 1e-19 0 fov 60\nimage 4 3\n",
                  NAME ":1: camera up vector is 1e-19 long; it must be at least 1e-18 long");
+    /* a number just past a limit is shown with the digits that tell it from the limit */
+    expect_error("camera eye 0 0 0 target 0 0 -1 fov 180.00000000000003\nimage 4 3\n",
+                 NAME ":1: camera fov must be between 0 and 180 degrees, got 180.00000000000003");
 }
 
 Test(scene, a_camera_of_tiny_but_allowed_lengths_keeps_its_basis) {
