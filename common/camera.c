@@ -36,8 +36,7 @@ bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov
     double up_length = vec3_length_scaled(up);
     if (up_length > 0.0 && up_length < CAMERA_MIN_LENGTH) {
         snprintf(err, err_size, "camera up vector is " KEY_NUMBER_SHOWN " long; it must be at least %g long",
-                 KEY_NUMBER(up_length),
-                 CAMERA_MIN_LENGTH);
+                 KEY_NUMBER(up_length), CAMERA_MIN_LENGTH);
         return false;
     }
     vec3 forward = vec3_normalize(view);
