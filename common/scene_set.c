@@ -105,9 +105,33 @@ static int old_value_count(char **words, int count, int key_at) {
     return numbers > 0 ? numbers : (key_at + 1 < count ? 1 : 0);
 }
 
-/* Rewrites one line: `words` (count of them, the comment in `comment`) with `key` given `values`.
- * With key NULL, everything after the first `fixed` words is replaced by the values. Returns a new
- * string, or NULL when out of memory. */
+/* Whether word can be a key's name: a letter, then letters, digits or '_' (never a number, nor a value
+ * such as a file's name). */
+static bool is_key_name(const char *word) {
+    if (!isalpha((unsigned char)word[0]))
+        return false;
+    for (const char *c = word; *c != '\0'; c++)
+        if (!isalnum((unsigned char)*c) && *c != '_')
+            return false;
+    return true;
+}
+
+/* How many words open a line of `directive` before its keys: the directive itself, and its positional
+ * words (a material's name; a pigment's name and pattern; a mesh's file; an object's name and file; an
+ * instance's object; a key's instance label). */
+static int words_before_keys(const char *directive) {
+    if (strcmp(directive, "pigment") == 0 || strcmp(directive, "object") == 0)
+        return 3;
+    if (strcmp(directive, "material") == 0 || strcmp(directive, "mesh") == 0 || strcmp(directive, "instance") == 0 ||
+        strcmp(directive, "key") == 0)
+        return 2;
+    return 1;
+}
+
+/* Rewrites one line: `words` (count of them, the comment in `comment`) with `key` given `values`. The
+ * key is looked for only where keys stand: from words[fixed] on, each key followed by its old value,
+ * so that a value (a number, a name) is never taken for the key. With key NULL, everything after the
+ * first `fixed` words is replaced by the values. Returns a new string, or NULL when out of memory. */
 static char *rewrite_line(char **words, int count, int fixed, const char *key, char **values, int value_count,
                           const char *comment) {
     size_t size = strlen(comment) + 2;
@@ -121,11 +145,9 @@ static char *rewrite_line(char **words, int count, int fixed, const char *key, c
         return NULL;
     int key_at = -1;
     if (key != NULL)
-        for (int k = fixed; k < count; k++)
-            if (strcmp(words[k], key) == 0) {
+        for (int k = fixed; k < count && key_at < 0; k += 1 + old_value_count(words, count, k))
+            if (strcmp(words[k], key) == 0)
                 key_at = k;
-                break;
-            }
     int old_count = key_at >= 0 ? old_value_count(words, count, key_at) : 0;
     int keep = key == NULL ? fixed : count;
     for (int k = 0; k < keep; k++) {
@@ -177,13 +199,22 @@ static bool parse_ordinal(const char *digits, int *ordinal) {
 bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) {
     char path[256], value[512];
     const char *equals = strchr(spec, '=');
-    if (equals == NULL || equals == spec || (size_t)(equals - spec) >= sizeof path || strlen(equals + 1) >= sizeof value)
+    if (equals == NULL || equals == spec)
         return set_fail(err, err_size, spec, "expected PATH=VALUE, e.g. max_depth=1 or camera.fov=30");
+    if ((size_t)(equals - spec) >= sizeof path)
+        return set_fail(err, err_size, spec, "PATH is longer than %zu bytes", sizeof path - 1);
+    if (strlen(equals + 1) >= sizeof value)
+        return set_fail(err, err_size, spec, "VALUE is longer than %zu bytes", sizeof value - 1);
     snprintf(path, sizeof path, "%.*s", (int)(equals - spec), spec);
+    for (const char *c = path; *c != '\0'; c++)
+        if (isspace((unsigned char)*c) || *c == '#')
+            return set_fail(err, err_size, spec, "PATH may not contain blanks, '#' or a line break");
     snprintf(value, sizeof value, "%s", equals + 1);
     char *values[SET_MAX_WORDS];
     int value_count = split_words(value, values, SET_MAX_WORDS);
-    if (value_count <= 0)
+    if (value_count < 0)
+        return set_fail(err, err_size, spec, "VALUE has more than %d words", SET_MAX_WORDS);
+    if (value_count == 0)
         return set_fail(err, err_size, spec, "no value after '='");
     for (int k = 0; k < value_count; k++)
         if (strchr(values[k], '#') != NULL || strchr(values[k], '\n') != NULL)
@@ -219,6 +250,8 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
     if (part_count == 3 && name == NULL && ordinal < 1)
         return set_fail(err, err_size, spec, "line numbers count from 1 (%s.1 is the first %s line)", directive,
                         directive);
+    if (key != NULL && !is_key_name(key))
+        return set_fail(err, err_size, spec, "'%s' is not a key's name (a letter, then letters, digits or '_')", key);
     if (name != NULL && strcmp(directive, "material") != 0)
         return set_fail(err, err_size, spec, "only materials have names; use %s.N for the Nth %s line", directive,
                         directive);
@@ -255,8 +288,13 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
         }
         char *words[SET_MAX_WORDS];
         int count = split_words(line, words, SET_MAX_WORDS);
-        int fixed = name != NULL || strcmp(directive, "mesh") == 0 ? 2 : 1; /* directive, name or file */
-        char *rewritten = count < 0 ? NULL : rewrite_line(words, count, fixed, key, values, value_count, comment);
+        if (count < 0) {
+            free(line);
+            return set_fail(err, err_size, spec, "the %s line it changes has more than %d words", directive,
+                            SET_MAX_WORDS);
+        }
+        char *rewritten = rewrite_line(words, count, positional ? 1 : words_before_keys(directive), key, values,
+                                       value_count, comment);
         free(line);
         if (rewritten == NULL)
             return set_fail(err, err_size, spec, "out of memory");

@@ -123,12 +123,57 @@ Test(scene_set, mistakes_are_named_exactly) {
         {"sphere.2147483648.radius=1",
          "--set sphere.2147483648.radius=1: '2147483648' is not a line number (digits only, at most 2147483647)"},
         {"sphere.2147483647.radius=1", "--set sphere.2147483647.radius=1: the scene has fewer than 2147483647 sphere lines"},
+        /* a KEY that is a value of the line: "0" once matched the centre's x and moved the sphere */
+        {"sphere.1.0=5 6", "--set sphere.1.0=5 6: '0' is not a key's name (a letter, then letters, digits or '_')"},
+        /* a line break in PATH once added a line of its own to the scene */
+        {"camera.up 0 1 0\nsphere centre 2 1 0 radius=1",
+         "--set camera.up 0 1 0\nsphere centre 2 1 0 radius=1: PATH may not contain blanks, '#' or a line break"},
+        {"camera#.fov=1", "--set camera#.fov=1: PATH may not contain blanks, '#' or a line break"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char err[256];
         cr_assert_null(changed(cases[k].spec, err, sizeof err), "%s was accepted", cases[k].spec);
         cr_assert_str_eq(err, cases[k].message);
     }
+}
+
+/* The key is looked for only where keys stand, after the line's positional words, each key followed
+ * by its old value: a material's name, or a word of a value, is never taken for a key. */
+Test(scene_set, a_key_is_found_only_where_keys_stand) {
+    char err[2048]; /* the message repeats the spec */
+    /* "clay" is the 2nd sphere's material (a value) and the 4th line's name: material.clay.colour below
+     * changes the material, and sphere.2.clay is no key of the sphere line, so it is added as one (the
+     * parser then refuses it) rather than changing the material the sphere names */
+    char *text = changed("sphere.2.clay=3", err, sizeof err);
+    cr_assert_not_null(text, "%s", err);
+    cr_expect(strstr(text, "sphere centre 2 0 0 radius 0.5 material clay clay 3\n") != NULL, "%s", text);
+    free(text);
+    text = changed("material.1.ior=1.33", err, sizeof err);
+    cr_assert_not_null(text, "%s", err);
+    cr_expect(strstr(text, "material glass colour 1 1 1 transmit 0.9 ior 1.33\n") != NULL, "%s", text);
+    free(text);
+    /* an object's name and file and a key's label are not keys either */
+    char *scene = strdup("object bunny bunny.ply smooth off\ninstance bunny id bunny scale 1 1 1\n"
+                         "key bunny time 0 scale 2 2 2\n");
+    cr_assert(scene_set_apply(&scene, "object.1.smooth=on", err, sizeof err), "%s", err);
+    cr_assert(scene_set_apply(&scene, "instance.1.id=hare", err, sizeof err), "%s", err);
+    cr_assert(scene_set_apply(&scene, "key.1.bunny=hare", err, sizeof err), "%s", err);
+    cr_expect_str_eq(scene, "object bunny bunny.ply smooth on\ninstance bunny id hare scale 1 1 1\n"
+                            "key bunny time 0 scale 2 2 2 bunny hare\n");
+    free(scene);
+    /* limits, each with its own reason */
+    char spec[1024];
+    snprintf(spec, sizeof spec, "camera.fov=%0600d", 1);
+    cr_assert_null(changed(spec, err, sizeof err));
+    cr_expect(strstr(err, ": VALUE is longer than 511 bytes") != NULL, "%s", err);
+    snprintf(spec, sizeof spec, "camera.%0300d=1", 1);
+    cr_assert_null(changed(spec, err, sizeof err));
+    cr_expect(strstr(err, ": PATH is longer than 255 bytes") != NULL, "%s", err);
+    int at = snprintf(spec, sizeof spec, "camera.fov=");
+    for (int k = 0; k < 65; k++)
+        at += snprintf(spec + at, sizeof spec - (size_t)at, "1 ");
+    cr_assert_null(changed(spec, err, sizeof err));
+    cr_expect(strstr(err, ": VALUE has more than 64 words") != NULL, "%s", err);
 }
 
 Test(scene_set, a_bad_value_is_the_parsers_error_at_the_scene_line) {
