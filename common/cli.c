@@ -214,34 +214,25 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
     return CLI_OK;
 }
 
-/* Whether one of the files the run writes (written[k], given by the option names[k]) is one it reads:
- * the scene file, or a file the scene names and the chapter reads (a mesh's, an image map's, an
- * object's). The output is written after the render, over it, so the input would be lost. Complains
- * and returns true when so. */
-static bool writes_what_it_reads(const char *const names[], const char *const written[], int count,
-                                 const char *scene_path, const struct scene *s) {
-    for (int k = 0; k < count; k++) {
-        if (written[k] == NULL)
-            continue;
-        char what[SCENE_NAME_MAX + 64] = "";
-        if (outfile_same_file(written[k], scene_path))
-            snprintf(what, sizeof what, "the scene file");
-        for (size_t m = 0; what[0] == '\0' && m < s->mesh_count; m++)
-            if (outfile_same_file(written[k], s->meshes[m].path))
-                snprintf(what, sizeof what, "the mesh of line %d", s->meshes[m].line);
-        for (size_t m = 0; what[0] == '\0' && m < s->pigment_count; m++)
-            if (s->pigments[m].file != NULL && outfile_same_file(written[k], s->pigments[m].file))
-                snprintf(what, sizeof what, "the image of pigment '%s'", s->pigments[m].name);
-        for (size_t m = 0; what[0] == '\0' && m < s->object_count; m++)
-            if (outfile_same_file(written[k], s->objects[m].path))
-                snprintf(what, sizeof what, "the mesh of object '%s'", s->objects[m].name);
-        if (what[0] != '\0') {
-            complain("%s names '%s', which the run reads (%s): writing it would destroy it; give another file",
-                     names[k], written[k], what);
-            return true;
-        }
-    }
-    return false;
+bool cli_output_is_an_input(const struct cli_run *run, const char *option, const char *file) {
+    const struct scene *s = &run->scene;
+    char what[SCENE_NAME_MAX + 64] = "";
+    if (outfile_same_file(file, run->options.scene))
+        snprintf(what, sizeof what, "the scene file");
+    for (size_t m = 0; what[0] == '\0' && m < s->mesh_count; m++)
+        if (outfile_same_file(file, s->meshes[m].path))
+            snprintf(what, sizeof what, "the mesh of line %d", s->meshes[m].line);
+    for (size_t m = 0; what[0] == '\0' && m < s->pigment_count; m++)
+        if (s->pigments[m].file != NULL && outfile_same_file(file, s->pigments[m].file))
+            snprintf(what, sizeof what, "the image of pigment '%s'", s->pigments[m].name);
+    for (size_t m = 0; what[0] == '\0' && m < s->object_count; m++)
+        if (outfile_same_file(file, s->objects[m].path))
+            snprintf(what, sizeof what, "the mesh of object '%s'", s->objects[m].name);
+    if (what[0] == '\0')
+        return false;
+    complain("%s names '%s', which the run reads (%s): writing it would destroy it; give another file", option, file,
+             what);
+    return true;
 }
 
 /* Bounds the rays the run's scene asks for: a note above RAY_BUDGET_LARGE, a refusal above
@@ -400,11 +391,13 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
     for (size_t k = 0; k < s->material_count; k++)
         emitting += !is_black(s->materials[k].emission);
     scene_drop_unsupported(s, ch->number, o->quiet ? NULL : stderr);
+    /* An output that names an input would be written over it, after the render. */
     const char *written_names[] = {"--pov", "-o", "--heatmap", ch->output_option};
-    if (writes_what_it_reads(written_names, written, 4, o->scene, s)) {
-        run->status = CLI_USAGE;
-        return false;
-    }
+    for (int k = 0; k < 4; k++)
+        if (written[k] != NULL && cli_output_is_an_input(run, written_names[k], written[k])) {
+            run->status = CLI_USAGE;
+            return false;
+        }
     return o->pov != NULL || (lit_by_something(run, emitting) && within_budget(run));
 }
 

@@ -110,6 +110,13 @@ struct cli_run {
  * --help was printed, or an error was (run->status says which). Either way, end with cli_finish. */
 bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **argv);
 
+/* Whether `file`, which the option `option` writes, is a file the run reads: the scene file, or a
+ * file the scene names and the chapter reads (a mesh's, an image map's, an object's), compared by
+ * outfile_same_file. When so, prints "OPTION names 'FILE', which the run reads (the scene file):
+ * writing it would destroy it; give another file" and returns true. cli_start checks the options'
+ * own files; a chapter that derives more names from them (chapter 16's frames) checks those. */
+bool cli_output_is_an_input(const struct cli_run *run, const char *option, const char *file);
+
 /* Ends the run with a failure of the chapter's own step (loading meshes, building its world), whose
  * message is in run->err: prints it and returns cli_finish's status, CLI_BAD_INPUT. */
 int cli_fail(struct cli_run *run);

@@ -675,6 +675,55 @@ Test(command_line, video_makes_a_film_of_the_frames, .timeout = 120) {
     cr_assert_gt(size, 1000, "the film has %zu bytes", size);
 }
 
+Test(command_line, video_takes_names_that_ffmpeg_would_read_as_an_option_or_a_protocol, .timeout = 120) {
+    /* Run in the test folder, so that the names are as given: ffmpeg read "-v.mp4" as an option and
+     * "x:y-%04d.png" as a file of the protocol x, and failed after every frame was drawn; both names now
+     * reach it after "file:". */
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    static const char *const names[] = {"-v", "x:y"};
+    for (int k = 0; k < 2; k++) {
+        char film[256], command[4096], output[4096];
+        snprintf(film, sizeof film, TEST_OUT "/%s.mp4", names[k]);
+        remove(film);
+        snprintf(command, sizeof command, "cd " TEST_OUT " && %s/%s %s/%s --quiet --frames 2 --video --width 16 "
+                 "--height 10 -o %s.png", cwd, chapter_program(16), cwd, chapter_scene(16), names[k]);
+        cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s\n%s", command, output);
+        size_t size = 0;
+        free(read_file(film, &size));
+        cr_expect_gt(size, 500, "%s has %zu bytes", film, size);
+    }
+}
+
+/* The files the frames go to are checked before the first frame is drawn, as -o's own file is. */
+Test(command_line, the_frames_files_are_checked_before_any_frame_is_drawn) {
+    expect_chapter_run(16, "--frames 2 -o " TEST_OUT "/hm.png --heatmap -", 2,
+                       "--frames writes one heat-map a frame: --heatmap - (standard output) cannot take them");
+    /* a scene whose name is that of a frame: it was written over with the frame's picture, exit 0 */
+    const char *text = "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 6\nlight position 5 8 4\n"
+                       "sphere centre 0 0 0 radius 1\n";
+    FILE *f = fopen(TEST_OUT "/clip-0001", "w");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+    expect_chapter_run(16, TEST_OUT "/clip-0001 --frames 1 -o " TEST_OUT "/clip", 2,
+                       "-o (its frame 1) names '" TEST_OUT "/clip-0001', which the run reads (the scene file): "
+                       "writing it would destroy it; give another file");
+    expect_chapter_run(16, TEST_OUT "/clip-0001 --frames 1 -o " TEST_OUT "/clip.png --heatmap " TEST_OUT "/clip", 2,
+                       "--heatmap (its frame 1) names '" TEST_OUT "/clip-0001', which the run reads (the scene file)");
+    char *now = read_text_file(TEST_OUT "/clip-0001");
+    cr_assert_not_null(now);
+    cr_expect_str_eq(now, text, "the scene was overwritten");
+    free(now);
+    /* --video's film too */
+    f = fopen(TEST_OUT "/clip.mp4", "w");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+    expect_chapter_run(16, TEST_OUT "/clip.mp4 --frames 2 --video -o " TEST_OUT "/clip.png", 2,
+                       "--video (its film) names '" TEST_OUT "/clip.mp4', which the run reads (the scene file)");
+}
+
 Test(command_line, instances_on_top_of_each_other_count_in_the_ray_budget) {
     /* 20,000 bunnies in one place: every ray is carried into each of them, 2.6e12 times in a picture of
      * 1000 x 1000 pixels, 64 camera rays each and their shadow rays, more than a day; refused at once, naming the crowded place's

@@ -23,6 +23,7 @@
 #include "cli.h"
 #include "fast_bvh.h"
 #include "instances.h"
+#include "outfile.h"
 #include "plane.h"
 #include "ray_budget.h"
 #include "shutter.h"
@@ -93,6 +94,8 @@ static bool animation_options_valid(const struct cli_options *o) {
         problem = "--video needs --frames N (at least 2) and all of them (no --frame)";
     else if (animation.frames > 0 && strcmp(o->output, "-") == 0)
         problem = "--frames writes one file a frame: -o - (standard output) cannot take them";
+    else if (animation.frames > 0 && o->heatmap != NULL && strcmp(o->heatmap, "-") == 0)
+        problem = "--frames writes one heat-map a frame: --heatmap - (standard output) cannot take them";
     else if (animation.video && !names_png(o->output))
         problem = "--video makes its film from the frames' PNG files: -o must name a .png file";
     else if (animation.update_options > 1)
@@ -110,6 +113,36 @@ static bool frame_file(const char *output, long k, char *name, size_t size) {
     size_t stem = strlen(output) - (names_png(output) ? 4 : 0);
     int written = snprintf(name, size, "%.*s-%04ld%s", (int)stem, output, k, output + stem);
     return written > 0 && (size_t)written < size;
+}
+
+/* Checks, before anything is rendered, the files the frames first..last will be written to (the
+ * picture's, and the heat-map's with --heatmap): each name fits, none is a file the run reads
+ * (cli_output_is_an_input), and the first and the last (the longest) can be created. Prints why not
+ * and returns the exit status, or CLI_OK. */
+static int frame_files_valid(const struct cli_run *run, long first, long last) {
+    const char *const options[] = {"-o", "--heatmap"};
+    const char *const outputs[] = {run->options.output, run->options.heatmap};
+    for (int o = 0; o < 2; o++)
+        for (long k = first; outputs[o] != NULL && k <= last; k++) {
+            char name[PATH_MAX], option[64], err[PATH_MAX + 128];
+            if (!frame_file(outputs[o], k, name, sizeof name)) {
+                fprintf(stderr, "%s: the name of frame %ld is too long\n", outputs[o], k);
+                return CLI_USAGE;
+            }
+            snprintf(option, sizeof option, "%s (its frame %ld)", options[o], k);
+            if (cli_output_is_an_input(run, option, name))
+                return CLI_USAGE;
+            if ((k == first || k == last) && !outfile_can_create(name, err, sizeof err)) {
+                fprintf(stderr, "%s\n", err);
+                return CLI_OUTPUT_FAILED;
+            }
+        }
+    char film[PATH_MAX];
+    size_t stem = strlen(run->options.output) - 4; /* with --video, -o ends in .png (animation_options_valid) */
+    if (animation.video && snprintf(film, sizeof film, "%.*s.mp4", (int)stem, run->options.output) < (int)sizeof film &&
+        cli_output_is_an_input(run, "--video (its film)", film))
+        return CLI_USAGE;
+    return CLI_OK;
 }
 
 /* The pictures the run renders, for the ray budget (cli.h): --frames N of them, or one (--frame K, or
@@ -138,12 +171,14 @@ static bool on_path(const char *program) {
 }
 
 /* Runs ffmpeg over the frames (the output's name with -%04d) into the output's name with .mp4 for .png.
- * Returns false with the reason in err. */
+ * Both names go to ffmpeg after "file:", so that it reads them as files whatever they hold: a name
+ * starting with '-' is not an option, and "x:y.png" is not the protocol x. Returns false with the
+ * reason in err. */
 static bool make_video(const char *output, char *err, size_t err_size) {
-    char pattern[2 * PATH_MAX], film[PATH_MAX];
+    char pattern[2 * PATH_MAX], film[PATH_MAX], film_file[PATH_MAX + 8];
     size_t stem = strlen(output) - 4; /* the output ends in .png (animation_options_valid) */
     /* ffmpeg reads the frames' names as a pattern, in which a % of the output's own name is written %% */
-    size_t used = 0;
+    size_t used = (size_t)snprintf(pattern, sizeof pattern, "file:");
     for (size_t k = 0; k < stem && used + 2 < sizeof pattern; k++) {
         if (output[k] == '%')
             pattern[used++] = '%';
@@ -151,13 +186,14 @@ static bool make_video(const char *output, char *err, size_t err_size) {
     }
     if (used + 2 >= sizeof pattern ||
         snprintf(pattern + used, sizeof pattern - used, "-%%04d%s", output + stem) >= (int)(sizeof pattern - used) ||
-        snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film)
+        snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film ||
+        snprintf(film_file, sizeof film_file, "file:%s", film) >= (int)sizeof film_file)
         return (snprintf(err, err_size, "%s: the film's name is too long", output), false);
 #ifdef __EMSCRIPTEN__ /* the browser's build runs no other program */
     return (snprintf(err, err_size, "--video: the browser cannot run ffmpeg"), false);
 #else
     char *args[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", VIDEO_FRAME_RATE, "-i", pattern,
-                    "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", film, NULL};
+                    "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", film_file, NULL};
     pid_t child;
     int status = 0;
     if (posix_spawnp(&child, "ffmpeg", NULL, NULL, args, environ) != 0)
@@ -252,6 +288,12 @@ int main(int argc, char **argv) {
     if (!animation_options_valid(&run.options)) {
         run.status = CLI_USAGE;
         return cli_finish(&run);
+    }
+    if (animation.frames > 0 && run.options.pov == NULL) {
+        long first = animation.frame > 0 ? animation.frame : 1;
+        run.status = frame_files_valid(&run, first, animation.frame > 0 ? animation.frame : animation.frames);
+        if (run.status != CLI_OK)
+            return cli_finish(&run);
     }
     if (animation.video && !on_path("ffmpeg")) {
         fprintf(stderr, "--video: cannot find ffmpeg, which makes the film (install it with "
