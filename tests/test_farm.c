@@ -233,8 +233,34 @@ Test(assemble, joins_tiles_and_refuses_overlaps_gaps_and_tiles_past_the_edge) {
     cr_assert_not_null(f);
     fputs("not a picture\n", f);
     fclose(f);
-    expect_assemble(folder, "tile-0-16.png", 1, "assemble: tile-0-16.png: cannot read image");
+    expect_assemble(folder, "tile-0-16.png", 1,
+                    "assemble: tile-0-16.png: not a PNG (its first bytes are not PNG's signature)");
+    /* a TGA, which stb decodes too and which has no signature: any 18 bytes of header pass for one */
+    snprintf(junk, sizeof junk, "%s/tile-20-0.png", folder);
+    f = fopen(junk, "wb");
+    cr_assert_not_null(f);
+    const unsigned char tga[18] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 4, 0, 24, 0};
+    fwrite(tga, 1, sizeof tga, f);
+    for (int k = 0; k < 48; k++)
+        fputc(k, f);
+    fclose(f);
+    expect_assemble(folder, "--size 24 8 tile-0-0.png tile-10-0.png tile-20-0.png", 1,
+                    "assemble: tile-20-0.png: not a PNG (its first bytes are not PNG's signature)");
     expect_assemble(folder, "--size 0 4 tile-0-0.png", 2, "assemble: --size needs two whole numbers W H from 1 to 16384");
+    expect_assemble(folder, "tile-0-0.png -o", 2, "assemble: -o needs a file name");
+    /* the picture named as one of its tiles: it was written over the tile, exit 0 */
+    size_t before_size = 0, after_size = 0;
+    char tile[300];
+    snprintf(tile, sizeof tile, "%s/tile-0-0.png", folder);
+    char *before = read_file(tile, &before_size);
+    expect_assemble(folder, "tile-0-0.png tile-10-0.png tile-0-8.png tile-10-8.png -o ./tile-0-0.png", 2,
+                    "assemble: -o names './tile-0-0.png', one of the tiles it reads: writing it would destroy it; give "
+                    "another file");
+    char *after = read_file(tile, &after_size);
+    cr_assert(before != NULL && after != NULL);
+    cr_expect(before_size == after_size && memcmp(before, after, before_size) == 0, "the tile was overwritten");
+    free(before);
+    free(after);
 }
 
 /* Runs `command` (a farm script's line) and expects exit 2 with `message` among what it prints. */

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "image.h"
+#include "outfile.h"
 
 #define ASSEMBLE_ERROR_SIZE (PATH_MAX + 256) /* a message: a whole path and the reason */
 
@@ -125,7 +126,11 @@ static bool parse(int argc, char **argv, struct tile *tiles, int *count, const c
     *width = *height = 0;
     for (int k = 1; k < argc; k++) {
         const char *arg = argv[k];
-        if (strcmp(arg, "-o") == 0 && k + 1 < argc) {
+        if (strcmp(arg, "-o") == 0) {
+            if (k + 1 >= argc) {
+                fprintf(stderr, "assemble: -o needs a file name\n");
+                return false;
+            }
             *output = argv[++k];
         } else if (strcmp(arg, "--size") == 0) {
             if (k + 2 >= argc || !whole_number(argv[k + 1], 1, IMAGE_MAX_SIDE, width) ||
@@ -163,6 +168,12 @@ static bool parse(int argc, char **argv, struct tile *tiles, int *count, const c
         fprintf(stderr, "assemble: %s\n", *output == NULL ? "-o PICTURE.png is missing" : "no tiles given");
         return false;
     }
+    for (int k = 0; k < *count; k++)
+        if (outfile_same_file(*output, tiles[k].path)) { /* the picture would be written over the tile */
+            fprintf(stderr, "assemble: -o names '%s', one of the tiles it reads: writing it would destroy it; give "
+                    "another file\n", *output);
+            return false;
+        }
     return true;
 }
 
@@ -189,7 +200,17 @@ int main(int argc, char **argv) {
             status = 1;
             break;
         }
+        /* A tile is a PNG, as the chapters write them: stb would also decode a TGA, which has no
+         * signature, so that any 18 bytes may pass for one. */
+        static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+        unsigned char start[8];
+        bool png = fread(start, 1, sizeof start, probe) == sizeof start && memcmp(start, png_signature, 8) == 0;
         fclose(probe);
+        if (!png) {
+            fprintf(stderr, "assemble: %s: not a PNG (its first bytes are not PNG's signature)\n", t->path);
+            status = 1;
+            break;
+        }
         t->rgb = image_read_rgb(t->path, &t->width, &t->height, err, sizeof err);
         if (t->rgb == NULL) {
             fprintf(stderr, "assemble: %s\n", err);
