@@ -135,7 +135,11 @@ bool triangle_mesh_closest(const struct mesh *m, int material, const ray *r, dou
 }
 
 vec3 triangle_normal(vec3 a, vec3 b, vec3 c) {
-    return vec3_normalize(vec3_cross(vec3_sub(b, a), vec3_sub(c, a)));
+    vec3 n = vec3_cross(vec3_sub(b, a), vec3_sub(c, a));
+    /* A thin triangle's cross product can be so short that its squared length vanishes (a triangle 2
+     * long and 1e-170 wide gave an infinite normal and NaN pixels): its largest component is divided
+     * out first. Any other keeps the plain formula, bit for bit. */
+    return vec3_normalize(vec3_length(n) >= TRIANGLE_NORMAL_MIN_LENGTH ? n : vec3_unit_max(n));
 }
 
 double triangle_box_pad(const struct mesh *m) {

@@ -137,7 +137,12 @@ struct mesh; /* mesh.h (chapter 3) */
  * h->face the face's index within m. Returns true when *h was replaced. */
 bool triangle_mesh_closest(const struct mesh *m, int material, const ray *r, double t_min, struct hit *h);
 
-/* Returns the unit normal (b - a) x (c - a) of the triangle, by the right-hand rule on its winding. */
+/* Below this length, (b - a) x (c - a) is scaled before it is normalised: its square (1e-300) is still
+ * far above the smallest normal double, 2.2e-308. */
+#define TRIANGLE_NORMAL_MIN_LENGTH 1e-150
+
+/* Returns the unit normal (b - a) x (c - a) of the triangle, by the right-hand rule on its winding,
+ * however thin the triangle (not zero: its corners not on one line). */
 vec3 triangle_normal(vec3 a, vec3 b, vec3 c);
 
 /* ---- what keeps the acceleration structures' answers the brute-force loop's (chapters 9 to 11) -- */

@@ -206,7 +206,15 @@ static void run_rows(const struct hostile *rows, size_t count) {
 
 #define SPHERE_PAINTED "material m colour 1 1 1 pigment p\nsphere centre 0 0 0 radius 1.5 material m\n"
 
+/* A triangle 2 long and 1e-170 wide: its normal's squared length vanished, and the row of rays on its
+ * edge (the 8th of 15) came out NaN, so the chapters refused to write the picture. */
+#define THIN_TRIANGLE "image 15 15\ncamera eye 0 0 5 target 0 0 0 fov 40\nlight position 0 0 5\n" \
+                      "triangle a -1 0 0 b 1 0 0 c 0 1e-170 0\n"
+
 static const struct hostile non_finite[] = {
+    {3, THIN_TRIANGLE, "", 0, NULL},
+    {11, THIN_TRIANGLE, "", 0, NULL},
+    {16, THIN_TRIANGLE, "", 0, NULL},
     /* the texture transform: the point it makes must stay finite */
     {14, VIEW "pigment p image_map file @/grid.png rotate 1e308 0 0\n" SPHERE_PAINTED, "", 1,
      "SCENE:4: pigment 'p': rotate is (1e+308, 0, 0); it must stay within -1e+06 .. 1e+06"},
