@@ -38,10 +38,16 @@ static bool set_fail(char *err, size_t err_size, const char *spec, const char *f
     return false;
 }
 
+/* The characters that part words, as the scene's parser has them (scene.c): a line's words are found
+ * here as the parser finds them, so that --set changes the line the parser reads as that line. */
+#define SET_BLANKS " \t\r\v\f"
+
+static bool is_blank(char c) { return c != '\0' && strchr(SET_BLANKS, c) != NULL; }
+
 /* Splits `text` in place into words at blanks; returns the count (at most max), or -1 if more. */
 static int split_words(char *text, char **words, int max) {
     int count = 0;
-    for (char *cursor = strtok(text, " \t\r"); cursor != NULL; cursor = strtok(NULL, " \t\r")) {
+    for (char *cursor = strtok(text, SET_BLANKS); cursor != NULL; cursor = strtok(NULL, SET_BLANKS)) {
         if (count == max)
             return -1;
         words[count++] = cursor;
@@ -65,19 +71,19 @@ static bool find_line(const char *text, const char *directive, const char *name,
         const char *end = strchr(line, '\n');
         size_t length = end != NULL ? (size_t)(end - line) : strlen(line);
         const char *word = line;
-        while (*word == ' ' || *word == '\t')
+        while (is_blank(*word))
             word++;
         bool match = strncmp(word, directive, directive_length) == 0 &&
-                     (word[directive_length] == ' ' || word[directive_length] == '\t' ||
-                      word[directive_length] == '\r' || word + directive_length == line + length);
+                     (is_blank(word[directive_length]) || word[directive_length] == '#' ||
+                      word + directive_length == line + length);
         if (match && name != NULL) {
             const char *second = word + directive_length;
-            while (*second == ' ' || *second == '\t')
+            while (is_blank(*second))
                 second++;
             size_t name_length = strlen(name);
-            match = strncmp(second, name, name_length) == 0 && (second[name_length] == ' ' ||
-                    second[name_length] == '\t' || second[name_length] == '\r' || second[name_length] == '\n' ||
-                    second[name_length] == '#' || second[name_length] == '\0');
+            match = strncmp(second, name, name_length) == 0 &&
+                    (is_blank(second[name_length]) || second[name_length] == '\n' || second[name_length] == '#' ||
+                     second[name_length] == '\0');
         }
         if (match && ++seen == (ordinal > 0 ? ordinal : 1)) {
             *found = (struct line_span){start, length};

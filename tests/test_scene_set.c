@@ -176,6 +176,21 @@ Test(scene_set, a_key_is_found_only_where_keys_stand) {
     cr_expect(strstr(err, ": VALUE has more than 64 words") != NULL, "%s", err);
 }
 
+/* The parser parts words at vertical tabs and form feeds too: --set once took "sphere\vcentre ..." for
+ * no sphere line, and changed the next sphere instead (exit 0). */
+Test(scene_set, lines_are_found_with_the_parsers_blanks) {
+    char err[512];
+    char *scene = strdup("image\f16 12\nsphere\vcentre -1 0 0 radius 0.5\nsphere centre 1 0 0 radius 0.5\n"
+                         "material\vglass\fcolour 1 0 0\n");
+    cr_assert(scene_set_apply(&scene, "sphere.1.radius=0.1", err, sizeof err), "%s", err);
+    cr_assert(scene_set_apply(&scene, "sphere.2.radius=0.2", err, sizeof err), "%s", err);
+    cr_assert(scene_set_apply(&scene, "material.glass.ior=1.5", err, sizeof err), "%s", err);
+    cr_assert(scene_set_apply(&scene, "image=8 8", err, sizeof err), "%s", err);
+    cr_expect_str_eq(scene, "image 8 8\nsphere centre -1 0 0 radius 0.1\nsphere centre 1 0 0 radius 0.2\n"
+                            "material glass colour 1 0 0 ior 1.5\n");
+    free(scene);
+}
+
 Test(scene_set, a_bad_value_is_the_parsers_error_at_the_scene_line) {
     struct scene s;
     bool bad_spec = true;
