@@ -715,6 +715,15 @@ Test(command_line, the_frames_files_are_checked_before_any_frame_is_drawn) {
     cr_assert_not_null(now);
     cr_expect_str_eq(now, text, "the scene was overwritten");
     free(now);
+    /* a frame's picture that is its heat-map under another name (a link): the heat-map took its place */
+    remove(TEST_OUT "/fr-0001.png");
+    remove(TEST_OUT "/fh-0001.png");
+    cr_assert_eq(symlink("fh-0001.png", TEST_OUT "/fr-0001.png"), 0);
+    expect_chapter_run(16, TEST_OUT "/clip-0001 --frames 1 -o " TEST_OUT "/fr.png --heatmap " TEST_OUT "/fh.png", 2,
+                       "-o and --heatmap name the same file for frame 1 ('" TEST_OUT "/fr-0001.png' and '" TEST_OUT
+                       "/fh-0001.png'); give two");
+    cr_expect_neq(access(TEST_OUT "/fh-0001.png", F_OK), 0, "a frame was written");
+    remove(TEST_OUT "/fr-0001.png");
     /* --video's film too */
     f = fopen(TEST_OUT "/clip.mp4", "w");
     cr_assert_not_null(f);

@@ -117,26 +117,33 @@ static bool frame_file(const char *output, long k, char *name, size_t size) {
 
 /* Checks, before anything is rendered, the files the frames first..last will be written to (the
  * picture's, and the heat-map's with --heatmap): each name fits, none is a file the run reads
- * (cli_output_is_an_input), and the first and the last (the longest) can be created. Prints why not
- * and returns the exit status, or CLI_OK. */
+ * (cli_output_is_an_input), a frame's picture and heat-map are two files, and the first and the last
+ * (the longest) can be created. Prints why not and returns the exit status, or CLI_OK. */
 static int frame_files_valid(const struct cli_run *run, long first, long last) {
     const char *const options[] = {"-o", "--heatmap"};
     const char *const outputs[] = {run->options.output, run->options.heatmap};
-    for (int o = 0; o < 2; o++)
-        for (long k = first; outputs[o] != NULL && k <= last; k++) {
-            char name[PATH_MAX], option[64], err[PATH_MAX + 128];
-            if (!frame_file(outputs[o], k, name, sizeof name)) {
+    for (long k = first; k <= last; k++) {
+        char names[2][PATH_MAX];
+        for (int o = 0; o < 2 && outputs[o] != NULL; o++) {
+            char option[64], err[PATH_MAX + 128];
+            if (!frame_file(outputs[o], k, names[o], sizeof names[o])) {
                 fprintf(stderr, "%s: the name of frame %ld is too long\n", outputs[o], k);
                 return CLI_USAGE;
             }
             snprintf(option, sizeof option, "%s (its frame %ld)", options[o], k);
-            if (cli_output_is_an_input(run, option, name))
+            if (cli_output_is_an_input(run, option, names[o]))
                 return CLI_USAGE;
-            if ((k == first || k == last) && !outfile_can_create(name, err, sizeof err)) {
+            if ((k == first || k == last) && !outfile_can_create(names[o], err, sizeof err)) {
                 fprintf(stderr, "%s\n", err);
                 return CLI_OUTPUT_FAILED;
             }
         }
+        if (outputs[1] != NULL && outfile_same_file(names[0], names[1])) {
+            fprintf(stderr, "-o and --heatmap name the same file for frame %ld ('%s' and '%s'); give two\n", k,
+                    names[0], names[1]);
+            return CLI_USAGE;
+        }
+    }
     char film[PATH_MAX];
     size_t stem = strlen(run->options.output) - 4; /* with --video, -o ends in .png (animation_options_valid) */
     if (animation.video && snprintf(film, sizeof film, "%.*s.mp4", (int)stem, run->options.output) < (int)sizeof film &&
