@@ -209,7 +209,7 @@ $(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/comm
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # The render farm's tile assembler (tools/farm/assemble.c, docs/farm.md).
-$(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+$(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUILD)/common/infile.o $(BUILD)/common/outfile.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # The tests that take a minute or more run in make test-long, not make test: Criterion's "suite/test"

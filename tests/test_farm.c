@@ -234,7 +234,7 @@ Test(assemble, joins_tiles_and_refuses_overlaps_gaps_and_tiles_past_the_edge) {
     fputs("not a picture\n", f);
     fclose(f);
     expect_assemble(folder, "tile-0-16.png", 1,
-                    "assemble: tile-0-16.png: not a PNG (its first bytes are not PNG's signature)");
+                    "assemble: tile-0-16.png: not a PNG (its first bytes are not PNG's signature and header)");
     /* a TGA, which stb decodes too and which has no signature: any 18 bytes of header pass for one */
     snprintf(junk, sizeof junk, "%s/tile-20-0.png", folder);
     f = fopen(junk, "wb");
@@ -245,9 +245,28 @@ Test(assemble, joins_tiles_and_refuses_overlaps_gaps_and_tiles_past_the_edge) {
         fputc(k, f);
     fclose(f);
     expect_assemble(folder, "--size 24 8 tile-0-0.png tile-10-0.png tile-20-0.png", 1,
-                    "assemble: tile-20-0.png: not a PNG (its first bytes are not PNG's signature)");
+                    "assemble: tile-20-0.png: not a PNG (its first bytes are not PNG's signature and header)");
     expect_assemble(folder, "--size 0 4 tile-0-0.png", 2, "assemble: --size needs two whole numbers W H from 1 to 16384");
     expect_assemble(folder, "tile-0-0.png -o", 2, "assemble: -o needs a file name");
+    /* a FIFO is refused without waiting for a writer (assemble once hung on it) */
+    snprintf(junk, sizeof junk, "%s/fifo-tile-0-0.png", folder);
+    remove(junk);
+    cr_assert_eq(mkfifo(junk, 0644), 0);
+    expect_assemble(folder, "fifo-tile-0-0.png", 1, "assemble: fifo-tile-0-0.png: not a regular file (a FIFO)");
+    /* a header declaring a huge tile is refused before a pixel is decoded */
+    size_t size = 0;
+    snprintf(junk, sizeof junk, "%s/tile-0-0.png", folder);
+    unsigned char *png = (unsigned char *)read_file(junk, &size);
+    cr_assert_not_null(png);
+    memcpy(png + 16, (const unsigned char[]){0, 1, 0x86, 0xa0}, 4); /* 100000 wide */
+    snprintf(junk, sizeof junk, "%s/tile-0-20.png", folder);
+    f = fopen(junk, "wb");
+    cr_assert_not_null(f);
+    fwrite(png, 1, size, f);
+    fclose(f);
+    free(png);
+    expect_assemble(folder, "tile-0-20.png", 1,
+                    "assemble: tile-0-20.png: its header declares 100000 x 8 pixels; a tile has 1 to 16384 a side");
     /* the picture named as one of its tiles: it was written over the tile, exit 0 */
     size_t before_size = 0, after_size = 0;
     char tile[300];

@@ -19,16 +19,48 @@
 #include <string.h>
 
 #include "image.h"
+#include "infile.h"
 #include "outfile.h"
 
 #define ASSEMBLE_ERROR_SIZE (PATH_MAX + 256) /* a message: a whole path and the reason */
 
-/* One tile: its file and where its top-left pixel goes. */
+/* One tile: its file, where its top-left pixel goes, and its size as its header declares it. */
 struct tile {
     const char *path;
     int left, top, width, height;
-    uint8_t *rgb;
 };
+
+/* A PNG's first 24 bytes: its signature, then its header chunk's length, type, width and height. */
+#define PNG_SIZE_END 24
+
+/* Reads tile t's size from its PNG header, without decoding a pixel, so that a tile too large for the
+ * picture is refused before its pixels take memory. Opens it with infile_open, which never waits (a
+ * FIFO is refused). Returns false with "path: reason" in err. */
+static bool tile_size(struct tile *t, char *err, size_t err_size) {
+    FILE *file = infile_open(t->path, err, err_size);
+    if (file == NULL)
+        return false;
+    static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned char b[PNG_SIZE_END];
+    bool whole = fread(b, 1, sizeof b, file) == sizeof b;
+    fclose(file);
+    /* A tile is a PNG, as the chapters write them: stb would also decode a TGA, which has no signature,
+     * so that any 18 bytes may pass for one. */
+    if (!whole || memcmp(b, png_signature, sizeof png_signature) != 0 || memcmp(b + 12, "IHDR", 4) != 0) {
+        snprintf(err, err_size, "%s: not a PNG (its first bytes are not PNG's signature and header)", t->path);
+        return false;
+    }
+    unsigned long width = (unsigned long)b[16] << 24 | (unsigned long)b[17] << 16 | (unsigned long)b[18] << 8 | b[19];
+    unsigned long height = (unsigned long)b[20] << 24 | (unsigned long)b[21] << 16 | (unsigned long)b[22] << 8 | b[23];
+    if (width < 1 || height < 1 || width > IMAGE_MAX_SIDE || height > IMAGE_MAX_SIDE) {
+        snprintf(err, err_size, "%s: its header declares %lu x %lu pixels; a tile has 1 to %d a side", t->path, width,
+                 height, IMAGE_MAX_SIDE);
+        return false;
+    }
+    t->width = (int)width;
+    t->height = (int)height;
+    return true;
+}
 
 static void usage(void) {
     fprintf(stderr, "usage: assemble -o PICTURE.png [--size W H] TILE...\n"
@@ -192,27 +224,11 @@ int main(int argc, char **argv) {
     }
     char err[ASSEMBLE_ERROR_SIZE];
     bool sized = width > 0;
+    /* First every tile's size, from its header: the picture's size and the tiles' fit are settled
+     * before a pixel is decoded. */
     for (int k = 0; k < count && status == 0; k++) {
         struct tile *t = &tiles[k];
-        FILE *probe = fopen(t->path, "rb"); /* for the system's reason: stb's own says less */
-        if (probe == NULL) {
-            fprintf(stderr, "assemble: %s: cannot open: %s\n", t->path, strerror(errno));
-            status = 1;
-            break;
-        }
-        /* A tile is a PNG, as the chapters write them: stb would also decode a TGA, which has no
-         * signature, so that any 18 bytes may pass for one. */
-        static const unsigned char png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-        unsigned char start[8];
-        bool png = fread(start, 1, sizeof start, probe) == sizeof start && memcmp(start, png_signature, 8) == 0;
-        fclose(probe);
-        if (!png) {
-            fprintf(stderr, "assemble: %s: not a PNG (its first bytes are not PNG's signature)\n", t->path);
-            status = 1;
-            break;
-        }
-        t->rgb = image_read_rgb(t->path, &t->width, &t->height, err, sizeof err);
-        if (t->rgb == NULL) {
+        if (!tile_size(t, err, sizeof err)) {
             fprintf(stderr, "assemble: %s\n", err);
             status = 1;
         } else if (!sized) {
@@ -234,19 +250,29 @@ int main(int argc, char **argv) {
         fprintf(stderr, "assemble: out of memory for a %d x %d picture\n", width, height);
         status = 3;
     }
+    /* Then each tile's pixels, one tile at a time, into the picture. */
     for (int k = 0; k < count && status == 0; k++) {
         const struct tile *t = &tiles[k];
-        for (int y = 0; y < t->height; y++) /* the tile's rows into the picture's */
+        int read_width = 0, read_height = 0;
+        uint8_t *rgb = image_read_rgb(t->path, &read_width, &read_height, err, sizeof err);
+        if (rgb == NULL) {
+            fprintf(stderr, "assemble: %s\n", err);
+            status = 1;
+        } else if (read_width != t->width || read_height != t->height) {
+            fprintf(stderr, "assemble: %s: decoded as %d x %d pixels, not the %d x %d its header declares\n", t->path,
+                    read_width, read_height, t->width, t->height);
+            status = 1;
+        }
+        for (int y = 0; status == 0 && y < t->height; y++) /* the tile's rows into the picture's */
             memcpy(&picture.rgb[3 * ((size_t)(t->top + y) * (size_t)width + (size_t)t->left)],
-                   &t->rgb[3 * (size_t)y * (size_t)t->width], 3 * (size_t)t->width);
+                   &rgb[3 * (size_t)y * (size_t)t->width], 3 * (size_t)t->width);
+        free(rgb);
     }
     if (status == 0 && !image_write_png(&picture, output, err, sizeof err)) {
         fprintf(stderr, "assemble: %s\n", err);
         status = 3;
     }
     image_free(&picture);
-    for (int k = 0; k < count; k++)
-        free(tiles[k].rgb);
     free(tiles);
     return status;
 }
