@@ -128,13 +128,19 @@ static void kdtree_for_each_hit_any(const void *tree, const ray *r, double t_min
 
 static void kdtree_free_any(void *tree) { kdtree_free(tree); }
 
+/* The message for --split given with --accel none; returns accel_parse_option's -1. */
+static int split_without_structure(void) {
+    fprintf(stderr, "--split chooses how a structure is built, and --accel none builds none: give one or the other\n");
+    return -1;
+}
+
 int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *option, const char *value) {
     static const char *kinds[] = {"none", "kdtree", "bvh"};
     if (strcmp(option, "--accel") == 0) {
         for (int k = 0; k < 3; k++)
             if ((allowed & (1u << k)) && value != NULL && strcmp(value, kinds[k]) == 0) {
                 c->kind = (enum accel_kind)k;
-                return 2;
+                return c->kind == ACCEL_NONE && c->split_given ? split_without_structure() : 2;
             }
         fprintf(stderr, "--accel needs one of:");
         for (int k = 0; k < 3; k++)
@@ -148,7 +154,8 @@ int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *opt
     if (strcmp(option, "--split") == 0) {
         if (value != NULL && (strcmp(value, "sah") == 0 || strcmp(value, "seed") == 0)) {
             c->sah = strcmp(value, "sah") == 0;
-            return 2;
+            c->split_given = true;
+            return c->kind == ACCEL_NONE ? split_without_structure() : 2;
         }
         char got[256];
         text_escape(value != NULL ? value : "", got, sizeof got);

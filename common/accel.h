@@ -58,11 +58,13 @@ struct accel_choice {
     enum accel_kind kind;
     bool sah;        /* --split sah (the default), else the seed's rule: kd-tree by the axis holding
                         most objects, BVH by the median */
+    bool split_given; /* --split was on the command line: --accel none, which builds nothing, refuses it */
 };
 
 /* Reads --accel KIND (one of the kinds allowed by the mask 1 << ACCEL_...) and --split RULE into *c,
  * in the shape of struct chapter's parse_option: returns 2 when the option was used, 0 when it is
- * not one of these, -1 after printing why the value is wrong. */
+ * not one of these, -1 after printing why the value is wrong, or why the two do not go together
+ * (--split with --accel none, in either order: no structure is built, so no rule would be used). */
 int accel_parse_option(struct accel_choice *c, unsigned allowed, const char *option, const char *value);
 
 /* Makes a heap-allocated accel_world for s with the structure `c` asks for when it is chapter 9's (none

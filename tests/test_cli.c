@@ -58,6 +58,16 @@ Test(cli, a_wrong_accel_is_refused_with_the_choices) {
                        "--rung needs 1 to 11 or one of: plain wide simd prefetch build float compact eight lean packet exact-float; got 'fast'");
 }
 
+Test(cli, a_rule_or_rung_for_a_structure_not_built_is_refused) {
+    const char *split = "--split chooses how a structure is built, and --accel none builds none: give one or the other";
+    expect_chapter_run(9, "--accel none --split seed", 2, split);
+    expect_chapter_run(15, "--split sah --accel none", 2, split);
+    expect_chapter_run(11, "--accel none --rung 3", 2,
+                       "--rung picks a step of the BVH's ladder, and --accel none builds no BVH: give one or the other");
+    expect_chapter_run(11, "--rung packet --accel kdtree", 2,
+                       "--rung picks a step of the BVH's ladder, and --accel kdtree builds no BVH: give one or the other");
+}
+
 Test(cli, a_missing_scene_file_is_bad_input) {
     expect_chapter_run(2, "no/such.scene", 1, "no/such.scene: cannot open: No such file or directory");
 }

@@ -257,7 +257,7 @@ Test(world, a_structures_faces_keep_their_objects_after_a_gathered_mesh_is_freed
               "mesh octahedron.obj translate -3 0 -5\nmesh octahedron.obj translate 0 0 -5\n"
               "mesh octahedron.obj translate 3 0 -5\n");
     char err[512] = "";
-    struct accel_world *w = accel_world_create(&f.scene, &(struct accel_choice){ACCEL_KDTREE, true}, err, sizeof err);
+    struct accel_world *w = accel_world_create(&f.scene, &(struct accel_choice){.kind = ACCEL_KDTREE, .sah = true}, err, sizeof err);
     cr_assert_not_null(w, "%s", err);
     mesh_free(&f.scene.meshes[0].mesh);
     for (int k = 1; k <= 2; k++) {
@@ -302,7 +302,7 @@ Test(world, a_lone_mesh_is_borrowed_by_the_structure_and_more_are_copied) {
         struct fixture f;
         build(&f, scenes[k]);
         char err[512] = "";
-        struct accel_world *w = accel_world_create(&f.scene, &(struct accel_choice){ACCEL_KDTREE, true}, err, sizeof err);
+        struct accel_world *w = accel_world_create(&f.scene, &(struct accel_choice){.kind = ACCEL_KDTREE, .sah = true}, err, sizeof err);
         cr_assert_not_null(w, "%s", err);
         const struct mesh *m = &f.scene.meshes[0].mesh;
         bool shared = w->triangles.vertices == m->vertices && w->triangles.faces == m->faces;

@@ -149,11 +149,14 @@ function commandArgs(text, coarse) {
     const samplesKey = PATH_CHAPTERS.includes(n) ? "paths.samples" : n >= 12 ? "antialias.samples" : null;
     if (samplesKey && (coarse || $("samples").value))
         set(`${samplesKey}=${coarse ? 1 : $("samples").value}`);
-    if (READS.accel(n) && $("accel").value)
-        args.push("--accel", $("accel").value);
-    if (READS.split(n) && $("split").value)
+    const accel = READS.accel(n) ? $("accel").value : "";
+    if (accel)
+        args.push("--accel", accel);
+    // The programs refuse --split with --accel none, and --rung with any structure but the BVH: a
+    // structure that is not built has no rule and no rungs, so those controls then pass nothing.
+    if (READS.split(n) && $("split").value && accel !== "none")
         args.push("--split", $("split").value);
-    if (READS.rung(n) && $("rung").value)
+    if (READS.rung(n) && $("rung").value && (accel === "" || accel === "bvh"))
         args.push("--rung", $("rung").value);
     let [w, h] = pictureSize(text);
     if (coarse)

@@ -691,6 +691,14 @@ def main():
                 page.set_control("rung", rung)
                 page.wait_idle(n + 1, timeout=300)
                 compare_with_native(page, o.build, chapter, f"chapter 11 at 160 x 120, rung {rung}")
+            if chapter == 11:  # no structure built: the rung and split controls pass nothing (the programs refuse them)
+                for control, value in (("split", "seed"), ("accel", "none")):
+                    n = page.full_shown()
+                    page.set_control(control, value)
+                    page.wait_idle(n + 1, timeout=300)
+                got = compare_with_native(page, o.build, chapter, "chapter 11 at 160 x 120, --accel none")
+                check("--accel" in got["args"] and "--rung" not in got["args"] and "--split" not in got["args"],
+                      f"chapter 11 with no structure passes neither rung nor split: {' '.join(got['args'])}")
             if chapter == 15:  # the bounces control sets the paths line's bounces
                 n = page.full_shown()
                 page.set_control("bounces", "1")

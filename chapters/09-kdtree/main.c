@@ -12,7 +12,7 @@
 #include "triangle.h"
 #include "whitted.h"
 
-static struct accel_choice choice = {ACCEL_KDTREE, true};
+static struct accel_choice choice = {.kind = ACCEL_KDTREE, .sah = true};
 
 static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE, option, value);

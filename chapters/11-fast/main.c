@@ -21,20 +21,31 @@
 #include "triangle.h"
 #include "whitted.h"
 
-static struct accel_choice choice = {ACCEL_BVH, true};
+static struct accel_choice choice = {.kind = ACCEL_BVH, .sah = true};
 static int rung = FAST_BVH_RUNG_DEFAULT;
+
+static bool rung_given; /* --rung was on the command line: only the BVH has rungs */
+
+/* The message for --rung given with an --accel other than bvh; returns parse_option's -1. */
+static int rung_without_bvh(void) {
+    fprintf(stderr, "--rung picks a step of the BVH's ladder, and --accel %s builds no BVH: give one or the other\n",
+            choice.kind == ACCEL_NONE ? "none" : "kdtree");
+    return -1;
+}
 
 static int parse_option(const char *option, const char *value) {
     if (strcmp(option, "--rung") == 0) {
         rung = value != NULL ? fast_bvh_rung_from_name(value) : 0;
+        rung_given = true;
         if (rung != 0)
-            return 2;
+            return choice.kind == ACCEL_BVH ? 2 : rung_without_bvh();
         fprintf(stderr, "--rung needs 1 to 11 or one of: plain wide simd prefetch build float compact eight lean "
                         "packet exact-float; got '%s'\n",
                 value != NULL ? value : "");
         return -1;
     }
-    return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
+    int used = accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);
+    return used == 2 && rung_given && choice.kind != ACCEL_BVH ? rung_without_bvh() : used;
 }
 
 /* Rung 7: frees the scene's meshes once w has gathered their triangles, so that the program does not

@@ -17,7 +17,7 @@
 #include "sphere.h"
 #include "triangle.h"
 
-static struct accel_choice choice = {ACCEL_BVH, true};
+static struct accel_choice choice = {.kind = ACCEL_BVH, .sah = true};
 
 static int parse_option(const char *option, const char *value) {
     return accel_parse_option(&choice, 1u << ACCEL_NONE | 1u << ACCEL_KDTREE | 1u << ACCEL_BVH, option, value);

@@ -311,7 +311,7 @@ int main(int argc, char **argv) {
     if (!scene_load_meshes(&run.scene, run.err, sizeof run.err) ||
         !instances_objects_open(&run.scene, run.err, sizeof run.err))
         return cli_fail(&run);
-    static const struct accel_choice choice = {ACCEL_BVH, true};
+    static const struct accel_choice choice = {.kind = ACCEL_BVH, .sah = true};
     struct accel_world *w =
         accel_world_create_at_rung(&run.scene, &choice, FAST_BVH_RUNG_DEFAULT, run.err, sizeof run.err);
     if (w == NULL)

@@ -21,7 +21,7 @@
 #include "text_escape.h"
 #include "triangle.h"
 
-static struct accel_choice choice = {ACCEL_BVH, true};
+static struct accel_choice choice = {.kind = ACCEL_BVH, .sah = true};
 /* --form cycles-3.4: the lobes as Cycles 3.4 writes them, for the comparison with it only (rough_surface.h). */
 static const struct path_surface *rough_hook = &rough_surface_hook;
 

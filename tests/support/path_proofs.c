@@ -23,7 +23,7 @@ static bool setup_from_scene(struct path_setup *t, char *err, size_t err_size) {
     memset(&t->emitters, 0, sizeof t->emitters);
     if (emitter_add_area_lights(&t->scene, err, err_size) < 0)
         return false;
-    struct accel_choice none = {ACCEL_NONE, true};
+    struct accel_choice none = {.kind = ACCEL_NONE, .sah = true};
     t->world = accel_world_create(&t->scene, &none, err, err_size);
     if (t->world == NULL || !emitter_list_build(&t->emitters, t->world, err, err_size))
         return false;
