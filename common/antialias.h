@@ -74,7 +74,7 @@ void antialias_povray_options(const struct antialias *a, char *out, size_t out_s
 
 /* Writes the twin's comment lines that say how POV-Ray renders it: "// Antialias options: ..." for
  * ADAPTIVE and RECURSIVE, "// Antialias box: n" for GRID and JITTER, nothing for NONE. The scripts and
- * tests that render twins read these lines (tools/compare-povray.sh, tests/image_test_support.c). */
+ * tests that render twins read these lines (tools/compare-povray.sh, tests/support/image_test_support.c). */
 void antialias_write_pov(FILE *out, const struct antialias *a);
 
 #endif

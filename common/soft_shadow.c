@@ -25,7 +25,7 @@ static void oriented_axes(const struct light *light, vec3 point, vec3 *axis1, ve
 
 /* The offset of grid point (u, v) from the centre, along axes a1 and a2. */
 static vec3 grid_offset(const struct area_light *a, vec3 a1, vec3 a2, int u, int v) {
-    if (a->circular) { /* a square of the grid pushed onto the circle through its corners (POV-Ray's) */
+    if (a->circular) { /* each square ring of the grid pulled onto its inscribed circle (POV-Ray's) */
         double x = (double)u / (a->size1 - 1) - 0.5 + SOFT_SHADOW_CIRCULAR_NUDGE;
         double y = (double)v / (a->size2 - 1) - 0.5 + SOFT_SHADOW_CIRCULAR_NUDGE;
         double scale = fmax(fabs(x), fabs(y)) / sqrt(x * x + y * y);

@@ -252,7 +252,7 @@ Test(supersample, jitter_puts_one_sample_in_each_cell_and_repeats_itself) {
 
 /* The adaptive rule on a vertical edge at x = 10.3 across a 32 x 32 block: column 10's centre (10.5) is
  * black and differs from column 9's, so both are refined, and so is column 11, whose left neighbour is
- * now a refined grey. Column 10 takes its centre and 3 of its 9 grid samples white: 3 / 10. */
+ * now a refined grey. Column 10 takes its centre (black) and its 9 grid samples, 3 of them white: 3 / 10. */
 Test(supersample, adaptive_refines_both_sides_of_an_edge_and_the_grey_it_makes) {
     struct edge_view e = {.edge = 10.3};
     struct sample_view view = {edge_colour, &e};
