@@ -200,6 +200,14 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
                  "rendering; give one of them");
         return CLI_USAGE;
     }
+    /* A render's own outputs would be silently left unwritten under --pov. */
+    const char *render_output = o->output_given ? "-o" : o->heatmap != NULL ? "--heatmap"
+                                : o->chapter_output != NULL ? ch->output_option : NULL;
+    if (o->pov != NULL && render_output != NULL) {
+        complain("%s names an output of the render, and --pov writes the scene's POV-Ray twin instead of rendering; "
+                 "give one of them", render_output);
+        return CLI_USAGE;
+    }
     if (o->pov == NULL) { /* with --pov nothing but the twin is written */
         const char *names[] = {"-o", "--heatmap", ch->output_option};
         const char *files[] = {o->output, o->heatmap, o->chapter_output};

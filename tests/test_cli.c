@@ -68,6 +68,21 @@ Test(cli, a_rule_or_rung_for_a_structure_not_built_is_refused) {
                        "--rung picks a step of the BVH's ladder, and --accel kdtree builds no BVH: give one or the other");
 }
 
+Test(cli, a_renders_outputs_and_frames_are_refused_with_pov) {
+    const char *twin = "--pov writes the scene's POV-Ray twin instead of rendering; give one of them";
+    char expected[256];
+    snprintf(expected, sizeof expected, "-o names an output of the render, and %s", twin);
+    expect_chapter_run(2, "--pov " TEST_OUT "/refused.pov -o " TEST_OUT "/refused.png", 2, expected);
+    snprintf(expected, sizeof expected, "--heatmap names an output of the render, and %s", twin);
+    expect_chapter_run(12, "--heatmap " TEST_OUT "/refused-heat.png --pov " TEST_OUT "/refused.pov", 2, expected);
+    expect_chapter_run(16, "--pov " TEST_OUT "/refused.pov --frames 3", 2,
+                       "--frames, --frame, --video, --refit and --rebuild are for rendering frames, and --pov writes "
+                       "the scene's POV-Ray twin instead (its clock runs over POV-Ray's own frames); give one or the other");
+    struct stat st;
+    cr_assert(stat(TEST_OUT "/refused.pov", &st) != 0 && stat(TEST_OUT "/refused.png", &st) != 0,
+              "nothing is written");
+}
+
 Test(cli, a_missing_scene_file_is_bad_input) {
     expect_chapter_run(2, "no/such.scene", 1, "no/such.scene: cannot open: No such file or directory");
 }
@@ -114,8 +129,8 @@ Test(cli, an_output_that_cannot_be_created_is_found_before_anything_else_is_done
     expect_chapter_run(15, TEST_OUT "/no-such.scene -o " TEST_OUT "/x.png --hdr " TEST_OUT "/no/such/folder/x.pfm", 3,
                        TEST_OUT "/no/such/folder/x.pfm: cannot create: No such file or directory");
     expect_chapter_run(2, TEST_OUT "/no-such.scene -o " TEST_OUT, 3, TEST_OUT ": cannot create: Is a directory");
-    /* Only the outputs that will be written: with --pov, the picture's is not. */
-    expect_chapter_run(2, "--pov " TEST_OUT "/early.pov -o " TEST_OUT "/no/such/folder/x.png --quiet", 0, "");
+    /* Only the outputs that will be written: with --pov, the default picture's is not. */
+    expect_chapter_run(2, "--pov " TEST_OUT "/early.pov --quiet", 0, "");
     /* The trial leaves nothing behind in the folder it tried. */
     cr_assert_eq(system("rm -rf " TEST_OUT "/trial"), 0);
     mkdir(TEST_OUT "/trial", 0755);

@@ -281,10 +281,11 @@ Test(io, the_linear_radiance_may_not_share_a_file_with_the_picture_or_the_heat_m
     expect_chapter_run(15, IO_QUICK_PATHS " --hdr out/chapter-15.png", 2,
                        "-o and --hdr name the same file ('out/chapter-15.png' and 'out/chapter-15.png'); give two");
     expect_chapter_run(15, IO_QUICK_PATHS " -o - --hdr -", 2, "-o and --hdr name the same file ('-' and '-'); give two");
-    /* Under --pov nothing but the twin is written, so nothing is named twice. */
+    /* Under --pov nothing but the twin is written: a render's outputs are refused with it. */
     snprintf(arguments, sizeof arguments, IO_QUICK_PATHS " --pov " TEST_OUT "/io-hdr.pov --hdr out/chapter-15.png "
              "--quiet");
-    expect_chapter_run(15, arguments, 0, "");
+    expect_chapter_run(15, arguments, 2, "--hdr names an output of the render, and --pov writes the scene's POV-Ray "
+                                         "twin instead of rendering; give one of them");
 }
 
 Test(io, the_linear_radiance_follows_the_rules_of_every_output) {

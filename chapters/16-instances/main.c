@@ -86,7 +86,10 @@ static bool names_png(const char *name) {
 /* Checks the animation options against each other; prints why not and returns false. */
 static bool animation_options_valid(const struct cli_options *o) {
     const char *problem = NULL;
-    if (animation.frame > 0 && animation.frames == 0)
+    if (o->pov != NULL && (animation.frames > 0 || animation.video || animation.update_options > 0))
+        problem = "--frames, --frame, --video, --refit and --rebuild are for rendering frames, and --pov writes the "
+                  "scene's POV-Ray twin instead (its clock runs over POV-Ray's own frames); give one or the other";
+    else if (animation.frame > 0 && animation.frames == 0)
         problem = "--frame K needs --frames N";
     else if (animation.frame > animation.frames)
         problem = "--frame K must be at most --frames N";
