@@ -20,8 +20,8 @@ vec3 phong_shade(const struct scene *s, const struct phong_surface *at, phong_sh
         const struct light *light = &s->lights[k];
         vec3 to_light = vec3_normalize(vec3_sub(light->position, at->point));
         double cosine = vec3_dot(at->normal, to_light);
-        if (cosine < PHONG_MIN_COSINE)
-            continue; /* the light is behind the surface (or grazing it) */
+        if (!(cosine >= PHONG_MIN_COSINE))
+            continue; /* behind the surface, grazing it, or on the point itself (no direction: NaN) */
         vec3 reaching = light->colour;
         if (shadow != NULL) {
             reaching = vec3_mul(reaching, shadow(world, at->point, light));

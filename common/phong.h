@@ -5,7 +5,7 @@
  * position Lp with colour Lc and unit direction L = (Lp - P) / |Lp - P|:
  *
  *   I = ambient * Ia * C * opacity
- *     + sum over lights with N.L >= PHONG_MIN_COSINE of
+ *     + sum over lights with N.L >= PHONG_MIN_COSINE (none for a light at P itself: no L) of
  *           S * Lc * ( diffuse * (N.L) * opacity * C  +  phong * max(0, R.L)^phong_size )
  *
  * where Ia is the scene's ambient light, R = D - 2 (D.N) N the mirror direction of the ray, S the

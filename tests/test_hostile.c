@@ -27,6 +27,11 @@
 
 /* What most rows start with: lines 1 to 3. */
 #define VIEW "image 8 6\ncamera eye 0 0 5 target 0 0 0 fov 40\nlight position 5 8 4\n"
+/* A plane seen from above with `light` on it, right where the middle pixel's ray meets it, and a second
+ * light that shades the plane from pixel to pixel. */
+#define LIGHT_ON_POINT(light)                                                                                  \
+    "camera eye 0 5 0 target 0 0 0 up 0 0 1 fov 40\nimage 3 3\nlight position 2 4 1\n" light                   \
+    "material m colour 1 1 1 ambient 0.2 diffuse 1\nplane normal 0 1 0 distance 0 material m\n"
 /* The scene of the edge hit: one triangle of a flat mesh, seen so that a pixel's ray meets its edge. */
 #define EDGE "image 4 3\ncamera eye 0 2 8.5 target 0 0 0 fov 7\nlight position 5 8 4\nmesh @/edge.obj\n"
 
@@ -336,6 +341,12 @@ static const struct hostile non_finite[] = {
               "triangle a 0 3 0 b 1 4 1 c 2 5 2 material lamp\n", "", 1,
      "SCENE: nothing gives off light, so the picture would be black: the 1 emissive surface gives no power (no "
      "area, its corners in a line, or an emission times area below double's range) and the background is black"},
+    /* a light on the very point a camera ray hits (the middle pixel's): no direction to it, which made a NaN
+     * pixel and a refused picture; it lights nothing there */
+    {6, LIGHT_ON_POINT("light position 0 0 0\n"), "", 0, NULL},
+    {8, LIGHT_ON_POINT("light position 0 0 0\n"), "", 0, NULL},
+    {13, LIGHT_ON_POINT("light position 0 0 0 axis1 1 0 0 axis2 0 0 1 samples 3 3 circular on orient on\n"), "", 0, NULL},
+    {16, LIGHT_ON_POINT("light position 0 0 0\n"), "", 0, NULL},
 };
 
 Test(hostile, numbers_that_are_in_range_make_nothing_that_is_not_finite, .timeout = 120) { RUN_ROWS(non_finite); }
