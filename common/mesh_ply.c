@@ -162,8 +162,10 @@ static bool parse_element(const struct mesh_input *in, size_t line, const struct
     enum ply_kind kind = mesh_token_is(words[1], "vertex") ? KIND_VERTEX
                          : mesh_token_is(words[1], "face") ? KIND_FACE
                                                            : KIND_OTHER;
-    for (size_t k = 0; k < h->element_count; k++)
-        if (kind != KIND_OTHER && h->elements[k].kind == kind)
+    /* Only a vertex or face element looks back, and there is at most one of each: a header of many other
+     * elements is read in time in proportion to them, not to their square. */
+    for (size_t k = 0; kind != KIND_OTHER && k < h->element_count; k++)
+        if (h->elements[k].kind == kind)
             return mesh_fail_line(in, line, "second element %.*s", mesh_shown(words[1]), words[1].text);
     void *array = h->elements;
     bool ok = mesh_reserve(&array, &h->element_capacity, h->element_count + 1, sizeof *h->elements);
