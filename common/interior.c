@@ -97,10 +97,10 @@ struct interior_list interior_at_point(const struct world *w, vec3 point) {
     for (size_t k = 0; k < w->bounded_count; k++)
         add_containing(&list, s, &w->bounded[k], point);
     add_containing(&list, s, &w->triangles, point);
-    for (size_t k = 0; k < s->mesh_count; k++) {
+    for (size_t n = 0; n < w->clear_mesh_count; n++) { /* the meshes that let light through */
+        size_t k = w->clear_meshes[n];
         const struct scene_mesh *m = &s->meshes[k];
-        if (is_transparent(s, m->material) && aabb_contains(&w->mesh_bounds[k], point) &&
-            mesh_contains(&m->mesh, point))
+        if (aabb_contains(&w->mesh_bounds[k], point) && mesh_contains(&m->mesh, point))
             push(&list, world_mesh_object_number(s, k), s->materials[m->material].ior);
     }
     for (size_t k = 0; k < w->unbounded_count; k++)

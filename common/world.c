@@ -73,7 +73,8 @@ static bool init(struct world *w, const struct scene *s, bool every_box, char *e
     }
     w->mesh_bounds = calloc(s->mesh_count + 1, sizeof *w->mesh_bounds);
     w->mesh_first_face = calloc(s->mesh_count + 1, sizeof *w->mesh_first_face);
-    if (w->mesh_bounds == NULL || w->mesh_first_face == NULL) {
+    w->clear_meshes = calloc(s->mesh_count + 1, sizeof *w->clear_meshes);
+    if (w->mesh_bounds == NULL || w->mesh_first_face == NULL || w->clear_meshes == NULL) {
         world_free(w);
         snprintf(err, err_size, "out of memory");
         return false;
@@ -83,6 +84,8 @@ static bool init(struct world *w, const struct scene *s, bool every_box, char *e
         bool passes_light = material_passes_light(&s->materials[s->meshes[k].material]);
         w->mesh_bounds[k] = every_box || passes_light ? world_mesh_cull_bounds(&s->meshes[k].mesh) : aabb_everything();
         w->mesh_first_face[k + 1] = w->mesh_first_face[k] + s->meshes[k].mesh.face_count;
+        if (passes_light)
+            w->clear_meshes[w->clear_mesh_count++] = k;
     }
     return true;
 }
@@ -98,8 +101,11 @@ bool world_init_for_structure(struct world *w, const struct scene *s, char *err,
 void world_free(struct world *w) {
     free(w->mesh_bounds);
     free(w->mesh_first_face);
+    free(w->clear_meshes);
     w->mesh_bounds = NULL;
     w->mesh_first_face = NULL;
+    w->clear_meshes = NULL;
+    w->clear_mesh_count = 0;
 }
 
 /* The object a face of the acceleration structure belongs to: the `triangle` directives come first,
@@ -109,13 +115,21 @@ static int accel_face_object(const struct world *w, uint32_t face, int *local) {
     *local = (int)face;
     if (face < w->triangles.count)
         return w->triangles.first_object + (int)face;
+    /* The first mesh whose faces end after `face`, found by halving: mesh_first_face only ever grows, and a
+     * scene may hold a hundred thousand meshes, so a look at each would cost every hit that much. */
     const struct scene *s = w->scene;
-    for (size_t k = 0; k < s->mesh_count; k++)
-        if (face < w->mesh_first_face[k + 1]) {
-            *local = (int)(face - w->mesh_first_face[k]);
-            return world_mesh_object_number(s, k);
-        }
-    return -1; /* not reached: the structure holds only these faces */
+    size_t low = 0, high = s->mesh_count;
+    while (low < high) {
+        size_t middle = low + (high - low) / 2;
+        if (face < w->mesh_first_face[middle + 1])
+            high = middle;
+        else
+            low = middle + 1;
+    }
+    if (low == s->mesh_count)
+        return -1; /* not reached: the structure holds only these faces */
+    *local = (int)(face - w->mesh_first_face[low]);
+    return world_mesh_object_number(s, low);
 }
 
 /* Triangles through the acceleration structure: one query replaces all triangle and mesh loops. */

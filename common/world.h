@@ -62,6 +62,9 @@ struct world {
                                       * give its first face (the triangle lines come first); owned. Kept
                                       * here because a program may free a mesh once it is gathered
                                       * (chapter 11) */
+    size_t *clear_meshes;            /* the numbers of the scene meshes that let light through, in order:
+                                      * the only ones whose inside interior.c asks about; owned */
+    size_t clear_mesh_count;
     const struct world_accel *accel; /* NULL: triangles by brute force with box culling */
     const struct world_instances *instances; /* chapter 16's instances; NULL: none */
     double time;                     /* the clock time the queries see the instances at (chapter 16): each
