@@ -136,12 +136,13 @@ static struct aabb instance_box(const struct instances *in, size_t k, double t0,
     return pad_world_box(world);
 }
 
-double instances_expected_tests(const struct instances *in, int *line) {
+double instances_expected_tests(const struct instances *in, int *line, bool *outside) {
     uint32_t crowded = 0;
     double in_tree = in->top != NULL ? instance_bvh_expected_instances(in->top, &crowded) : 0.0;
+    *outside = in->outside_count > in_tree;
     *line = in->count == 0 ? 0
-            : in->outside_count > in_tree ? in->scene->instances[in->outside[0]].line
-                                          : in->scene->instances[crowded].line;
+            : *outside     ? in->scene->instances[in->outside[0]].line
+                           : in->scene->instances[crowded].line;
     return in_tree + (double)in->outside_count;
 }
 

@@ -145,7 +145,8 @@ void instances_report(const struct instances *in, FILE *out, bool detailed);
 
 /* Returns how many instances a ray is expected to be carried into: the top level's expectation
  * (instance_bvh_expected_instances) and the instances outside the tree, which every ray tests. Stores
- * in *line the scene line of an instance where they crowd most (0 for no instances). */
-double instances_expected_tests(const struct instances *in, int *line);
+ * in *line the scene line of an instance where they crowd most (0 for no instances), and in *outside
+ * whether those outside the tree (the instances of objects with sliver faces) are the most of them. */
+double instances_expected_tests(const struct instances *in, int *line, bool *outside);
 
 #endif

@@ -224,12 +224,19 @@ static bool instances_within_budget(struct cli_run *run, const struct instances 
     struct ray_budget b;
     double rays = ray_budget_estimate(&run->scene, run->chapter->number, &b) * (double)pictures();
     int line = 0;
-    double per_ray = instances_expected_tests(in, &line), tests = rays * per_ray;
+    bool outside = false;
+    double per_ray = instances_expected_tests(in, &line, &outside), tests = rays * per_ray;
     bool over = tests > INSTANCES_TEST_LIMIT && !run->options.no_limit;
     if (tests <= INSTANCES_TEST_LARGE || (run->options.quiet && !over))
         return true;
-    fprintf(stderr, "%s:%d: %sa ray is carried into about %.0f instances, their boxes lying over each other here: "
-            "about %.2g for the scene's %.2g rays, ", run->scene.path, line, over ? "" : "note: ", per_ray, tests, rays);
+    fprintf(stderr, "%s:%d: %sa ray is carried into about %.0f instances, ", run->scene.path, line, over ? "" : "note: ",
+            per_ray);
+    if (outside)
+        fprintf(stderr, "%zu of them met by every ray (their objects have sliver faces, which no box can be trusted "
+                        "to hold): ", in->outside_count);
+    else
+        fprintf(stderr, "their boxes lying over each other here: ");
+    fprintf(stderr, "about %.2g for the scene's %.2g rays, ", tests, rays);
     if (over)
         fprintf(stderr, "over the limit of %.0e; pass --no-limit to render it anyway\n", INSTANCES_TEST_LIMIT);
     else
