@@ -449,7 +449,7 @@ bool check_schlick(schlick_fn f, char *why, size_t why_size) {
     return true;
 }
 
-/* ---- 9.5 the uniform grid ------------------------------------------------------------------------- */
+/* ---- 9.4 the uniform grid ------------------------------------------------------------------------- */
 
 static bool same_cells(int (*a)[3], const int (*b)[3], int n) {
     for (int k = 0; k < n; k++)

@@ -72,7 +72,7 @@ double whitted_schlick(double cos_incident, double n1, double n2);
 typedef double (*schlick_fn)(double, double, double);
 bool check_schlick(schlick_fn f, char *why, size_t why_size);
 
-/* Exercise 9.5 (common/grid.c): the cells of a uniform grid that r crosses, in order, for t >= 0. The
+/* Exercise 9.4 (common/grid.c): the cells of a uniform grid that r crosses, in order, for t >= 0. The
  * grid divides the box [lo, hi] into `cells` equal cells per axis. Writes up to `max` cells as
  * {x, y, z} indices into out and returns how many the ray crosses (3D-DDA, Amanatides and Woo 1987). */
 int grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max);

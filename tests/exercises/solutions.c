@@ -289,7 +289,7 @@ double wrong_whitted_schlick(double cos_incident, double n1, double n2) {
     return schlick(cos_incident, n1, n2, false);
 }
 
-/* ---- 9.5 ---- */
+/* ---- 9.4 ---- */
 /* Amanatides and Woo: step to whichever cell boundary is nearest along the ray. */
 static int walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max, bool drop_last) {
     struct aabb box = {lo, hi};

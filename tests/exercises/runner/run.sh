@@ -42,7 +42,7 @@ done <<'TABLE'
 6.4|Blinn's highlight|phong_blinn_highlight|check_blinn|phong_blinn_highlight|common/phong.c|docs/06-phong.md
 7.4|soft shadows|shadow_area_fraction|check_area_fraction|shadow_area_fraction|common/shadow.c|docs/07-shadows.md
 8.4|Fresnel by Schlick|whitted_schlick|check_schlick|whitted_schlick|common/whitted.c|docs/08-recursion.md
-9.5|a uniform grid|grid_walk|check_grid_walk|grid_walk|common/grid.c, and grid in MODULES_09|docs/09-kdtree.md
+9.4|a uniform grid|grid_walk|check_grid_walk|grid_walk|common/grid.c, and grid in MODULES_09|docs/09-kdtree.md
 10.4|the cost of a split|bvh_split_cost|check_split_cost|bvh_split_cost|common/bvh.c|docs/10-bvh.md
 11.4|four children per node|bvh4_collapse|check_collapse|bvh4_collapse|common/fast_bvh_build.c|docs/11-fast.md
 12.4|n rooks|supersample_rooks|check_rooks|supersample_rooks|common/supersample.c|docs/12-antialias.md
