@@ -245,7 +245,7 @@ LONG_TESTS := gallery/every_fault_is_caught_by_the_grader microfacet_long/* doc_
               watertight/chapters_9_and_10_draw_the_cube_from_inside_without_a_leak \
               nested_glass/glass_of_water_agrees_with_povray antialias/jitter_is_unbiased_where_the_grid_aliases \
               coursework/the_grader_ends_every_run_with_a_scoreboard_of_every_task \
-              coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_grades_* coursework_long/* \
+              coursework_proof/every_planted_fault_is_reported coursework_proof/make_exercises_* coursework_long/* \
               results/the_quick_mode_runs_every_experiment_and_draws_every_plot_and_table \
               doc_commands/every_command_runs_as_written deps/without_root_and_without_stb_* \
               povray_agreement/catches_a_highlight_multiplied_by_the_pigment \

@@ -130,12 +130,12 @@ static int exercise_count(void) {
     return n;
 }
 
-Test(coursework_proof, make_exercises_grades_each_started_exercise, .timeout = 600) {
+/* Makes work (a template for mkdtemp) a copy of what make exercises needs, with this build's objects, and
+ * one more module, common/exercise_answers.c, for the answers. Returns whether the build is SAN's. */
+static int exercise_copy(char *work) {
     const char *build = getenv("WHITTED_BUILD") ? getenv("WHITTED_BUILD") : "build";
-    int san = strstr(build, "san") != NULL;
-    char work[] = "out/test/exercises-XXXXXX", command[2048], path[256];
+    char command[2048];
     cr_assert_not_null(mkdtemp(work));
-    /* A copy of what make exercises needs, with this build's objects, and one more module. */
     snprintf(command, sizeof command,
              "cp -rp Makefile common chapters bench fuzz tools tests %1$s/ && mkdir -p %1$s/%2$s && "
              "cp -rp %2$s/common %2$s/tests %2$s/tools %1$s/%2$s/ && "
@@ -143,18 +143,35 @@ Test(coursework_proof, make_exercises_grades_each_started_exercise, .timeout = 6
              "grep -q 'exercise_answers' %1$s/Makefile",
              work, build);
     cr_assert_eq(system(command), 0, "cannot make the copy in %s", work);
+    return strstr(build, "san") != NULL;
+}
+
+/* Runs make exercises in the copy `work` (env: words put before make, such as a time limit), its output
+ * into output[size]; stores the counts of its summary line in *done, *failing and *waiting (-1 when it
+ * has none). Returns its exit status. */
+static int run_exercises(const char *work, int san, const char *env, char *output, size_t size, int *done,
+                         int *failing, int *waiting) {
+    char command[2048];
+    snprintf(command, sizeof command, "env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS %s make --no-print-directory -C %s "
+             "SAN=%d exercises 2>&1", env, work, san);
+    int status = run_capturing(command, output, size);
+    *done = *failing = *waiting = -1;
+    const char *summary = strstr(output, "exercises: ");
+    if (summary != NULL)
+        sscanf(summary, "exercises: %d done, %d failing, %d not started", done, failing, waiting);
+    return status;
+}
+
+Test(coursework_proof, make_exercises_grades_each_started_exercise, .timeout = 600) {
+    char work[] = "out/test/exercises-XXXXXX", command[2048], path[256];
+    int san = exercise_copy(work);
     static const char *const prefixes[] = {"solution", "wrong"};
     for (int k = 0; k < 2; k++) {
         snprintf(path, sizeof path, "%s/common/exercise_answers.c", work);
         write_answers(path, prefixes[k]);
-        snprintf(command, sizeof command, "env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS make --no-print-directory -C %s "
-                 "SAN=%d exercises", work, san);
         char *output = malloc(1 << 16);
-        int status = run_capturing(command, output, 1 << 16);
-        int done = -1, failing = -1, waiting = -1;
-        const char *summary = strstr(output, "exercises: ");
-        if (summary != NULL)
-            sscanf(summary, "exercises: %d done, %d failing, %d not started", &done, &failing, &waiting);
+        int done, failing, waiting;
+        int status = run_exercises(work, san, "", output, 1 << 16, &done, &failing, &waiting);
         /* The disc is a kind of shape, not a function: it stays not started here. */
         int functions = exercise_count() - 1;
         if (k == 0)
@@ -164,6 +181,53 @@ Test(coursework_proof, make_exercises_grades_each_started_exercise, .timeout = 6
             cr_expect(status != 0 && done == 0 && failing == functions && waiting == 1 && strstr(output, "  FAIL  exercise 4.4: "
                       "a cylinder\n") != NULL, "with the wrong answers, make exercises said (status %d):\n%s", status,
                       output);
+        free(output);
+    }
+    snprintf(command, sizeof command, "rm -rf %s", work);
+    cr_expect_eq(system(command), 0);
+}
+
+/* A student's function that never returns, crashes or ends the program gets its exercise named as failing,
+ * with the reason, and never a pass (exit(0) once counted as one); so do a NaN bounding sphere and a grid
+ * walk that writes past its room, which the checks once let through. */
+Test(coursework_proof, make_exercises_names_a_check_that_hangs_crashes_or_is_cut_short, .timeout = 600) {
+    static const struct {
+        const char *answer, *says;
+    } faults[] = {
+        {"double whitted_schlick(double c, double n1, double n2) { volatile int on = 1; while (on) {} return c + n1 + n2; }",
+         "  FAIL  exercise 8.4, Fresnel by Schlick: the check did not finish within " PROOF_CHECK_SECONDS
+         " s (an endless loop in whitted_schlick?)\n"},
+        {"double whitted_schlick(double c, double n1, double n2) { volatile int *p = NULL; return c + n1 + n2 + *p; }",
+         "  FAIL  exercise 8.4, Fresnel by Schlick: the check crashed (signal SIGSEGV) in whitted_schlick or what it "
+         "returned\n"}, /* under the sanitizers, which catch the crash: "the program stopped (exit status 1) ..." */
+        {"double whitted_schlick(double c, double n1, double n2) { (void)c; (void)n1; (void)n2; exit(0); }",
+         "  FAIL  exercise 8.4, Fresnel by Schlick: the program stopped (exit status 0) before the check finished: "
+         "does whitted_schlick call exit?\n"},
+        {"void mesh_bounding_sphere(const struct mesh *m, vec3 *centre, double *radius) {\n"
+         "    (void)m; *centre = vec3_make(1, 0.5, 3); *radius = sqrt(-1.0); }",
+         "  FAIL  exercise 5.4: a bounding sphere\n"},
+        {"int grid_walk(vec3 lo, vec3 hi, int cells, const ray *r, int (*out)[3], int max) {\n"
+         "    int n = solution_grid_walk(lo, hi, cells, r, out, 64); (void)max; return n; }",
+         "with room for only 2 cells (max 2), entry 2 of the array was written"},
+    };
+    char work[] = "out/test/exercises-XXXXXX", command[2048], path[256];
+    int san = exercise_copy(work);
+    for (size_t k = 0; k < sizeof faults / sizeof faults[0]; k++) {
+        snprintf(path, sizeof path, "%s/common/exercise_answers.c", work);
+        FILE *f = fopen(path, "w");
+        cr_assert_not_null(f, "cannot write %s", path);
+        fprintf(f, "#include <math.h>\n#include <stdlib.h>\n#include \"../tests/exercises/solutions.c\"\n%s\n",
+                faults[k].answer);
+        fclose(f);
+        char *output = malloc(1 << 16);
+        int done, failing, waiting;
+        int status = run_exercises(work, san, "WHITTED_CHECK_SECONDS=" PROOF_CHECK_SECONDS, output, 1 << 16, &done,
+                                   &failing, &waiting);
+        const char *says = san && k == 1 ? "  FAIL  exercise 8.4, Fresnel by Schlick: the program stopped (exit status 1) "
+                                           "before the check finished: whitted_schlick called exit or crashed"
+                                         : faults[k].says;
+        cr_expect(status != 0 && done == 0 && failing == 1 && strstr(output, says) != NULL,
+                  "fault %zu: make exercises said (status %d), not '%s':\n%s", k, status, says, output);
         free(output);
     }
     snprintf(command, sizeof command, "rm -rf %s", work);

@@ -325,9 +325,10 @@ bool check_bounding_sphere(bounding_sphere_fn f, char *why, size_t why_size) {
     vec3 centre;
     double radius;
     f(&m, &centre, &radius);
+    /* Written as "not inside" rather than "outside", so that a NaN radius or centre fails too. */
     for (int k = 0; k < POINTS; k++) {
         double d = vec3_length(vec3_sub(v[k], centre));
-        if (d > radius * (1 + 1e-12))
+        if (!(d <= radius * (1 + 1e-12)))
             return fail(why, why_size, "200 points in the box [-3, 5] x [0, 1] x [2, 4]: point (%g, %g, %g) is %g from "
                         "your centre (%g, %g, %g), outside your radius %g", v[k].x, v[k].y, v[k].z, d, centre.x,
                         centre.y, centre.z, radius);
@@ -336,7 +337,7 @@ bool check_bounding_sphere(bounding_sphere_fn f, char *why, size_t why_size) {
     for (int k = 0; k < POINTS; k++)
         box = aabb_grow(box, v[k]);
     double box_radius = 0.5 * vec3_length(vec3_sub(box.max, box.min));
-    if (radius > box_radius * (1 + 1e-12))
+    if (!(radius <= box_radius * (1 + 1e-12)))
         return fail(why, why_size, "200 points in the box [-3, 5] x [0, 1] x [2, 4]: your radius %g is larger than "
                     "that of the sphere around their bounding box, %g", radius, box_radius);
     return true;
@@ -485,10 +486,16 @@ bool check_grid_walk(grid_walk_fn f, char *why, size_t why_size) {
     if (n != 0)
         return fail(why, why_size, "ray from (-1, 5, 0.5) along +x passes above the grid: expected 0 cells, got %d", n);
     r = make_ray(-1, 0.5, 0.5, 1, 0, 0);
+    for (int k = 0; k < 64; k++) /* marks in every entry, to see that none past the room is written */
+        out[k][0] = out[k][1] = out[k][2] = -7;
     n = f(lo, hi, 4, &r, out, 2);
     if (n != 4 || !same_cells(out, along_x, 2))
         return fail(why, why_size, "with room for only 2 cells, the 4-cell ray must still return 4 and write the first "
                     "2; got %d", n);
+    for (int k = 2; k < 64; k++)
+        if (out[k][0] != -7 || out[k][1] != -7 || out[k][2] != -7)
+            return fail(why, why_size, "with room for only 2 cells (max 2), entry %d of the array was written: a grid "
+                        "walk writes at most max cells", k);
     /* Random rays through the grid: every cell that a fine walk along the ray visits must be listed, in the
      * order it is visited. */
     uint64_t state = 99;

@@ -16,6 +16,9 @@ defined=$(nm -g --defined-only "$@" 2>/dev/null | awk 'NF == 3 { print $3 }')
 
 # The exercises, one a line: id | title | the function (or table) that marks it started | the check
 # (exercises.h) | what the check is given | where to write it | the walkthrough.
+# Each check runs in well under a second; one that takes this long is caught in an endless loop
+# (WHITTED_CHECK_SECONDS from the environment, as for make check-N, sets another limit).
+EXERCISE_SECONDS=${WHITTED_CHECK_SECONDS:-60}
 done=0 failing=0 waiting=0
 while IFS='|' read -r id title marker check argument where page; do
     if ! printf '%s\n' "$defined" | grep -qx "$marker"; then
@@ -29,10 +32,27 @@ while IFS='|' read -r id title marker check argument where page; do
         ! $CC $LDFLAGS "$program.o" "$@" -o "$program" $LDLIBS; then
         echo "  FAIL  exercise $id, $title: its check does not build with your $marker (see the messages above)"
         failing=$((failing + 1))
-    elif "./$program"; then
-        done=$((done + 1))
     else
-        failing=$((failing + 1))
+        # The check's own verdict, written by exercise.c once the check has run: a function that ends the
+        # program (exit, a crash) or never returns leaves none, whatever the exit status says.
+        rm -f "$program.verdict"
+        timeout "$EXERCISE_SECONDS" "./$program" "$program.verdict" </dev/null
+        status=$?
+        verdict=$(cat "$program.verdict" 2>/dev/null)
+        if [ "$status" -eq 0 ] && [ "$verdict" = ok ]; then
+            done=$((done + 1))
+        else
+            failing=$((failing + 1))
+            if [ "$status" -eq 124 ]; then
+                echo "  FAIL  exercise $id, $title: the check did not finish within $EXERCISE_SECONDS s (an endless loop in $marker?)"
+            elif [ "$status" -gt 128 ]; then
+                echo "  FAIL  exercise $id, $title: the check crashed (signal SIG$(kill -l $((status - 128)))) in $marker or what it returned"
+            elif [ -z "$verdict" ] && [ "$status" -eq 0 ]; then
+                echo "  FAIL  exercise $id, $title: the program stopped (exit status 0) before the check finished: does $marker call exit?"
+            elif [ -z "$verdict" ]; then
+                echo "  FAIL  exercise $id, $title: the program stopped (exit status $status) before the check finished: $marker called exit or crashed (a sanitizer's report above would say where)"
+            fi
+        fi
     fi
 done <<'TABLE'
 2.4|a disc, a new kind of shape|disc_kind|check_disc|&disc_kind|common/disc.h and common/disc.c, and disc in MODULES_02|docs/02-sphere.md
