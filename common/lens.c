@@ -35,8 +35,15 @@ bool lens_make(const struct key_values *kv, vec3 eye, struct lens *l, char *why,
     if (!key_vec3_within(l->focal_point, KEY_MAX_COORD, "camera focal_point", why, why_size) ||
         !key_vec3_within(eye, KEY_MAX_COORD, "camera eye (with a lens)", why, why_size))
         return false;
-    if (!(vec3_length(vec3_sub(l->focal_point, eye)) > LENS_MIN_FOCAL_DISTANCE)) {
+    double focal_distance = vec3_length(vec3_sub(l->focal_point, eye));
+    if (!(focal_distance > LENS_MIN_FOCAL_DISTANCE)) {
         snprintf(why, why_size, "camera focal_point is the eye: nothing can be in focus there");
+        return false;
+    }
+    if (l->aperture > LENS_MAX_APERTURE_RATIO * focal_distance) {
+        snprintf(why, why_size, "camera aperture must be at most %g times the focal_point's distance from the eye "
+                 "(%g), got " KEY_NUMBER_SHOWN ": a wider lens blurs everything off the focal plane over the whole "
+                 "picture", LENS_MAX_APERTURE_RATIO, focal_distance, KEY_NUMBER(l->aperture));
         return false;
     }
     if (kv->present[KEY_BLUR_SAMPLES]) {

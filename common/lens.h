@@ -24,6 +24,12 @@
 /* The widest aperture: with it, the focal point and the eye within KEY_MAX_COORD, a lens ray's
  * direction is a difference of points whose length stays finite (and not zero). */
 #define LENS_MAX_APERTURE KEY_MAX_COORD
+/* The widest aperture for a focal point at distance d from the eye is this times d. A ray from the rim of
+ * such a lens meets the view's axis at the focal point at atan(500) = 89.9 degrees: everything off the
+ * focal plane is already blurred over the whole picture, and a wider lens changes nothing but the cost.
+ * The cost grows with it: lens points far from a scene the size of d put the rays' origins so far away
+ * that the structures' boxes can no longer tell their parts apart, and every ray tests every triangle. */
+#define LENS_MAX_APERTURE_RATIO 1000.0
 
 struct lens {
     double aperture;     /* the lens's diameter; 0 for a pinhole */
@@ -37,7 +43,8 @@ extern const struct key_spec lens_keys[LENS_KEY_COUNT];
 
 /* Fills *l from the values read for lens_keys, `eye` being the camera's: a pinhole (aperture 0) when
  * none is given. Returns false with the reason in why (without file and line: the parser adds them)
- * for a negative aperture or one above LENS_MAX_APERTURE, an aperture without focal_point or focal_point or
+ * for a negative aperture or one above LENS_MAX_APERTURE or above LENS_MAX_APERTURE_RATIO times the focal
+ * point's distance from the eye, an aperture without focal_point or focal_point or
  * blur_samples without aperture, a focal point or (with a lens) an eye beyond KEY_MAX_COORD, a focal
  * point at the eye, or blur_samples other than 7, 19 or 37. */
 bool lens_make(const struct key_values *kv, vec3 eye, struct lens *l, char *why, size_t why_size);

@@ -257,6 +257,18 @@ static const struct hostile non_finite[] = {
     {12, "image 8 6\ncamera eye 0 0 5 target 0 0 0 fov 40 aperture 0.1 focal_point 0 0 -1e200\n"
          "light position 5 8 4\nsphere centre 0 0 0 radius 1\n", "", 1,
      "SCENE:2: camera focal_point is (0, 0, -1e+200); it must stay within -1e+18 .. 1e+18"},
+    /* a lens so wide against its focal distance that its rays start where no box can be told from another
+     * (every ray would test every triangle): refused, in every chapter that draws a lens */
+    {13, "image 8 6\ncamera eye 0 0 5 target 0 0 0 fov 40 aperture 1e18 focal_point 0 0 0\n"
+         "light position 5 8 4\nsphere centre 0 0 0 radius 1\n", "", 1,
+     "SCENE:2: camera aperture must be at most 1000 times the focal_point's distance from the eye (5), got 1e+18: "
+     "a wider lens blurs everything off the focal plane over the whole picture"},
+    {16, "image 8 6\ncamera eye 0 0 5 target 0 0 0 fov 40 aperture 5001 focal_point 0 0 0\n"
+         "light position 5 8 4\nsphere centre 0 0 0 radius 1\n", "", 1,
+     "SCENE:2: camera aperture must be at most 1000 times the focal_point's distance from the eye (5), got 5001: "
+     "a wider lens blurs everything off the focal plane over the whole picture"},
+    {13, "image 8 6\ncamera eye 0 0 5 target 0 0 0 fov 40 aperture 5000 focal_point 0 0 0\n"
+         "light position 5 8 4\nsphere centre 0 0 0 radius 1\n", "", 0, NULL},
     {13, "image 8 6\ncamera eye 0 0 5 target 0 0 0 fov 40 aperture 1e18 focal_point 0 0 -1e18\n"
          "light position 5 8 4\nplane normal 0 0 1 distance -1e17\nsphere centre 0 0 0 radius 1\n", "", 0, NULL},
     /* area lights: zero, too long, too short and parallel whatever the scale */
