@@ -91,7 +91,7 @@ $(BENCH_MEMORY_SCENE): $(BENCH_MEMORY_DIR)/teapot-4m.ply
 	    'material china colour 0.35 0.55 0.85 ambient 0.1 diffuse 0.7' 'mesh teapot-4m.ply material china' >$@
 
 ## make bench-memory   peak memory per triangle of chapters 10 and 11 (rungs 1 to 9; rung 10 traces rung
-##                     8's tree, so its peak is rung 8's) on a teapot of about 4 million triangles
+##                     9's tree, so its peak is rung 9's) on a teapot of about 4 million triangles
 bench-memory: $(BUILD)/peak_rss $(BUILD)/chapter-10 $(BUILD)/chapter-11 $(BENCH_MEMORY_SCENE)
 	@triangles=$$(awk '/^element face/ { print $$3; exit }' $(BENCH_MEMORY_DIR)/teapot-4m.ply); \
 	echo "peak memory on $(BENCH_MEMORY_SCENE) ($$triangles triangles, 64x48, 1 thread):"; \

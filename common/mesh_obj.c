@@ -1,4 +1,4 @@
-/* mesh_obj.c: the Wavefront OBJ reader.
+/* mesh_obj.c: the Wavefront OBJ reader (chapter 3).
  *
  * Four statements matter for a triangle mesh (vt, vn and the t and n of the corners only when the caller
  * keeps them, mesh_load_with_corners; otherwise they are read past, t and n checked for syntax only):

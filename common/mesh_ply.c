@@ -1,5 +1,5 @@
-/* mesh_ply.c: the PLY reader (Greg Turk's polygon file format, as written by the Stanford 3D Scanning
- * Repository, MeshLab, Blender and most scanners).
+/* mesh_ply.c: the PLY reader (chapter 3): Greg Turk's polygon file format, as written by the Stanford 3D
+ * Scanning Repository, MeshLab, Blender and most scanners.
  *
  * A PLY file is a text header, then the data of each element the header declares, in the header's
  * order. For example:

@@ -1,8 +1,9 @@
 # tools/results/results.mk: make results, the seed's experiments redone (docs/results.md). A GNU make
 # fragment included from the top-level Makefile, which defines CC, BUILD, CFLAGS and the chapters' rules.
 #
-#   make results          run every experiment (five to ten minutes on one core), write the CSVs to
-#                         out/results/, copy them to docs/results/, and redraw docs/results/*.svg and
+#   make results          run every experiment (about a quarter of an hour: 13.8 minutes in the run
+#                         docs/results.md shows), write the CSVs to out/results/, copy them to
+#                         docs/results/, and redraw docs/results/*.svg and
 #                         the tables of docs/results.md from them (installs gnuplot-nox, POV-Ray and
 #                         Embree when missing)
 #   make results QUICK=1  the same experiments on small pictures and models, about a minute: the
@@ -20,8 +21,8 @@ $(BUILD)/measure: tools/results/measure.c | deps
 	$(CC) $(CFLAGS) $< -o $@
 
 .PHONY: results
-## make results        the seed's experiments redone: CSVs, plots and tables of docs/results.md, five to
-##                     ten minutes (QUICK=1: a small version in about a minute, into out/results-quick/)
+## make results        the seed's experiments redone: CSVs, plots and tables of docs/results.md, about a
+##                     quarter of an hour (QUICK=1: a small version in about a minute, into out/results-quick/)
 ifeq ($(QUICK),1)
 results: all $(BUILD)/measure $(MODELS_TEAPOT) | deps
 	BUILD=$(BUILD) TEAPOT=$(MODELS_TEAPOT) tools/results/run.sh --quick $(RESULTS_QUICK_DIR)
