@@ -107,6 +107,18 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
     if (!texture_load_images(s, run->err, sizeof run->err) || !scene_load_meshes(s, run->err, sizeof run->err) ||
         !mesh_surface_prepare(s, run->err, sizeof run->err))
         return cli_fail(run);
+    /* An area light becomes a surface that gives off light, and no surface gives off less than none (a
+     * material's negative emission is refused too): a negative channel, which the Whitted chapters take
+     * as light taken away (POV-Ray's rule), has no meaning for a path. */
+    for (size_t k = 0; k < s->light_count; k++) {
+        const struct light *l = &s->lights[k];
+        if (area_light_is_area(&l->area) && (l->colour.x < 0.0 || l->colour.y < 0.0 || l->colour.z < 0.0)) {
+            snprintf(run->err, sizeof run->err, "%s:%d: light colour must not be negative in chapter %d, got %g %g %g: "
+                     "an area light is a surface that gives off light here, and none gives off less than none",
+                     s->path, l->line, chapter, l->colour.x, l->colour.y, l->colour.z);
+            return cli_fail(run);
+        }
+    }
     /* The area lights made emitting rectangles before the world is built over
      * them, the emitters gathered, and every pixel the mean of its paths. */
     int point_lights = emitter_add_area_lights(s, run->err, sizeof run->err);

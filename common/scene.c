@@ -346,6 +346,7 @@ static bool parse_light(const struct parser *p, struct scene *s, char **tok, int
     struct light *light = grow(&s->lights, &s->light_count, sizeof *light);
     if (light == NULL)
         return fail(p, "out of memory");
+    light->line = p->line;
     light->position = key_vec3(&kv, POSITION);
     light->colour = kv.present[COLOUR] ? key_vec3(&kv, COLOUR) : vec3_make(1, 1, 1);
     if (!key_vec3_within(light->colour, SCENE_MAX_LIGHT, "light colour", why, sizeof why))

@@ -75,6 +75,7 @@ struct light {
     vec3 position; /* of the point light, or of an area light's centre */
     vec3 colour;   /* intensity per channel; no fall-off with distance */
     struct area_light area; /* a point light unless area_light_is_area (chapter 13) */
+    int line;               /* the line of the scene file it was read from */
 };
 
 /* A `mesh` directive: which file, how to place it, and (once loaded) its triangles in world space. */

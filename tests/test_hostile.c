@@ -339,11 +339,23 @@ static const struct hostile non_finite[] = {
      "SCENE: nothing gives off light, so the picture would be black: no material has an emission, no light has an "
      "area (chapter 15 ignores 1 point light) and the background is black"},
     {15, VIEW "background 0.2 0.3 0.4\nsphere centre 0 0 0 radius 1\npaths samples 2\n", "", 0, NULL},
-    /* an area light of a negative colour: it has an area, but gives off nothing */
+    /* an area light of colour 0: it has an area, but gives off nothing */
     {15, VIEW "sphere centre 0 0 0 radius 1\npaths samples 2\n"
-              "light position 0 3 0 colour -1 -1 -1 axis1 1 0 0 axis2 0 0 1 samples 2 2\n", "", 1,
+              "light position 0 3 0 colour 0 0 0 axis1 1 0 0 axis2 0 0 1 samples 2 2\n", "", 1,
      "SCENE: nothing gives off light, so the picture would be black: no material has an emission, the area light "
      "gives off nothing (its colour not above 0) (chapter 15 ignores 1 point light) and the background is black"},
+    /* an area light with a negative channel: light taken away in the Whitted chapters (POV-Ray's rule), a
+     * surface giving off less than none to a path, refused as a negative emission is */
+    {15, VIEW "sphere centre 0 0 0 radius 1\npaths samples 2\n"
+              "light position 0 3 0 colour 3 -1 -1 axis1 1 0 0 axis2 0 0 1 samples 2 2\n", "", 1,
+     "SCENE:6: light colour must not be negative in chapter 15, got 3 -1 -1: an area light is a surface that gives "
+     "off light here, and none gives off less than none"},
+    {17, VIEW "sphere centre 0 0 0 radius 1\npaths samples 2\n"
+              "light position 0 3 0 colour 3 1 -1e-300 axis1 1 0 0 axis2 0 0 1 samples 2 2\n", "", 1,
+     "SCENE:6: light colour must not be negative in chapter 17, got 3 1 -1e-300: an area light is a surface that "
+     "gives off light here, and none gives off less than none"},
+    {13, VIEW "sphere centre 0 0 0 radius 1\n"
+              "light position 0 3 0 colour 3 -1 -1 axis1 1 0 0 axis2 0 0 1 samples 2 2\n", "", 0, NULL},
     /* an ior so small that the square of the ratio of two overflowed (NaN pixels in chapter 17) */
     {17, VIEW "material g colour 1 1 1 ambient 0 diffuse 0 transmit 1 ior 1e-155 roughness 0.5\n"
               "sphere centre 0 0 0 radius 1 material g\n", "", 1,
