@@ -190,6 +190,7 @@ static inline unsigned lane_hits4(const struct lane *l, const struct fast_bvh_no
  * at least its exit; the window here is the widest of the rays', the slack the largest, and the reach
  * (leave + s) * scale + 2 s grows with leave and with s. So a ray whose own test enters a child makes
  * this test enter it too. */
+/* TASK 11.1 ALSO: the slab tests of all eight children at once, in float, for a coherent packet (rung 10) */
 static inline unsigned packet_hits8(const struct packet *p, const struct fast_bvh_node8 *n, float entry[8]) {
     float8 enter = broadcast8(p->float_min), leave = broadcast8(p->float_max);
     for (int a = 0; a < 3; a++) {

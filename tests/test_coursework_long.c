@@ -141,14 +141,13 @@ static const char *const idioms[] = {
     "struct material painted;", "struct bsdf b = bsdf_of_material(m);", "const struct world *w = world;", "const struct kd_node *n = &k->nodes[index];",
     "stats_thread.box_tests++;", "stats_thread.adc_saves++;", "stats_thread.budget_cut++;",
     "uint32_t n = r->end - r->begin;", "float4 c = centroid_of(&p);", "struct aabb bounds = {b->min, b->max};",
-    "__builtin_memcpy(entry, &enter, sizeof enter);",
     /* the watertight test of common/triangle.h, which chapter 3 has the student read (docs/coursework.md) */
     "double inv_det = 1.0 / det;", "if (area.x == 0.0 && area.y == 0.0 && area.z == 0.0)",
     "if (!(hit_t > t_min && hit_t < t_max))",
     /* chapter 11's walks, the same idea as 10.3 made 4- and 8-wide, which chapter 11 teaches after it */
     "uint32_t slivers = (uint32_t)(b->triangle_count - b->tree_count);",
     /* chapter 16's declarations and loops, which say nothing of how its tasks are done */
-    "struct transform to_world, to_object;", "const uint32_t *c = m->faces[face].v;",
+    "const uint32_t *c = m->faces[face].v;",
     "for (uint32_t i = node->first; i < node->first + node->count; i++)", "struct aabb box = aabb_empty();",
     "struct instance_bvh_node *node = &b->nodes[k];", "vec3 point = ray_at(r, h.t);",
     "const struct instance *it = &in->items[k];",

@@ -98,7 +98,8 @@ struct basis {
     double t;
 };
 
-/* povray-oracle.md (b): dir = normalize(f + (2(i+0.5)/W - 1) t a r + (1 - 2(j+0.5)/H) t u). */
+/* POV-Ray's perspective camera, written from the basis (docs/povray.md): the direction through the centre of pixel
+ * (i, j) is normalize(f + (2(i+0.5)/W - 1) t a r + (1 - 2(j+0.5)/H) t u), with a = W / H. */
 static vec3 oracle_direction(struct basis b, int width, int height, int i, int j) {
     double a = (double)width / height;
     double x = (2.0 * (i + 0.5) / width - 1.0) * b.t * a;
