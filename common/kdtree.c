@@ -67,6 +67,7 @@ struct builder {
     unsigned char *sides; /* per face: the sides of the plane being cut that it goes to */
     double *centres;      /* seed_plane's */
     size_t depth_limit;
+    size_t reference_limit; /* KD_MAX_REFERENCES_PER_TRIANGLE times the triangles: past it, only leaves */
     double root_area;
 };
 
@@ -250,8 +251,9 @@ static void build(struct builder *bd, enum kd_split rule, struct triangles *t, s
     double share = bd->root_area > 0.0 ? aabb_surface_area(box) / bd->root_area : 1.0;
     int axis = -1;
     float split = 0.0f;
-    bool cut = rule == KD_SPLIT_SEED ? seed_plane(bd, t, box, depth, &axis, &split)
-                                     : sah_plane(bd, t, box, depth, &axis, &split);
+    bool within_limit = k->info.references + t->count <= bd->reference_limit;
+    bool cut = within_limit && (rule == KD_SPLIT_SEED ? seed_plane(bd, t, box, depth, &axis, &split)
+                                                      : sah_plane(bd, t, box, depth, &axis, &split));
     if (!cut) {
         make_leaf(bd, index, t, share, depth);
         free_triangles(t);
@@ -340,6 +342,10 @@ struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split) {
     double levels = log2((double)(all.count > 1 ? all.count : 1));
     bd.depth_limit = split == KD_SPLIT_SEED ? (size_t)ceil(levels) + KD_SEED_EXTRA_DEPTH
                                             : (size_t)(KD_MAX_DEPTH_BASE + KD_MAX_DEPTH_PER_LEVEL * levels);
+    /* within 32 bits (the references' numbers) with room for the nodes under way, on any size_t */
+    bd.reference_limit = all.count < UINT32_MAX / 2 / KD_MAX_REFERENCES_PER_TRIANGLE
+                             ? KD_MAX_REFERENCES_PER_TRIANGLE * (all.count > 0 ? all.count : 1)
+                             : UINT32_MAX / 2;
     build(&bd, split, &all, k->root, 0); /* frees all */
     k->info.sah_cost += KD_COST_TRIANGLE * (double)k->info.slivers;
     free(boxes);

@@ -32,6 +32,7 @@
 #include "float4.h"
 #include "fast_bvh_lean.h"
 #include "float_triangle.h"
+#include "hit.h"
 #include "kdtree.h"
 #include "mesh.h"
 #include "mesh_load.h"
@@ -893,6 +894,45 @@ Test(accel, info_describes_a_consistent_tree) {
                   "kd %d: %zu nodes, %zu leaves, %zu references", rule, ki.nodes, ki.leaves, ki.references);
         cr_expect(ki.sah_cost > 0, "kd %d: cost %g", rule, ki.sah_cost);
         kdtree_free(k);
+    }
+    mesh_free(&m);
+}
+
+/* Triangles nested about one centre, each a little smaller than the one before: every plane that cuts
+ * the region cuts through most of them, yet the SAH finds each cut worth it, and copied nearly all of
+ * them into both sides, level after level (10,000 of them: about 2,500 references a triangle, 100,000:
+ * 5,000, 48 s and 2 GB). The tree stops at KD_MAX_REFERENCES_PER_TRIANGLE, and still answers as the
+ * brute-force loop does, ties (the triangles share a plane) to the lowest face. */
+Test(accel, kdtree_references_stay_bounded_on_nested_triangles, .timeout = ACCEL_TEST_TIMEOUT) {
+    enum { NESTED = 10000 };
+    struct mesh m = {malloc(3 * NESTED * sizeof(vec3)), 3 * NESTED, malloc(NESTED * sizeof(struct mesh_face)), NESTED};
+    cr_assert(m.vertices != NULL && m.faces != NULL);
+    for (uint32_t k = 0; k < NESTED; k++) {
+        double s = 10.0 * pow(1.0001, -(double)k);
+        m.vertices[3 * k] = vec3_make(-s, -s, 0.0);
+        m.vertices[3 * k + 1] = vec3_make(s, -s, 0.0);
+        m.vertices[3 * k + 2] = vec3_make(0.0, s, 0.0);
+        m.faces[k] = (struct mesh_face){{3 * k, 3 * k + 1, 3 * k + 2}};
+    }
+    for (int rule = 0; rule < 2; rule++) {
+        struct kdtree *tree = kdtree_build(&m, rule ? KD_SPLIT_SAH : KD_SPLIT_SEED);
+        struct kdtree_info info;
+        kdtree_get_info(tree, &info);
+        cr_expect_leq(info.references, 2 * KD_MAX_REFERENCES_PER_TRIANGLE * (size_t)NESTED,
+                      "rule %d: %zu references for %d triangles", rule, info.references, NESTED);
+        for (int i = 0; i < 24; i++)
+            for (int j = 0; j < 24; j++) {
+                ray r = {vec3_make(0.3, -0.2, 6.0), vec3_normalize(vec3_make(-0.5 + i / 23.0, -0.5 + j / 23.0, -1.0))};
+                struct hit brute = hit_nothing(INFINITY);
+                bool brute_hit = triangle_mesh_closest(&m, 0, &r, RAY_T_MIN, &brute);
+                double t = 0.0;
+                uint32_t face = 0;
+                bool hit = kdtree_closest(tree, &r, RAY_T_MIN, INFINITY, &t, &face);
+                cr_expect(hit == brute_hit && (!hit || (t == brute.t && (int)face == brute.face)),
+                          "rule %d, ray (%d, %d): %d t %.17g face %u, brute force %d t %.17g face %d", rule, i, j, hit, t,
+                          face, brute_hit, brute.t, brute.face);
+            }
+        kdtree_free(tree);
     }
     mesh_free(&m);
 }
