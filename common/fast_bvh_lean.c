@@ -18,8 +18,9 @@
  *    fast_bvh_lean_prepare lays out in blocks of four. Each lane does exactly the arithmetic of
  *    triangle_crossing_prepared (triangle.h), in its order, each product rounded on its own (AVX2
  *    brings no fused multiply-add, and the Makefile's -ffp-contract=off forbids fusing): the same
- *    sheared corners, the same three edge functions, the same test of their signs (zero is inside) and
- *    of det == 0, and for the lanes that cross the same t, bit for bit. The one test it leaves out,
+ *    sheared corners, the same three edge functions (a lane where one comes out 0 has its three redone
+ *    by triangle_edge_function itself, which then finds the exact sign), the same test of their signs
+ *    (zero is inside) and of det == 0, and for the lanes that cross the same t, bit for bit. The one test it leaves out,
  *    whether the corners lie exactly on a line (triangle_corners_collinear), is made once, by
  *    fast_bvh_lean_prepare, which writes such a triangle's corners as NaN: every comparison of its
  *    lane fails, and it is never crossed, as triangle_crossing_prepared never crosses it. So each lane
@@ -209,16 +210,33 @@ static inline AVX2 __attribute__((always_inline)) bool leaf_triangles4(const str
         double4 cz = load4d(z + 2 * corner) - l->o[2];
         double4 cx = (load4d(x + 2 * corner) - l->o[0]) - l->sx * cz;
         double4 cy = (load4d(y + 2 * corner) - l->o[1]) - l->sy * cz;
-        /* triangle_edge_function, three times. */
+        /* triangle_edge_function, three times, and the test of their signs. */
         double4 w_a = bx * cy - by * cx, w_b = cx * ay - cy * ax, w_c = ax * by - ay * bx;
         long4 inside_positive = (w_a >= zero) & (w_b >= zero) & (w_c >= zero);
         long4 inside_negative = (w_a <= zero) & (w_b <= zero) & (w_c <= zero);
-        double4 det = w_a + w_b + w_c;
-        unsigned keep = lanes4d_true((inside_positive | inside_negative) & (det != zero));
+        unsigned keep = lanes4d_true(inside_positive | inside_negative);
         if (k < first)
             keep &= ~((1u << (first - k)) - 1u); /* the lanes before the leaf */
         if (end - k < FAST_BVH_LEAN_LANES)
             keep &= (1u << (end - k)) - 1u; /* the lanes past it */
+        if (keep == 0)
+            continue;
+        /* Where an edge function came out 0, its two products rounded alike: the lane's three are redone
+         * by triangle_edge_function itself, which then finds the exact signs, and tested again. (A lane
+         * outside stays outside: redoing changes only zeros.) */
+        for (unsigned tied = keep & lanes4d_true((w_a == zero) | (w_b == zero) | (w_c == zero)); tied != 0;
+             tied &= tied - 1) {
+            int lane = __builtin_ctz(tied);
+            w_a[lane] = triangle_edge_function(bx[lane], by[lane], cx[lane], cy[lane]);
+            w_b[lane] = triangle_edge_function(cx[lane], cy[lane], ax[lane], ay[lane]);
+            w_c[lane] = triangle_edge_function(ax[lane], ay[lane], bx[lane], by[lane]);
+            bool positive = w_a[lane] >= 0.0 && w_b[lane] >= 0.0 && w_c[lane] >= 0.0;
+            bool negative = w_a[lane] <= 0.0 && w_b[lane] <= 0.0 && w_c[lane] <= 0.0;
+            if (!positive && !negative)
+                keep &= ~(1u << lane);
+        }
+        double4 det = w_a + w_b + w_c;
+        keep &= lanes4d_true(det != zero);
         if (keep == 0)
             continue;
         /* triangle_crossing_prepared's t, the same expression lane by lane. */

@@ -6,7 +6,8 @@
  * give its answers to the last bit. Rung 11 runs the same test in float first, on a float copy of the
  * tree's triangles: the shear of Woop, Benthin and Wald, then the three edge functions. Each float edge
  * function lies within a bound E of the double one (derived below, as pbrt derives its bounds); so an
- * edge function above E is positive in double too, and one below -E negative. A triangle with one edge
+ * edge function above E is positive in double too, and one below -E negative (the double test recomputes
+ * only an edge function that comes out 0, which a float one beyond E never meets). A triangle with one edge
  * function surely positive and another surely negative is missed by the double test: it is dropped.
  * Every other triangle is tested again by triangle_crossing_prepared, which gives t, u and v: the float
  * test decides only which triangles need no double test, never an answer.

@@ -20,17 +20,22 @@
  *     triangles never disagree about the side of the edge the ray passes, and when the ray is exactly
  *     on it (zero), both count it as inside: the tie rule. Had zero counted as outside for both, a
  *     ray through the edge would miss both, the very leak this replaces.
- *  3. Rounding never flips a sign: if px qy > py qx exactly, the rounded products keep that order
- *     (rounding is monotonic) and their difference is >= 0. So the computed test accepts every ray
- *     that the exact test on the rounded 2D corners accepts, and the rounded corners still form a
- *     closed surface: in exact arithmetic no line passes between closed triangles that share their
- *     edges and corners. The same holds at shared corners, not only along edges. (The one answer
- *     that is not a superset: a triangle whose three edge functions are all zero is seen edge-on and
- *     missed; the ray then runs along it and meets the triangles beside it, which are not edge-on.)
+ *  3. Every sign is exact: if px qy > py qx exactly, the rounded products keep that order (rounding
+ *     is monotonic), so when they differ their difference has the exact sign. When they round alike,
+ *     the exact difference is that of their rounding errors, each given exactly by fma, and the edge
+ *     function returns that rather than 0 (swapped, the errors swap: still the exact negative). So
+ *     the computed test is the exact test on the rounded 2D corners, and those still form a closed
+ *     surface: in exact arithmetic no line passes between closed triangles that share their edges and
+ *     corners. The same holds at shared corners, not only along edges. (A triangle whose three edge
+ *     functions are exactly zero is seen edge-on and missed; the ray then runs along it and meets the
+ *     triangles beside it, which are not edge-on.)
  * This needs the products rounded on their own, not fused into one multiply-add: the Makefile builds
- * with -ffp-contract=off. Woop, Benthin and Wald fall back to double precision when an edge function
- * of their float test is zero; we compute in double throughout, where 3. already holds, so there is
- * nothing to fall back to. Only products beyond about 1e300 (overflow) would break 3.
+ * with -ffp-contract=off. Woop, Benthin and Wald recompute an edge function of their float test in
+ * double when it comes out zero; we compute in double and recompute a zero from the rounding errors.
+ * Returning the zero made a triangle a unit in the last place across, 1.6 units from a ray, count as
+ * crossed by it. Products beyond about 1e300 (overflow) would break 3; rounding errors below the
+ * smallest double (products below about 1e-290) can only turn an exact sign back into zero, the tie
+ * rule's inside, never into the other sign.
  *
  * How exact t is. With all three weights of one sign, t = sz (w_a az + w_b bz + w_c cz) / det is a
  * weighted mean of the corners' depths along the ray: it cannot leave their range, and its rounding

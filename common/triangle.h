@@ -47,11 +47,17 @@ static inline struct triangle_ray triangle_ray_make(const ray *r) {
 }
 
 /* The edge function of the edge from p to q, seen from the ray: twice the signed area of the 2D
- * triangle (0, 0), p, q in the sheared plane. Zero when the ray meets the edge's line. The same two
- * corners always give the same number, and given in the other order its exact negative (the products
- * are the same two, subtracted the other way), so two triangles that share an edge agree on it. */
+ * triangle (0, 0), p, q in the sheared plane, px qy - py qx, with its exact sign: zero only when the
+ * ray meets the edge's line exactly. The same two corners always give the same number, and given in
+ * the other order its exact negative, so two triangles that share an edge agree on it. */
 static inline double triangle_edge_function(double px, double py, double qx, double qy) {
-    return px * qy - py * qx;
+    double left = px * qy, right = py * qx;
+    if (left != right)
+        return left - right; /* rounding keeps the products' order, so this has the exact sign */
+    /* Equal rounded products: the exact difference is that of their rounding errors, which fma gives
+     * exactly (barring underflow). Returning 0 here made a triangle a few units in the last place
+     * across count as hit by rays passing far from it (docs/03-triangle.md). */
+    return fma(px, qy, -left) - fma(py, qx, -right);
 }
 
 /* Whether the corners a, b, c lie exactly on one line (or coincide): the cross product of two edges is

@@ -831,6 +831,33 @@ Test(accel, coincident_copies_of_a_triangle_give_the_lowest_face_index) {
     mesh_free(&b.m);
 }
 
+/* The triangle of triangle/a_triangle_a_few_units_in_the_last_place_across_is_missed_by_a_ray_passing_far_from_it
+ * (test_geometry.c) in front of a large one: the ray passes 1.6 units from the tiny one and every structure
+ * must find the large one behind it. With two triangles each tree is one leaf, so rung 9 tests both in its
+ * four lanes. */
+Test(accel, a_ray_passing_far_from_a_triangle_a_unit_in_the_last_place_across_finds_the_one_behind) {
+    struct builder b = {0};
+    add_triangle(&b, vec3_make(-1.5818233809349238, 0.20938174482871832, -0.047218961197519234),
+                 vec3_make(-1.5818233809349238, 0.20938174482871832, -0.047218961197519213),
+                 vec3_make(-1.5818233809349238, 0.2093817448287183, -0.047218961197519213));
+    add_triangle(&b, vec3_make(-10, -10, -3), vec3_make(10, -10, -3), vec3_make(0, 10, -3));
+    struct accel a[ACCEL_COUNT];
+    build_all(&b.m, "a tiny triangle before a large one", a);
+    ray r = {{0, 0, 0}, {0.29805563450700401, 0.15023926885344063, -0.48162659419776244}};
+    double behind = 3 / 0.48162659419776244;
+    for (int s = 0; s < ACCEL_COUNT; s++) {
+        double t = 0;
+        uint32_t face = 0;
+        cr_assert(a[s].closest(a[s].structure, &r, RAY_T_MIN, INFINITY, &t, &face), "%s", a[s].name);
+        cr_expect_eq(face, 1, "%s: face %u at t = %g, want the large triangle", a[s].name, face, t);
+        cr_expect_float_eq(t, behind, 1e-12, "%s: t = %a", a[s].name, t);
+        cr_expect_not(a[s].occluded(a[s].structure, &r, RAY_T_MIN, 6.0), "%s: occluded before the large triangle",
+                      a[s].name);
+    }
+    free_all(a);
+    mesh_free(&b.m);
+}
+
 static bool stop_after_first(void *ctx, double t, uint32_t face) {
     (void)t;
     (void)face;

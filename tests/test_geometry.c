@@ -449,6 +449,29 @@ Test(triangle, edge_function_is_exactly_antisymmetric) {
     }
 }
 
+/* Two products that round to the same number although they differ: (1 + 2^-52)^2 = 1 + 2^-51 + 2^-104
+ * rounds to 1 + 2^-51 = (1 + 2^-51) * 1. The edge function is then the difference of the rounding
+ * errors, exact: 2^-104 one way round and -2^-104 the other, where a plain difference gives 0. */
+Test(triangle, edge_function_of_products_that_round_alike_has_the_exact_value) {
+    double p = 1 + 0x1p-52, q = 1 + 0x1p-51;
+    cr_assert_eq(p * p, q * 1.0, "the two products must round alike for this test to mean anything");
+    cr_assert_eq(triangle_edge_function(p, q, 1.0, p), 0x1p-104, "e = %a", triangle_edge_function(p, q, 1.0, p));
+    cr_assert_eq(triangle_edge_function(1.0, p, p, q), -0x1p-104, "e = %a", triangle_edge_function(1.0, p, p, q));
+}
+
+/* A triangle a unit in the last place or two across, 1.6 units from the ray's origin: its three
+ * corners move to nearly one point of the sheared plane, 1.6 from (0, 0), where two edge functions'
+ * products round alike. Counted as 0, "on the edge", they made the ray hit it, 0.1 along, although it
+ * passes far from it; their exact signs disagree with the third's. */
+Test(triangle, a_triangle_a_few_units_in_the_last_place_across_is_missed_by_a_ray_passing_far_from_it) {
+    vec3 a = {-1.5818233809349238, 0.20938174482871832, -0.047218961197519234};
+    vec3 b = {-1.5818233809349238, 0.20938174482871832, -0.047218961197519213};
+    vec3 c = {-1.5818233809349238, 0.2093817448287183, -0.047218961197519213};
+    ray r = {{0, 0, 0}, {0.29805563450700401, 0.15023926885344063, -0.48162659419776244}};
+    double t, u, v;
+    cr_assert_not(triangle_crossing(a, b, c, &r, &t, &u, &v), "crossed at t = %g", t);
+}
+
 /* A right triangle with legs `size` at z = -1, probed through its centroid-ish point. */
 static struct tri_hit probe_tiny(double size) {
     vec3 a = vec3_make(0, 0, -1), b = vec3_make(size, 0, -1), c = vec3_make(0, size, -1);
