@@ -182,12 +182,12 @@ static void free_triangles(struct triangles *t) {
 }
 
 /* Returns block resized to `bytes` (a new block for NULL). When memory runs out the program ends with a
- * message: a tree that does not fit cannot be traced. */
+ * message and exit status 1, as on bad input: a tree that does not fit cannot be traced. */
 static void *resize(void *block, size_t bytes) {
     void *resized = realloc(block, bytes);
     if (resized == NULL) {
-        fprintf(stderr, "kd-tree: out of memory (%zu bytes)\n", bytes);
-        abort();
+        fprintf(stderr, "kd-tree: out of memory (a block of %zu bytes)\n", bytes);
+        exit(EXIT_FAILURE);
     }
     return resized;
 }
@@ -241,7 +241,7 @@ static void build(struct builder *bd, enum kd_split rule, struct triangles *t, s
     struct kdtree *k = bd->tree;
     if (k->info.nodes >= UINT32_MAX || k->info.references + t->count > UINT32_MAX) {
         fprintf(stderr, "kd-tree: more than 2^32 nodes or references\n");
-        abort();
+        exit(EXIT_FAILURE);
     }
     if (k->info.nodes == bd->node_capacity) {
         bd->node_capacity = 2 * bd->node_capacity + 64;

@@ -86,8 +86,8 @@ struct kdtree {
 
 /* Builds a tree over the faces of m with the given rule. m is only read, and not kept. A mesh without
  * faces gives a tree that nothing hits. Returns NULL for a mesh of more than 2^32 - 1 faces; when memory
- * runs out, ends the program with a message (a tree that does not fit cannot be traced). Free with
- * kdtree_free. */
+ * runs out, ends the program with a message and exit status 1 (a tree that does not fit cannot be
+ * traced). Free with kdtree_free. */
 struct kdtree *kdtree_build(const struct mesh *m, enum kd_split split);
 
 /* Frees k and everything it owns. Safe on NULL. */

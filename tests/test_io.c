@@ -598,6 +598,29 @@ Test(io, images_beyond_their_share_of_memory_are_refused_and_a_file_named_again_
     expect_png(png, 8, 8);
 }
 
+/* Chapter 9's kd-tree over the 346,000-triangle teapot, under a limit that its mesh fits in but the
+ * tree does not: the program says so and exits with 1, as on bad input (it aborted, status 134). */
+#define IO_KDTREE_LIMIT_KB 100000 /* ulimit -v for the run: the build fails from 60 MB to 150 MB */
+
+Test(io, a_kd_tree_that_memory_cannot_hold_ends_the_program_with_a_message, .timeout = 60) {
+    skip_under_sanitizers();
+    char cwd[1024], text[2048];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    snprintf(text, sizeof text,
+             "camera eye 0 1 6 target 0 0 0 fov 40\nimage 8 8\nlight position 0 5 5 colour 1 1 1\n"
+             "mesh %s/scenes/models/teapot-346k.ply\n", cwd);
+    const char *scene = text_file("io-kdtree-memory.scene", text);
+    const char *png = fresh("io-kdtree-memory.png");
+    static char command[2048], output[16384];
+    snprintf(command, sizeof command, "ulimit -v %d; OMP_NUM_THREADS=1 " IO_TIMEOUT " %s %s --quiet -o %s",
+             IO_KDTREE_LIMIT_KB, chapter_program(9), scene, png);
+    int status = run_capturing(command, output, sizeof output);
+    cr_assert_eq(status, 1, "'%s' exited with %d:\n%s", command, status, output);
+    const char *said = "kd-tree: out of memory (a block of ";
+    cr_assert(strncmp(output, said, strlen(said)) == 0, "it said:\n%s", output);
+    cr_assert_eq(access(png, F_OK), -1, "a picture was written");
+}
+
 /* ---- pixels that are not numbers ------------------------------------------------------------------- */
 
 /* A trace that answers NaN for rays leaning right and up, and grey for the others. */
