@@ -474,3 +474,30 @@ Test(watertight, povray_draws_the_cube_from_inside_without_a_leak_as_chapter_10_
     struct image_difference d = compare_png(ours, theirs);
     cr_assert_eq(d.max, 0, "chapter 10 and POV-Ray differ by up to %d levels", d.max);
 }
+
+/* The triangle of triangle/a_triangle_a_few_units_in_the_last_place_across_is_missed_by_a_ray_passing_far_from_it
+ * (test_geometry.c), white on black, seen by chapter 3's brute-force loop from the origin of that test's
+ * ray, 90 degrees wide: it is some 1e-17 across, no camera ray passes through it, and the picture is
+ * black. With an edge function of 0 where its two products rounded alike, 153 of the pixels were lit. */
+Test(watertight, a_triangle_a_unit_in_the_last_place_across_lights_no_pixel_of_chapter_3s_picture, .timeout = 60) {
+    cr_assert_eq(system("mkdir -p " WATERTIGHT_OUT), 0);
+    const char *scene = WATERTIGHT_OUT "/speck.scene", *png = WATERTIGHT_OUT "/speck.png";
+    FILE *f = fopen(scene, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "camera eye 0 0 0  target 0.29805563450700401 0.15023926885344063 -0.48162659419776244  fov 90\n"
+               "image 200 200\nbackground 0 0 0\nlight position 0 0 0  colour 1 1 1\nmaterial white  colour 1 1 1\n"
+               "triangle a -1.5818233809349238 0.20938174482871832 -0.047218961197519234"
+               "  b -1.5818233809349238 0.20938174482871832 -0.047218961197519213"
+               "  c -1.5818233809349238 0.2093817448287183 -0.047218961197519213  material white\n");
+    cr_assert_eq(fclose(f), 0);
+    cr_assert_eq(render_chapter(3, scene, png, ""), 0);
+    int width, height;
+    char err[256];
+    uint8_t *rgb = image_read_rgb(png, &width, &height, err, sizeof err);
+    cr_assert_not_null(rgb, "%s", err);
+    long lit = 0;
+    for (long p = 0; p < 3L * width * height; p++)
+        lit += rgb[p] != 0;
+    free(rgb);
+    cr_assert_eq(lit, 0, "%ld channels of the picture are not black", lit);
+}
