@@ -20,12 +20,12 @@
  *    brings no fused multiply-add, and the Makefile's -ffp-contract=off forbids fusing): the same
  *    sheared corners, the same three edge functions (a lane where one comes out 0 has its three redone
  *    by triangle_edge_function itself, which then finds the exact sign), the same test of their signs
- *    (zero is inside) and of det == 0, and for the lanes that cross the same t, bit for bit. The one test it leaves out,
- *    whether the corners lie exactly on a line (triangle_corners_collinear), is made once, by
- *    fast_bvh_lean_prepare, which writes such a triangle's corners as NaN: every comparison of its
- *    lane fails, and it is never crossed, as triangle_crossing_prepared never crosses it. So each lane
- *    gives triangle_crossing_prepared's answer, and its hits go to leaf_hit_taken (fast_bvh_walk.h),
- *    the code of the other rungs, which applies the window and the tie rule.
+ *    (zero is inside) and of det == 0, and for the lanes that cross the same t, bit for bit. The one
+ *    test it leaves out, whether the corners lie exactly on a line (triangle_corners_collinear), is
+ *    made once, by fast_bvh_lean_prepare, which writes such a triangle's corners as NaN: every
+ *    comparison of its lane fails, and it is never crossed, as triangle_crossing_prepared never crosses
+ *    it. So each lane gives triangle_crossing_prepared's answer, and its hits go to leaf_hit_taken
+ *    (fast_bvh_walk.h), the code of the other rungs, which applies the window and the tie rule.
  * A ray that rung 6's bound does not cover is walked by rung 8, in double.
  *
  * Rung 11 walks the same tree in the same way; only its leaves differ: their triangles are tested eight
