@@ -36,6 +36,7 @@
 #include "kdtree.h"
 #include "mesh.h"
 #include "mesh_load.h"
+#include "speck_triangle.h"
 #include "stats.h"
 #include "triangle.h"
 
@@ -837,14 +838,12 @@ Test(accel, coincident_copies_of_a_triangle_give_the_lowest_face_index) {
  * four lanes. */
 Test(accel, a_ray_passing_far_from_a_triangle_a_unit_in_the_last_place_across_finds_the_one_behind) {
     struct builder b = {0};
-    add_triangle(&b, vec3_make(-1.5818233809349238, 0.20938174482871832, -0.047218961197519234),
-                 vec3_make(-1.5818233809349238, 0.20938174482871832, -0.047218961197519213),
-                 vec3_make(-1.5818233809349238, 0.2093817448287183, -0.047218961197519213));
+    add_triangle(&b, vec3_make(SPECK_A), vec3_make(SPECK_B), vec3_make(SPECK_C));
     add_triangle(&b, vec3_make(-10, -10, -3), vec3_make(10, -10, -3), vec3_make(0, 10, -3));
     struct accel a[ACCEL_COUNT];
     build_all(&b.m, "a tiny triangle before a large one", a);
-    ray r = {{0, 0, 0}, {0.29805563450700401, 0.15023926885344063, -0.48162659419776244}};
-    double behind = 3 / 0.48162659419776244;
+    ray r = {{0, 0, 0}, {SPECK_DIRECTION}};
+    double behind = 3 / -r.direction.z;
     for (int s = 0; s < ACCEL_COUNT; s++) {
         double t = 0;
         uint32_t face = 0;

@@ -17,6 +17,7 @@
 #include "image.h"
 #include "plane.h"
 #include "sphere.h"
+#include "speck_triangle.h"
 #include "stats.h"
 #include "triangle.h"
 
@@ -464,10 +465,8 @@ Test(triangle, edge_function_of_products_that_round_alike_has_the_exact_value) {
  * products round alike. Counted as 0, "on the edge", they made the ray hit it, 0.1 along, although it
  * passes far from it; their exact signs disagree with the third's. */
 Test(triangle, a_triangle_a_few_units_in_the_last_place_across_is_missed_by_a_ray_passing_far_from_it) {
-    vec3 a = {-1.5818233809349238, 0.20938174482871832, -0.047218961197519234};
-    vec3 b = {-1.5818233809349238, 0.20938174482871832, -0.047218961197519213};
-    vec3 c = {-1.5818233809349238, 0.2093817448287183, -0.047218961197519213};
-    ray r = {{0, 0, 0}, {0.29805563450700401, 0.15023926885344063, -0.48162659419776244}};
+    vec3 a = {SPECK_A}, b = {SPECK_B}, c = {SPECK_C};
+    ray r = {{0, 0, 0}, {SPECK_DIRECTION}};
     double t, u, v;
     cr_assert_not(triangle_crossing(a, b, c, &r, &t, &u, &v), "crossed at t = %g", t);
 }

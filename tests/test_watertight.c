@@ -27,6 +27,7 @@
 #include "image_test_support.h"
 #include "kdtree.h"
 #include "mesh.h"
+#include "speck_triangle.h"
 #include "ray.h"
 #include "triangle.h"
 
@@ -484,11 +485,10 @@ Test(watertight, a_triangle_a_unit_in_the_last_place_across_lights_no_pixel_of_c
     const char *scene = WATERTIGHT_OUT "/speck.scene", *png = WATERTIGHT_OUT "/speck.png";
     FILE *f = fopen(scene, "w");
     cr_assert_not_null(f);
-    fprintf(f, "camera eye 0 0 0  target 0.29805563450700401 0.15023926885344063 -0.48162659419776244  fov 90\n"
+    fprintf(f, "camera eye 0 0 0  target " SPECK_TEXT(SPECK_DIRECTION) "  fov 90\n"
                "image 200 200\nbackground 0 0 0\nlight position 0 0 0  colour 1 1 1\nmaterial white  colour 1 1 1\n"
-               "triangle a -1.5818233809349238 0.20938174482871832 -0.047218961197519234"
-               "  b -1.5818233809349238 0.20938174482871832 -0.047218961197519213"
-               "  c -1.5818233809349238 0.2093817448287183 -0.047218961197519213  material white\n");
+               "triangle a " SPECK_TEXT(SPECK_A) "  b " SPECK_TEXT(SPECK_B) "  c " SPECK_TEXT(SPECK_C)
+               "  material white\n");
     cr_assert_eq(fclose(f), 0);
     cr_assert_eq(render_chapter(3, scene, png, ""), 0);
     int width, height;
