@@ -71,7 +71,7 @@ LDLIBS = $(STB_LIBS) -lm
 CRITERION = $(shell pkg-config --cflags --libs criterion)
 
 # ---- what each chapter introduces ----------------------------------------------------------------
-MODULES_01 := clock stats camera image outfile infile text_escape name_index antialias area_light path_settings lens instance_syntax pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap ray_budget cli
+MODULES_01 := clock stats camera image outfile infile png_palette text_escape name_index antialias area_light path_settings lens instance_syntax pigment_syntax sphere_syntax triangle_syntax plane_syntax box_syntax scene scene_scale scene_set povray render heatmap ray_budget cli
 MODULES_02 := $(MODULES_01) sphere headlight
 MODULES_03 := $(MODULES_02) big_alloc memory_budget triangle mesh mesh_read mesh_ply mesh_obj mesh_load scene_meshes
 MODULES_04 := $(MODULES_03) plane
@@ -205,11 +205,13 @@ $(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,
         $(BUILD)/fuzz/render_check.o $(BUILD)/fuzz/tiny_images.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
 
-$(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+$(BUILD)/compare: $(BUILD)/tools/compare.o $(IMAGE_COMPARE_OBJECT) $(BUILD)/common/image.o $(BUILD)/common/outfile.o \
+                  $(BUILD)/common/infile.o $(BUILD)/common/png_palette.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # The render farm's tile assembler (tools/farm/assemble.c, docs/farm.md).
-$(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUILD)/common/infile.o $(BUILD)/common/outfile.o
+$(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUILD)/common/infile.o $(BUILD)/common/outfile.o \
+                   $(BUILD)/common/png_palette.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # The tests that take a minute or more run in make test-long, not make test: Criterion's "suite/test"
@@ -348,7 +350,8 @@ test-accel-long: $(BUILD)/run-accel-long | deps
 	WHITTED_ACCEL_RAYS=20 WHITTED_BUILD=$(BUILD) ./$(BUILD)/run-accel-long --filter 'accel/*' --timeout 0
 
 # Chapter 12's walkthrough: regions of pictures side by side, enlarged (tools/antialias-docs.sh).
-$(BUILD)/inset: $(BUILD)/tools/inset.o $(BUILD)/common/image.o $(BUILD)/common/outfile.o
+$(BUILD)/inset: $(BUILD)/tools/inset.o $(BUILD)/common/image.o $(BUILD)/common/outfile.o $(BUILD)/common/infile.o \
+                $(BUILD)/common/png_palette.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS)
 
 # Chapter NN's program linked with the modules of chapter MM instead of its own:

@@ -5,7 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "infile.h"
 #include "outfile.h"
+#include "png_palette.h"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -43,6 +45,10 @@ uint8_t image_quantize(double v) {
     return (uint8_t)floor(255.0 * v + 0.5);
 }
 
+/* No picture file read back is larger: a 16384 x 16384 PNG stored without compression takes about
+ * 805 MB. */
+#define IMAGE_FILE_MAX_BYTES (1024L * 1024 * 1024)
+
 /* The PNG row filter stb is told to use for every row: 1, "Sub" (each byte minus the byte of the pixel
  * to its left). By default stb tries all five filters on each row and keeps the one that looks best,
  * which costs a third of the writing time; on our pictures, smooth gradients row after row, Sub alone
@@ -73,16 +79,33 @@ bool image_write_png(const struct image *img, const char *path, char *err, size_
 }
 
 uint8_t *image_read_rgb(const char *path, int *width, int *height, char *err, size_t err_size) {
-    int channels = 0;
-    uint8_t *rgb = stbi_load(path, width, height, &channels, 3);
-    if (rgb == NULL) {
-        snprintf(err, err_size, "%s: cannot read image: %s", path, stbi_failure_reason());
+    size_t size = 0;
+    uint8_t *bytes = infile_read_whole(path, IMAGE_FILE_MAX_BYTES, &size, err, err_size);
+    if (bytes == NULL)
         return NULL;
+    int channels = 0, palette_size = 0;
+    enum png_palette_verdict palette = png_palette_check(bytes, size, &palette_size);
+    /* stb_image keeps its last failure's reason until the next one, and some failures give none: the
+     * reason is first set to a known one (by asking about an empty buffer) and shown only when the
+     * decoder replaced it, as image_map.c does. */
+    stbi_info_from_memory(bytes, 0, &channels, &channels, &channels);
+    const char *stale = stbi_failure_reason();
+    uint8_t *rgb = NULL;
+    if (palette == PNG_PALETTE_INDEX_PAST_END)
+        snprintf(err, err_size, "%s: damaged: a pixel's palette index is past the end of its palette (%d colours)",
+                 path, palette_size);
+    else if (palette == PNG_PALETTE_OUT_OF_MEMORY)
+        snprintf(err, err_size, "%s: out of memory", path);
+    else if ((rgb = stbi_load_from_memory(bytes, (int)size, width, height, &channels, 3)) == NULL) {
+        const char *reason = stbi_failure_reason();
+        snprintf(err, err_size, "%s: cannot read image: %s", path,
+                 reason == stale || reason == NULL ? "the decoder gives no reason" : reason);
     }
-    if (*width > IMAGE_MAX_SIDE || *height > IMAGE_MAX_SIDE) {
+    free(bytes);
+    if (rgb != NULL && (*width > IMAGE_MAX_SIDE || *height > IMAGE_MAX_SIDE)) {
         snprintf(err, err_size, "%s: image larger than %d pixels on a side", path, IMAGE_MAX_SIDE);
         stbi_image_free(rgb);
-        return NULL;
+        rgb = NULL;
     }
     return rgb;
 }

@@ -57,7 +57,10 @@ bool image_write_png_bytes(const uint8_t *rgb, int width, int height, const char
 
 /* Reads an 8-bit PNG (or any format stb_image knows) as RGB bytes. On success returns a malloc'd
  * buffer of width * height * 3 bytes (the caller frees it) and sets *width and *height; on failure
- * returns NULL and writes "path: reason" into err. */
+ * returns NULL and writes "path: reason" into err: infile_read_whole's reasons (a file that is not a
+ * regular one, or larger than 1 GiB), "damaged: a pixel's palette index is past the end of its palette
+ * (N colours)" (png_palette_check), "cannot read image: " and the decoder's reason, or "image larger
+ * than 16384 pixels on a side". */
 uint8_t *image_read_rgb(const char *path, int *width, int *height, char *err, size_t err_size);
 
 #endif

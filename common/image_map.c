@@ -10,6 +10,7 @@
 #include <stb_image.h>
 
 #include "infile.h"
+#include "png_palette.h"
 
 #define IMAGE_MAP_FILE_MAX_BYTES (256L * 1024 * 1024) /* no PNG or JPEG we read is larger */
 /* POV-Ray adds its EPSILON to the pixel coordinates before wrapping them (map_pos). */
@@ -75,30 +76,6 @@ static bool png_is_grey_8bit(const uint8_t *bytes, size_t size) {
 static float povray_grey_level(float linear) {
     float grey = linear * POVRAY_GREY_RED + linear * POVRAY_GREY_GREEN + linear * POVRAY_GREY_BLUE;
     return (float)(uint8_t)(grey * 255.0f) / 255.0f;
-}
-
-/* Reads the whole regular file at path; returns a malloc'd buffer and its size, or NULL with why. */
-static uint8_t *read_file(const char *path, size_t *size, char *why, size_t why_size) {
-    FILE *file = infile_open(path, why, why_size);
-    if (file == NULL)
-        return NULL;
-    long length = -1;
-    if (fseek(file, 0, SEEK_END) == 0)
-        length = ftell(file);
-    rewind(file);
-    uint8_t *bytes = NULL;
-    if (length < 0 || length > IMAGE_MAP_FILE_MAX_BYTES)
-        snprintf(why, why_size, "%s: %s", path, length < 0 ? "cannot read" : "larger than 256 MiB; not an image map");
-    else if ((bytes = malloc((size_t)length + 1)) == NULL)
-        snprintf(why, why_size, "%s: out of memory", path);
-    else if (fread(bytes, 1, (size_t)length, file) != (size_t)length) {
-        snprintf(why, why_size, "%s: cannot read", path);
-        free(bytes);
-        bytes = NULL;
-    }
-    fclose(file);
-    *size = (size_t)length;
-    return bytes;
 }
 
 /* ---- the file's header, read before the decoder sees it ------------------------------------------ */
@@ -310,6 +287,16 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
                  stbi_failure_reason());
         return false;
     }
+    int palette_size;
+    enum png_palette_verdict palette = png_palette_check(bytes, size, &palette_size);
+    if (palette != PNG_PALETTE_FITS) {
+        if (palette == PNG_PALETTE_INDEX_PAST_END)
+            snprintf(why, why_size, "%s: damaged: a pixel's palette index is past the end of its palette (%d "
+                     "colours)", path, palette_size);
+        else
+            snprintf(why, why_size, "%s: out of memory", path);
+        return false;
+    }
     bool sixteen = stbi_is_16_bit_from_memory(bytes, (int)size);
     /* stb_image keeps its last failure's reason until the next one, and some of its failures give none:
      * a PNG whose compressed data is damaged showed the reason of the JPEG test stbi_info made before
@@ -357,7 +344,7 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
 bool image_map_read(const char *path, struct pigment_image *image, char *why, size_t why_size) {
     *image = (struct pigment_image){0};
     size_t size = 0;
-    uint8_t *bytes = read_file(path, &size, why, why_size);
+    uint8_t *bytes = infile_read_whole(path, IMAGE_MAP_FILE_MAX_BYTES, &size, why, why_size);
     if (bytes == NULL)
         return false;
     bool ok = decode(path, bytes, size, image, why, why_size);

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <stdbool.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -47,4 +48,29 @@ FILE *infile_open(const char *path, char *err, size_t err_size) {
     if (file == NULL)
         close(fd);
     return file;
+}
+
+unsigned char *infile_read_whole(const char *path, size_t max_bytes, size_t *size, char *err, size_t err_size) {
+    FILE *file = infile_open(path, err, err_size);
+    if (file == NULL)
+        return NULL;
+    long length = -1;
+    if (fseek(file, 0, SEEK_END) == 0)
+        length = ftell(file);
+    rewind(file);
+    unsigned char *bytes = NULL;
+    if (length < 0)
+        snprintf(err, err_size, "%s: cannot read", path);
+    else if ((unsigned long)length > max_bytes)
+        snprintf(err, err_size, "%s: larger than %zu bytes", path, max_bytes);
+    else if ((bytes = malloc((size_t)length + 1)) == NULL)
+        snprintf(err, err_size, "%s: out of memory", path);
+    else if (fread(bytes, 1, (size_t)length, file) != (size_t)length) {
+        snprintf(err, err_size, "%s: cannot read", path);
+        free(bytes);
+        bytes = NULL;
+    }
+    fclose(file);
+    *size = bytes != NULL ? (size_t)length : 0;
+    return bytes;
 }

@@ -16,4 +16,10 @@
  * caller closes the FILE. */
 FILE *infile_open(const char *path, char *err, size_t err_size);
 
+/* Reads the whole regular file `path` (opened by infile_open) into a malloc'd buffer of its bytes and one
+ * more, which the caller frees, and sets *size to their number. On failure returns NULL and writes into
+ * err infile_open's message, "path: larger than N bytes" when the file holds more than max_bytes,
+ * "path: cannot read" or "path: out of memory". */
+unsigned char *infile_read_whole(const char *path, size_t max_bytes, size_t *size, char *err, size_t err_size);
+
 #endif

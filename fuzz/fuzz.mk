@@ -25,16 +25,16 @@ FUZZ_LDFLAGS := $(FUZZ_SANITIZERS) -fsanitize=fuzzer
 # What each harness links besides its own file and fuzz_support: the modules of the chapter that
 # introduces what it tests (the Makefile's MODULES_NN), without those for the picture, the output
 # files and the command line (render.c also needs OpenMP, which this clang build leaves out).
-FUZZ_NOT_LINKED := image outfile povray render heatmap cli scene_set headlight
+FUZZ_NOT_LINKED := image png_palette outfile povray render heatmap cli scene_set headlight
 FUZZ_MODULES_scene := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_01))
 FUZZ_MODULES_ply := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_03))
 FUZZ_MODULES_obj := $(FUZZ_MODULES_ply)
 # The renderer harness takes chapter 10's modules and what chapters 12 to 15 add to the tracing (not
 # chapter 11's fast BVH, whose float boxes promise no exact agreement with brute force), with the
 # picture, its heat-map and its file, which chapter 12's sampling links to.
-FUZZ_MODULES_render := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_10)) image outfile heatmap sample_hash supersample \
+FUZZ_MODULES_render := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_10)) image png_palette outfile heatmap sample_hash supersample \
                        soft_shadow thin_lens image_map mesh_surface texture owen_sobol sampling emitter bsdf path_trace
-FUZZ_MODULES_image := infile image_map pigment_syntax
+FUZZ_MODULES_image := infile png_palette image_map pigment_syntax
 FUZZ_EXTRA_ply := fuzz_mesh
 FUZZ_EXTRA_obj := fuzz_mesh
 # stb_image's decoder is compiled by clang into the harnesses that read pictures (fuzz/stb_image_impl.c).

@@ -12,6 +12,7 @@
 
 #include "image.h"
 #include "image_test_support.h"
+#include "palette_png.h"
 #include "test_support.h"
 
 #define FARM_OUT TEST_OUT "/farm"
@@ -246,6 +247,15 @@ Test(assemble, joins_tiles_and_refuses_overlaps_gaps_and_tiles_past_the_edge) {
     fclose(f);
     expect_assemble(folder, "--size 24 8 tile-0-0.png tile-10-0.png tile-20-0.png", 1,
                     "assemble: tile-20-0.png: not a PNG (its first bytes are not PNG's signature and header)");
+    /* a palette tile with a pixel past its palette, which stb_image decoded from memory it never filled */
+    snprintf(junk, sizeof junk, "%s/palette-tile-0-0.png", folder);
+    f = fopen(junk, "wb");
+    cr_assert_not_null(f);
+    fwrite(palette_png_index_past_end, 1, sizeof palette_png_index_past_end, f);
+    fclose(f);
+    expect_assemble(folder, "palette-tile-0-0.png", 1,
+                    "assemble: palette-tile-0-0.png: damaged: a pixel's palette index is past the end of its palette (2 "
+                    "colours)");
     expect_assemble(folder, "--size 0 4 tile-0-0.png", 2, "assemble: --size needs two whole numbers W H from 1 to 16384");
     expect_assemble(folder, "tile-0-0.png -o", 2, "assemble: -o needs a file name");
     /* a FIFO is refused without waiting for a writer (assemble once hung on it) */

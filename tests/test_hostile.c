@@ -18,6 +18,7 @@
 
 #include "image_map.h"
 #include "image_test_support.h"
+#include "palette_png.h"
 #include "pigment.h"
 #include "test_support.h"
 #include "texture.h"
@@ -121,6 +122,10 @@ static void make_files(char folder[64]) {
     write_bytes(folder, "cut.jpg", cut_jpeg, sizeof cut_jpeg);
     const uint8_t lossless[] = {0xff, 0xd8, 0xff, 0xc3, 0x00, 0x0b, 8, 0, 16, 0, 16, 1, 1, 0x11, 0, 0xff, 0xd9};
     write_bytes(folder, "lossless.jpg", lossless, sizeof lossless);
+    /* Palette files of two colours: one every pixel of which names one of them, and one with a pixel that
+     * names colour 2, which stb_image looked up in a table the file never filled (palette_png.h). */
+    write_bytes(folder, "palette.png", palette_png_checkerboard, sizeof palette_png_checkerboard);
+    write_bytes(folder, "palette-past.png", palette_png_index_past_end, sizeof palette_png_index_past_end);
     /* The libFuzzer find: a Huffman table of more than 256 symbols, which stb_image writes past its
      * arrays on. */
     size_t huffman_size = 0;
@@ -404,7 +409,10 @@ static const struct hostile image_files[] = {
     REFUSED_IMAGE(14, "cut.jpg", "truncated or damaged: 12 bytes, and no JPEG frame header among them"),
     REFUSED_IMAGE(15, "lossless.jpg", "a kind of JPEG that is not supported (frame type 0xc3: only baseline and "
                                       "progressive JPEGs are)"),
+    REFUSED_IMAGE(14, "palette-past.png", "damaged: a pixel's palette index is past the end of its palette (2 "
+                                          "colours)"),
     {14, PAINT("@/grid.png"), "", 0, NULL},
+    {14, PAINT("@/palette.png"), "", 0, NULL},
     /* chapters 12 and 13 draw no pigments and read no pictures: the scene is drawn in the material's colour */
     {12, PAINT("@/bmp.png"), "", 0, NULL},
     {13, PAINT("@/huge.png"), "", 0, NULL},

@@ -24,6 +24,7 @@
 #include "mesh.h"
 #include "name_index.h"
 #include "outfile.h"
+#include "palette_png.h"
 #include "scene.h"
 #include "sphere.h"
 #include "test_support.h"
@@ -64,6 +65,56 @@ static void expect_png(const char *path, int width, int height) {
     cr_assert_eq(w, width);
     cr_assert_eq(h, height);
     free(rgb);
+}
+
+/* ---- palette PNGs -------------------------------------------------------------------------------- */
+
+/* Writes `size` bytes to TEST_OUT/name and returns its path. */
+static const char *bytes_file(const char *name, const uint8_t *bytes, size_t size) {
+    const char *path = fresh(name);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    cr_assert_eq(fwrite(bytes, 1, size, f), size);
+    fclose(f);
+    return path;
+}
+
+/* A palette of two colours in an 8-bit file is read as its colours; a pixel naming colour 2 is refused,
+ * where stb_image alone gave the colour of whatever its table held there, another on every run. */
+Test(io, a_palette_png_is_read_as_its_colours_and_a_pixel_past_its_palette_is_refused) {
+    char err[512] = "";
+    int w = 0, h = 0;
+    uint8_t *rgb = image_read_rgb(bytes_file("io-palette.png", palette_png_checkerboard,
+                                             sizeof palette_png_checkerboard), &w, &h, err, sizeof err);
+    cr_assert_not_null(rgb, "%s", err);
+    cr_assert_eq(w, 4);
+    cr_assert_eq(h, 4);
+    for (int k = 0; k < 16; k++) {
+        bool red = (k % 4 + k / 4) % 2 == 0;
+        const uint8_t want[3] = {red ? 255 : 0, 0, red ? 0 : 255};
+        cr_expect_arr_eq(rgb + 3 * k, want, 3, "pixel (%d, %d)", k % 4, k / 4);
+    }
+    free(rgb);
+    const char *past = bytes_file("io-palette-past.png", palette_png_index_past_end, sizeof palette_png_index_past_end);
+    cr_assert_null(image_read_rgb(past, &w, &h, err, sizeof err));
+    char expected[512];
+    snprintf(expected, sizeof expected,
+             "%s: damaged: a pixel's palette index is past the end of its palette (2 colours)", past);
+    cr_assert_str_eq(err, expected);
+}
+
+/* stb_image gives no reason for some damage (here, compressed data no deflate stream starts with); the
+ * message says so instead of printing a null pointer. */
+Test(io, a_picture_the_decoder_fails_on_without_a_reason_says_so) {
+    uint8_t damaged[sizeof palette_png_checkerboard];
+    memcpy(damaged, palette_png_checkerboard, sizeof damaged);
+    memset(damaged + 61, 0xff, 13); /* the image data after its two bytes of zlib header */
+    const char *path = bytes_file("io-damaged.png", damaged, sizeof damaged);
+    char err[512] = "", expected[512];
+    int w = 0, h = 0;
+    cr_assert_null(image_read_rgb(path, &w, &h, err, sizeof err));
+    snprintf(expected, sizeof expected, "%s: cannot read image: the decoder gives no reason", path);
+    cr_assert_str_eq(err, expected);
 }
 
 /* ---- -o to things that are not regular files -------------------------------------------------- */
