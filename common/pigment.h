@@ -101,8 +101,17 @@ bool pigment_make_transform(const struct key_values *kv, int first, struct pigme
  * `jpeg`, every other `png`, so chapter 14 refuses a file whose bytes say otherwise. */
 bool pigment_file_is_jpeg(const char *file);
 
+/* The path by which the twin names p's image file: its whole path, written into `whole` (PATH_MAX bytes),
+ * so that POV-Ray finds the file from whichever folder it runs in; p->file when it does not resolve. */
+const char *pigment_twin_file(const struct pigment *p, char *whole);
+
+/* Returns true when `path` can stand in a POV-Ray string as it is: it holds no quote and no backslash,
+ * which POV-Ray reads as the string's own syntax, and no control character (a line break would end the
+ * twin's line). A scene's file name is checked when it is read; the folders of a whole path are not. */
+bool pigment_twin_file_writable(const char *path);
+
 /* Writes p as POV-Ray's `pigment { ... }`, every colour as rgbft with the given filter and transmit
- * (the material's), the transform last. An image map names p->file as it is. */
+ * (the material's), the transform last. An image map names its file by pigment_twin_file. */
 void pigment_write_pov(FILE *out, const struct pigment *p, double filter, double transmit);
 
 #endif

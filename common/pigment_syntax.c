@@ -185,6 +185,17 @@ bool pigment_file_is_jpeg(const char *file) {
                            strcmp(dot, ".JPEG") == 0);
 }
 
+const char *pigment_twin_file(const struct pigment *p, char *whole) {
+    return realpath(p->file, whole) != NULL ? whole : p->file;
+}
+
+bool pigment_twin_file_writable(const char *path) {
+    for (const unsigned char *c = (const unsigned char *)path; *c != '\0'; c++)
+        if (*c == '"' || *c == '\\' || *c < 0x20 || *c == 0x7f)
+            return false;
+    return true;
+}
+
 static void write_colour(FILE *out, vec3 c, double filter, double transmit) {
     fprintf(out, "rgbft <%.17g, %.17g, %.17g, %.17g, %.17g>", c.x, c.y, c.z, filter, transmit);
 }
@@ -224,9 +235,8 @@ void pigment_write_pov(FILE *out, const struct pigment *p, double filter, double
         break;
     case PIGMENT_IMAGE_MAP: {
         bool jpeg = pigment_file_is_jpeg(p->file);
-        /* The whole path, so that POV-Ray finds the file from whichever folder it runs in. */
         char whole[PATH_MAX];
-        const char *file = realpath(p->file, whole) != NULL ? whole : p->file;
+        const char *file = pigment_twin_file(p, whole);
         fprintf(out, "%simage_map { %s \"%s\" map_type %d", p->uv_mapping ? "uv_mapping " : "", jpeg ? "jpeg" : "png",
                 file, (int)p->mapping);
         if (p->interpolate != 0) /* POV-Ray refuses `interpolate 0`: no interpolation is its default */

@@ -7,9 +7,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include "image_test_support.h"
 #include "povray.h"
+#include "test_support.h"
 
 #define NAME "twin.scene"
 #define CAMERA "camera eye 0 0 0 target 0 0 -1 fov 90\nimage 2 1\n"
@@ -278,6 +281,64 @@ Test(povray_export, shadow_offset_off_is_fine_before_chapter_7) {
         bool file_left = false;
         cr_assert(try_twin(CAMERA "shadow_offset off\n", allowed[k], err, sizeof err, &file_left), "%s", err);
     }
+}
+
+/* The twin names an image map's file by its whole path, inside a POV-Ray string: a folder whose name holds
+ * a quote or a backslash (the scene's own word for the file may not) would end the string early, so the
+ * twin is refused and none is written. */
+Test(povray_export, an_image_map_whose_whole_path_holds_a_quote_is_refused) {
+    mkdir("out", 0755);
+    mkdir(TEST_OUT, 0755);
+    const char *folder = TEST_OUT "/pov-q\"d\\x";
+    mkdir(folder, 0755);
+    char path[256];
+    size_t size = 0;
+    char *png = read_file("scenes/textures/grid.png", &size);
+    snprintf(path, sizeof path, "%s/grid.png", folder);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    fwrite(png, 1, size, f);
+    fclose(f);
+    free(png);
+    snprintf(path, sizeof path, "%s/s.scene", folder);
+    f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(CAMERA "pigment p image_map file grid.png\nmaterial m pigment p\nsphere centre 0 0 -3 radius 1 material m\n",
+          f);
+    fclose(f);
+    remove(TEST_OUT "/pov-quote.pov");
+    char *whole = realpath(folder, NULL), arguments[512], expected[1024];
+    cr_assert_not_null(whole);
+    snprintf(arguments, sizeof arguments, "'%s' --pov " TEST_OUT "/pov-quote.pov", path);
+    snprintf(expected, sizeof expected, "%s: pigment 'p': its file's whole path, %s/grid.png, holds a quote, a "
+             "backslash or a control character, which the twin's POV-Ray string cannot hold as written", path, whole);
+    free(whole);
+    expect_chapter_run(14, arguments, 1, expected);
+    cr_assert_neq(access(TEST_OUT "/pov-quote.pov", F_OK), 0, "a twin was written");
+}
+
+/* The twin's first line is a comment naming the scene's path, which comes from the command line: a line
+ * break in it is written as \x0a, so that what follows stays in the comment instead of becoming POV-Ray's
+ * code. */
+Test(povray_export, a_line_break_in_the_scene_path_stays_in_the_twins_comment) {
+    mkdir("out", 0755);
+    mkdir(TEST_OUT, 0755);
+    const char *folder = TEST_OUT "/pov-nl\n#error \"injected\"\n";
+    mkdir(folder, 0755);
+    char path[256], arguments[512];
+    snprintf(path, sizeof path, "%s/s.scene", folder);
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(CAMERA "sphere centre 0 0 -3 radius 1\n", f);
+    fclose(f);
+    snprintf(arguments, sizeof arguments, "'%s' --pov " TEST_OUT "/pov-nl.pov", path);
+    expect_chapter_run(2, arguments, 0, "wrote POV-Ray twin");
+    char *twin = read_text_file(TEST_OUT "/pov-nl.pov");
+    cr_expect(strstr(twin, "\n#error") == NULL, "a line of the twin begins with #error:\n%s", twin);
+    cr_expect(strncmp(twin, "// POV-Ray 3.7 twin of " TEST_OUT "/pov-nl\\x0a#error \"injected\"\\x0a/s.scene, ",
+                      strlen("// POV-Ray 3.7 twin of " TEST_OUT "/pov-nl\\x0a#error \"injected\"\\x0a/s.scene, ")) == 0,
+              "%s", twin);
+    free(twin);
 }
 
 Test(povray_export, writing_into_a_missing_folder_fails_with_the_path) {
