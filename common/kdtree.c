@@ -378,17 +378,60 @@ struct query {
     uint32_t face;
     bool (*visit)(void *ctx, double t, uint32_t face); /* QUERY_ALL */
     void *ctx;
-    uint32_t *reported; /* QUERY_ALL: the faces reported so far */
-    size_t reported_count;
+    /* QUERY_ALL: the faces reported so far, a set: `slots` entries (0, or a power of two at least twice
+     * `count`), each a face or KD_NO_FACE, a face in the first free entry from its hash on. */
+    uint32_t *reported;
+    size_t reported_count, reported_slots;
 };
 
-/* QUERY_ALL: reports face unless it already was; returns false when the walk should stop. */
+/* An entry of the reported set that holds no face (no face has this number: there are fewer). */
+#define KD_NO_FACE UINT32_MAX
+/* The reported set's first size. */
+#define KD_REPORTED_FIRST_SLOTS 16
+
+/* Where the reported set of `slots` entries starts looking for face: Knuth's multiplicative hash, so
+ * that neighbouring faces spread out. */
+static size_t reported_start(uint32_t face, size_t slots) {
+    return (size_t)(face * 2654435761u) & (slots - 1);
+}
+
+/* Puts face into the reported set unless it is there; returns whether it was new. */
+static bool reported_add(struct query *q, uint32_t face) {
+    size_t at = reported_start(face, q->reported_slots);
+    while (q->reported[at] != KD_NO_FACE) {
+        if (q->reported[at] == face)
+            return false;
+        at = (at + 1) & (q->reported_slots - 1);
+    }
+    q->reported[at] = face;
+    q->reported_count++;
+    return true;
+}
+
+/* Doubles the reported set (or makes its first), putting back the faces it held. */
+static void reported_grow(struct query *q) {
+    uint32_t *old = q->reported;
+    size_t old_slots = q->reported_slots;
+    q->reported_slots = old_slots == 0 ? KD_REPORTED_FIRST_SLOTS : 2 * old_slots;
+    q->reported = resize(NULL, q->reported_slots * sizeof *q->reported);
+    for (size_t k = 0; k < q->reported_slots; k++)
+        q->reported[k] = KD_NO_FACE;
+    q->reported_count = 0;
+    for (size_t k = 0; k < old_slots; k++)
+        if (old[k] != KD_NO_FACE)
+            reported_add(q, old[k]);
+    free(old);
+}
+
+/* QUERY_ALL: reports face unless it already was (a face may lie in many leaves); returns false when the
+ * walk should stop. The faces reported are a hash set, so that a ray crossing n faces costs about n
+ * steps: a list searched from its start cost n², and a stack of 100,000 coplanar glass triangles took
+ * chapter 9 75 s for a 32 x 24 picture. */
 static bool report_once(struct query *q, double t, uint32_t face) {
-    for (size_t k = 0; k < q->reported_count; k++)
-        if (q->reported[k] == face)
-            return true;
-    q->reported = resize(q->reported, (q->reported_count + 1) * sizeof *q->reported);
-    q->reported[q->reported_count++] = face;
+    if (2 * (q->reported_count + 1) > q->reported_slots)
+        reported_grow(q);
+    if (!reported_add(q, face))
+        return true;
     return q->visit(q->ctx, t, face);
 }
 
