@@ -117,6 +117,41 @@ Test(io, a_picture_the_decoder_fails_on_without_a_reason_says_so) {
     cr_assert_str_eq(err, expected);
 }
 
+/* build/compare writes SIDE.png and DIFF.png only when neither names a picture it reads or the other, and
+ * both can be created: it wrote its side-by-side picture over its first input, with exit status 1. */
+Test(io, compare_refuses_outputs_that_name_its_inputs_or_each_other) {
+    const char *a = bytes_file("io-compare-a.png", palette_png_checkerboard, sizeof palette_png_checkerboard);
+    const char *b = bytes_file("io-compare-b.png", palette_png_checkerboard, sizeof palette_png_checkerboard);
+    const char *build = getenv("WHITTED_BUILD");
+    const struct {
+        const char *side, *diff, *message;
+    } rows[] = {
+        {a, TEST_OUT "/io-compare-diff.png", "compare: SIDE.png names '" TEST_OUT "/io-compare-a.png', a picture it "
+                                             "reads: writing it would destroy it; give another file"},
+        {TEST_OUT "/io-compare-side.png", b, "compare: DIFF.png names '" TEST_OUT "/io-compare-b.png', a picture it "
+                                             "reads: writing it would destroy it; give another file"},
+        {TEST_OUT "/io-compare-side.png", TEST_OUT "/io-compare-side.png",
+         "compare: SIDE.png and DIFF.png both name '" TEST_OUT "/io-compare-side.png'; give two files"},
+        {TEST_OUT "/io-compare-side.png", "/nonexistent/diff.png",
+         "compare: /nonexistent/diff.png: cannot create: No such file or directory"},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        char command[1024], output[1024], expected[1024];
+        unlink(TEST_OUT "/io-compare-side.png");
+        snprintf(command, sizeof command, "%s/compare %s %s %s %s", build != NULL ? build : "build", a, b,
+                 rows[k].side, rows[k].diff);
+        cr_expect_eq(run_capturing(command, output, sizeof output), 2, "%s: %s", command, output);
+        snprintf(expected, sizeof expected, "%s\n", rows[k].message);
+        cr_expect_str_eq(output, expected, "%s", command);
+        cr_expect_neq(access(TEST_OUT "/io-compare-side.png", F_OK), 0, "%s wrote the side picture", command);
+    }
+    size_t size = 0;
+    char *first = read_file(a, &size);
+    cr_expect(size == sizeof palette_png_checkerboard && memcmp(first, palette_png_checkerboard, size) == 0,
+              "the first picture was written over");
+    free(first);
+}
+
 /* ---- -o to things that are not regular files -------------------------------------------------- */
 
 Test(io, a_fifo_as_output_gets_the_whole_png) {

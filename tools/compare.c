@@ -2,7 +2,9 @@
  * optionally writes them side by side (A | B) to SIDE.png and their difference, amplified DIFF_GAIN times,
  * to DIFF.png (used by `make compare`; a tool, not a chapter). With --box N, B is N times as wide and
  * high as A and each N x N block of it is averaged first (box_filter.h: chapter 12's grid).
- * Exit status: 0 when the pictures meet the POV-Ray agreement rule, 1 when not, 2 on bad input. */
+ * Exit status: 0 when the pictures meet the POV-Ray agreement rule, 1 when not, 2 on bad input (also
+ * SIDE.png or DIFF.png naming a picture it reads, or each other, or a file that cannot be created: all
+ * refused before anything is read or written). */
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -13,6 +15,7 @@
 #include "box_filter.h"
 #include "image.h"
 #include "image_compare.h"
+#include "outfile.h"
 
 #define DIFF_GAIN 16 /* a 1-level difference shows as 16 of 255: visible, not glaring */
 
@@ -36,6 +39,23 @@ static bool write_pictures(const uint8_t *a, const uint8_t *b, int width, int he
     return ok;
 }
 
+/* Whether the outputs argv[3] and argv[4] may be written: neither names an input (argv[1], argv[2]), which
+ * writing would destroy, nor the other output, and both can be created. Otherwise false with why. */
+static bool outputs_usable(char **argv, char *err, size_t err_size) {
+    for (int out = 3; out <= 4; out++)
+        for (int in = 1; in <= 2; in++)
+            if (outfile_same_file(argv[out], argv[in])) {
+                snprintf(err, err_size, "%s names '%s', a picture it reads: writing it would destroy it; give "
+                         "another file", out == 3 ? "SIDE.png" : "DIFF.png", argv[out]);
+                return false;
+            }
+    if (outfile_same_file(argv[3], argv[4])) {
+        snprintf(err, err_size, "SIDE.png and DIFF.png both name '%s'; give two files", argv[3]);
+        return false;
+    }
+    return outfile_can_create(argv[3], err, err_size) && outfile_can_create(argv[4], err, err_size);
+}
+
 int main(int argc, char **argv) {
     int box = 1;
     if (argc >= 3 && strcmp(argv[1], "--box") == 0) {
@@ -48,6 +68,10 @@ int main(int argc, char **argv) {
         return 2;
     }
     char err[512];
+    if (argc == 5 && !outputs_usable(argv, err, sizeof err)) {
+        fprintf(stderr, "compare: %s\n", err);
+        return 2;
+    }
     int wa, ha, wb, hb;
     uint8_t *a = image_read_rgb(argv[1], &wa, &ha, err, sizeof err);
     uint8_t *b = a == NULL ? NULL
