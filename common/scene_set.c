@@ -226,7 +226,10 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
         if (strchr(values[k], '#') != NULL || strchr(values[k], '\n') != NULL)
             return set_fail(err, err_size, spec, "a value may not contain '#' or a line break");
 
-    /* PATH = directive [. name-or-ordinal] [. key] */
+    /* PATH = directive [. name-or-ordinal] [. key]; strtok below would skip an empty part */
+    size_t length = strlen(path);
+    if (path[0] == '.' || path[length - 1] == '.' || strstr(path, "..") != NULL)
+        return set_fail(err, err_size, spec, "PATH has an empty part (a dot at an end, or two together)");
     char *parts[3] = {NULL, NULL, NULL};
     int part_count = 0;
     for (char *part = strtok(path, "."); part != NULL; part = strtok(NULL, "."))

@@ -129,6 +129,11 @@ Test(scene_set, mistakes_are_named_exactly) {
         {"camera.up 0 1 0\nsphere centre 2 1 0 radius=1",
          "--set camera.up 0 1 0\nsphere centre 2 1 0 radius=1: PATH may not contain blanks, '#' or a line break"},
         {"camera#.fov=1", "--set camera#.fov=1: PATH may not contain blanks, '#' or a line break"},
+        /* empty parts, which splitting at the dots once skipped: camera..fov changed the camera's fov */
+        {"camera..fov=3", "--set camera..fov=3: PATH has an empty part (a dot at an end, or two together)"},
+        {".camera.fov=20", "--set .camera.fov=20: PATH has an empty part (a dot at an end, or two together)"},
+        {"sphere.1..radius=0.2", "--set sphere.1..radius=0.2: PATH has an empty part (a dot at an end, or two together)"},
+        {"max_depth.=3", "--set max_depth.=3: PATH has an empty part (a dot at an end, or two together)"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char err[256];
