@@ -17,10 +17,12 @@
  * whole file is read. Errors read "file:LINE: what is wrong". */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "mesh_obj.h"
 
 #define OBJ_INDEX_SATURATION 1000000000000LL /* larger digit strings stop growing: no overflow */
+#define OBJ_UTF8_BOM "\xef\xbb\xbf" /* U+FEFF, the byte-order mark, as UTF-8 */
 
 /* The three kinds of index a corner holds. */
 enum obj_index { OBJ_VERTEX, OBJ_TEXTURE, OBJ_NORMAL, OBJ_INDEX_KINDS };
@@ -281,7 +283,10 @@ static bool read_face(struct obj_reader *r, const char *cursor, const char *end)
 bool mesh_read_obj(const struct mesh_input *in, struct mesh *m) {
     struct obj_reader r = {.in = in, .mesh = m, .corners_with = {1, -1, -1}};
     struct mesh_lines lines;
-    mesh_lines_begin(&lines, in->data, in->size, 0, 1);
+    /* A byte-order mark, which some editors start a UTF-8 file with, is no part of the first line's
+     * keyword: read as one, it made the first vertex an unknown line, skipped. */
+    bool marked = in->size >= 3 && memcmp(in->data, OBJ_UTF8_BOM, 3) == 0;
+    mesh_lines_begin(&lines, in->data, in->size, marked ? 3 : 0, 1);
     const char *cursor;
     while ((cursor = mesh_lines_next(&lines)) != NULL) {
         r.line = lines.line;

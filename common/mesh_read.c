@@ -154,12 +154,16 @@ static bool parse_simple_decimal(struct mesh_token token, double *value) {
 }
 
 /* The token ends at white space, at '\n' or at the buffer's final NUL, none of which can continue a
- * number, so strtod and strtoll never read past it; they stop early exactly when the token is bad. */
+ * number, so strtod and strtoll never read past it; they stop early exactly when the token is bad.
+ * strtod would also read C's hexadecimal (0x1p1 as 2), which neither format has, and which the scene
+ * format refuses too. */
 bool mesh_parse_double(struct mesh_token token, double *value) {
     if (token.length == 0)
         return false;
     if (parse_simple_decimal(token, value))
         return true;
+    if (memchr(token.text, 'x', token.length) != NULL || memchr(token.text, 'X', token.length) != NULL)
+        return false;
     char *end;
     *value = strtod(token.text, &end);
     return end == token.text + token.length;

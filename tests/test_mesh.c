@@ -553,6 +553,18 @@ Test(mesh_obj, crlf_line_endings_load) {
     mesh_free(&m);
 }
 
+/* A byte-order mark before the first line (some editors write one) is no part of its keyword: read as
+ * one, the first vertex was an unknown line, skipped, and face 1 2 3 was out of range. */
+Test(mesh_obj, a_byte_order_mark_before_the_first_vertex_is_skipped) {
+    struct mesh m;
+    load_ok(DATA "byte-order-mark.obj", &m);
+    cr_assert_eq(m.vertex_count, 3);
+    assert_vertex(&m, 0, 0, 0, 0);
+    assert_vertex(&m, 2, 0, 2, 0);
+    assert_face(&m, 0, 0, 1, 2);
+    mesh_free(&m);
+}
+
 Test(mesh_obj, faces_may_name_vertices_that_come_later) {
     struct mesh m;
     load_ok(DATA "forward-reference.obj", &m);
@@ -904,6 +916,12 @@ Test(mesh_errors, obj_index_out_of_range) {
 
 Test(mesh_errors, obj_word_that_is_not_a_number) {
     expect_error(DATA "bad-not-a-number.obj", DATA "bad-not-a-number.obj:3: 'zero' is not a number");
+}
+
+/* C's hexadecimal, which strtod reads (0x1p1 as 2) and neither format has, as the scene format refuses it */
+Test(mesh_errors, hexadecimal_numbers_are_refused) {
+    expect_error(DATA "bad-hexadecimal.obj", DATA "bad-hexadecimal.obj:3: '0x1p1' is not a number");
+    expect_error(DATA "bad-hexadecimal.ply", DATA "bad-hexadecimal.ply:11: vertex 1: '0x1p0' is not a number");
 }
 
 Test(mesh_errors, obj_vertex_with_two_coordinates) {

@@ -378,8 +378,7 @@ Test(mesh_numbers, reads_every_decimal_as_strtod_does) {
 }
 
 Test(mesh_numbers, reads_the_odd_forms_as_strtod_does_and_refuses_the_rest) {
-    static const char *const read[] = {"-0", "-0.0", "+.5", "5.", "1e22", "1e23", "9007199254740993", "0x1p3",
-                                       "1e-400", "123456789012345678901234567890", "1e99999", "nan", "-inf"};
+    static const char *const read[] = {"-0", "-0.0", "+.5", "5.", "1e22", "1e23", "9007199254740993", "1e-400", "123456789012345678901234567890", "1e99999", "nan", "-inf"};
     for (size_t k = 0; k < sizeof read / sizeof read[0]; k++) {
         struct mesh_token token = {read[k], (int)strlen(read[k])};
         double got, expected = strtod(read[k], NULL);
@@ -387,7 +386,8 @@ Test(mesh_numbers, reads_the_odd_forms_as_strtod_does_and_refuses_the_rest) {
         cr_assert(memcmp(&got, &expected, sizeof got) == 0 || (got != got && expected != expected),
                   "'%s' read as %.17g, strtod gives %.17g", read[k], got, expected);
     }
-    static const char *const refused[] = {".", "-", "1e", "1e+", "1.5.3", "1,5", "--1", "e5", "1f"};
+    /* C's hexadecimal too, which strtod reads and neither mesh format has */
+    static const char *const refused[] = {".", "-", "1e", "1e+", "1.5.3", "1,5", "--1", "e5", "1f", "0x1p3", "0X10"};
     for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
         struct mesh_token token = {refused[k], (int)strlen(refused[k])};
         double ignored;
