@@ -201,7 +201,7 @@ PATH_PROOFS_OBJECT := $(BUILD)/tests/support/path_proofs.o
 
 # The tests and what they link: the modules, tests/support/, and the fuzzers' renderer check
 # (fuzz/fuzz.mk), which tests/test_fuzz_regressions.c runs on the saved inputs.
-$(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES))) \
+$(BUILD)/run-tests: $(TEST_OBJECTS) $(addprefix $(BUILD)/common/,$(addsuffix .o,$(ALL_MODULES))) $(BUILD)/checks/check_process.o \
         $(BUILD)/fuzz/render_check.o $(BUILD)/fuzz/tiny_images.o
 	$(CC) $(LDFLAGS) $^ -o $@ $(LDLIBS) $(CRITERION)
 

@@ -5,12 +5,16 @@
  * test_coursework_proof.c, those about student copies in test_coursework_copy.c. */
 #include <criterion/criterion.h>
 #include <glob.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/types.h>
+#include <time.h>
 #include <unistd.h>
 
+#include "checks/check.h"
 #include "test_support.h"
 
 /* Room for the grader's whole report. */
@@ -112,4 +116,54 @@ Test(coursework, every_suite_a_student_copy_runs_exists) {
     cr_expect_geq(suites, 10, "tests/student-suites names only %zu suites", suites);
     free(tests);
     free(list);
+}
+
+/* ---- what a check leaves behind ---------------------------------------------------------------- */
+
+/* Where the check below tells the test the number of the process it forked. */
+static int forked_pipe[2];
+
+/* A check whose code, as a student's task body might, forks a process that never ends, and passes. */
+static CHECK(check_that_forks_a_process_that_never_ends) {
+    (void)why, (void)why_size;
+    pid_t child = fork();
+    if (child == 0)
+        for (;;)
+            pause();
+    return write(forked_pipe[1], &child, sizeof child) == (ssize_t)sizeof child;
+}
+
+/* Whether process `pid` still runs: it exists and is not a zombie, dead and waiting for its parent. */
+static bool still_running(pid_t pid) {
+    char path[64], stat[512] = "";
+    snprintf(path, sizeof path, "/proc/%d/stat", (int)pid);
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return false;
+    size_t got = fread(stat, 1, sizeof stat - 1, f);
+    fclose(f);
+    stat[got] = '\0';
+    const char *state = strrchr(stat, ')'); /* "pid (name) S ...": the state follows the name */
+    return state != NULL && state[1] == ' ' && state[2] != 'Z' && state[2] != 'X';
+}
+
+/* The grader runs each check in a process group of its own and ends the whole group when the check is
+ * done: a process the student's code forked kept running after make check-N had printed its scoreboard
+ * (six of them after one run, with a fork in a task's body). */
+Test(coursework, a_process_a_check_forks_does_not_outlive_the_check) {
+    cr_assert_eq(pipe(forked_pipe), 0);
+    const struct check c = {"2.1", "forks a process that never ends", check_that_forks_a_process_that_never_ends};
+    struct check_verdict v;
+    check_run_isolated(&c, CHECK_SECONDS, &v);
+    cr_assert(v.passed, "%s", v.why);
+    pid_t child = 0;
+    cr_assert_eq(read(forked_pipe[0], &child, sizeof child), (ssize_t)sizeof child);
+    bool running = still_running(child);
+    for (int tries = 0; running && tries < 100; tries++) { /* SIGKILL is sent; its delivery may take a moment */
+        nanosleep(&(struct timespec){0, 10000000}, NULL);
+        running = still_running(child);
+    }
+    if (running)
+        kill(child, SIGKILL);
+    cr_assert_not(running, "process %d, which the check forked, still runs after the check", (int)child);
 }

@@ -143,17 +143,24 @@ void check_run_isolated(const struct check *c, int seconds, struct check_verdict
     int status = 0;
     bool timed_out = false;
     double deadline = now() + seconds;
-    while (waitpid(pid, &status, WNOHANG) == 0) {
+    /* Waits for the check's process to end without reaping it (WNOWAIT): until it is reaped, its number
+     * is no other process's, so its group can still be named safely below. */
+    for (;;) {
+        siginfo_t ended = {.si_pid = 0};
+        if (waitid(P_PID, (id_t)pid, &ended, WEXITED | WNOHANG | WNOWAIT) == 0 && ended.si_pid == pid)
+            break;
         double left = deadline - now();
         if (left <= 0) {
-            kill(-pid, SIGKILL);
-            waitpid(pid, &status, 0);
             timed_out = true;
             break;
         }
         struct timespec wait = {(time_t)left, (long)((left - (double)(time_t)left) * 1e9)};
         sigtimedwait(&child_ended, NULL, &wait);
     }
+    /* The whole group: the process itself when it ran out of time, and whatever it left running (a process
+     * the student's code forked, which outlived the check and kept the grader's folder busy). */
+    kill(-pid, SIGKILL);
+    waitpid(pid, &status, 0);
     running = 0;
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);
