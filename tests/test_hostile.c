@@ -515,7 +515,7 @@ static const double strange[] = {NAN, INFINITY, -INFINITY, 1e300, -1e300, 4e9, -
  * gives a finite colour. */
 Test(hostile, an_image_map_looked_up_anywhere_reads_only_its_texels) {
     float texels[16] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1};
-    struct pigment p = {.pattern = PIGMENT_IMAGE_MAP, .image = {2, 2, texels, true}};
+    struct pigment p = {.pattern = PIGMENT_IMAGE_MAP, .image = {.width = 2, .height = 2, .texels = texels, .opaque = true}};
     for (int mapping = 0; mapping < 2; mapping++)
         for (int once = 0; once < 2; once++)
             for (int interpolate = 0; interpolate <= 2; interpolate += 2)

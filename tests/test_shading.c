@@ -300,7 +300,7 @@ Test(world, a_lone_mesh_is_borrowed_by_the_structure_and_more_are_copied) {
                             "mesh octahedron.obj translate 0 0 -5\nmesh octahedron.obj translate 3 0 -5\n"};
     for (int k = 0; k < 3; k++) {
         struct fixture f;
-        build(&f, scenes[k]);
+        build(&f, "%s", scenes[k]);
         char err[512] = "";
         struct accel_world *w = accel_world_create(&f.scene, &(struct accel_choice){.kind = ACCEL_KDTREE, .sah = true}, err, sizeof err);
         cr_assert_not_null(w, "%s", err);
