@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/types.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -133,6 +134,28 @@ static CHECK(check_that_forks_a_process_that_never_ends) {
     return write(forked_pipe[1], &child, sizeof child) == (ssize_t)sizeof child;
 }
 
+/* The same, as a daemon is made: the forked process leaves the check's process group (setsid), forks
+ * the process that never ends and exits, so that what is left belongs to no process the check knows. */
+static CHECK(check_that_leaves_a_daemon) {
+    (void)why, (void)why_size;
+    int reported[2];
+    if (pipe(reported) != 0)
+        return false;
+    pid_t child = fork();
+    if (child == 0) {
+        setsid();
+        pid_t daemon = fork();
+        if (daemon == 0)
+            for (;;)
+                pause();
+        _exit(write(reported[1], &daemon, sizeof daemon) == (ssize_t)sizeof daemon ? 0 : 1);
+    }
+    pid_t daemon = 0;
+    bool told = read(reported[0], &daemon, sizeof daemon) == (ssize_t)sizeof daemon;
+    waitpid(child, NULL, 0);
+    return told && write(forked_pipe[1], &daemon, sizeof daemon) == (ssize_t)sizeof daemon;
+}
+
 /* Whether process `pid` still runs: it exists and is not a zombie, dead and waiting for its parent. */
 static bool still_running(pid_t pid) {
     char path[64], stat[512] = "";
@@ -147,14 +170,12 @@ static bool still_running(pid_t pid) {
     return state != NULL && state[1] == ' ' && state[2] != 'Z' && state[2] != 'X';
 }
 
-/* The grader runs each check in a process group of its own and ends the whole group when the check is
- * done: a process the student's code forked kept running after make check-N had printed its scoreboard
- * (six of them after one run, with a fork in a task's body). */
-Test(coursework, a_process_a_check_forks_does_not_outlive_the_check) {
+/* Runs check c through check_run_isolated, which must pass, and requires the process its code reports
+ * through forked_pipe to be gone (or dead, waiting for its parent) when check_run_isolated returns. */
+static void expect_nothing_left_by(const struct check *c) {
     cr_assert_eq(pipe(forked_pipe), 0);
-    const struct check c = {"2.1", "forks a process that never ends", check_that_forks_a_process_that_never_ends};
     struct check_verdict v;
-    check_run_isolated(&c, CHECK_SECONDS, &v);
+    check_run_isolated(c, CHECK_SECONDS, &v);
     cr_assert(v.passed, "%s", v.why);
     pid_t child = 0;
     cr_assert_eq(read(forked_pipe[0], &child, sizeof child), (ssize_t)sizeof child);
@@ -166,4 +187,21 @@ Test(coursework, a_process_a_check_forks_does_not_outlive_the_check) {
     if (running)
         kill(child, SIGKILL);
     cr_assert_not(running, "process %d, which the check forked, still runs after the check", (int)child);
+    close(forked_pipe[0]);
+    close(forked_pipe[1]);
+}
+
+/* The grader runs each check in a process group of its own and ends the whole group when the check is
+ * done: a process the student's code forked kept running after make check-N had printed its scoreboard
+ * (six of them after one run, with a fork in a task's body). */
+Test(coursework, a_process_a_check_forks_does_not_outlive_the_check) {
+    const struct check c = {"2.1", "forks a process that never ends", check_that_forks_a_process_that_never_ends};
+    expect_nothing_left_by(&c);
+}
+
+/* A process that left the check's group (setsid) escaped the group's kill; the grader, its subreaper,
+ * ends it as its own child. */
+Test(coursework, a_daemon_a_check_leaves_outside_its_process_group_does_not_outlive_it) {
+    const struct check c = {"2.1", "leaves a daemon", check_that_leaves_a_daemon};
+    expect_nothing_left_by(&c);
 }

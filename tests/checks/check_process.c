@@ -7,7 +7,12 @@
  * process until the time limit and then kills it with its process group (a picture check's chapter
  * program included). What ended the process decides the message: its verdict when it finished, the
  * signal that killed it, the limit, or the exit status it stopped with before finishing (the sanitizers,
- * make SAN=1, print their report and stop the process that way). */
+ * make SAN=1, print their report and stop the process that way).
+ *
+ * A process the student's code forks may leave the group (setsid) and so escape the group's kill. On
+ * Linux the grader is made a subreaper (prctl): such a process, once its parent has ended, becomes the
+ * grader's child, and the grader ends every child it has left after a check (end_strays). */
+#include <dirent.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -18,11 +23,19 @@
 #include <time.h>
 #include <unistd.h>
 
+#if defined(__linux__)
+#include <sys/prctl.h>
+#endif
+
 #include "check.h"
 
 /* A check's process whose grader has gone (interrupted, say) still ends by itself: its own alarm rings
  * this many seconds after the grader's limit. */
 #define CHECK_ORPHAN_GRACE 5
+
+/* end_strays looks for children left this many times at most: each look kills every child it finds, and
+ * the children those leave behind become the grader's for the next look. */
+#define CHECK_STRAY_LOOKS 100
 
 /* What the check's process tells the grader. */
 struct check_record {
@@ -96,6 +109,49 @@ static void run_child(const struct check *c, int seconds, const sigset_t *mask) 
     _exit(0);
 }
 
+/* Kills the processes whose parent is the grader and reaps them; returns how many there were. The
+ * grader's only children after a check are what the check left: its own process has been reaped. Reads
+ * each process's parent in /proc (Linux; elsewhere finds none). */
+static int kill_children(void) {
+    int found = 0;
+#if defined(__linux__)
+    DIR *all = opendir("/proc");
+    if (all == NULL)
+        return 0;
+    pid_t self = getpid();
+    for (struct dirent *e; (e = readdir(all)) != NULL;) {
+        char *end;
+        long pid = strtol(e->d_name, &end, 10);
+        if (*end != '\0' || pid <= 0)
+            continue;
+        char path[64], stat[512] = "";
+        snprintf(path, sizeof path, "/proc/%ld/stat", pid);
+        FILE *f = fopen(path, "r");
+        if (f == NULL)
+            continue; /* it ended while we looked */
+        size_t got = fread(stat, 1, sizeof stat - 1, f);
+        fclose(f);
+        stat[got] = '\0';
+        const char *after_name = strrchr(stat, ')'); /* "pid (name) S ppid ...": the name may hold anything */
+        int parent = 0;
+        if (after_name != NULL && sscanf(after_name + 1, " %*c %d", &parent) == 1 && parent == (int)self) {
+            kill((pid_t)pid, SIGKILL);
+            waitpid((pid_t)pid, NULL, 0);
+            found++;
+        }
+    }
+    closedir(all);
+#endif
+    return found;
+}
+
+/* Ends what the check left that escaped its group's kill: processes that called setsid, orphaned and so
+ * made the grader's children (it is their subreaper), and theirs in turn. */
+static void end_strays(void) {
+    for (int look = 0; look < CHECK_STRAY_LOOKS && kill_children() > 0; look++)
+        continue;
+}
+
 /* Writes "sphere_normal crashed ... on the point ..." or, before the check called the student's code,
  * "the check crashed ...", then `then`: a message about what the check's process was doing. */
 static void describe_doing(struct check_verdict *v, const char *what_happened, const char *then) {
@@ -116,6 +172,9 @@ void check_run_isolated(const struct check *c, int seconds, struct check_verdict
     }
     memset(record, 0, sizeof *record);
     shared = record;
+#if defined(__linux__)
+    prctl(PR_SET_CHILD_SUBREAPER, 1L, 0L, 0L, 0L); /* once is enough; see end_strays */
+#endif
 
     /* SIGCHLD is blocked around the fork, so that the wait below can sleep until it arrives. */
     sigset_t child_ended, mask;
@@ -161,6 +220,7 @@ void check_run_isolated(const struct check *c, int seconds, struct check_verdict
      * the student's code forked, which outlived the check and kept the grader's folder busy). */
     kill(-pid, SIGKILL);
     waitpid(pid, &status, 0);
+    end_strays();
     running = 0;
     sigaction(SIGINT, &old_int, NULL);
     sigaction(SIGTERM, &old_term, NULL);
