@@ -125,7 +125,11 @@ static vec3 trace(struct tree *t, ray r, struct interior_list inside, int level,
         if (!straight_on)
             return sum;
 
-        /* Straight on through the surface: the same checks as spawn, and the crossing cap. */
+        /* Straight on through the surface: the same checks as spawn, and the crossing cap. The crossing
+         * keeps its level, but at the last level it goes no further: POV-Ray checks the level before
+         * every ray it traces, a crossing's too, so there the surface's far side is black. */
+        if (level >= s->max_depth)
+            return sum;
         if (filter_weight < s->adc_bailout) {
             stats_thread.adc_saves++;
             return sum;

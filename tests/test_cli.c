@@ -476,5 +476,5 @@ Test(budget, area_light_shadow_rays_are_spent_from_the_tree_budget, .timeout = 6
     expect_chapter_run(13, arguments, 0, "their camera ray had spent 65536 already (RAY_TREE_BUDGET: secondary rays "
                                          "and area-light shadow rays)");
     /* Every camera ray stops within its budget and one more hit's shadow rays. */
-    expect_chapter_run(13, arguments, 0, "rays (all)                266216");
+    expect_chapter_run(13, arguments, 0, "rays (all)                266316");
 }

@@ -144,6 +144,7 @@ NESTED(triangle_seen_from_the_front, "triangle-front")
 NESTED(triangle_seen_from_behind, "triangle-back")
 NESTED(mesh_in_a_box, "mesh-in-box")
 NESTED(camera_inside_water, "camera-in-water")
+NESTED(a_crossing_at_the_last_level_goes_no_further, "last-level-crossing")
 
 /* ---- coincident surfaces against POV-Ray ---------------------------------------------------------- */
 

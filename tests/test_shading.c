@@ -1007,23 +1007,37 @@ Test(whitted, below_the_critical_angle_light_refracts_out_and_reflection_adds_on
 }
 
 /* A transparent sphere (transmit 1, no local colour) of ior `ior` at (0, 0, -5), background
- * (0.25, 0.5, 0.75), max_depth 1, seen through its centre. */
-static vec3 through_clear_sphere(const char *ior, struct stats *counted) {
+ * (0.25, 0.5, 0.75), max_depth `depth`, seen through its centre. */
+static vec3 through_clear_sphere(int depth, const char *ior, struct stats *counted) {
     return trace_in(eye, down_z, counted,
-                    "max_depth 1\nbackground 0.25 0.5 0.75\nmaterial clear ambient 0 diffuse 0 transmit 1 ior %s\n"
+                    "max_depth %d\nbackground 0.25 0.5 0.75\nmaterial clear ambient 0 diffuse 0 transmit 1 ior %s\n"
                     "sphere centre 0 0 -5 radius 1 material clear\n",
-                    ior);
+                    depth, ior);
 }
 
 Test(whitted, ior_exactly_one_passes_straight_through_without_using_a_level) {
-    /* With ior 1 both refracted rays stay at level 1 and reach the background: 1 * 1 * B. Two refracted
-     * rays and three sphere tests (camera ray, inside, out). With ior 1.5 the first refracted ray is
-     * level 2 > max_depth: black, neither intersected nor counted. */
+    /* max_depth 2. With ior 1 both crossings stay at level 1 and reach the background: 1 * 1 * B. Two
+     * refracted rays and three sphere tests (camera ray, inside, out); had each crossing used a level,
+     * the second would be level 3 > max_depth, black. With ior 1.5 the first refracted ray is level 2
+     * and the one leaving the sphere level 3: black, neither intersected nor counted. */
     struct stats counted;
-    assert_colour(through_clear_sphere("1", &counted), vec3_make(0.25, 0.5, 0.75), EXACT, "ior 1");
+    assert_colour(through_clear_sphere(2, "1", &counted), vec3_make(0.25, 0.5, 0.75), EXACT, "ior 1");
     cr_assert_eq(counted.refracted_rays, 2);
     cr_assert_eq(counted.sphere_tests, 3);
-    assert_colour(through_clear_sphere("1.5", &counted), grey(0), EXACT, "ior 1.5");
+    assert_colour(through_clear_sphere(2, "1.5", &counted), grey(0), EXACT, "ior 1.5");
+    cr_assert_eq(counted.sphere_tests, 2);
+    cr_assert_eq(counted.refracted_rays, 1);
+}
+
+Test(whitted, at_the_last_level_a_crossing_is_not_made) {
+    /* max_depth 1: the camera ray is at the last level, so its crossing into the ior 1 sphere is not
+     * made (POV-Ray tests the level before every ray, a crossing's too): black, one sphere test, no
+     * refracted ray. ior 1.5 likewise, its refracted ray being level 2. */
+    struct stats counted;
+    assert_colour(through_clear_sphere(1, "1", &counted), grey(0), EXACT, "ior 1");
+    cr_assert_eq(counted.sphere_tests, 1);
+    cr_assert_eq(counted.refracted_rays, 0);
+    assert_colour(through_clear_sphere(1, "1.5", &counted), grey(0), EXACT, "ior 1.5");
     cr_assert_eq(counted.sphere_tests, 1);
     cr_assert_eq(counted.refracted_rays, 0);
 }
