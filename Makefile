@@ -311,7 +311,8 @@ RUN_TESTS := OMP_WAIT_POLICY=passive LSAN_OPTIONS=suppressions=$(CURDIR)/tests/l
 ## make test           the quick suite, under a minute and a half: unit tests, reference images, agreement with
 ##                     POV-Ray, the docs' code and outputs (installs what it needs first)
 test: | deps
-	$(MAKE) --no-print-directory $(PARALLEL_BUILD) all $(BUILD)/run-tests $(BUILD)/check $(BUILD)/bench_accel $(MODELS_FOREST)
+	$(MAKE) --no-print-directory $(PARALLEL_BUILD) all $(BUILD)/run-tests $(BUILD)/check $(BUILD)/bench_accel $(BUILD)/inset \
+	    $(MODELS_FOREST)
 	$(RUN_TESTS) -j$(TEST_JOBS) --filter '$(TEST_FILTER)'
 
 ## make test-long      the tests make test leaves out (LONG_TESTS in the Makefile), ten minutes or more:

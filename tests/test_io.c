@@ -119,6 +119,54 @@ Test(io, a_picture_the_decoder_fails_on_without_a_reason_says_so) {
 
 /* build/compare writes SIDE.png and DIFF.png only when neither names a picture it reads or the other, and
  * both can be created: it wrote its side-by-side picture over its first input, with exit status 1. */
+/* inset's numbers are checked before they are used: a region of 1073741825 pixels at 1073741824 passed the
+ * check that it lies inside the picture (the sum wrapped round) and the copy read gigabytes past it, a
+ * crash; a zoom of 536870912 wrapped the panel's width. An OUT that names an input is refused too. */
+Test(io, inset_refuses_numbers_out_of_range_and_an_output_that_is_an_input) {
+    const char *a = bytes_file("io-inset-a.png", palette_png_checkerboard, sizeof palette_png_checkerboard);
+    const char *build = getenv("WHITTED_BUILD");
+    const struct {
+        const char *numbers, *out, *message;
+    } rows[] = {
+        {"1073741824 0 1073741825 1 4", TEST_OUT "/io-inset.png",
+         "inset: X '1073741824' is not a whole number from 0 to 16384"},
+        {"0 0 8 6 536870912", TEST_OUT "/io-inset.png", "inset: ZOOM '536870912' is not a whole number from 0 to 16384"},
+        {"0 0 1x 1 4", TEST_OUT "/io-inset.png", "inset: W '1x' is not a whole number from 0 to 16384"},
+        {"0 0 -1 1 4", TEST_OUT "/io-inset.png", "inset: W '-1' is not a whole number from 0 to 16384"},
+        {"0 0 4 4 16384", TEST_OUT "/io-inset.png",
+         "inset: the picture would be 131078 x 65536 pixels, more than 16384 on a side: a smaller ZOOM or region"},
+        {"0 0 5 4 2", TEST_OUT "/io-inset.png", "inset: the region 5 x 4 at (0, 0) is not inside the 4 x 4 pictures"},
+        {"0 0 2 2 2", a, "inset: OUT.png names '" TEST_OUT "/io-inset-a.png', a picture it reads: writing it would "
+                         "destroy it; give another file"},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        char command[1024], output[1024], expected[1024];
+        unlink(TEST_OUT "/io-inset.png");
+        snprintf(command, sizeof command, "%s/inset %s %s %s %s", build != NULL ? build : "build", rows[k].out,
+                 rows[k].numbers, a, a);
+        cr_expect_eq(run_capturing(command, output, sizeof output), 2, "%s: %s", command, output);
+        snprintf(expected, sizeof expected, "%s\n", rows[k].message);
+        cr_expect_str_eq(output, expected, "%s", command);
+        cr_expect_neq(access(TEST_OUT "/io-inset.png", F_OK), 0, "%s wrote a picture", command);
+    }
+    size_t size = 0;
+    char *first = read_file(a, &size);
+    cr_expect(size == sizeof palette_png_checkerboard && memcmp(first, palette_png_checkerboard, size) == 0,
+              "the input was written over");
+    free(first);
+    /* And a region in range is drawn: two 2 x 2 panels at zoom 2, 6 white pixels apart. */
+    char command[1024], output[1024];
+    snprintf(command, sizeof command, "%s/inset %s 1 1 2 2 2 %s %s", build != NULL ? build : "build",
+             TEST_OUT "/io-inset.png", a, a);
+    cr_expect_eq(run_capturing(command, output, sizeof output), 0, "%s: %s", command, output);
+    char err[256];
+    int width = 0, height = 0;
+    uint8_t *drawn = image_read_rgb(TEST_OUT "/io-inset.png", &width, &height, err, sizeof err);
+    cr_assert_not_null(drawn, "%s", err);
+    cr_expect(width == 2 * 4 + 6 && height == 4, "the inset is %d x %d", width, height);
+    free(drawn);
+}
+
 Test(io, compare_refuses_outputs_that_name_its_inputs_or_each_other) {
     const char *a = bytes_file("io-compare-a.png", palette_png_checkerboard, sizeof palette_png_checkerboard);
     const char *b = bytes_file("io-compare-b.png", palette_png_checkerboard, sizeof palette_png_checkerboard);
