@@ -57,9 +57,6 @@ static bool fail(const struct parser *p, const char *format, ...) {
     return false;
 }
 
-/* The bytes of U+FEFF, the byte-order mark, as UTF-8. */
-#define SCENE_UTF8_BOM "\xef\xbb\xbf"
-
 /* ---- numbers ----------------------------------------------------------------------------------- */
 
 /* A number is decimal, with an exponent or not (docs/scene-format.md), as POV-Ray reads it: strtod

@@ -29,6 +29,9 @@
  * and a refraction head-on (sine 0 times infinity) gave chapter 17 NaN pixels. */
 #define SCENE_MIN_IOR 1e-50
 #define SCENE_MAX_IOR 1e50
+/* The bytes of U+FEFF, the byte-order mark, as UTF-8: some editors start a file with it, and the reader
+ * skips it at the start of the text (it is no part of the first line's first word). */
+#define SCENE_UTF8_BOM "\xef\xbb\xbf"
 #define SCENE_NAME_MAX 64 /* longest material name, including the terminating zero */
 #define ROUGH_CHAPTER 17  /* the chapter that draws a material's roughness, metal and lobe */
 

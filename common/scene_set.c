@@ -66,7 +66,9 @@ static bool find_line(const char *text, const char *directive, const char *name,
                       struct line_span *found) {
     int seen = 0;
     size_t directive_length = strlen(directive);
-    for (size_t start = 0; text[start] != '\0';) {
+    /* A byte-order mark before the first line is no part of it, as for the reader (scene.c). */
+    size_t first = strncmp(text, SCENE_UTF8_BOM, strlen(SCENE_UTF8_BOM)) == 0 ? strlen(SCENE_UTF8_BOM) : 0;
+    for (size_t start = first; text[start] != '\0';) {
         const char *line = text + start;
         const char *end = strchr(line, '\n');
         size_t length = end != NULL ? (size_t)(end - line) : strlen(line);

@@ -196,6 +196,25 @@ Test(scene_set, lines_are_found_with_the_parsers_blanks) {
     free(scene);
 }
 
+/* A scene may start with a byte-order mark, which the reader skips; so does --set: its first line was
+ * not found behind the mark, so sphere.1 changed the second sphere, and camera.fov and image, not found
+ * at all, added a second line of their kind. The mark is kept. */
+Test(scene_set, a_byte_order_mark_before_the_first_line_is_skipped_and_kept) {
+    char err[512];
+    char *scene = strdup(SCENE_UTF8_BOM "sphere centre -1.5 0 0 radius 0.5\nsphere centre 1.5 0 0 radius 0.5\n");
+    cr_assert(scene_set_apply(&scene, "sphere.1.radius=1.2", err, sizeof err), "%s", err);
+    cr_expect_str_eq(scene, SCENE_UTF8_BOM "sphere centre -1.5 0 0 radius 1.2\nsphere centre 1.5 0 0 radius 0.5\n");
+    free(scene);
+    scene = strdup(SCENE_UTF8_BOM "camera eye 0 0 5 target 0 0 0 fov 40\nimage 4 3\n");
+    cr_assert(scene_set_apply(&scene, "camera.fov=30", err, sizeof err), "%s", err);
+    cr_expect_str_eq(scene, SCENE_UTF8_BOM "camera eye 0 0 5 target 0 0 0 fov 30\nimage 4 3\n");
+    free(scene);
+    scene = strdup(SCENE_UTF8_BOM "image 4 3\ncamera eye 0 0 5 target 0 0 0 fov 40\n");
+    cr_assert(scene_set_apply(&scene, "image=8 6", err, sizeof err), "%s", err);
+    cr_expect_str_eq(scene, SCENE_UTF8_BOM "image 8 6\ncamera eye 0 0 5 target 0 0 0 fov 40\n");
+    free(scene);
+}
+
 Test(scene_set, a_bad_value_is_the_parsers_error_at_the_scene_line) {
     struct scene s;
     bool bad_spec = true;
