@@ -39,4 +39,5 @@ const struct shape_syntax box_syntax = {
     .required = box_required,
     .make = box_make,
     .write_pov = box_write_pov,
+    .surface_uv = true, /* texture_box_uv */
 };

@@ -19,10 +19,11 @@
  * a draft). */
 #define SRGB_DECODE_THRESHOLD 0.04045f
 #define PNG_GAMMA_UNIT 100000.0 /* a gAMA chunk holds the gamma times 100000 */
-/* Where a PNG's header (IHDR) keeps its bit depth and colour type, and the type of a greyscale file. */
+/* Where a PNG's header (IHDR) keeps its bit depth and colour type, and the types of a grey and an RGB file. */
 #define PNG_BIT_DEPTH_AT 24
 #define PNG_COLOUR_TYPE_AT 25
 #define PNG_COLOUR_TYPE_GREY 0
+#define PNG_COLOUR_TYPE_RGB 2
 /* POV-Ray's weights for making a colour grey (Image::RGB2Gray), applied in single precision. */
 #define POVRAY_GREY_RED 0.297f
 #define POVRAY_GREY_GREEN 0.589f
@@ -42,23 +43,43 @@ static uint32_t big_endian_32(const uint8_t *b) {
     return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | (uint32_t)b[3];
 }
 
-double image_map_png_gamma(const uint8_t *bytes, size_t size) {
+/* The first chunk named `name` among those before a PNG's pixel data (its first IDAT chunk), or NULL;
+ * *length is its data's length. bytes[0..size) need not be a PNG (then NULL). */
+static const uint8_t *png_chunk_before_pixels(const uint8_t *bytes, size_t size, const char name[4],
+                                              uint32_t *length) {
     if (size < sizeof png_signature || memcmp(bytes, png_signature, sizeof png_signature) != 0)
-        return 0.0;
-    double gamma = 0.0;
+        return NULL;
     size_t at = sizeof png_signature;
     while (size - at >= 12) { /* length, type, data, CRC */
-        uint32_t length = big_endian_32(bytes + at);
+        uint32_t data_length = big_endian_32(bytes + at);
         const uint8_t *type = bytes + at + 4;
-        if (length > size - at - 12 || memcmp(type, "IDAT", 4) == 0)
-            break;
-        if (memcmp(type, "sRGB", 4) == 0)
-            return 0.0; /* the sRGB chunk wins over gAMA, as in POV-Ray */
-        if (memcmp(type, "gAMA", 4) == 0 && length == 4 && big_endian_32(type + 4) > 0)
-            gamma = big_endian_32(type + 4) / PNG_GAMMA_UNIT;
-        at += 12 + (size_t)length;
+        if (data_length > size - at - 12 || memcmp(type, "IDAT", 4) == 0)
+            return NULL;
+        if (memcmp(type, name, 4) == 0) {
+            *length = data_length;
+            return type + 4;
+        }
+        at += 12 + (size_t)data_length;
     }
-    return gamma;
+    return NULL;
+}
+
+double image_map_png_gamma(const uint8_t *bytes, size_t size) {
+    uint32_t length;
+    if (png_chunk_before_pixels(bytes, size, "sRGB", &length) != NULL)
+        return 0.0; /* the sRGB chunk wins over gAMA, as in POV-Ray */
+    const uint8_t *gamma = png_chunk_before_pixels(bytes, size, "gAMA", &length);
+    return gamma != NULL && length == 4 && big_endian_32(gamma) > 0 ? big_endian_32(gamma) / PNG_GAMMA_UNIT : 0.0;
+}
+
+/* Whether bytes[0..size) is a PNG of grey levels or of RGB colours (no alpha channel, no palette) with a
+ * tRNS chunk: one colour that stands for "transparent", a colour key. The decoder makes such pixels
+ * transparent, as the PNG specification says. */
+static bool png_has_colour_key(const uint8_t *bytes, size_t size) {
+    uint32_t length;
+    return size > PNG_COLOUR_TYPE_AT &&
+           (bytes[PNG_COLOUR_TYPE_AT] == PNG_COLOUR_TYPE_GREY || bytes[PNG_COLOUR_TYPE_AT] == PNG_COLOUR_TYPE_RGB) &&
+           png_chunk_before_pixels(bytes, size, "tRNS", &length) != NULL;
 }
 
 /* Whether bytes[0..size) is a PNG of grey levels without an alpha channel, 8 bits or fewer a pixel:
@@ -338,6 +359,7 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
     stbi_image_free(pixels);
     image->width = width;
     image->height = height;
+    image->colour_key = png_has_colour_key(bytes, size);
     return true;
 }
 

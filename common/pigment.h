@@ -47,6 +47,8 @@ struct pigment_image {
     float *texels; /* width * height * 4 floats (red, green, blue, alpha), top row first; owned unless borrowed */
     bool opaque;   /* every alpha is 1: the file has no alpha channel, or every pixel's is at its largest */
     bool borrowed; /* texels are an earlier pigment's, read from the same file (texture_load_images) */
+    bool colour_key; /* a grey or RGB PNG whose tRNS chunk names a colour drawn transparent (POV-Ray 3.7
+                        ignores it, and crashes on a grey file's: the twin is refused, povray.c) */
 };
 
 struct pigment {

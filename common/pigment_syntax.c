@@ -241,7 +241,12 @@ void pigment_write_pov(FILE *out, const struct pigment *p, double filter, double
                 file, (int)p->mapping);
         if (p->interpolate != 0) /* POV-Ray refuses `interpolate 0`: no interpolation is its default */
             fprintf(out, " interpolate %d", p->interpolate);
-        fprintf(out, "%s filter all %.17g transmit all %.17g }", p->once ? " once" : "", filter, transmit);
+        /* `filter all` and `transmit all` replace every colour's own transparency in a palette PNG (a tRNS
+         * chunk's), so they are written only when the material lets light through itself. */
+        fprintf(out, "%s", p->once ? " once" : "");
+        if (filter != 0.0 || transmit != 0.0)
+            fprintf(out, " filter all %.17g transmit all %.17g", filter, transmit);
+        fprintf(out, " }");
         break;
     }
     }

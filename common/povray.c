@@ -138,11 +138,24 @@ static void write_materials(FILE *out, const struct scene *s, enum pov_lighting 
     }
 }
 
-/* The texture (and for glass, the interior) of a shape. */
+/* The material's image map, or NULL when it has none. */
+static const struct pigment *material_image_map(const struct scene *s, const struct material *m) {
+    const struct pigment *p = m->pigment >= 0 ? &s->pigments[m->pigment] : NULL;
+    return p != NULL && p->pattern == PIGMENT_IMAGE_MAP ? p : NULL;
+}
+
+/* Does light pass through this material somewhere: its own filter or transmit, or its image map's
+ * clear parts (a picture's alpha below 1, or outside a `once` map)? Then its shapes need an interior. */
+static bool may_pass_light(const struct scene *s, const struct material *m, enum pov_lighting lighting) {
+    const struct pigment *map = material_image_map(s, m);
+    return is_transparent(m, lighting) || (lighting == POV_WHITTED && map != NULL && (map->once || !map->image.opaque));
+}
+
+/* The texture (and where light may pass, the interior) of a shape. */
 static void write_appearance(FILE *out, const struct scene *s, int material, enum pov_lighting lighting) {
     fprintf(out, " texture { M%d }", material);
     const struct material *m = &s->materials[material];
-    if (is_transparent(m, lighting))
+    if (may_pass_light(s, m, lighting))
         fprintf(out, " interior { ior %.17g }", m->ior);
     /* Chapter 6 has no shadows. POV-Ray's `shadowless` lights would also drop the highlights (measured:
      * up to 182 levels off), so the lights stay ordinary and no shape casts a shadow instead. */
@@ -263,26 +276,66 @@ static void write_instances(FILE *out, const struct scene *s, enum pov_lighting 
     }
 }
 
+/* Refuses (false, with err) a material whose image map POV-Ray 3.7 draws otherwise, wherever it is used:
+ * a picture with alpha under a material that lets light through itself (POV-Ray adds the material's
+ * filter and transmit to 1 - alpha without a limit, so its opacity goes below 0, where texture_paint
+ * keeps their sum at most 1), and `map uv` on a shape with no surface coordinates here. */
+static bool image_maps_expressible(const struct scene *s, enum pov_lighting lighting, const char *scene, char *err,
+                                   size_t err_size) {
+    for (size_t k = 0; k < s->material_count; k++) {
+        const struct material *m = &s->materials[k];
+        const struct pigment *map = material_image_map(s, m);
+        if (map != NULL && !map->image.opaque && is_transparent(m, lighting)) {
+            snprintf(err, err_size, "%s:%d: material '%s': its picture (pigment '%s') has alpha below 1 and the "
+                     "material lets light through as well (filter or transmit); POV-Ray adds the two without a "
+                     "limit, we keep their sum at most 1, so the twin would differ", scene, m->line, m->name,
+                     map->name);
+            return false;
+        }
+    }
+    for (size_t k = 0; k < s->kind_count; k++) {
+        const struct shape_list *list = &s->shapes[k];
+        for (size_t n = 0; n < list->count && !list->syntax->surface_uv; n++) {
+            const struct material *m = &s->materials[shape_material(list->syntax, shape_item(list->syntax, list->items, n))];
+            const struct pigment *map = material_image_map(s, m);
+            if (map != NULL && map->uv_mapping) {
+                snprintf(err, err_size, "%s:%d: material '%s' (pigment '%s', map uv) is on a %s, which has no "
+                         "surface coordinates here (it is painted at (0, 0)) and has others in POV-Ray, so the twin "
+                         "would differ", scene, m->line, m->name, map->name, list->syntax->keyword);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
 bool povray_can_express(const struct scene *s, enum pov_lighting lighting, char *err, size_t err_size) {
     if (!s->shadow_offset && lighting >= POV_PHONG_SHADOWS) {
         snprintf(err, err_size, "%s: shadow_offset off has no POV-Ray equivalent", s->path);
         return false;
     }
+    char scene[POVRAY_ESCAPED_PER_BYTE * PATH_MAX + 1];
+    text_escape(s->path, scene, sizeof scene);
     for (size_t k = 0; k < s->pigment_count; k++) {
         const struct pigment *p = &s->pigments[k];
         char whole[PATH_MAX];
         const char *file = p->pattern == PIGMENT_IMAGE_MAP ? pigment_twin_file(p, whole) : "";
         if (!pigment_twin_file_writable(file)) {
-            char shown[POVRAY_ESCAPED_PER_BYTE * PATH_MAX + 1], scene[POVRAY_ESCAPED_PER_BYTE * PATH_MAX + 1];
+            char shown[POVRAY_ESCAPED_PER_BYTE * PATH_MAX + 1];
             text_escape(file, shown, sizeof shown);
-            text_escape(s->path, scene, sizeof scene);
             snprintf(err, err_size, "%s: pigment '%s': its file's whole path, %s, holds a quote, a backslash or a "
                      "control character, which the twin's POV-Ray string cannot hold as written", scene, p->name,
                      shown);
             return false;
         }
+        if (p->pattern == PIGMENT_IMAGE_MAP && p->image.colour_key) {
+            snprintf(err, err_size, "%s:%d: pigment '%s': its picture is a grey or RGB PNG with a transparent "
+                     "colour (a tRNS chunk), which POV-Ray 3.7 draws opaque (and, in a grey file, crashes on), so "
+                     "the twin would differ", scene, p->line, p->name);
+            return false;
+        }
     }
-    return true;
+    return image_maps_expressible(s, lighting, scene, err, err_size);
 }
 
 bool povray_write_scene(const struct scene *s, enum pov_lighting lighting, const char *path, char *err,

@@ -118,6 +118,9 @@ struct shape_syntax {
     /* Writes the shape as POV-Ray's object up to its texture, e.g. "sphere { <0, 1, 0>, 0.5"; the
      * caller writes the texture and the closing brace. */
     void (*write_pov)(FILE *out, const void *item);
+    /* The shape has surface coordinates (u, v) for an image map's `map uv` (chapter 14: a box's); the
+     * others are painted at (0, 0) there, and POV-Ray's rules for them differ (povray_can_express). */
+    bool surface_uv;
 };
 
 /* Returns the index-th shape of an array of shapes of one kind (a struct sphere *, ...). */

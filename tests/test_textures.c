@@ -218,7 +218,7 @@ static struct pigment two_by_two(int interpolate, bool once) {
     p.mapping = PIGMENT_MAP_PLANAR;
     p.interpolate = interpolate;
     p.once = once;
-    p.image = (struct pigment_image){2, 2, texels, false, false};
+    p.image = (struct pigment_image){.width = 2, .height = 2, .texels = texels};
     return p;
 }
 
@@ -352,6 +352,48 @@ Test(povray_agreement, chapter_14_checker_gradient_brick_and_radial, .timeout = 
 
 Test(povray_agreement, chapter_14_image_maps_nearest_bilinear_once_and_jpeg, .timeout = 120) {
     expect_agreement("images", IMAGES_SCENE);
+}
+
+/* A palette PNG whose tRNS chunk makes colours clear, on materials that let no light through themselves:
+ * the twin wrote `filter all 0 transmit all 0`, which in POV-Ray replaces each palette colour's own
+ * transparency, so its cards were opaque (80.6 % of the pixels within 2 levels). */
+Test(povray_agreement, chapter_14_a_palette_pictures_clear_colours, .timeout = 120) {
+    expect_agreement("palette-alpha", "tests/data/textures/palette-alpha.scene");
+}
+
+/* Opaque materials with an ior under pictures with clear parts (alpha, a `wrap once` decal): light passes
+ * there and bends, so the twin needs the interior it gave only to materials with filter or transmit
+ * (a decal on a thick block: 65 % of the pixels within 2 levels). */
+Test(povray_agreement, chapter_14_clear_parts_of_pictures_bend_light_by_the_ior, .timeout = 120) {
+    expect_agreement("clear-parts-ior", "tests/data/textures/clear-parts-ior.scene");
+}
+
+/* Pictures POV-Ray 3.7 draws otherwise: the twin is refused with the reason (exit 1), and the picture is
+ * still drawn. */
+Test(povray_export, twins_of_pictures_povray_draws_otherwise_are_refused) {
+    const struct {
+        const char *scene, *message;
+    } rows[] = {
+        {"twin-colour-key", "twin-colour-key.scene:6: pigment 'key': its picture is a grey or RGB PNG with a "
+                            "transparent colour (a tRNS chunk), which POV-Ray 3.7 draws opaque (and, in a grey file, "
+                            "crashes on), so the twin would differ"},
+        {"twin-uv-sphere", "twin-uv-sphere.scene:7: material 'm' (pigment 'p', map uv) is on a sphere, which has no "
+                           "surface coordinates here (it is painted at (0, 0)) and has others in POV-Ray, so the twin "
+                           "would differ"},
+        {"twin-alpha-transmit", "twin-alpha-transmit.scene:8: material 'card': its picture (pigment 'p') has alpha "
+                                "below 1 and the material lets light through as well (filter or transmit); POV-Ray "
+                                "adds the two without a limit, we keep their sum at most 1, so the twin would differ"},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        char arguments[512], png[256];
+        snprintf(arguments, sizeof arguments, "tests/data/textures/%s.scene --pov " TEST_OUT "/%s.pov", rows[k].scene,
+                 rows[k].scene);
+        expect_chapter_run(14, arguments, 1, rows[k].message);
+        char scene[256];
+        snprintf(scene, sizeof scene, "tests/data/textures/%s.scene", rows[k].scene);
+        snprintf(png, sizeof png, TEST_OUT "/%s.png", rows[k].scene);
+        cr_expect_eq(render_chapter(14, scene, png, ""), 0, "%s is drawn", scene);
+    }
 }
 
 /* ---- smooth meshes and texture coordinates -------------------------------------------------------- */
@@ -612,7 +654,7 @@ Test(texture, a_shadow_ray_through_glass_takes_the_pigment_but_povrays_opaque_uv
                           &s, err, sizeof err),
               "%s", err);
     static float white[4] = {1, 1, 1, 1};
-    s.pigments[1].image = (struct pigment_image){1, 1, white, true, false};
+    s.pigments[1].image = (struct pigment_image){.width = 1, .height = 1, .texels = white, .opaque = true};
     struct material painted;
     struct hit h = {1, {0, 1, 0}, 1, -1, -1};
     const struct material *m = texture_paint_shadow(&s, &h, vec3_make(1.5, 0.5, 0.5), &painted);
