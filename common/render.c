@@ -40,6 +40,7 @@ void render_use_threads(int n) {
 #define RENDER_PROGRESS_SECONDS 5.0       /* a line at least this often when standard error is no terminal */
 #define RENDER_PROGRESS_BAR_SECONDS 0.25  /* the bar's redraw on a terminal */
 #define RENDER_PROGRESS_ENV "WHITTED_PROGRESS_SECONDS" /* overrides RENDER_PROGRESS_SECONDS (for tests) */
+#define RENDER_PROGRESS_MAX_SECONDS 1e9                /* about 32 years: a longer interval is the default's */
 
 struct progress {
     const char *unit;       /* "row" or "block" */
@@ -74,12 +75,13 @@ static void print_progress(struct progress *p) {
     p->printed = true;
 }
 
-/* The interval between lines: RENDER_PROGRESS_SECONDS, or the environment's positive number of seconds. */
+/* The interval between lines: RENDER_PROGRESS_SECONDS, or the environment's positive number of seconds,
+ * at most RENDER_PROGRESS_MAX_SECONDS (so that the time it is added to stays a time_t). */
 static double progress_interval(void) {
     const char *text = getenv(RENDER_PROGRESS_ENV);
     char *end = NULL;
     double seconds = text != NULL ? strtod(text, &end) : 0.0;
-    if (text == NULL || end == text || *end != '\0' || !(seconds > 0.0) || !isfinite(seconds))
+    if (text == NULL || end == text || *end != '\0' || !(seconds > 0.0) || !(seconds <= RENDER_PROGRESS_MAX_SECONDS))
         return RENDER_PROGRESS_SECONDS;
     return seconds;
 }
