@@ -167,6 +167,9 @@ bool mesh_load_with_corners(const char *path, struct mesh *m, struct mesh_corner
         ok = mesh_fail_file(&in, "empty file");
     else if (starts_as_ply(file.data, file.size))
         ok = mesh_read_ply(&in, m);
+    else if (file.size > 3 && memcmp(file.data, MESH_UTF8_BOM, 3) == 0 && starts_as_ply(file.data + 3, file.size - 3))
+        ok = mesh_fail_line(&in, 1, "a byte-order mark before 'ply': a PLY file starts with the bytes 'ply' (save it "
+                            "without the mark)");
     else
         ok = mesh_read_obj(&in, m);
     if (ok && m->face_count == 0)

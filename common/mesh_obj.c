@@ -22,7 +22,6 @@
 #include "mesh_obj.h"
 
 #define OBJ_INDEX_SATURATION 1000000000000LL /* larger digit strings stop growing: no overflow */
-#define OBJ_UTF8_BOM "\xef\xbb\xbf" /* U+FEFF, the byte-order mark, as UTF-8 */
 
 /* The three kinds of index a corner holds. */
 enum obj_index { OBJ_VERTEX, OBJ_TEXTURE, OBJ_NORMAL, OBJ_INDEX_KINDS };
@@ -285,7 +284,7 @@ bool mesh_read_obj(const struct mesh_input *in, struct mesh *m) {
     struct mesh_lines lines;
     /* A byte-order mark, which some editors start a UTF-8 file with, is no part of the first line's
      * keyword: read as one, it made the first vertex an unknown line, skipped. */
-    bool marked = in->size >= 3 && memcmp(in->data, OBJ_UTF8_BOM, 3) == 0;
+    bool marked = in->size >= 3 && memcmp(in->data, MESH_UTF8_BOM, 3) == 0;
     mesh_lines_begin(&lines, in->data, in->size, marked ? 3 : 0, 1);
     const char *cursor;
     while ((cursor = mesh_lines_next(&lines)) != NULL) {

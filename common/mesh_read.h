@@ -56,6 +56,9 @@ struct mesh_lines {
     const char *end; /* end of the line last returned (its '\n', or the end of the data) */
 };
 
+/* U+FEFF, the byte-order mark, as UTF-8: some editors start a text file with it. */
+#define MESH_UTF8_BOM "\xef\xbb\xbf"
+
 /* Each writes "path<location>: <message>" into in->err and returns false, so readers can write
  * `return mesh_fail_line(in, line, "...")`. The locations are ":LINE" (1-based), ": byte N" (0-based
  * offset) or nothing. */

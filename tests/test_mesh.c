@@ -924,6 +924,18 @@ Test(mesh_errors, hexadecimal_numbers_are_refused) {
     expect_error(DATA "bad-hexadecimal.ply", DATA "bad-hexadecimal.ply:11: vertex 1: '0x1p0' is not a number");
 }
 
+/* A PLY file with a byte-order mark before 'ply' was read as an OBJ file and refused as "no faces". */
+Test(mesh_errors, a_byte_order_mark_before_ply_is_named) {
+    static const char text[] = "\xef\xbb\xbfply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                               "property float y\nproperty float z\nelement face 1\nproperty list uchar int "
+                               "vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const char *path = write_scratch("marked.ply", text, sizeof text - 1);
+    char expected[512];
+    snprintf(expected, sizeof expected, "%s:1: a byte-order mark before 'ply': a PLY file starts with the bytes 'ply' "
+             "(save it without the mark)", path);
+    expect_error(path, expected);
+}
+
 Test(mesh_errors, obj_vertex_with_two_coordinates) {
     expect_error(DATA "bad-two-coordinates.obj",
                  DATA "bad-two-coordinates.obj:2: a vertex needs x, y and z (found 2 numbers)");
