@@ -9,6 +9,7 @@
 #include "clock.h"
 #include "fast_bvh_build.h"
 #include "infile.h"
+#include "interior.h"
 #include "memory_budget.h"
 #include "mesh_load.h"
 #include "stats.h"
@@ -228,6 +229,8 @@ static void compute_boxes(struct instances *in, double t0, double t1) {
 static bool closest_query(const void *structure, const ray *r, double t_min, double time, struct hit *h);
 static bool crossing_query(const void *structure, const ray *r, double t_min, double t_max, double time,
                            shape_crossing_visitor visit, void *context);
+static void containing_query(const void *structure, vec3 point, double time, world_instance_visitor visit,
+                             void *context);
 
 struct instances *instances_create(struct scene *s, int first_object, double t0, double t1, char *err,
                                    size_t err_size) {
@@ -283,7 +286,7 @@ struct instances *instances_create(struct scene *s, int first_object, double t0,
     }
     in->info.objects = s->object_count;
     in->info.instances = in->count;
-    in->hook = (struct world_instances){in, closest_query, crossing_query};
+    in->hook = (struct world_instances){in, closest_query, crossing_query, containing_query};
     return in;
 }
 
@@ -430,6 +433,58 @@ static bool crossing_query(const void *structure, const ray *r, double t_min, do
     for (size_t n = 0; n < in->outside_count && !q.stopped; n++)
         cross_instance(&q, in->outside[n], t_min);
     return !q.stopped;
+}
+
+/* The containing search's state: the world point and time, and whom to tell. */
+struct containing_search {
+    const struct instances *in;
+    vec3 point;
+    double time;
+    world_instance_visitor visit;
+    void *context;
+    bool stopped; /* the visitor asked to stop */
+};
+
+/* Passes instance k on when it lets light through and its object holds the point at the search's time;
+ * returns false when the visitor asked to stop. */
+static bool contain_in_instance(struct containing_search *q, size_t k) {
+    const struct instances *in = q->in;
+    const struct instance *it = &in->items[k];
+    if (!material_passes_light(&in->scene->materials[it->material]))
+        return true;
+    struct transform to_world, to_object;
+    if (!instances_transform_at(in, k, q->time, &to_world, &to_object))
+        return true;
+    vec3 local = transform_point(&to_object, q->point);
+    const struct aabb *box = &in->object_boxes[it->object];
+    if (local.x < box->min.x || local.x > box->max.x || local.y < box->min.y || local.y > box->max.y ||
+        local.z < box->min.z || local.z > box->max.z)
+        return true;
+    if (!interior_mesh_contains(&in->scene->objects[it->object].mesh, local))
+        return true;
+    q->stopped = !q->visit(q->context, in->first_object + (int)k, it->material);
+    return !q->stopped;
+}
+
+static bool visit_containing(void *context, size_t index, double t_min, double *t_max) {
+    (void)t_min;
+    (void)t_max;
+    return contain_in_instance(context, index);
+}
+
+/* The top level is walked by a ray from the point with t in [0, 0]: it enters exactly the boxes that
+ * hold the point. */
+static void containing_query(const void *structure, vec3 point, double time, world_instance_visitor visit,
+                             void *context) {
+    const struct instances *in = structure;
+    struct containing_search q = {in, point, time, visit, context, false};
+    if (in->top != NULL) {
+        ray at = {point, vec3_make(0, 0, 1)};
+        double t_max = 0.0;
+        instance_bvh_walk(in->top, &at, 0.0, &t_max, visit_containing, &q);
+    }
+    for (size_t n = 0; n < in->outside_count && !q.stopped; n++)
+        contain_in_instance(&q, in->outside[n]);
 }
 
 /* ---- the report --------------------------------------------------------------------------------- */

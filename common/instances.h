@@ -15,9 +15,9 @@
  * instance_node_visits for the top level, node_visits, box_tests and triangle_tests for the bottom.
  *
  * Instance k is object number first_object + k (hit.object), so chapter 8's interior list tells two
- * glass instances of one object apart. A camera that starts inside a transparent instance is not
- * looked for (interior_at_point knows the scene's own shapes only): its first crossing is taken as an
- * entry. */
+ * glass instances of one object apart. A camera ray that starts inside a transparent instance starts
+ * with it on its interior list: interior_at_point asks the world's instances (struct world_instances'
+ * for_each_containing), each placed as it is at the ray's time. */
 #ifndef WHITTED_INSTANCES_H
 #define WHITTED_INSTANCES_H
 

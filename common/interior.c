@@ -78,8 +78,7 @@ static bool aabb_contains(const struct aabb *b, vec3 p) {
            p.z <= b->max.z;
 }
 
-/* Counts the faces of m that the ray from `point` along +z crosses: odd means inside. */
-static bool mesh_contains(const struct mesh *m, vec3 point) {
+bool interior_mesh_contains(const struct mesh *m, vec3 point) {
     ray up = {point, vec3_make(0, 0, 1)};
     int crossings = 0;
     for (size_t f = 0; f < m->face_count; f++) {
@@ -91,6 +90,30 @@ static bool mesh_contains(const struct mesh *m, vec3 point) {
     return crossings % 2 == 1;
 }
 
+/* What push_instance needs: the list, the scene, and where the instances' entries begin. */
+struct instance_search {
+    struct interior_list *list;
+    const struct scene *s;
+    int first; /* the list's first entry from an instance */
+};
+
+/* Pushes a transparent instance that holds the point, keeping the instances' entries in the order of
+ * their lines (increasing object number), whatever order the top level finds them in. */
+static bool push_instance(void *context, int object, int material) {
+    struct instance_search *q = context;
+    struct interior_list *list = q->list;
+    push(list, object, q->s->materials[material].ior);
+    for (int k = list->count - 1; k > q->first && list->object[k - 1] > list->object[k]; k--) {
+        int other = list->object[k - 1];
+        double ior = list->ior[k - 1];
+        list->object[k - 1] = list->object[k];
+        list->ior[k - 1] = list->ior[k];
+        list->object[k] = other;
+        list->ior[k] = ior;
+    }
+    return true;
+}
+
 struct interior_list interior_at_point(const struct world *w, vec3 point) {
     const struct scene *s = w->scene;
     struct interior_list list = interior_empty();
@@ -100,10 +123,14 @@ struct interior_list interior_at_point(const struct world *w, vec3 point) {
     for (size_t n = 0; n < w->clear_mesh_count; n++) { /* the meshes that let light through */
         size_t k = w->clear_meshes[n];
         const struct scene_mesh *m = &s->meshes[k];
-        if (aabb_contains(&w->mesh_bounds[k], point) && mesh_contains(&m->mesh, point))
+        if (aabb_contains(&w->mesh_bounds[k], point) && interior_mesh_contains(&m->mesh, point))
             push(&list, world_mesh_object_number(s, k), s->materials[m->material].ior);
     }
     for (size_t k = 0; k < w->unbounded_count; k++)
         add_containing(&list, s, &w->unbounded[k], point);
+    if (w->instances != NULL) { /* chapter 16's, last, as world_closest searches them */
+        struct instance_search q = {&list, s, list.count};
+        w->instances->for_each_containing(w->instances->structure, point, w->time, push_instance, &q);
+    }
     return list;
 }

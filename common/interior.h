@@ -37,10 +37,16 @@ bool interior_contains(const struct interior_list *list, int object);
  * when nothing bends). Cannot fail; a full list counts one overflow and stays as it is. */
 double interior_cross(struct interior_list *list, int object, double ior);
 
+/* Returns true when `point` is inside mesh m: the ray from it along +z crosses an odd number of m's
+ * faces (each tested by triangle_intersect for 0 <= t), as the twin's inside_vector <0, 0, 1> has
+ * POV-Ray decide. Meant for closed meshes; cannot fail. */
+bool interior_mesh_contains(const struct mesh *m, vec3 point);
+
 /* Returns the list of the transparent objects of world w that contain `point`, in the order the world
  * searches them (struct world), as POV-Ray gives a camera ray that starts inside glass: each kind of
  * shape by its `contains` (shape.h: spheres, boxes, planes on the side the normal points away from;
- * triangles never), meshes by counting crossings along +z (odd is inside, the twin's inside_vector).
+ * triangles never), meshes by interior_mesh_contains, then chapter 16's instances (w->instances) in the
+ * order of their lines, each placed as it is at w->time, its object's mesh tested in its own space.
  * Cannot fail. */
 struct interior_list interior_at_point(const struct world *w, vec3 point);
 

@@ -33,8 +33,11 @@ struct world_accel {
                          world_hit_visitor visit, void *context);
 };
 
+/* Calls back for one instance (its object number, its material); returns false to stop. */
+typedef bool (*world_instance_visitor)(void *context, int object, int material);
+
 /* Instances of objects, each placed by its own transform and perhaps moving (chapter 16; instances.h),
- * seen through two queries at a time on the scene's clock. */
+ * seen through three queries at a time on the scene's clock. */
 struct world_instances {
     const void *structure;
     /* the nearest instance surface with t_min < t < h->t at clock time `time`, kept in *h as
@@ -45,6 +48,11 @@ struct world_instances {
      * material until visit returns false; returns false when it did */
     bool (*for_each_crossing)(const void *structure, const ray *r, double t_min, double t_max, double time,
                               shape_crossing_visitor visit, void *context);
+    /* every instance that lets light through (material_passes_light) and whose object holds `point` at
+     * `time` (the point carried into its object's space, tested by interior_mesh_contains, interior.h),
+     * passed to visit with its object number and material, in no set order, until visit returns false */
+    void (*for_each_containing)(const void *structure, vec3 point, double time, world_instance_visitor visit,
+                                void *context);
 };
 
 /* The shapes of one kind as the world searches them. */

@@ -978,3 +978,70 @@ Test(pictures, the_last_frame_of_an_animation_agrees_with_povray_at_its_clock, .
     cr_assert_eq(render_chapter(16, TEST_OUT "/moving.scene", TEST_OUT "/still.png", "--frames 5 --frame 1"), 0);
     cr_assert_gt(compare_png(TEST_OUT "/still-0001.png", TEST_OUT "/moving-0004.png").max, 50);
 }
+
+/* ---- a camera inside a glass instance ----------------------------------------------------------- */
+
+/* A closed unit cube (corners at -1 and 1), its faces turned outwards. */
+static void write_cube(const char *path) {
+    FILE *out = fopen(path, "w");
+    cr_assert_not_null(out);
+    fprintf(out, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                 "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n");
+    fclose(out);
+}
+
+/* Writes a scene whose eye is inside a glass cube turned and scaled 1.2 (a yellow ball and floor seen
+ * through it), the cube given by `cube`: an object and an instance, or a mesh line. */
+static void write_inside_glass_scene(const char *path, const char *cube) {
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    write_cube(TEST_OUT "/glass-cube.obj");
+    FILE *out = fopen(path, "w");
+    cr_assert_not_null(out);
+    fprintf(out, "image 80 60\ncamera eye 0.2 0.1 0.3 target 0 0 -3 fov 60\nlight position 5 8 4\n"
+                 "background 0.2 0.3 0.5\n"
+                 "material g colour 0.9 1 0.9 ambient 0 diffuse 0 transmit 0.9 ior 1.5 reflection 0.05\n"
+                 "material f colour 1 1 0 ambient 0.2\nplane normal 0 1 0 distance -1.5 material f\n"
+                 "sphere centre 0 0 -3 radius 1 material f\n");
+    fprintf(out, cube, cwd);
+    fclose(out);
+}
+
+#define GLASS_CUBE_OBJECT "object c %s/" TEST_OUT "/glass-cube.obj\n"
+#define GLASS_CUBE_MESH "mesh %s/" TEST_OUT "/glass-cube.obj material g scale 1.2 rotate 10 20 0\n"
+
+Test(instance_interior, an_eye_inside_a_glass_instance_sees_what_it_sees_inside_the_same_mesh, .timeout = 60) {
+    write_inside_glass_scene(TEST_OUT "/inside-instance.scene",
+                             GLASS_CUBE_OBJECT "instance c material g scale 1.2 1.2 1.2 rotate 10 20 0\n");
+    write_inside_glass_scene(TEST_OUT "/inside-mesh.scene", GLASS_CUBE_MESH);
+    cr_assert_eq(render_chapter(16, TEST_OUT "/inside-instance.scene", TEST_OUT "/inside-instance.png", ""), 0);
+    cr_assert_eq(render_chapter(16, TEST_OUT "/inside-mesh.scene", TEST_OUT "/inside-mesh.png", ""), 0);
+    struct image_difference d = compare_png(TEST_OUT "/inside-instance.png", TEST_OUT "/inside-mesh.png");
+    report_difference("eye inside a glass instance vs the same mesh", &d);
+    cr_assert_eq(d.max, 0, "differs by up to %d levels (mean %.3f)", d.max, d.mean);
+}
+
+Test(instance_interior, an_eye_inside_a_glass_instance_agrees_with_povray, .timeout = 120) {
+    write_inside_glass_scene(TEST_OUT "/inside-pov.scene",
+                             GLASS_CUBE_OBJECT "instance c material g scale 1.2 1.2 1.2 rotate 10 20 0\n");
+    cr_assert_eq(render_chapter(16, TEST_OUT "/inside-pov.scene", TEST_OUT "/inside-pov.png", ""), 0);
+    cr_assert(render_povray(16, TEST_OUT "/inside-pov.scene", TEST_OUT "/inside-pov-povray.png"));
+    struct image_difference d = compare_png(TEST_OUT "/inside-pov.png", TEST_OUT "/inside-pov-povray.png");
+    report_difference("eye inside a glass instance vs POV-Ray", &d);
+    cr_assert(image_difference_agrees(&d), "within 2: %.3f%%, mean %.4f, max %d", 100 * d.within_2, d.mean, d.max);
+}
+
+/* The cube slides from x = 3 to x = -3 over the clock: at clock 0.5 (frame 2 of 3) it is where the
+ * fixed mesh is, around the eye, and only then. */
+Test(instance_interior, an_eye_inside_a_moving_glass_instance_at_the_frames_time, .timeout = 60) {
+    write_inside_glass_scene(TEST_OUT "/inside-moving.scene",
+                             GLASS_CUBE_OBJECT "instance c material g scale 1.2 1.2 1.2 rotate 10 20 0 id m\n"
+                                               "key m time 0 translate 3 0 0\nkey m time 1 translate -3 0 0\n");
+    write_inside_glass_scene(TEST_OUT "/inside-still.scene", GLASS_CUBE_MESH);
+    cr_assert_eq(render_chapter(16, TEST_OUT "/inside-moving.scene", TEST_OUT "/inside-moving.png",
+                                "--frames 3 --frame 2"), 0);
+    cr_assert_eq(render_chapter(16, TEST_OUT "/inside-still.scene", TEST_OUT "/inside-still.png", ""), 0);
+    struct image_difference d = compare_png(TEST_OUT "/inside-moving-0002.png", TEST_OUT "/inside-still.png");
+    report_difference("eye inside a moving glass instance at clock 0.5 vs the mesh", &d);
+    cr_assert_eq(d.max, 0, "differs by up to %d levels (mean %.3f)", d.max, d.mean);
+}
