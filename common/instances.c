@@ -137,6 +137,19 @@ static struct aabb instance_box(const struct instances *in, size_t k, double t0,
     return pad_world_box(world);
 }
 
+bool instances_bounds(const void *instances, vec3 *min, vec3 *max) {
+    const struct instances *in = instances;
+    for (size_t k = 0; k < in->count; k++) {
+        const struct instance *it = &in->items[k];
+        struct aabb object = in->object_extents[it->object];
+        struct aabb box = it->keys == NULL ? transform_box(&it->to_world, object)
+                                           : keyframes_motion_box(it->keys, it->key_count, object, in->t0, in->t1);
+        *min = vec3_min(*min, box.min);
+        *max = vec3_max(*max, box.max);
+    }
+    return in->count > 0;
+}
+
 double instances_expected_tests(const struct instances *in, int *line, bool *outside) {
     uint32_t crowded = 0;
     double in_tree = in->top != NULL ? instance_bvh_expected_instances(in->top, &crowded) : 0.0;
@@ -172,7 +185,8 @@ static bool load_object(struct instances *in, struct scene *s, size_t k, size_t 
                      o->name, v);
             return false;
         }
-    in->object_boxes[k] = aabb_pad(world_mesh_bounds(&o->mesh), triangle_box_pad(&o->mesh));
+    in->object_extents[k] = world_mesh_bounds(&o->mesh);
+    in->object_boxes[k] = aabb_pad(in->object_extents[k], triangle_box_pad(&o->mesh));
     in->objects[k] = fast_bvh_build(&o->mesh, BVH_SPLIT_SAH, FAST_BVH_RUNG_DEFAULT);
     if (in->objects[k] == NULL) {
         snprintf(err, err_size, "%s:%d: object '%s': out of memory building its BVH (%zu triangles)", s->path, o->line,
@@ -242,11 +256,12 @@ struct instances *instances_create(struct scene *s, int first_object, double t0,
     in->count = s->instance_count;
     in->objects = calloc(s->object_count + 1, sizeof *in->objects);
     in->object_boxes = calloc(s->object_count + 1, sizeof *in->object_boxes);
+    in->object_extents = calloc(s->object_count + 1, sizeof *in->object_extents);
     in->items = calloc(in->count + 1, sizeof *in->items);
     in->boxes = calloc(in->count + 1, sizeof *in->boxes);
     in->outside = calloc(in->count + 1, sizeof *in->outside);
-    if (in->objects == NULL || in->object_boxes == NULL || in->items == NULL || in->boxes == NULL ||
-        in->outside == NULL) {
+    if (in->objects == NULL || in->object_boxes == NULL || in->object_extents == NULL || in->items == NULL ||
+        in->boxes == NULL || in->outside == NULL) {
         instances_free(in);
         return (snprintf(err, err_size, "out of memory"), NULL);
     }
@@ -317,6 +332,7 @@ void instances_free(struct instances *in) {
     instance_bvh_free(in->top);
     free(in->objects);
     free(in->object_boxes);
+    free(in->object_extents);
     free(in->items);
     free(in->boxes);
     free(in->outside);

@@ -91,6 +91,7 @@ struct instances {
     int first_object;             /* hit.object of instance 0; instance k is first_object + k */
     struct fast_bvh **objects;    /* one tree per scene object, in object space */
     struct aabb *object_boxes;    /* each object's box, padded as world_mesh_cull_bounds pads a mesh's */
+    struct aabb *object_extents;  /* each object's box, unpadded: what the scale warning measures */
     struct instance *items;
     size_t count;
     struct aabb *boxes;           /* each instance's world box over [t0, t1] */
@@ -127,6 +128,14 @@ bool instances_set_interval(struct instances *in, double t0, double t1, enum ins
  * cannot be inverted (not for the instances instances_create accepts). */
 bool instances_transform_at(const struct instances *in, size_t k, double time, struct transform *to_world,
                             struct transform *to_object);
+
+/* The scene's measure of the instances (scene_bounds_fn, scene.h), for the scale warning (scene_scale.h):
+ * grows [*min, *max] by the world box of every instance of `instances` (a struct instances), its
+ * object's unpadded box carried by its transform (a moving one's held over the interval the top level
+ * holds it over now, instances_set_interval, by keyframes_motion_box), so that a fixed instance counts
+ * as much as the same mesh placed by a mesh line, and returns true when there is an instance. Chapter 16 sets it as the scene's
+ * instance_bounds once the instances are placed. Cannot fail. */
+bool instances_bounds(const void *instances, vec3 *min, vec3 *max);
 
 /* Frees in and everything it owns (not the scene). Safe on NULL. */
 void instances_free(struct instances *in);

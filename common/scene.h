@@ -143,6 +143,11 @@ struct scene;
 typedef const struct material *(*scene_paint_fn)(const struct scene *s, struct hit *h, vec3 point,
                                                  struct material *painted);
 
+/* Chapter 16's measure of its instances (instances_bounds): grows the box [*min, *max] by the world box
+ * of every instance `placed` holds, as placed for the picture (a moving one over the shutter), and
+ * returns true when there is one. */
+typedef bool (*scene_bounds_fn)(const void *placed, vec3 *min, vec3 *max);
+
 struct scene {
     char *path; /* the file it was read from; owned */
     vec3 eye, target, up;
@@ -168,6 +173,9 @@ struct scene {
     scene_paint_fn paint;       /* set by chapter 14 (texture.h); NULL: plain materials, flat triangles */
     scene_paint_fn shadow_paint; /* chapter 14: the same for a surface a shadow ray crosses (shadow.c);
                                   * NULL: a shadow is filtered by the material's plain colour */
+    scene_bounds_fn instance_bounds; /* chapter 16, once its instances are placed (instances.h); NULL: the
+                                      * scene's extent has no instances in it (scene_scale.h) */
+    const void *placed_instances;    /* what instance_bounds measures */
     /* The shapes, one list per kind: the kinds of scene_syntaxes[] in that order, then the other kinds
      * the program draws, in the order it lists them. A list may be empty. */
     struct shape_list shapes[SCENE_KIND_MAX];

@@ -30,8 +30,8 @@ static bool grow_by_shapes(struct extent *e, const struct shape_list *list) {
     return bounded;
 }
 
-/* Grows e by every finite shape of s: the shapes with bounding boxes, the vertices of loaded meshes.
- * Returns true when s has one. */
+/* Grows e by every finite shape of s: the shapes with bounding boxes, the vertices of loaded meshes,
+ * and chapter 16's instances, by their world boxes (s->instance_bounds). Returns true when s has one. */
 static bool grow_by_scene(struct extent *e, const struct scene *s) {
     bool finite = s->mesh_count > 0;
     for (size_t k = 0; k < s->kind_count; k++)
@@ -40,6 +40,8 @@ static bool grow_by_scene(struct extent *e, const struct scene *s) {
     for (size_t k = 0; k < s->mesh_count; k++)
         for (size_t v = 0; v < s->meshes[k].mesh.vertex_count; v++)
             grow(e, s->meshes[k].mesh.vertices[v]);
+    if (s->instance_bounds != NULL)
+        finite |= s->instance_bounds(s->placed_instances, &e->min, &e->max);
     return finite;
 }
 

@@ -18,8 +18,9 @@
 #define SCENE_SCALE_MIN_MARGINS 1000.0
 
 /* Returns the scene's extent: the longest side of the box around the eye and every finite shape the
- * program draws (the bounding boxes of its kinds of shape, shape.h, and loaded meshes; planes are
- * infinite and left out). Cannot fail. */
+ * program draws (the bounding boxes of its kinds of shape, shape.h, loaded meshes, and chapter 16's
+ * instances by their world boxes once it has placed them, s->instance_bounds; planes are infinite and
+ * left out). Cannot fail. */
 double scene_extent(const struct scene *s);
 
 /* When s has a finite shape and scene_extent(s) < SCENE_SCALE_MIN_MARGINS * SHADOW_T_MIN, prints one warning line to `out`

@@ -1045,3 +1045,37 @@ Test(instance_interior, an_eye_inside_a_moving_glass_instance_at_the_frames_time
     report_difference("eye inside a moving glass instance at clock 0.5 vs the mesh", &d);
     cr_assert_eq(d.max, 0, "differs by up to %d levels (mean %.3f)", d.max, d.mean);
 }
+
+/* ---- the scale warning measures the instances ---------------------------------------------------- */
+
+/* Writes a scene of one instance of the unit cube placed by `pose`, seen from `eye`. */
+static void write_lone_cube_scene(const char *path, const char *eye, const char *pose) {
+    char cwd[1024];
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    write_cube(TEST_OUT "/lone-cube.obj");
+    FILE *out = fopen(path, "w");
+    cr_assert_not_null(out);
+    fprintf(out, "image 8 6\ncamera eye %s fov 50\nlight position 5 8 4\nbackground 0.2 0.3 0.5\n"
+                 "material f colour 1 1 0 ambient 0.2\nobject c %s/" TEST_OUT "/lone-cube.obj\n"
+                 "instance c material f %s\n", eye, cwd, pose);
+    fclose(out);
+}
+
+/* Two millionths of a unit across, 10,000 times smaller than the margins: as the same cube on a mesh
+ * line (the extent is the same to the last digit printed), not a blank picture without a word. */
+Test(instance_scale, a_scene_of_tiny_instances_is_warned_about) {
+    write_lone_cube_scene(TEST_OUT "/tiny-instance.scene", "0 0.000002 0.000006 target 0 0 0",
+                          "scale 0.000001 0.000001 0.000001 rotate 10 20 0");
+    expect_chapter_run(16, TEST_OUT "/tiny-instance.scene -o " TEST_OUT "/tiny-instance.png", 0,
+                       TEST_OUT "/tiny-instance.scene: warning: the scene is 7.43061e-06 units across, only "
+                       "0.00743061 times the shadow-ray margin 0.001 (and 0.0743061 times the ray margin 0.0001); "
+                       "surfaces that close are missed and the picture will differ from POV-Ray's: scale the scene "
+                       "up 1e+06 times or more\n");
+}
+
+Test(instance_scale, a_scene_of_instances_far_from_the_origin_is_warned_about) {
+    write_lone_cube_scene(TEST_OUT "/far-instance.scene", "1e12 1 6 target 1e12 0 0", "translate 1e12 0 0");
+    expect_chapter_run(16, TEST_OUT "/far-instance.scene -o " TEST_OUT "/far-instance.png", 0,
+                       "far-instance.scene: warning: the scene is 7 units across and reaches 1e+12 from the origin, "
+                       "where a ray leaving a surface accepts hits only beyond 1000 (1e-09 of that distance");
+}

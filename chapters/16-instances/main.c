@@ -335,6 +335,8 @@ int main(int argc, char **argv) {
             return cli_fail(&run);
         }
         w->world.instances = &in->hook;
+        run.scene.instance_bounds = instances_bounds; /* the scale warning measures them too */
+        run.scene.placed_instances = in;
         if (run.options.pov == NULL && !instances_within_budget(&run, in)) {
             instances_free(in);
             accel_world_destroy(w);
@@ -349,6 +351,7 @@ int main(int argc, char **argv) {
         if (in != NULL)
             instances_report(in, stdout, run.options.stats);
     }
+    run.scene.instance_bounds = NULL;
     instances_free(in);
     accel_world_destroy(w);
     return cli_finish(&run);
