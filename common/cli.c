@@ -222,25 +222,82 @@ static int parse_options(const struct chapter *ch, int argc, char **argv, struct
     return CLI_OK;
 }
 
-bool cli_output_is_an_input(const struct cli_run *run, const char *option, const char *file) {
+/* How many files run may read, as input_file counts them: the scene file, then the meshes, the pigments
+ * and the objects in the order of their lines. */
+static size_t input_count(const struct cli_run *run) {
     const struct scene *s = &run->scene;
-    char what[SCENE_NAME_MAX + 64] = "";
-    if (outfile_same_file(file, run->options.scene))
-        snprintf(what, sizeof what, "the scene file");
-    for (size_t m = 0; what[0] == '\0' && m < s->mesh_count; m++)
-        if (outfile_same_file(file, s->meshes[m].path))
-            snprintf(what, sizeof what, "the mesh of line %d", s->meshes[m].line);
-    for (size_t m = 0; what[0] == '\0' && m < s->pigment_count; m++)
-        if (s->pigments[m].file != NULL && outfile_same_file(file, s->pigments[m].file))
-            snprintf(what, sizeof what, "the image of pigment '%s'", s->pigments[m].name);
-    for (size_t m = 0; what[0] == '\0' && m < s->object_count; m++)
-        if (outfile_same_file(file, s->objects[m].path))
-            snprintf(what, sizeof what, "the mesh of object '%s'", s->objects[m].name);
-    if (what[0] == '\0')
+    return 1 + s->mesh_count + s->pigment_count + s->object_count;
+}
+
+/* The k-th file run may read (k < input_count), or NULL when it is a pigment without a file; with
+ * what[size] not NULL, also what it is to the run, e.g. "the mesh of line 4". */
+static const char *input_file(const struct cli_run *run, size_t k, char *what, size_t size) {
+    const struct scene *s = &run->scene;
+    if (k == 0) {
+        if (what != NULL)
+            snprintf(what, size, "the scene file");
+        return run->options.scene;
+    }
+    k -= 1;
+    if (k < s->mesh_count) {
+        if (what != NULL)
+            snprintf(what, size, "the mesh of line %d", s->meshes[k].line);
+        return s->meshes[k].path;
+    }
+    k -= s->mesh_count;
+    if (k < s->pigment_count) {
+        if (what != NULL && s->pigments[k].file != NULL)
+            snprintf(what, size, "the image of pigment '%s'", s->pigments[k].name);
+        return s->pigments[k].file;
+    }
+    k -= s->pigment_count;
+    if (what != NULL)
+        snprintf(what, size, "the mesh of object '%s'", s->objects[k].name);
+    return s->objects[k].path;
+}
+
+/* Says that option's file is run's input number k and returns true; returns false when k is
+ * OUTFILE_INDEX_NONE. */
+static bool refuse_written_input(const struct cli_run *run, const char *option, const char *file, size_t k) {
+    if (k == OUTFILE_INDEX_NONE)
         return false;
+    char what[SCENE_NAME_MAX + 64] = "";
+    input_file(run, k, what, sizeof what);
     complain("%s names '%s', which the run reads (%s): writing it would destroy it; give another file", option, file,
              what);
     return true;
+}
+
+bool cli_output_is_an_input(const struct cli_run *run, const char *option, const char *file) {
+    size_t found = OUTFILE_INDEX_NONE;
+    for (size_t k = 0; found == OUTFILE_INDEX_NONE && k < input_count(run); k++) {
+        const char *input = input_file(run, k, NULL, 0);
+        if (input != NULL && outfile_same_file(file, input))
+            found = k;
+    }
+    return refuse_written_input(run, option, file, found);
+}
+
+bool cli_inputs_open(struct cli_inputs *inputs, const struct cli_run *run) {
+    size_t count = input_count(run);
+    *inputs = (struct cli_inputs){.run = run, .names = malloc(count * sizeof *inputs->names)};
+    for (size_t k = 0; inputs->names != NULL && k < count; k++)
+        inputs->names[k] = input_file(run, k, NULL, 0);
+    if (inputs->names == NULL || !outfile_index_build(&inputs->index, inputs->names, count)) {
+        complain("out of memory for the list of the %zu files the run reads", count);
+        return false;
+    }
+    return true;
+}
+
+bool cli_inputs_written(const struct cli_inputs *inputs, const char *option, const char *file) {
+    return refuse_written_input(inputs->run, option, file, outfile_index_find(&inputs->index, file));
+}
+
+void cli_inputs_free(struct cli_inputs *inputs) {
+    outfile_index_free(&inputs->index);
+    free(inputs->names);
+    *inputs = (struct cli_inputs){0};
 }
 
 /* Bounds the rays the run's scene asks for: a note above RAY_BUDGET_LARGE, a refusal above

@@ -32,6 +32,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "outfile.h"
 #include "povray.h"
 #include "render.h"
 #include "scene.h"
@@ -116,6 +117,26 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
  * writing it would destroy it; give another file" and returns true. cli_start checks the options'
  * own files; a chapter that derives more names from them (chapter 16's frames) checks those. */
 bool cli_output_is_an_input(const struct cli_run *run, const char *option, const char *file);
+
+/* The files a run reads, each looked at once (outfile_index), for a chapter that checks many names
+ * against them: chapter 16's frames, whose names compared one by one with thousands of object files
+ * kept a run from drawing its first frame for minutes. */
+struct cli_inputs {
+    const struct cli_run *run;
+    const char **names;         /* owned array; the run's inputs in cli_output_is_an_input's order */
+    struct outfile_index index; /* over `names` */
+};
+
+/* Looks at each file `run` reads once (the run must outlive `inputs`). Returns false when memory runs
+ * out, after printing so. Either way, end with cli_inputs_free. */
+bool cli_inputs_open(struct cli_inputs *inputs, const struct cli_run *run);
+
+/* cli_output_is_an_input's answer and message for `file`, the inputs taken as cli_inputs_open found
+ * them, at the cost of one look at `file`. */
+bool cli_inputs_written(const struct cli_inputs *inputs, const char *option, const char *file);
+
+/* Frees what cli_inputs_open took and leaves `inputs` empty. */
+void cli_inputs_free(struct cli_inputs *inputs);
 
 /* Ends the run with a failure of the chapter's own step (loading meshes, building its world), whose
  * message is in run->err: prints it and returns cli_finish's status, CLI_BAD_INPUT. */

@@ -224,6 +224,123 @@ bool outfile_same_file(const char *a, const char *b) {
     return same;
 }
 
+/* A name of an outfile_index that exists: its file, and where the name is in the list given. */
+struct outfile_index_file {
+    dev_t device;
+    ino_t inode;
+    size_t position;
+};
+
+/* A name of an outfile_index as text, and where it is in the list given. */
+struct outfile_index_name {
+    const char *text; /* borrowed from the caller's list, or `owned` */
+    char *owned;      /* a resolved name, which the index frees; NULL for the caller's */
+    size_t position;
+};
+
+/* Orders files by device, inode, then position: the first of equal files is the first in the list. */
+static int compare_index_files(const void *a, const void *b) {
+    const struct outfile_index_file *x = a, *y = b;
+    if (x->device != y->device)
+        return x->device < y->device ? -1 : 1;
+    if (x->inode != y->inode)
+        return x->inode < y->inode ? -1 : 1;
+    return x->position < y->position ? -1 : x->position > y->position;
+}
+
+/* Orders names by their text, then position: the first of equal names is the first in the list. */
+static int compare_index_names(const void *a, const void *b) {
+    const struct outfile_index_name *x = a, *y = b;
+    int order = strcmp(x->text, y->text);
+    if (order != 0)
+        return order;
+    return x->position < y->position ? -1 : x->position > y->position;
+}
+
+/* The position of the first of the `count` sorted names whose text is `text`, or OUTFILE_INDEX_NONE. */
+static size_t find_index_name(const struct outfile_index_name *names, size_t count, const char *text) {
+    size_t low = 0, high = count; /* the first whose text is not before `text` is in [low, high] */
+    while (low < high) {
+        size_t middle = low + (high - low) / 2;
+        if (strcmp(names[middle].text, text) < 0)
+            low = middle + 1;
+        else
+            high = middle;
+    }
+    return low < count && strcmp(names[low].text, text) == 0 ? names[low].position : OUTFILE_INDEX_NONE;
+}
+
+/* The position of the first of the `count` sorted files that is `info`'s, or OUTFILE_INDEX_NONE. */
+static size_t find_index_file(const struct outfile_index_file *files, size_t count, const struct stat *info) {
+    struct outfile_index_file key = {info->st_dev, info->st_ino, 0}; /* before every position of that file */
+    size_t low = 0, high = count;
+    while (low < high) {
+        size_t middle = low + (high - low) / 2;
+        if (compare_index_files(&files[middle], &key) < 0)
+            low = middle + 1;
+        else
+            high = middle;
+    }
+    return low < count && files[low].device == key.device && files[low].inode == key.inode ? files[low].position
+                                                                                           : OUTFILE_INDEX_NONE;
+}
+
+bool outfile_index_build(struct outfile_index *index, const char *const *names, size_t count) {
+    *index = (struct outfile_index){0};
+    size_t slots = count > 0 ? count : 1;
+    index->files = malloc(slots * sizeof *index->files);
+    index->names = malloc(slots * sizeof *index->names);
+    index->absent = malloc(slots * sizeof *index->absent);
+    bool enough = index->files != NULL && index->names != NULL && index->absent != NULL;
+    for (size_t k = 0; enough && k < count; k++) {
+        if (names[k] == NULL)
+            continue;
+        index->names[index->name_count++] = (struct outfile_index_name){names[k], NULL, k};
+        struct stat info;
+        if (stat_name(names[k], &info) == 0) {
+            index->files[index->file_count++] = (struct outfile_index_file){info.st_dev, info.st_ino, k};
+        } else if (strcmp(names[k], "-") != 0) {
+            char *resolved = canonical_name(names[k]);
+            enough = resolved != NULL;
+            if (enough)
+                index->absent[index->absent_count++] = (struct outfile_index_name){resolved, resolved, k};
+        }
+    }
+    if (!enough) {
+        outfile_index_free(index);
+        return false;
+    }
+    qsort(index->files, index->file_count, sizeof *index->files, compare_index_files);
+    qsort(index->names, index->name_count, sizeof *index->names, compare_index_names);
+    qsort(index->absent, index->absent_count, sizeof *index->absent, compare_index_names);
+    return true;
+}
+
+size_t outfile_index_find(const struct outfile_index *index, const char *path) {
+    /* outfile_same_file's rules: the same name; else both exist and are one file; else neither exists,
+     * neither is "-", and their names resolved are the same. */
+    size_t found = find_index_name(index->names, index->name_count, path), other = OUTFILE_INDEX_NONE;
+    struct stat info;
+    if (stat_name(path, &info) == 0) {
+        other = find_index_file(index->files, index->file_count, &info);
+    } else if (index->absent_count > 0 && strcmp(path, "-") != 0) {
+        char *resolved = canonical_name(path);
+        if (resolved != NULL)
+            other = find_index_name(index->absent, index->absent_count, resolved);
+        free(resolved);
+    }
+    return other < found ? other : found; /* OUTFILE_INDEX_NONE is after every position */
+}
+
+void outfile_index_free(struct outfile_index *index) {
+    for (size_t k = 0; index->absent != NULL && k < index->absent_count; k++)
+        free(index->absent[k].owned);
+    free(index->files);
+    free(index->names);
+    free(index->absent);
+    *index = (struct outfile_index){0};
+}
+
 bool outfile_reserve_stdout(void) {
     fflush(stdout);
     int fd = fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3);

@@ -58,6 +58,38 @@ bool outfile_name_fits(const char *path);
  * otherwise the same name once symbolic links and the folder are resolved. */
 bool outfile_same_file(const char *a, const char *b);
 
+/* Not a position: what outfile_index_find returns when no name of the index names the file. */
+#define OUTFILE_INDEX_NONE ((size_t)-1)
+
+/* A list of file names (the files a program reads), each looked at once, so that many other names (the
+ * files it will write) can each be checked against all of them at the cost of one look at that name,
+ * not one at every name of the list: a chapter 16 run of thousands of frames and thousands of object
+ * files took minutes before it drew its first frame when every frame's name was compared with every
+ * input by outfile_same_file. outfile_index_find's answer is outfile_same_file's, for the files as they
+ * were when the index was built. */
+struct outfile_index {
+    struct outfile_index_file *files; /* owned; the names that exist, by device and inode */
+    size_t file_count;
+    struct outfile_index_name *names; /* owned; every name, by its text */
+    size_t name_count;
+    struct outfile_index_name *absent; /* owned; the names that do not exist (not "-"), links and folder resolved */
+    size_t absent_count;
+};
+
+/* Builds the index of the `count` names at `names` (a NULL name names no file and is never found):
+ * one stat of each, and for one that does not exist its name with links and folder resolved. The
+ * names are borrowed: they must outlive the index. Returns false when memory runs out (the index is
+ * then empty). Free it with outfile_index_free. */
+bool outfile_index_build(struct outfile_index *index, const char *const *names, size_t count);
+
+/* Returns the position (in the list given to outfile_index_build) of the first name for which
+ * outfile_same_file(path, name) holds, or OUTFILE_INDEX_NONE when there is none; one stat of `path`,
+ * and when it does not exist (and the index holds names that do not either) its name resolved. */
+size_t outfile_index_find(const struct outfile_index *index, const char *path);
+
+/* Frees the index and leaves it empty. */
+void outfile_index_free(struct outfile_index *index);
+
 /* Sets standard output aside for the file "-": later writes to "-" go to what standard output is now,
  * and standard output itself is pointed at standard error, so that everything else a program prints
  * (its counters) stays out of the data. Call it once, before anything is printed. Returns false (and

@@ -733,6 +733,49 @@ Test(command_line, the_frames_files_are_checked_before_any_frame_is_drawn) {
                        "--video (its film) names '" TEST_OUT "/clip.mp4', which the run reads (the scene file)");
 }
 
+/* The frames' names are checked against the files the run reads with each input looked at once: they
+ * were compared one by one, two stats a pair, and a scene of 4,096 object lines run with --frames
+ * 10000 drew its first frame after 271 s, printing nothing. Here 5,000 frames of a picture and a
+ * heat-map against 4,096 objects, the last frame's heat-map a link to the last object's file: about
+ * 80 million stats before (two minutes and more), a moment now; and the link is still refused. */
+#define MANY_OBJECTS_FRAMES 5000
+#define MANY_OBJECTS_OUT TEST_OUT "/many-objects"
+Test(command_line, thousands_of_frames_are_checked_against_thousands_of_objects_at_once, .timeout = 20) {
+    char command[1024], output[4096], link_name[256];
+    snprintf(command, sizeof command, "rm -rf " MANY_OBJECTS_OUT " && mkdir -p " MANY_OBJECTS_OUT);
+    cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s", output);
+    static const char *const meshes[] = {MANY_OBJECTS_OUT "/tri.obj", MANY_OBJECTS_OUT "/last.obj"};
+    for (int k = 0; k < 2; k++) {
+        FILE *mesh = fopen(meshes[k], "w");
+        cr_assert_not_null(mesh);
+        fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", mesh);
+        fclose(mesh);
+    }
+    FILE *out = fopen(MANY_OBJECTS_OUT "/many.scene", "w");
+    cr_assert_not_null(out);
+    fputs("camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 6\nlight position 5 8 4\n", out);
+    for (int k = 1; k <= SCENE_OBJECT_MAX; k++)
+        fprintf(out, "object o%d %s\n", k, k < SCENE_OBJECT_MAX ? "tri.obj" : "last.obj");
+    fputs("instance o1\n", out);
+    fclose(out);
+    snprintf(link_name, sizeof link_name, MANY_OBJECTS_OUT "/h-%04d.png", MANY_OBJECTS_FRAMES);
+    cr_assert_eq(symlink("last.obj", link_name), 0);
+    /* the run's own bound ends the old code's search soon after this test's time is up */
+    snprintf(command, sizeof command, "timeout 30 %s " MANY_OBJECTS_OUT "/many.scene --frames %d -o " MANY_OBJECTS_OUT
+             "/f.png --heatmap " MANY_OBJECTS_OUT "/h.png --quiet", chapter_program(16), MANY_OBJECTS_FRAMES);
+    int status = run_capturing(command, output, sizeof output);
+    char expected[512];
+    snprintf(expected, sizeof expected, "--heatmap (its frame %d) names '%s', which the run reads (the mesh of object "
+             "'o%d'): writing it would destroy it; give another file", MANY_OBJECTS_FRAMES, link_name, SCENE_OBJECT_MAX);
+    cr_expect_eq(status, 2, "'%s' exited with %d, not 2:\n%s", command, status, output);
+    cr_expect(strstr(output, expected) != NULL, "'%s' did not say '%s':\n%s", command, expected, output);
+    cr_expect_neq(access(MANY_OBJECTS_OUT "/f-0001.png", F_OK), 0, "a frame was written");
+    size_t size = 0;
+    char *mesh = read_file(MANY_OBJECTS_OUT "/last.obj", &size);
+    cr_expect(mesh != NULL && strncmp(mesh, "v 0 0 0\n", 8) == 0, "the last object's file was written over");
+    free(mesh);
+}
+
 Test(command_line, instances_on_top_of_each_other_count_in_the_ray_budget) {
     /* 20,000 bunnies in one place: every ray is carried into each of them, 2.6e12 times in a picture of
      * 1000 x 1000 pixels, 64 camera rays each and their shadow rays, more than a day; refused at once, naming the crowded place's

@@ -465,6 +465,45 @@ Test(io, same_file_compares_inodes_and_resolved_names) {
     cr_assert(!outfile_same_file(a, TEST_OUT "/io-none"));
 }
 
+/* An index of names answers outfile_same_file's question for each of them, the first that names the
+ * file: by name, by inode (a hard link, a symbolic link), by the resolved name of a file not there yet,
+ * and "-" only for "-". */
+Test(io, an_index_of_names_finds_the_first_that_outfile_same_file_matches) {
+    const char *a = text_file("io-index-a", "a");
+    const char *hard = fresh("io-index-hard"), *soft = fresh("io-index-soft");
+    cr_assert_eq(link(a, hard), 0);
+    cr_assert_eq(symlink("io-index-a", soft), 0);
+    const char *other = text_file("io-index-other", "b");
+    unlink(TEST_OUT "/io-index-none");
+    unlink(TEST_OUT "/io-index-none2");
+    const char *const names[] = {NULL, TEST_OUT "/io-index-none", other, hard, "-", a, "./" TEST_OUT "/io-index-none",
+                                 soft, TEST_OUT "/io-index-none2", other};
+    size_t count = sizeof names / sizeof names[0];
+    const char *const asked[] = {a, hard, soft, other, "-", TEST_OUT "/io-index-none", "./" TEST_OUT "/io-index-none",
+                                 TEST_OUT "/./io-index-none2", TEST_OUT "/io-index-never", "./" TEST_OUT
+                                 "/io-index-other", "io-index-a"};
+    struct outfile_index index;
+    cr_assert(outfile_index_build(&index, names, count));
+    for (size_t q = 0; q < sizeof asked / sizeof asked[0]; q++) {
+        size_t expected = OUTFILE_INDEX_NONE;
+        for (size_t k = 0; expected == OUTFILE_INDEX_NONE && k < count; k++)
+            if (names[k] != NULL && outfile_same_file(asked[q], names[k]))
+                expected = k;
+        size_t found = outfile_index_find(&index, asked[q]);
+        cr_expect_eq(found, expected, "%s: found %zu, outfile_same_file says %zu", asked[q], found, expected);
+    }
+    /* the positions of the answers, to see that the cases above are the ones meant */
+    cr_expect_eq(outfile_index_find(&index, a), 3); /* its hard link comes first */
+    cr_expect_eq(outfile_index_find(&index, "-"), 4);
+    cr_expect_eq(outfile_index_find(&index, "./" TEST_OUT "/io-index-none"), 1);
+    cr_expect_eq(outfile_index_find(&index, TEST_OUT "/./io-index-none2"), 8);
+    cr_expect_eq(outfile_index_find(&index, TEST_OUT "/io-index-never"), OUTFILE_INDEX_NONE);
+    outfile_index_free(&index);
+    cr_assert(outfile_index_build(&index, names, 0)); /* an empty list finds nothing */
+    cr_expect_eq(outfile_index_find(&index, a), OUTFILE_INDEX_NONE);
+    outfile_index_free(&index);
+}
+
 /* ---- names longer than the system takes -------------------------------------------------------- */
 
 Test(io, an_output_name_longer_than_the_system_limit_is_refused) {

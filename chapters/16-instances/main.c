@@ -120,9 +120,11 @@ static bool frame_file(const char *output, long k, char *name, size_t size) {
 
 /* Checks, before anything is rendered, the files the frames first..last will be written to (the
  * picture's, and the heat-map's with --heatmap): each name fits, none is a file the run reads
- * (cli_output_is_an_input), a frame's picture and heat-map are two files, and the first and the last
- * (the longest) can be created. Prints why not and returns the exit status, or CLI_OK. */
-static int frame_files_valid(const struct cli_run *run, long first, long last) {
+ * (cli_output_is_an_input's rule; the inputs are looked at once, cli_inputs_open, and each frame's
+ * name once, so that thousands of frames against thousands of object files take a moment), a frame's
+ * picture and heat-map are two files, and the first and the last (the longest) can be created. Prints
+ * why not and returns the exit status, or CLI_OK. */
+static int frame_files_valid(const struct cli_run *run, const struct cli_inputs *inputs, long first, long last) {
     const char *const options[] = {"-o", "--heatmap"};
     const char *const outputs[] = {run->options.output, run->options.heatmap};
     for (long k = first; k <= last; k++) {
@@ -134,7 +136,7 @@ static int frame_files_valid(const struct cli_run *run, long first, long last) {
                 return CLI_USAGE;
             }
             snprintf(option, sizeof option, "%s (its frame %ld)", options[o], k);
-            if (cli_output_is_an_input(run, option, names[o]))
+            if (cli_inputs_written(inputs, option, names[o]))
                 return CLI_USAGE;
             if ((k == first || k == last) && !outfile_can_create(names[o], err, sizeof err)) {
                 fprintf(stderr, "%s\n", err);
@@ -150,7 +152,7 @@ static int frame_files_valid(const struct cli_run *run, long first, long last) {
     char film[PATH_MAX];
     size_t stem = strlen(run->options.output) - 4; /* with --video, -o ends in .png (animation_options_valid) */
     if (animation.video && snprintf(film, sizeof film, "%.*s.mp4", (int)stem, run->options.output) < (int)sizeof film &&
-        cli_output_is_an_input(run, "--video (its film)", film))
+        cli_inputs_written(inputs, "--video (its film)", film))
         return CLI_USAGE;
     return CLI_OK;
 }
@@ -308,7 +310,10 @@ int main(int argc, char **argv) {
     }
     if (animation.frames > 0 && run.options.pov == NULL) {
         long first = animation.frame > 0 ? animation.frame : 1;
-        run.status = frame_files_valid(&run, first, animation.frame > 0 ? animation.frame : animation.frames);
+        struct cli_inputs inputs;
+        run.status = !cli_inputs_open(&inputs, &run) ? CLI_OUTPUT_FAILED
+                     : frame_files_valid(&run, &inputs, first, animation.frame > 0 ? animation.frame : animation.frames);
+        cli_inputs_free(&inputs);
         if (run.status != CLI_OK)
             return cli_finish(&run);
     }
