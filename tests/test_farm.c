@@ -319,3 +319,78 @@ Test(farm, numbers_with_leading_zeros_or_too_many_digits_are_refused) {
                             "render.sbatch: WIDTH must be a whole number from 1 to 999999999, written without leading "
                             "zeros, got '0100'");
 }
+
+/* A stand-in for Slurm's sbatch in `folder`/stand-in: it records its words in `folder`/submitted and
+ * succeeds at once, so that farm.sh runs without a cluster and a test sees whether it submitted. */
+static void make_stand_in_sbatch(const char *folder) {
+    char path[400];
+    snprintf(path, sizeof path, "%s/stand-in", folder);
+    cr_assert_eq(mkdir(path, 0755), 0);
+    snprintf(path, sizeof path, "%s/stand-in/sbatch", folder);
+    FILE *script = fopen(path, "w");
+    cr_assert_not_null(script);
+    fprintf(script, "#!/bin/sh\necho \"$@\" >> '%s/submitted'\n", folder);
+    fclose(script);
+    cr_assert_eq(chmod(path, 0755), 0);
+}
+
+/* Options of the program whose files a farm cannot make: every task (and the size probe) wrote the one
+ * --hdr or --heatmap file, and "3 x 2 tiles joined" left the last task's 4 x 4 tile there, exit 0; the
+ * program's -o is overridden by each task's own; --quiet silenced the size probe, which then said only
+ * "could not read the picture's size from: ". Each is refused, naming the option and why, with exit 2,
+ * before anything is made or submitted. */
+Test(farm, options_whose_files_a_farm_cannot_make_are_refused_before_anything_is_submitted) {
+    char folder[300], pieces[400], submitted[400], hdr[400], heatmap[400], output[800];
+    snprintf(folder, sizeof folder, "%s", fresh_folder("refusals"));
+    snprintf(pieces, sizeof pieces, "%s/pieces", folder);
+    snprintf(submitted, sizeof submitted, "%s/submitted", folder);
+    make_stand_in_sbatch(folder);
+    const char *const why_tile = "every task would write its tile's %s to that one file, each over the last, leaving "
+                                 "only the last task's tile (farm.sh joins only the pictures); render it on one machine";
+    snprintf(hdr, sizeof hdr, "farm.sh: the program's --hdr: ");
+    snprintf(hdr + strlen(hdr), sizeof hdr - strlen(hdr), why_tile, "radiance");
+    snprintf(heatmap, sizeof heatmap, "farm.sh: the program's --heatmap: ");
+    snprintf(heatmap + strlen(heatmap), sizeof heatmap - strlen(heatmap), why_tile, "heat-map");
+    snprintf(output, sizeof output, "farm.sh: the program's -o: each task writes its piece to a name of its own in %s "
+             "(tile-X-Y.png, frame-NNNN.png), given after the program's arguments, so the program's -o would be "
+             "overridden; name the joined picture with farm.sh's -o, before --", pieces);
+    const char *const quiet = "farm.sh: the program's --quiet: farm.sh reads the picture's size from what the program "
+                              "prints when it renders its top-left pixel, which --quiet silences (every task runs quiet "
+                              "anyway); leave it out, or give --size W H";
+    const char *const tiles = "--tile-size 8 8 --dir %s -- %s --width 20 --height 12 %s";
+    const char *const frames = "--frames 2 --dir %s -- %s %s";
+    const char *const sized = "--size 20 12 --tile-size 8 8 --dir %s -- %s %s";
+    struct farm_run {
+        int chapter;
+        const char *layout, *option;
+        const char *refusal; /* NULL: taken, submitted */
+    } const runs[] = {
+        {15, tiles, "--hdr x.pfm", hdr},
+        {15, tiles, "--heatmap h.png", heatmap},
+        {15, tiles, "-o x.png", output},
+        {16, frames, "-o f.png", output},
+        {15, tiles, "--quiet", quiet},
+        {16, frames, "--heatmap h.png", NULL}, /* chapter 16 numbers each frame's heat-map */
+        {15, sized, "--quiet", NULL},          /* with --size nothing is asked of the program */
+    };
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+        const struct farm_run *r = &runs[k];
+        char program[300], words[1200], command[2000], log[FARM_LOG_SIZE];
+        snprintf(program, sizeof program, "%s", chapter_program(r->chapter));
+        snprintf(words, sizeof words, r->layout, pieces, program, r->option);
+        snprintf(command, sizeof command, "PATH=%s/stand-in:$PATH bash tools/farm/farm.sh %s", folder, words);
+        remove(submitted);
+        if (r->refusal != NULL) {
+            expect_farm_usage_error(command, r->refusal);
+            cr_expect_neq(access(submitted, F_OK), 0, "%s: submitted", command);
+            cr_expect_neq(access(pieces, F_OK), 0, "%s: made %s", command, pieces);
+            continue;
+        }
+        int status = run_capturing(command, log, sizeof log);
+        cr_expect_neq(status, 2, "%s: exit 2: %s", command, log);
+        char *said = access(submitted, F_OK) == 0 ? read_text_file(submitted) : NULL;
+        cr_expect(said != NULL && strstr(said, r->option) != NULL, "%s did not submit %s: %s", command, r->option,
+                  log);
+        free(said);
+    }
+}

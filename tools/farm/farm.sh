@@ -15,8 +15,11 @@
 #   --sbatch WORD     one more word for sbatch, e.g. --sbatch --partition=gpu (repeatable)
 #
 # PROGRAM ARGS is a chapter's command line, e.g. build/chapter-13 scenes/13-distributed.scene; run from
-# the repository's folder (the tasks start there too). Exit status: 0 the picture or the frames are
-# there, 1 a task or the assembly failed, 2 a bad command line.
+# the repository's folder (the tasks start there too). ARGS may not hold -o (each task writes to a name
+# of its own), nor for tiles --heatmap or --hdr (every task would write the same file), nor --quiet when
+# the size is asked of PROGRAM (its answer is what it prints): refused before anything is submitted.
+# Exit status: 0 the picture or the frames are there, 1 a task or the assembly failed, 2 a bad command
+# line.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 assemble=${WHITTED_ASSEMBLE:-$here/../../${WHITTED_BUILD:-build}/assemble}
@@ -42,6 +45,32 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ $# -ge 1 ] || fail "usage: farm.sh [--tile-size W H] [--size W H] [--frames N] [--dir DIR] [-o PICTURE] -- PROGRAM [ARGS...]"
+# Options of PROGRAM that cannot work on a farm, refused before anything is made or submitted: each
+# task writes its piece to a name render.sbatch gives it, so a file named here would be one file for
+# every task, each writing over the last (a tile's heat-map or radiance is not joined; with --frames
+# the chapter names each frame's files itself); and without --size the picture's size is read from
+# what PROGRAM prints.
+for word in "${@:2}"; do
+    why=
+    case $word in
+    -o) why="each task writes its piece to a name of its own in $dir (tile-X-Y.png, frame-NNNN.png), given"
+        why+=" after the program's arguments, so the program's -o would be overridden; name the joined picture"
+        why+=" with farm.sh's -o, before --" ;;
+    --heatmap | --hdr)
+        what=heat-map
+        [ "$word" = --hdr ] && what=radiance
+        if [ -z "$frames" ]; then
+            why="every task would write its tile's $what to that one file, each over the last, leaving only the"
+            why+=" last task's tile (farm.sh joins only the pictures); render it on one machine"
+        fi ;;
+    --quiet)
+        if [ -z "$frames" ] && [ -z "$width" ]; then
+            why="farm.sh reads the picture's size from what the program prints when it renders its top-left"
+            why+=" pixel, which --quiet silences (every task runs quiet anyway); leave it out, or give --size W H"
+        fi ;;
+    esac
+    [ -z "$why" ] || fail "the program's $word: $why"
+done
 command -v sbatch >/dev/null || fail "sbatch is not installed: this runs on a Slurm cluster (Debian's slurm-wlm)" 1
 mkdir -p "$dir/logs" || fail "cannot make $dir" 1
 picture=${picture:-$dir/picture.png}
