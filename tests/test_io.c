@@ -119,6 +119,17 @@ Test(io, a_picture_the_decoder_fails_on_without_a_reason_says_so) {
 
 /* build/compare writes SIDE.png and DIFF.png only when neither names a picture it reads or the other, and
  * both can be created: it wrote its side-by-side picture over its first input, with exit status 1. */
+/* Runs a tool's `command`, which must exit with status 2 printing exactly `message` and a line break, and
+ * leave no file at `output` (removed first). */
+static void expect_tool_refusal(const char *command, const char *message, const char *output_path) {
+    char output[1024], expected[1024];
+    unlink(output_path);
+    cr_expect_eq(run_capturing(command, output, sizeof output), 2, "%s: %s", command, output);
+    snprintf(expected, sizeof expected, "%s\n", message);
+    cr_expect_str_eq(output, expected, "%s", command);
+    cr_expect_neq(access(output_path, F_OK), 0, "%s wrote %s", command, output_path);
+}
+
 /* inset's numbers are checked before they are used: a region of 1073741825 pixels at 1073741824 passed the
  * check that it lies inside the picture (the sum wrapped round) and the copy read gigabytes past it, a
  * crash; a zoom of 536870912 wrapped the panel's width. An OUT that names an input is refused too. */
@@ -140,14 +151,10 @@ Test(io, inset_refuses_numbers_out_of_range_and_an_output_that_is_an_input) {
                          "destroy it; give another file"},
     };
     for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
-        char command[1024], output[1024], expected[1024];
-        unlink(TEST_OUT "/io-inset.png");
+        char command[1024];
         snprintf(command, sizeof command, "%s/inset %s %s %s %s", build != NULL ? build : "build", rows[k].out,
                  rows[k].numbers, a, a);
-        cr_expect_eq(run_capturing(command, output, sizeof output), 2, "%s: %s", command, output);
-        snprintf(expected, sizeof expected, "%s\n", rows[k].message);
-        cr_expect_str_eq(output, expected, "%s", command);
-        cr_expect_neq(access(TEST_OUT "/io-inset.png", F_OK), 0, "%s wrote a picture", command);
+        expect_tool_refusal(command, rows[k].message, TEST_OUT "/io-inset.png");
     }
     size_t size = 0;
     char *first = read_file(a, &size);
@@ -184,14 +191,10 @@ Test(io, compare_refuses_outputs_that_name_its_inputs_or_each_other) {
          "compare: /nonexistent/diff.png: cannot create: No such file or directory"},
     };
     for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
-        char command[1024], output[1024], expected[1024];
-        unlink(TEST_OUT "/io-compare-side.png");
+        char command[1024];
         snprintf(command, sizeof command, "%s/compare %s %s %s %s", build != NULL ? build : "build", a, b,
                  rows[k].side, rows[k].diff);
-        cr_expect_eq(run_capturing(command, output, sizeof output), 2, "%s: %s", command, output);
-        snprintf(expected, sizeof expected, "%s\n", rows[k].message);
-        cr_expect_str_eq(output, expected, "%s", command);
-        cr_expect_neq(access(TEST_OUT "/io-compare-side.png", F_OK), 0, "%s wrote the side picture", command);
+        expect_tool_refusal(command, rows[k].message, TEST_OUT "/io-compare-side.png");
     }
     size_t size = 0;
     char *first = read_file(a, &size);
