@@ -34,6 +34,13 @@ static bool read_number(const char *what, const char *text, int *out) {
     return true;
 }
 
+/* Frees the pictures read, in[0 .. panels), and returns status: the end of main once they are read. */
+static int finish(uint8_t *in[], int panels, int status) {
+    for (int k = 0; k < panels; k++)
+        free(in[k]);
+    return status;
+}
+
 int main(int argc, char **argv) {
     if (argc < 8 || argc - 7 > PANELS_MAX) {
         fprintf(stderr, "usage: inset OUT.png X Y W H ZOOM IN.png... (at most %d pictures; ZOOM 0: whole pictures, "
@@ -58,14 +65,14 @@ int main(int argc, char **argv) {
         in[k] = image_read_rgb(argv[7 + k], &wk, &hk, err, sizeof err);
         if (in[k] == NULL || (k > 0 && (wk != width || hk != height))) {
             fprintf(stderr, "%s\n", in[k] == NULL ? err : "inset: the pictures differ in size");
-            return 2;
+            return finish(in, k + 1, 2);
         }
         width = wk, height = hk;
     }
     if (w < 1 || h < 1 || zoom < 0 || x0 < 0 || y0 < 0 || x0 + w > width || y0 + h > height) {
         fprintf(stderr, "inset: the region %d x %d at (%d, %d) is not inside the %d x %d pictures\n", w, h, x0, y0, width,
                 height);
-        return 2;
+        return finish(in, panels, 2);
     }
     /* At most IMAGE_MAX_SIDE each, so the products below stay far inside an int. */
     long long panel_w = zoom > 0 ? (long long)w * zoom : width, panel_h = zoom > 0 ? (long long)h * zoom : height;
@@ -73,12 +80,12 @@ int main(int argc, char **argv) {
     if (out_w > IMAGE_MAX_SIDE || panel_h > IMAGE_MAX_SIDE) {
         fprintf(stderr, "inset: the picture would be %lld x %lld pixels, more than %d on a side: a smaller ZOOM or "
                         "region\n", out_w, panel_h, IMAGE_MAX_SIDE);
-        return 2;
+        return finish(in, panels, 2);
     }
     uint8_t *out = malloc((size_t)out_w * (size_t)panel_h * 3);
     if (out == NULL) {
         fprintf(stderr, "inset: out of memory\n");
-        return 3;
+        return finish(in, panels, 3);
     }
     memset(out, 0xff, (size_t)out_w * (size_t)panel_h * 3);
     static const uint8_t outline[3] = {OUTLINE_RGB};
@@ -95,8 +102,6 @@ int main(int argc, char **argv) {
     bool written = image_write_png_bytes(out, (int)out_w, (int)panel_h, argv[1], err, sizeof err);
     if (!written)
         fprintf(stderr, "%s\n", err);
-    for (int k = 0; k < panels; k++)
-        free(in[k]);
     free(out);
-    return written ? 0 : 3;
+    return finish(in, panels, written ? 0 : 3);
 }
