@@ -463,6 +463,7 @@ struct containing_search {
 
 /* Passes instance k on when it lets light through and its object holds the point at the search's time;
  * returns false when the visitor asked to stop. */
+/* TASK 16.1 ALSO: a point carried into an instance, to find the glass an eye starts in */
 static bool contain_in_instance(struct containing_search *q, size_t k) {
     const struct instances *in = q->in;
     const struct instance *it = &in->items[k];
