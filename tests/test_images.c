@@ -8,10 +8,9 @@
 /* Renders chapter n's own scene and compares it with reference_images/chapter-NN.png. */
 static void check_reference(int n) {
     char png[256], reference[256], what[64];
-    snprintf(png, sizeof png, TEST_OUT "/chapter-%02d.png", n);
     snprintf(reference, sizeof reference, "reference_images/chapter-%02d.png", n);
     snprintf(what, sizeof what, "chapter %d vs reference", n);
-    cr_assert_eq(render_chapter(n, chapter_scene(n), png, ""), 0, "chapter %d failed to render", n);
+    cr_assert_eq(render_own_scene(n, png, sizeof png), 0, "chapter %d failed to render", n);
     struct image_difference d = compare_png(png, reference);
     report_difference(what, &d);
     cr_assert(regression_passes(&d), "chapter %d differs from its reference: max %d, mean %.4f, within 1: %.3f%%",
@@ -21,10 +20,9 @@ static void check_reference(int n) {
 /* Renders chapter n's scene with the chapter and with POV-Ray, and checks that they agree. */
 static void check_povray(int n) {
     char ours[256], theirs[256], what[64];
-    snprintf(ours, sizeof ours, TEST_OUT "/chapter-%02d-ours.png", n);
     snprintf(theirs, sizeof theirs, TEST_OUT "/chapter-%02d-povray.png", n);
     snprintf(what, sizeof what, "chapter %d vs POV-Ray", n);
-    cr_assert_eq(render_chapter(n, chapter_scene(n), ours, ""), 0, "chapter %d failed to render", n);
+    cr_assert_eq(render_own_scene(n, ours, sizeof ours), 0, "chapter %d failed to render", n);
     cr_assert(render_povray(n, chapter_scene(n), theirs), "POV-Ray failed on chapter %d's twin", n);
     struct image_difference d = compare_png(ours, theirs);
     report_difference(what, &d);
@@ -143,8 +141,8 @@ Test(acceleration, rungs_draw_transparent_meshes_as_the_brute_force_loop, .timeo
 }
 
 Test(acceleration, chapters_9_to_11_draw_chapter_8s_picture) {
-    const char *expected = TEST_OUT "/chapter-08-for-accel.png";
-    cr_assert_eq(render_chapter(8, chapter_scene(8), expected, ""), 0);
+    char expected[256];
+    cr_assert_eq(render_own_scene(8, expected, sizeof expected), 0);
     check_identical(9, chapter_scene(8), "", expected, "ch9-on-8");
     check_identical(10, chapter_scene(8), "", expected, "ch10-on-8");
     check_identical(11, chapter_scene(8), "", expected, "ch11-on-8");

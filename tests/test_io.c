@@ -616,7 +616,7 @@ Test(io, a_mesh_at_the_edge_of_the_range_renders) {
  * chapter 16's tree over it, are small enough for malloc to take from its heap, so that under `ulimit -d`
  * the data grow by about what the meshes count (a big array takes whole 2 MB pages, big_alloc.c). */
 #define IO_GRID 50
-#define IO_GRID_LIMIT_KB 300000 /* ulimit -d for the runs */
+#define IO_GRID_LIMIT_KB 100000 /* ulimit -d for the runs */
 #define IO_GRID_SHARE 0.0625    /* of the memory, for the meshes (memory_budget.h) */
 
 static const char *grid_ply(void) {

@@ -27,6 +27,14 @@ const char *chapter_program(int n);
  * the exit status (or -1 if the program could not be run). */
 int render_chapter(int n, const char *scene, const char *png, const char *extra);
 
+/* Draws chapter n's own scene as the chapter draws it with no options, to TEST_OUT/chapter-NN.png, whose
+ * path it puts in png (size bytes), once in a run of the tests: the chapter's reference test, its POV-Ray
+ * test and any other test that needs that very picture share it, and it takes a few seconds on chapter 3.
+ * The first test to ask draws it while holding a lock, and the others wait for it; a file beside it
+ * (.run) names the run that drew it, so a picture an earlier run left is drawn again. Returns the exit
+ * status of the chapter's run (0 when the picture was drawn earlier in this run). */
+int render_own_scene(int n, char *png, size_t size);
+
 /* Runs chapter n with the command-line words `arguments` (within a generous time bound, so a program
  * that hangs fails the test) and fails the current test unless it exits with `status` and prints
  * `expected` (on standard output or error). */

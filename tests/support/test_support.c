@@ -7,6 +7,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "box.h"
 #include "plane.h"
@@ -52,12 +54,19 @@ int run_capturing(const char *command, char *output, size_t size) {
 
 /* Every test writes its scratch files under out/test/ (TEST_OUT); the tests run in parallel, so the
  * directory is made once, before any of them starts, rather than by whichever test happens to need it
- * first. */
+ * first. The run is named too (TEST_RUN_VARIABLE), for what its tests share (test_run_id). */
 ReportHook(PRE_ALL)(struct criterion_test_set *tests) {
     (void)tests;
     mkdir("out", 0755);
     mkdir("out/test", 0755);
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    char id[64];
+    snprintf(id, sizeof id, "%ld.%lld.%09ld", (long)getpid(), (long long)now.tv_sec, now.tv_nsec);
+    setenv(TEST_RUN_VARIABLE, id, 1);
 }
+
+const char *test_run_id(void) { return getenv(TEST_RUN_VARIABLE); }
 
 int run_logged(const char *command, const char *log) {
     FILE *l = fopen(log, "a");

@@ -21,6 +21,13 @@ char *read_text_file(const char *path);
  * for files that may hold zero bytes. */
 char *read_file(const char *path, size_t *size);
 
+/* The environment variable that names this run of the tests, set before any test starts. */
+#define TEST_RUN_VARIABLE "WHITTED_TEST_RUN"
+
+/* Returns a name of this run of run-tests that no other run has (its process and start time), the same
+ * in every test of the run; NULL if the run did not set one. */
+const char *test_run_id(void);
+
 /* Runs the shell command `command` with its standard output and error together into `output` (size
  * bytes, NUL-terminated, cut if longer). Returns its exit status, or -1 if it was killed. */
 int run_capturing(const char *command, char *output, size_t size);
