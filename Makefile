@@ -288,6 +288,12 @@ LONG_TESTS += pictures/the_twin_of_a_frame_without_blur_agrees_with_povray \
               tile/chapter_16s_moving_instances_tiles_join_into_the_picture \
               tile/a_tiles_heat_map_is_the_tile_with_its_bar \
               pictures/one_frame_of_the_farm_is_the_same_frame_of_the_whole_run
+# Two brute-force loops of three to four seconds each on one core: chapter 16's two levels against every
+# face of every instance on 3,000 random rays, and chapter 3's loop against Moller-Trumbore on 4,096 rays
+# aimed at the cube's shared edges (make test keeps the two levels' other differential tests and the
+# watertight views of the cube and the icosphere).
+LONG_TESTS += two_level/nearest_hits_and_crossings_equal_brute_force_exactly \
+              watertight/chapter_3s_loop_has_no_leak_where_moller_trumbore_has_some
 # The deliberately wrong tracers the long tests run (built below, from tests/mutants/*.patch); defined
 # here, before test-long names them, since a rule's prerequisites are expanded as make reads it.
 MUTANTS := $(patsubst tests/mutants/%.patch,$(BUILD)/mutant-%,$(wildcard tests/mutants/*.patch))
