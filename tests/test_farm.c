@@ -394,3 +394,48 @@ Test(farm, options_whose_files_a_farm_cannot_make_are_refused_before_anything_is
         free(said);
     }
 }
+
+/* A stand-in for sbatch in `folder`/runner that runs the job array here, its tasks one after another
+ * (SLURM_ARRAY_TASK_ID from 0 to the array's last), and fails when a task fails. */
+static void make_running_sbatch(const char *folder) {
+    char path[400];
+    snprintf(path, sizeof path, "%s/runner", folder);
+    cr_assert_eq(mkdir(path, 0755), 0);
+    snprintf(path, sizeof path, "%s/runner/sbatch", folder);
+    FILE *script = fopen(path, "w");
+    cr_assert_not_null(script);
+    fputs("#!/bin/sh\nlast=0\nwhile [ $# -gt 0 ]; do\n    case $1 in\n    --array=*) last=${1#--array=0-} ;;\n"
+          "    -*) ;;\n    *) break ;;\n    esac\n    shift\ndone\nk=0\nwhile [ $k -le $last ]; do\n"
+          "    SLURM_ARRAY_TASK_ID=$k bash \"$@\" || exit 1\n    k=$((k + 1))\ndone\n",
+          script);
+    fclose(script);
+    cr_assert_eq(chmod(path, 0755), 0);
+}
+
+/* WHITTED_BUILD may name the build folder by an absolute path: farm.sh took it as relative to the
+ * repository, looked for assemble under /work/repo//work/repo/build, and said "the tiles could not be
+ * joined" (exit 1) after every task had run. Run by the stand-in above, the tiles join into the very
+ * picture of one run. */
+Test(farm, an_absolute_build_folder_finds_assemble) {
+    char folder[300], cwd[512], build[700], whole[400], picture[400], command[3000], log[FARM_LOG_SIZE];
+    snprintf(folder, sizeof folder, "%s", fresh_folder("absolute-build"));
+    make_running_sbatch(folder);
+    cr_assert_not_null(getcwd(cwd, sizeof cwd));
+    const char *relative = getenv("WHITTED_BUILD");
+    snprintf(build, sizeof build, "%s/%s", cwd, relative != NULL ? relative : "build");
+    snprintf(whole, sizeof whole, "%s/whole.png", folder);
+    snprintf(picture, sizeof picture, "%s/picture.png", folder);
+    cr_assert_eq(render_chapter(2, chapter_scene(2), whole, "--width 20 --height 12"), 0);
+    snprintf(command, sizeof command,
+             "PATH=%s/runner:$PATH WHITTED_BUILD=%s bash tools/farm/farm.sh --size 20 12 --tile-size 8 8 --dir %s/pieces "
+             "-o %s -- %s %s --width 20 --height 12",
+             folder, build, folder, picture, chapter_program(2), chapter_scene(2));
+    int status = run_capturing(command, log, sizeof log);
+    cr_assert_eq(status, 0, "%s exited with %d:\n%s", command, status, log);
+    cr_assert_not_null(strstr(log, "farm.sh: 3 x 2 tiles joined into"), "%s", log);
+    size_t a_size, b_size;
+    char *a = read_file(whole, &a_size), *b = read_file(picture, &b_size);
+    cr_assert(a_size == b_size && memcmp(a, b, a_size) == 0, "the joined picture is not the picture of one run");
+    free(a);
+    free(b);
+}

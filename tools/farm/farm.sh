@@ -22,9 +22,11 @@
 # line.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
-assemble=${WHITTED_ASSEMBLE:-$here/../../${WHITTED_BUILD:-build}/assemble}
+build=${WHITTED_BUILD:-build}
+case $build in /*) ;; *) build=$here/../../$build ;; esac # a relative build folder is the repository's
+assemble=${WHITTED_ASSEMBLE:-$build/assemble}
 
-fail() { echo "farm.sh: $*" >&2; exit "${2:-2}"; }
+fail() { echo "farm.sh: $1" >&2; exit "${2:-2}"; } # fail MESSAGE [STATUS]
 # A whole number from 1, written in decimal: no leading zero (bash's arithmetic would read 010 as octal,
 # 8, and 08 not at all) and at most nine digits (so that products of two stay within its 64 bits).
 whole() { [[ $1 =~ ^[1-9][0-9]{0,8}$ ]] || fail "$2 needs whole numbers from 1 to 999999999, written without leading zeros, got '$1'"; }
