@@ -42,7 +42,14 @@ static char *follow_links(const char *path) {
         free(current);
         current = next;
     }
-    return current; /* a loop of links: opening it reports "Too many levels of symbolic links" */
+    return current; /* a loop of links, or a chain longer than Linux follows: still a link (is_link) */
+}
+
+/* Whether `target`, a name follow_links gave, is still a symbolic link: then the links went round a loop,
+ * and a rename over it would replace the link itself. */
+static bool is_link(const char *target) {
+    struct stat info;
+    return lstat(target, &info) == 0 && S_ISLNK(info.st_mode);
 }
 
 /* Opens what "-" names, standard output, on a descriptor of its own. */
@@ -97,6 +104,8 @@ bool outfile_open(struct outfile *f, const char *path, char *err, size_t err_siz
         f->file = open_stdout();
     } else if ((f->target = follow_links(path)) == NULL) {
         errno = ENOMEM;
+    } else if (is_link(f->target)) {
+        errno = ELOOP;
     } else {
         struct stat info;
         bool special = stat(f->target, &info) == 0 && !S_ISREG(info.st_mode) && !S_ISDIR(info.st_mode);
@@ -153,7 +162,7 @@ bool outfile_can_create(const char *path, char *err, size_t err_size) {
         free(f.target);
         return true;
     }
-    errno = f.target == NULL ? ENOMEM : exists && S_ISDIR(info.st_mode) ? EISDIR : 0;
+    errno = f.target == NULL ? ENOMEM : is_link(f.target) ? ELOOP : exists && S_ISDIR(info.st_mode) ? EISDIR : 0;
     if (errno == 0 && (f.file = open_temporary(&f)) != NULL) {
         outfile_abandon(&f);
         return true;

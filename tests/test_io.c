@@ -261,6 +261,24 @@ Test(io, a_symbolic_link_stays_a_link_and_its_target_gets_the_picture) {
     expect_png(target, 320, 240);
 }
 
+/* Two links naming each other: the picture was written over the first link, which became a plain file,
+ * exit 0. Now it is refused as opening the name refuses it, the links left as they were. */
+Test(io, a_loop_of_symbolic_links_is_refused_and_left_as_it_is) {
+    const char *first = fresh("io-loop-a.png"), *second = fresh("io-loop-b.png");
+    cr_assert_eq(symlink("io-loop-b.png", first), 0);
+    cr_assert_eq(symlink("io-loop-a.png", second), 0);
+    char arguments[512], expected[512];
+    snprintf(arguments, sizeof arguments, "-o %s --quiet", first);
+    snprintf(expected, sizeof expected, "%s: cannot create: Too many levels of symbolic links", first);
+    expect_chapter_run(2, arguments, 3, expected);
+    const char *const links[] = {first, second};
+    for (int k = 0; k < 2; k++) {
+        struct stat info;
+        cr_assert_eq(lstat(links[k], &info), 0);
+        cr_assert(S_ISLNK(info.st_mode), "%s was replaced by a file", links[k]);
+    }
+}
+
 /* Fails unless the files `piped` (what standard output received) and `direct` hold the same bytes. */
 static void expect_same_bytes(const char *piped, const char *direct) {
     size_t piped_size, direct_size;
