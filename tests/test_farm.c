@@ -320,18 +320,26 @@ Test(farm, numbers_with_leading_zeros_or_too_many_digits_are_refused) {
                             "zeros, got '0100'");
 }
 
+/* Writes the shell script `text` as `folder`/`name`/sbatch, a stand-in for Slurm's that a PATH starting
+ * with `folder`/`name` finds first. */
+static void write_sbatch(const char *folder, const char *name, const char *text) {
+    char path[400];
+    snprintf(path, sizeof path, "%s/%s", folder, name);
+    cr_assert_eq(mkdir(path, 0755), 0);
+    snprintf(path, sizeof path, "%s/%s/sbatch", folder, name);
+    FILE *script = fopen(path, "w");
+    cr_assert_not_null(script);
+    fputs(text, script);
+    cr_assert_eq(fclose(script), 0);
+    cr_assert_eq(chmod(path, 0755), 0);
+}
+
 /* A stand-in for Slurm's sbatch in `folder`/stand-in: it records its words in `folder`/submitted and
  * succeeds at once, so that farm.sh runs without a cluster and a test sees whether it submitted. */
 static void make_stand_in_sbatch(const char *folder) {
-    char path[400];
-    snprintf(path, sizeof path, "%s/stand-in", folder);
-    cr_assert_eq(mkdir(path, 0755), 0);
-    snprintf(path, sizeof path, "%s/stand-in/sbatch", folder);
-    FILE *script = fopen(path, "w");
-    cr_assert_not_null(script);
-    fprintf(script, "#!/bin/sh\necho \"$@\" >> '%s/submitted'\n", folder);
-    fclose(script);
-    cr_assert_eq(chmod(path, 0755), 0);
+    char text[600];
+    snprintf(text, sizeof text, "#!/bin/sh\necho \"$@\" >> '%s/submitted'\n", folder);
+    write_sbatch(folder, "stand-in", text);
 }
 
 /* Options of the program whose files a farm cannot make: every task (and the size probe) wrote the one
@@ -398,18 +406,10 @@ Test(farm, options_whose_files_a_farm_cannot_make_are_refused_before_anything_is
 /* A stand-in for sbatch in `folder`/runner that runs the job array here, its tasks one after another
  * (SLURM_ARRAY_TASK_ID from 0 to the array's last), and fails when a task fails. */
 static void make_running_sbatch(const char *folder) {
-    char path[400];
-    snprintf(path, sizeof path, "%s/runner", folder);
-    cr_assert_eq(mkdir(path, 0755), 0);
-    snprintf(path, sizeof path, "%s/runner/sbatch", folder);
-    FILE *script = fopen(path, "w");
-    cr_assert_not_null(script);
-    fputs("#!/bin/sh\nlast=0\nwhile [ $# -gt 0 ]; do\n    case $1 in\n    --array=*) last=${1#--array=0-} ;;\n"
-          "    -*) ;;\n    *) break ;;\n    esac\n    shift\ndone\nk=0\nwhile [ $k -le $last ]; do\n"
-          "    SLURM_ARRAY_TASK_ID=$k bash \"$@\" || exit 1\n    k=$((k + 1))\ndone\n",
-          script);
-    fclose(script);
-    cr_assert_eq(chmod(path, 0755), 0);
+    write_sbatch(folder, "runner",
+                 "#!/bin/sh\nlast=0\nwhile [ $# -gt 0 ]; do\n    case $1 in\n    --array=*) last=${1#--array=0-} ;;\n"
+                 "    -*) ;;\n    *) break ;;\n    esac\n    shift\ndone\nk=0\nwhile [ $k -le $last ]; do\n"
+                 "    SLURM_ARRAY_TASK_ID=$k bash \"$@\" || exit 1\n    k=$((k + 1))\ndone\n");
 }
 
 /* WHITTED_BUILD may name the build folder by an absolute path: farm.sh took it as relative to the
