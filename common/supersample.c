@@ -19,26 +19,38 @@ static vec3 look(const struct sample_view *view, double x, double y, int *rays) 
 
 /* TASK 12.1: the box filter over a regular n x n grid */
 vec3 supersample_grid(const struct sample_view *view, int i, int j, int n) {
-    vec3 sum = vec3_make(0, 0, 0);
+    /* The mean is taken about the first sample, so that n x n equal colours give that colour back to the
+     * last bit. A plain sum does not: nine samples of 0.3 sum to 2.6999999999999997, and a ninth of it
+     * is 0.29999999999999993, which is written as level 76, where one ray of 0.3 (76.5 levels) is 77. */
+    vec3 first = vec3_make(0, 0, 0), offsets = vec3_make(0, 0, 0);
     for (int b = 0; b < n; b++)
-        for (int a = 0; a < n; a++)
-            sum = vec3_add(sum, view->colour_at(view->context, i + (a + 0.5) / n, j + (b + 0.5) / n));
-    return vec3_scale(sum, 1.0 / (n * n));
+        for (int a = 0; a < n; a++) {
+            vec3 sample = view->colour_at(view->context, i + (a + 0.5) / n, j + (b + 0.5) / n);
+            if (a == 0 && b == 0)
+                first = sample;
+            else
+                offsets = vec3_add(offsets, vec3_sub(sample, first));
+        }
+    return vec3_add(first, vec3_scale(offsets, 1.0 / (n * n)));
 }
 
 /* Pixel (i, j)'s colour as the mean of n x n samples, one at a random point of each cell of the grid:
  * cell (a, b) takes the numbers 2k and 2k + 1 of the pixel (k = b n + a) under the seed. */
 /* TASK 12.1 ALSO: jittered samples, a random point in each cell of the n x n grid */
 static vec3 jittered(const struct sample_view *view, int i, int j, int n, uint32_t seed) {
-    vec3 sum = vec3_make(0, 0, 0);
+    vec3 first = vec3_make(0, 0, 0), offsets = vec3_make(0, 0, 0); /* as in supersample_grid */
     for (int b = 0; b < n; b++)
         for (int a = 0; a < n; a++) {
             uint32_t k = (uint32_t)(b * n + a);
             double u = sample_hash_unit((uint32_t)i, (uint32_t)j, 2 * k, seed);
             double v = sample_hash_unit((uint32_t)i, (uint32_t)j, 2 * k + 1, seed);
-            sum = vec3_add(sum, view->colour_at(view->context, i + (a + u) / n, j + (b + v) / n));
+            vec3 sample = view->colour_at(view->context, i + (a + u) / n, j + (b + v) / n);
+            if (k == 0)
+                first = sample;
+            else
+                offsets = vec3_add(offsets, vec3_sub(sample, first));
         }
-    return vec3_scale(sum, 1.0 / (n * n));
+    return vec3_add(first, vec3_scale(offsets, 1.0 / (n * n)));
 }
 
 /* POV-Ray's Antialias_Gamma encoding of one channel, a negative one counting as 0. */

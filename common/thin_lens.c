@@ -61,16 +61,24 @@ struct lens_view {
     struct thin_lens lens;
 };
 
-/* The colour of the camera sample at (x, y): the mean of its lens rays, each traced and counted. */
+/* The colour of the camera sample at (x, y): the mean of its lens rays, each traced and counted. The
+ * mean is POV-Ray's (TraceRayWithFocalBlur): each ray's colour in single precision, summed in single
+ * precision, the sum divided by the count. Where a colour lies on a half level, as 0.3 does (76.5 of
+ * 255), the way a mean is rounded decides the level of every pixel of that colour: a sum of doubles
+ * times 1 / samples wrote the background of 0.3 one level below POV-Ray's. */
 static vec3 lens_colour_at(const void *context, double x, double y) {
     const struct lens_view *view = context;
-    vec3 sum = vec3_make(0, 0, 0);
+    float sum[3] = {0.0f, 0.0f, 0.0f};
     for (int k = 0; k < view->lens.samples; k++) {
         ray r = thin_lens_ray(&view->lens, x, y, k);
         stats_thread.primary_rays++;
-        sum = vec3_add(sum, view->job->trace(view->job->world, &r));
+        vec3 c = view->job->trace(view->job->world, &r);
+        sum[0] += (float)c.x;
+        sum[1] += (float)c.y;
+        sum[2] += (float)c.z;
     }
-    return vec3_scale(sum, 1.0 / view->lens.samples);
+    double n = view->lens.samples;
+    return vec3_make((float)(sum[0] / n), (float)(sum[1] / n), (float)(sum[2] / n));
 }
 
 static void render_block(const struct render_job *job, struct image *img, int left, int top, int right, int bottom) {

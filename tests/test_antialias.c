@@ -228,6 +228,66 @@ static void sample(enum antialias_method method, int n, const struct sample_view
     *total = supersample_block(&a, view, left, top, right, bottom, colours, rays);
 }
 
+/* A picture of one colour everywhere. */
+static vec3 flat_colour(const void *context, double x, double y) {
+    (void)x, (void)y;
+    return *(const vec3 *)context;
+}
+
+static bool same_colour(vec3 a, vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+/* n x n equal colours average to that colour, to the last bit, on the grid and with jitter: a colour on
+ * a half level (0.3 is 76.5 of 255) is otherwise written a level lower than its single ray (a sum of
+ * nine 0.3s times a ninth is 0.29999999999999993). */
+Test(supersample, equal_samples_average_to_their_colour_to_the_last_bit) {
+    double values[10 + 256];
+    int count = 0;
+    for (int k = 1; k <= 9; k++)
+        values[count++] = k / 10.0;
+    values[count++] = 1.0 / 3.0;
+    for (int k = 0; k < 256; k++)
+        values[count++] = k / 255.0;
+    for (int v = 0; v < count; v++)
+        for (int n = 1; n <= 8; n++) {
+            vec3 flat = vec3_make(values[v], 1.0 - values[v], 0.5 * values[v]);
+            struct sample_view view = {flat_colour, &flat};
+            vec3 grid = supersample_grid(&view, 3, 4, n), jitter;
+            int rays;
+            uint64_t total;
+            sample(ANTIALIAS_JITTER, n, &view, 3, 4, 4, 5, &jitter, &rays, &total);
+            cr_assert(same_colour(grid, flat), "%d x %d samples of (%.17g, %.17g, %.17g) on the grid average to "
+                      "(%.17g, %.17g, %.17g)", n, n, flat.x, flat.y, flat.z, grid.x, grid.y, grid.z);
+            cr_assert(same_colour(jitter, flat), "%d x %d jittered samples of (%.17g, %.17g, %.17g) average to "
+                      "(%.17g, %.17g, %.17g)", n, n, flat.x, flat.y, flat.z, jitter.x, jitter.y, jitter.z);
+        }
+}
+
+/* Chapter 12's grid over a background on a half level: every background pixel is the level of one ray
+ * a pixel (77 128 179), as in POV-Ray's picture at three times the size, box-averaged. */
+Test(antialias, a_grid_over_a_background_on_a_half_level_keeps_its_level, .timeout = 60) {
+    const char *scene = TEST_OUT "/aa-half-level.scene";
+    FILE *f = fopen(scene, "w");
+    cr_assert(f != NULL);
+    fputs("camera eye 0 0 5  target 0 0 0  fov 30\nimage 40 30\nbackground 0.3 0.5 0.7\nlight position 3 5 5\n"
+          "material m colour 0.9 0.1 0.1\nsphere centre 0 0 0 radius 0.5 material m\n",
+          f);
+    cr_assert_eq(fclose(f), 0);
+    cr_assert_eq(render_chapter(12, scene, TEST_OUT "/aa-half-level-1.png", "--set antialias.method=none"), 0);
+    for (int n = 2; n <= 5; n++) {
+        char png[256], options[64];
+        snprintf(png, sizeof png, TEST_OUT "/aa-half-level-%d.png", n);
+        snprintf(options, sizeof options, "--set antialias.method=grid --set antialias.samples=%d", n);
+        cr_assert_eq(render_chapter(12, scene, png, options), 0);
+        char err[512];
+        int w, h;
+        uint8_t *rgb = image_read_rgb(png, &w, &h, err, sizeof err);
+        cr_assert(rgb != NULL, "%s", err);
+        cr_expect(rgb[0] == 77 && rgb[1] == 128 && rgb[2] == 179, "grid %d: the corner's background is %d %d %d, "
+                  "one ray's is 77 128 179", n, rgb[0], rgb[1], rgb[2]);
+        free(rgb);
+    }
+}
+
 Test(supersample, jitter_puts_one_sample_in_each_cell_and_repeats_itself) {
     struct edge_view e = {.edge = 100}, again = {.edge = 100};
     struct sample_view view = {edge_colour, &e}, view_again = {edge_colour, &again};

@@ -249,6 +249,30 @@ Test(povray_agreement, chapter_13_depth_of_field_within_the_noise, .timeout = 30
     cr_expect_leq(fabs(theirs.bias), LENS_MAX_BIAS, "a bias of %.4f levels", theirs.bias);
 }
 
+/* A background on a half level (0.3 is 76.5 of 255) seen through the lens, at each of the counts of lens
+ * rays: every pixel is POV-Ray's to the level, since both take the mean of a pixel's lens rays alike
+ * (each colour in single precision, summed so, divided by the count). A mean of doubles wrote it a level
+ * above POV-Ray's at 7 rays and a level below at 19. */
+Test(povray_agreement, chapter_13_lens_over_a_background_on_a_half_level_is_povrays_level, .timeout = 120) {
+    static const int counts[] = {7, 19, 37};
+    for (int k = 0; k < 3; k++) {
+        char scene[256], ours[256], pov[256];
+        snprintf(scene, sizeof scene, TEST_OUT "/lens-half-level-%d.scene", counts[k]);
+        snprintf(ours, sizeof ours, TEST_OUT "/lens-half-level-%d.png", counts[k]);
+        snprintf(pov, sizeof pov, TEST_OUT "/lens-half-level-%d-povray.png", counts[k]);
+        FILE *f = fopen(scene, "w");
+        cr_assert(f != NULL);
+        fprintf(f, "camera eye 0 1 8  target 0 1 0  fov 40  aperture 0.2  focal_point 0 1 0  blur_samples %d\n"
+                "image 24 16\nbackground 0.3 0.5 0.7\nlight position 0 5 5\n", counts[k]);
+        cr_assert_eq(fclose(f), 0);
+        cr_assert_eq(render_chapter(13, scene, ours, ""), 0);
+        cr_assert(render_povray(13, scene, pov), "POV-Ray failed on %s's twin", scene);
+        struct image_difference d = compare_png(ours, pov);
+        cr_expect_eq(d.max, 0, "%d lens rays: ours and POV-Ray's background differ by up to %d levels", counts[k],
+                     d.max);
+    }
+}
+
 /* The check can fail: POV-Ray's lens 10 % wider, or focused 0.3 farther, than ours. */
 Test(povray_agreement, chapter_13_depth_of_field_check_catches_a_wrong_lens, .timeout = 300) {
     struct block_difference theirs, noise;
