@@ -58,19 +58,24 @@ bool camera_init(struct camera *cam, vec3 eye, vec3 target, vec3 up, double vfov
 
 /* TASK 1.1: the primary ray through a pixel centre */
 ray camera_ray(const struct camera *cam, int i, int j) {
-    /* Pixel centre in [-1, 1] image-plane coordinates: x grows to the right, y grows upwards. */
+    /* Pixel centre in [-1, 1] image-plane coordinates: x grows to the right, y grows upwards (row j is
+     * counted down from the top, so the centre is height - j - 0.5 rows above the bottom edge). */
     double x = 2.0 * (i + 0.5) / cam->width - 1.0;
-    double y = 1.0 - 2.0 * (j + 0.5) / cam->height;
+    double y = 2.0 * (cam->height - j - 0.5) / cam->height - 1.0;
+    /* The window's half-width and half-height as vectors first, then x and y times them: POV-Ray's
+     * order (see docs/01-camera.md), so that the ray is its ray to the last bit. */
+    vec3 half_across = vec3_scale(cam->right, cam->half_width), half_up = vec3_scale(cam->up, cam->half_height);
     vec3 direction = cam->forward;
-    direction = vec3_add_scaled(direction, cam->right, x * cam->half_width);
-    direction = vec3_add_scaled(direction, cam->up, y * cam->half_height);
+    direction = vec3_add_scaled(direction, half_across, x);
+    direction = vec3_add_scaled(direction, half_up, y);
     return (ray){cam->eye, vec3_normalize(direction)};
 }
 
 /* TASK 1.1 ALSO: the primary ray through any point of the picture (camera_ray at a pixel centre) */
 ray camera_ray_through(const struct camera *cam, double x, double y) {
-    double u = 2.0 * x / cam->width - 1.0, v = 1.0 - 2.0 * y / cam->height; /* [-1, 1], v upwards */
-    vec3 direction = vec3_add_scaled(cam->forward, cam->right, u * cam->half_width);
-    direction = vec3_add_scaled(direction, cam->up, v * cam->half_height);
+    double u = 2.0 * x / cam->width - 1.0, v = 2.0 * (cam->height - y) / cam->height - 1.0; /* [-1, 1], v upwards */
+    vec3 half_across = vec3_scale(cam->right, cam->half_width), half_up = vec3_scale(cam->up, cam->half_height);
+    vec3 direction = vec3_add_scaled(cam->forward, half_across, u);
+    direction = vec3_add_scaled(direction, half_up, v);
     return (ray){cam->eye, vec3_normalize(direction)};
 }
