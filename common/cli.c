@@ -349,7 +349,17 @@ static bool within_budget(struct cli_run *run) {
     return false;
 }
 
-static bool is_black(vec3 c) { return c.x == 0.0 && c.y == 0.0 && c.z == 0.0; }
+/* Whether some channel of c is above 0: a colour that can add light. (A negative one takes light away,
+ * as POV-Ray's negative lights do, and a scene lit only by such colours is black.) */
+static bool adds_light(vec3 c) { return c.x > 0.0 || c.y > 0.0 || c.z > 0.0; }
+
+/* Whether a light line of s has a colour that adds light. */
+static bool has_a_light_that_adds(const struct scene *s) {
+    for (size_t k = 0; k < s->light_count; k++)
+        if (adds_light(s->lights[k].colour))
+            return true;
+    return false;
+}
 
 /* Whether s has no shape, mesh or instance at all: it draws its background, as it says. */
 static bool draws_nothing(const struct scene *s) {
@@ -386,15 +396,16 @@ static bool lit_by_something(struct cli_run *run, size_t emitting) {
     const struct chapter *ch = run->chapter;
     const struct scene *s = &run->scene;
     bool by_lights = ch->lighting == POV_PHONG || ch->lighting == POV_PHONG_SHADOWS || ch->lighting == POV_WHITTED;
-    if (!by_lights || instance_chapter_draws(ch->number, PATH_CHAPTER) || s->light_count > 0 ||
-        !is_black(s->background) || draws_nothing(s) || (!is_black(s->ambient_light) && drawn_with_ambient(s)))
+    if (!by_lights || instance_chapter_draws(ch->number, PATH_CHAPTER) || has_a_light_that_adds(s) ||
+        adds_light(s->background) || draws_nothing(s) || (adds_light(s->ambient_light) && drawn_with_ambient(s)))
         return true;
     char ignored[160] = "";
     if (emitting > 0)
         snprintf(ignored, sizeof ignored, " (chapter %d ignores the emission of %zu material%s: chapters 15 and 17 "
                  "draw it)", ch->number, emitting, emitting == 1 ? "" : "s");
-    complain("%s: nothing lights the scene, so the picture would be black: no light line, no ambient light "
-             "(ambient_light black, or no material drawn with an ambient) and a black background%s", s->path, ignored);
+    complain("%s: nothing lights the scene, so the picture would be black: no light line with a colour above 0, no "
+             "ambient light (ambient_light not above 0, or no material drawn with an ambient) and no background above "
+             "0%s", s->path, ignored);
     run->status = CLI_BAD_INPUT;
     return false;
 }
@@ -454,7 +465,7 @@ bool cli_start(struct cli_run *run, const struct chapter *ch, int argc, char **a
     }
     size_t emitting = 0;
     for (size_t k = 0; k < s->material_count; k++)
-        emitting += !is_black(s->materials[k].emission);
+        emitting += adds_light(s->materials[k].emission);
     scene_drop_unsupported(s, ch->number, o->quiet ? NULL : stderr);
     /* An output that names an input would be written over it, after the render. */
     const char *written_names[] = {"--pov", "-o", "--heatmap", ch->output_option};

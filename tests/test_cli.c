@@ -173,8 +173,8 @@ Test(cli, a_scene_that_nothing_lights_is_refused_with_why) {
             continue; /* 9 to 11 draw as 8 does; 15 draws the emission */
         char expected[512];
         snprintf(expected, sizeof expected, "scenes/17-veach.scene: nothing lights the scene, so the picture would be "
-                 "black: no light line, no ambient light (ambient_light black, or no material drawn with an ambient) "
-                 "and a black background (chapter %d ignores the emission of 5 materials: chapters 15 and 17 draw it)",
+                 "black: no light line with a colour above 0, no ambient light (ambient_light not above 0, or no "
+                 "material drawn with an ambient) and no background above 0 (chapter %d ignores the emission of 5 materials: chapters 15 and 17 draw it)",
                  chapter);
         expect_chapter_run(chapter, "scenes/17-veach.scene --quiet -o " TEST_OUT "/unlit.png", 1, expected);
     }
@@ -190,6 +190,41 @@ Test(cli, a_scene_that_nothing_lights_is_refused_with_why) {
     fprintf(f, "camera eye 0 0 5 target 0 0 0 fov 40\nimage 8 6\nbackground 0 0 0\nambient_light 0 0 0\n");
     fclose(f);
     expect_chapter_run(8, TEST_OUT "/empty.scene --quiet -o " TEST_OUT "/unlit.png", 0, "");
+}
+
+/* A light, an ambient light or a background none of whose channels is above 0 lights nothing: a light
+ * line of colour 0 0 0 drew a black picture with exit 0 (a negative light takes light away, as in
+ * POV-Ray, and is fine beside one that adds some). */
+Test(cli, lights_and_backgrounds_of_no_colour_above_0_light_nothing) {
+    static const char *const unlit[] = {
+        "ambient_light 0 0 0\nlight position -4 6 5 colour 0 0 0\n",
+        "ambient_light 0 0 0\nlight position -4 6 5 colour -1 -1 -1\n",
+        "ambient_light -1 -1 -1\nlight position -4 6 5 colour -0.5 0 0\n",
+        "ambient_light 0 0 0\nbackground -1 -1 -1\nlight position -4 6 5 colour 0 -1 0\n",
+    };
+    static const char *const lit[] = {
+        "ambient_light 0 0 0\nlight position -4 6 5 colour 0 0 0.01\n",
+        "ambient_light 0 0 0\nlight position -4 6 5 colour -1 -1 -1\nlight position 4 6 5 colour 2 2 2\n",
+        "ambient_light 0 0.2 0\nlight position -4 6 5 colour -1 -1 -1\n",
+    };
+    const char *scene = TEST_OUT "/unlit-lights.scene";
+    char arguments[256], expected[512];
+    snprintf(arguments, sizeof arguments, "%s --quiet -o " TEST_OUT "/unlit-lights.png", scene);
+    snprintf(expected, sizeof expected, "%s: nothing lights the scene, so the picture would be black: no light line "
+             "with a colour above 0, no ambient light (ambient_light not above 0, or no material drawn with an "
+             "ambient) and no background above 0", scene);
+    for (int k = 0; k < 4 + 3; k++) {
+        FILE *f = fopen(scene, "w");
+        cr_assert_not_null(f);
+        fprintf(f, "camera eye 0 1 5 target 0 0.5 0 fov 40\nimage 32 24\n%ssphere centre 0 1 0 radius 1\n",
+                k < 4 ? unlit[k] : lit[k - 4]);
+        fclose(f);
+        for (int chapter = 6; chapter <= 16; chapter += 2)
+            if (k < 4)
+                expect_chapter_run(chapter, arguments, 1, expected);
+            else
+                expect_chapter_run(chapter, arguments, 0, "");
+    }
 }
 
 Test(cli, the_counters_are_printed) {
