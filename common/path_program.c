@@ -119,6 +119,14 @@ int path_program_run(struct cli_run *run, const struct accel_choice *choice, con
             return cli_fail(run);
         }
     }
+    /* The background is light from every direction here, held to the same rule. */
+    vec3 sky = s->background;
+    if (sky.x < 0.0 || sky.y < 0.0 || sky.z < 0.0) {
+        snprintf(run->err, sizeof run->err, "%s:%d: background must not be negative in chapter %d, got %g %g %g: it "
+                 "is light that comes from every direction here, and none gives off less than none", s->path,
+                 s->background_line, chapter, sky.x, sky.y, sky.z);
+        return cli_fail(run);
+    }
     /* The area lights made emitting rectangles before the world is built over
      * them, the emitters gathered, and every pixel the mean of its paths. */
     int point_lights = emitter_add_area_lights(s, run->err, sizeof run->err);

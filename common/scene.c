@@ -696,6 +696,8 @@ static bool parse_line(const struct parser *p, struct scene *s, char **tok, int 
             return false;
         if (!key_vec3_within(*colour, SCENE_MAX_LIGHT, directive, why, sizeof why))
             return fail(p, "%s", why);
+        if (background)
+            s->background_line = p->line;
         return true;
     }
     if (strcmp(directive, "max_depth") == 0) {

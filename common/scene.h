@@ -155,6 +155,7 @@ struct scene {
     struct lens lens;     /* the camera's lens (chapter 13); a pinhole without its keys */
     int width, height;    /* image size in pixels */
     vec3 background;      /* colour of rays that hit nothing */
+    int background_line;  /* the background line's line in the file, 0 without one */
     vec3 ambient_light;   /* global ambient light (POV-Ray ambient_light), default 1 1 1 */
     int max_depth;        /* the deepest ray level traced, POV-Ray's max_trace_level: the camera ray is
                            * level 1, and a ray of level max_depth + 1 is black */

@@ -361,6 +361,15 @@ static const struct hostile non_finite[] = {
      "gives off light here, and none gives off less than none"},
     {13, VIEW "sphere centre 0 0 0 radius 1\n"
               "light position 0 3 0 colour 3 -1 -1 axis1 1 0 0 axis2 0 0 1 samples 2 2\n", "", 0, NULL},
+    /* a negative background: light from every direction, less than none to a path (it drew black with exit 0
+     * without an emitter, and wrote negative radiance into --hdr with one) */
+    {15, VIEW "background -1 -1 -1\nsphere centre 0 0 0 radius 1\npaths samples 2\nmaterial lamp emission 4 4 4\n"
+              "sphere centre 3 3 3 radius 1 material lamp\n", "", 1,
+     "SCENE:4: background must not be negative in chapter 15, got -1 -1 -1: it is light that comes from every "
+     "direction here, and none gives off less than none"},
+    {17, VIEW "background 0.5 0.5 -1e-300\nsphere centre 0 0 0 radius 1\npaths samples 2\n", "", 1,
+     "SCENE:4: background must not be negative in chapter 17, got 0.5 0.5 -1e-300: it is light that comes from "
+     "every direction here, and none gives off less than none"},
     /* an ior so small that the square of the ratio of two overflowed (NaN pixels in chapter 17) */
     {17, VIEW "material g colour 1 1 1 ambient 0 diffuse 0 transmit 1 ior 1e-155 roughness 0.5\n"
               "sphere centre 0 0 0 radius 1 material g\n", "", 1,
