@@ -119,8 +119,22 @@ static bool make_brick(const struct key_values *kv, struct pigment *p, char *why
         snprintf(why, why_size, "pigment '%s': brick_size must be positive", p->name);
         return false;
     }
+    /* A brick is a scale of the pattern, held to a scale's range: at 1e-320 a point's x / size was infinite
+     * and every point brick; and the mortar is kept in single precision (POV-Ray's), where 1e39 is infinite. */
+    const double sides[3] = {p->brick_size.x, p->brick_size.y, p->brick_size.z};
+    for (int k = 0; k < 3; k++)
+        if (!(sides[k] >= PIGMENT_MIN_SCALE && sides[k] <= PIGMENT_MAX_SCALE)) {
+            snprintf(why, why_size, "pigment '%s': brick_size " KEY_NUMBER_SHOWN " is out of range (each side from %g to "
+                     "%g)", p->name, KEY_NUMBER(sides[k]), PIGMENT_MIN_SCALE, PIGMENT_MAX_SCALE);
+            return false;
+        }
     if (p->mortar < 0.0) {
         snprintf(why, why_size, "pigment '%s': mortar must not be negative", p->name);
+        return false;
+    }
+    if (p->mortar > PIGMENT_MAX_SCALE) {
+        snprintf(why, why_size, "pigment '%s': mortar " KEY_NUMBER_SHOWN " is out of range (at most %g)", p->name,
+                 KEY_NUMBER(p->mortar), PIGMENT_MAX_SCALE);
         return false;
     }
     return make_colours(kv, p, why, why_size);

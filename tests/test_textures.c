@@ -86,6 +86,13 @@ Test(pigment_line, bad_values_are_refused_with_file_and_line) {
     expect_refused("pigment p radial colour 1 1 1 colour2 0 0 0 scale 1 0 1",
                    "tex.scene:3: pigment 'p': scale must not be 0 along any axis");
     expect_refused("pigment p brick colour 1 1 1 colour2 0 0 0 mortar -0.1", "tex.scene:3: pigment 'p': mortar must not be negative");
+    /* a brick or mortar beyond a scale's range made every point brick: a black picture with exit 0 */
+    expect_refused("pigment p brick colour 1 1 1 colour2 0 0 0 mortar 1e39",
+                   "tex.scene:3: pigment 'p': mortar 1e+39 is out of range (at most 1e+09)");
+    expect_refused("pigment p brick colour 1 1 1 colour2 0 0 0 brick_size 1 1e-10 1",
+                   "tex.scene:3: pigment 'p': brick_size 1e-10 is out of range (each side from 1e-09 to 1e+09)");
+    expect_refused("pigment p brick colour 1 1 1 colour2 0 0 0 brick_size 1 1 2e9",
+                   "tex.scene:3: pigment 'p': brick_size 2000000000 is out of range (each side from 1e-09 to 1e+09)");
     expect_refused("pigment p image_map file a.png interpolate 1",
                    "tex.scene:3: pigment 'p': interpolate must be 0 (nearest) or 2 (bilinear), got 1");
     expect_refused("pigment p image_map file a.png map cylindrical",
