@@ -695,6 +695,40 @@ Test(command_line, video_takes_names_that_ffmpeg_would_read_as_an_option_or_a_pr
     }
 }
 
+/* The film is made of this run's frames only: ffmpeg read the numbered names on until one was missing, and
+ * a film of 2 frames took in the 4 a run before had left (exit 0). Counted by ffprobe, which comes with
+ * ffmpeg. */
+Test(command_line, video_takes_only_this_runs_frames, .timeout = 120) {
+    cr_assert_eq(render_chapter(16, chapter_scene(16), TEST_OUT "/stale.png", "--frames 4 --width 16 --height 10"), 0);
+    cr_assert_eq(render_chapter(16, chapter_scene(16), TEST_OUT "/stale.png", "--frames 2 --video --width 16 --height 10"),
+                 0);
+    char output[256];
+    cr_assert_eq(run_capturing("ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+                               "-of csv=p=0 " TEST_OUT "/stale.mp4", output, sizeof output), 0, "%s", output);
+    cr_expect_eq(atoi(output), 2, "the film of 2 frames has %s", output);
+}
+
+/* A frame's file or the film that cannot be made is found before any frame is drawn: a folder named as the
+ * second frame let the first be drawn and written, and a folder named as the film let every frame be
+ * drawn, then ffmpeg failed (docs/16-instances.md says every frame's file is checked first). And a device
+ * as -o is not a name to number (-o /dev/null --frames 2 wrote /dev/null-0001 and /dev/null-0002). */
+Test(command_line, a_frame_or_film_that_cannot_be_made_is_found_before_any_frame_is_drawn, .timeout = 60) {
+    const char *folder = TEST_OUT "/unmade";
+    char command[256];
+    snprintf(command, sizeof command, "rm -rf %s && mkdir -p %s/x-0002.png %s/y.mp4", folder, folder, folder);
+    cr_assert_eq(system(command), 0);
+    expect_chapter_run(16, "--frames 3 --width 16 --height 10 -o " TEST_OUT "/unmade/x.png", 3,
+                       TEST_OUT "/unmade/x-0002.png: cannot create: Is a directory");
+    cr_expect_neq(access(TEST_OUT "/unmade/x-0001.png", F_OK), 0, "the first frame was drawn");
+    expect_chapter_run(16, "--frames 2 --video --width 16 --height 10 -o " TEST_OUT "/unmade/y.png", 3,
+                       "--video: " TEST_OUT "/unmade/y.mp4: cannot create: Is a directory");
+    cr_expect_neq(access(TEST_OUT "/unmade/y-0001.png", F_OK), 0, "a frame was drawn");
+    expect_chapter_run(16, "--frames 2 --width 16 --height 10 -o /dev/null", 2,
+                       "--frames writes one file a frame, named after -o (and --heatmap): a device or a FIFO (such as "
+                       "/dev/null) is not a file whose name can be numbered, and its frames would be new files beside it");
+    cr_expect_neq(access("/dev/null-0001", F_OK), 0, "/dev/null-0001 was written");
+}
+
 /* The files the frames go to are checked before the first frame is drawn, as -o's own file is. */
 Test(command_line, the_frames_files_are_checked_before_any_frame_is_drawn) {
     expect_chapter_run(16, "--frames 2 -o " TEST_OUT "/hm.png --heatmap -", 2,

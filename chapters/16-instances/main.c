@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -83,6 +84,12 @@ static bool names_png(const char *name) {
     return length >= 4 && strcasecmp(name + length - 4, ".png") == 0;
 }
 
+/* True when `name` exists and is neither a regular file nor a folder (links followed): a device or a FIFO. */
+static bool not_a_file(const char *name) {
+    struct stat info;
+    return strcmp(name, "-") != 0 && stat(name, &info) == 0 && !S_ISREG(info.st_mode) && !S_ISDIR(info.st_mode);
+}
+
 /* Checks the animation options against each other; prints why not and returns false. */
 static bool animation_options_valid(const struct cli_options *o) {
     const char *problem = NULL;
@@ -97,6 +104,9 @@ static bool animation_options_valid(const struct cli_options *o) {
         problem = "--video needs --frames N (at least 2) and all of them (no --frame)";
     else if (animation.frames > 0 && strcmp(o->output, "-") == 0)
         problem = "--frames writes one file a frame: -o - (standard output) cannot take them";
+    else if (animation.frames > 0 && (not_a_file(o->output) || (o->heatmap != NULL && not_a_file(o->heatmap))))
+        problem = "--frames writes one file a frame, named after -o (and --heatmap): a device or a FIFO (such as "
+                  "/dev/null) is not a file whose name can be numbered, and its frames would be new files beside it";
     else if (animation.frames > 0 && o->heatmap != NULL && strcmp(o->heatmap, "-") == 0)
         problem = "--frames writes one heat-map a frame: --heatmap - (standard output) cannot take them";
     else if (animation.video && !names_png(o->output))
@@ -122,8 +132,8 @@ static bool frame_file(const char *output, long k, char *name, size_t size) {
  * picture's, and the heat-map's with --heatmap): each name fits, none is a file the run reads
  * (cli_output_is_an_input's rule; the inputs are looked at once, cli_inputs_open, and each frame's
  * name once, so that thousands of frames against thousands of object files take a moment), a frame's
- * picture and heat-map are two files, and the first and the last (the longest) can be created. Prints
- * why not and returns the exit status, or CLI_OK. */
+ * picture and heat-map are two files, and each can be created; with --video, the film too. Prints why
+ * not and returns the exit status, or CLI_OK. */
 static int frame_files_valid(const struct cli_run *run, const struct cli_inputs *inputs, long first, long last) {
     const char *const options[] = {"-o", "--heatmap"};
     const char *const outputs[] = {run->options.output, run->options.heatmap};
@@ -138,7 +148,12 @@ static int frame_files_valid(const struct cli_run *run, const struct cli_inputs 
             snprintf(option, sizeof option, "%s (its frame %ld)", options[o], k);
             if (cli_inputs_written(inputs, option, names[o]))
                 return CLI_USAGE;
-            if ((k == first || k == last) && !outfile_can_create(names[o], err, sizeof err)) {
+            /* The first and the last (the longest name) are tried in full; every other one only when it
+             * exists already (a folder of that name, a link that loops), so that thousands of frames cost
+             * one look each. */
+            struct stat info;
+            bool tried = k == first || k == last || lstat(names[o], &info) == 0;
+            if (tried && !outfile_can_create(names[o], err, sizeof err)) {
                 fprintf(stderr, "%s\n", err);
                 return CLI_OUTPUT_FAILED;
             }
@@ -149,11 +164,20 @@ static int frame_files_valid(const struct cli_run *run, const struct cli_inputs 
             return CLI_USAGE;
         }
     }
-    char film[PATH_MAX];
+    char film[PATH_MAX], err[PATH_MAX + 128];
     size_t stem = strlen(run->options.output) - 4; /* with --video, -o ends in .png (animation_options_valid) */
-    if (animation.video && snprintf(film, sizeof film, "%.*s.mp4", (int)stem, run->options.output) < (int)sizeof film &&
-        cli_inputs_written(inputs, "--video (its film)", film))
+    if (!animation.video)
+        return CLI_OK;
+    if (snprintf(film, sizeof film, "%.*s.mp4", (int)stem, run->options.output) >= (int)sizeof film) {
+        fprintf(stderr, "%s: the film's name is too long\n", run->options.output);
         return CLI_USAGE;
+    }
+    if (cli_inputs_written(inputs, "--video (its film)", film))
+        return CLI_USAGE;
+    if (!outfile_can_create(film, err, sizeof err)) { /* found now, not after every frame is drawn */
+        fprintf(stderr, "--video: %s\n", err);
+        return CLI_OUTPUT_FAILED;
+    }
     return CLI_OK;
 }
 
@@ -182,12 +206,15 @@ static bool on_path(const char *program) {
 #endif
 }
 
-/* Runs ffmpeg over the frames (the output's name with -%04d) into the output's name with .mp4 for .png.
- * Both names go to ffmpeg after "file:", so that it reads them as files whatever they hold: a name
- * starting with '-' is not an option, and "x:y.png" is not the protocol x. Returns false with the
- * reason in err. */
-static bool make_video(const char *output, char *err, size_t err_size) {
-    char pattern[2 * PATH_MAX], film[PATH_MAX], film_file[PATH_MAX + 8];
+/* Runs ffmpeg over this run's `frames` frames (the output's name with -%04d) into the output's name with
+ * .mp4 for .png. Both names go to ffmpeg after "file:", so that it reads them as files whatever they hold:
+ * a name starting with '-' is not an option, and "x:y.png" is not the protocol x. ffmpeg is told how many
+ * frames to take (it reads a numbered pattern until a number is missing, and took in the frames a longer
+ * run had left after these), and writes the film into outfile's temporary file, renamed over the film
+ * only when ffmpeg succeeded: a failed film is never left half-written. Returns false with the reason in
+ * err. */
+static bool make_video(const char *output, long frames, char *err, size_t err_size) {
+    char pattern[2 * PATH_MAX], film[PATH_MAX], film_file[PATH_MAX + 8], frame_count[32];
     size_t stem = strlen(output) - 4; /* the output ends in .png (animation_options_valid) */
     /* ffmpeg reads the frames' names as a pattern, in which a % of the output's own name is written %% */
     size_t used = (size_t)snprintf(pattern, sizeof pattern, "file:");
@@ -198,21 +225,40 @@ static bool make_video(const char *output, char *err, size_t err_size) {
     }
     if (used + 2 >= sizeof pattern ||
         snprintf(pattern + used, sizeof pattern - used, "-%%04d%s", output + stem) >= (int)(sizeof pattern - used) ||
-        snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film ||
-        snprintf(film_file, sizeof film_file, "file:%s", film) >= (int)sizeof film_file)
+        snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film)
         return (snprintf(err, err_size, "%s: the film's name is too long", output), false);
 #ifdef __EMSCRIPTEN__ /* the browser's build runs no other program */
+    (void)frames, (void)film_file, (void)frame_count;
     return (snprintf(err, err_size, "--video: the browser cannot run ffmpeg"), false);
 #else
+    struct outfile f;
+    char why[PATH_MAX + 128];
+    if (!outfile_open(&f, film, why, sizeof why))
+        return (snprintf(err, err_size, "--video: %s", why), false);
+    /* ffmpeg writes the file outfile made (its temporary one, or a FIFO or device written directly) */
+    const char *written = f.temp_path != NULL ? f.temp_path : f.target;
+    if (snprintf(film_file, sizeof film_file, "file:%s", written) >= (int)sizeof film_file) {
+        outfile_abandon(&f);
+        return (snprintf(err, err_size, "%s: the film's name is too long", output), false);
+    }
+    snprintf(frame_count, sizeof frame_count, "%ld", frames);
+    /* -f mp4: the temporary file's name does not end in .mp4, from which ffmpeg would take the format */
     char *args[] = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", VIDEO_FRAME_RATE, "-i", pattern,
-                    "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", film_file, NULL};
+                    "-frames:v", frame_count, "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                    "-f", "mp4", film_file, NULL};
     pid_t child;
     int status = 0;
-    if (posix_spawnp(&child, "ffmpeg", NULL, NULL, args, environ) != 0)
+    if (posix_spawnp(&child, "ffmpeg", NULL, NULL, args, environ) != 0) {
+        outfile_abandon(&f);
         return (snprintf(err, err_size, "--video: cannot run ffmpeg (install it with tools/build/install-deps.sh video)"),
                 false);
-    if (waitpid(child, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    }
+    if (waitpid(child, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        outfile_abandon(&f);
         return (snprintf(err, err_size, "--video: ffmpeg failed making %s", film), false);
+    }
+    if (!outfile_commit(&f, why, sizeof why)) /* outfile's handle holds nothing: this closes and renames */
+        return (snprintf(err, err_size, "--video: %s", why), false);
     printf("chapter 16 (instances): wrote %s\n", film);
     return true;
 #endif
@@ -273,7 +319,7 @@ static int render_frames(struct cli_run *run, struct accel_world *w, struct inst
         if (cli_render_sampled(run, trace_soft, &w->world, &shutter_sampler) && run->options.stats && in != NULL)
             instances_report(in, stdout, true);
     }
-    if (run->status == CLI_OK && animation.video && !make_video(output, run->err, sizeof run->err)) {
+    if (run->status == CLI_OK && animation.video && !make_video(output, animation.frames, run->err, sizeof run->err)) {
         fprintf(stderr, "%s\n", run->err);
         return CLI_OUTPUT_FAILED;
     }
