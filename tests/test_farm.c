@@ -365,6 +365,15 @@ Test(farm, options_whose_files_a_farm_cannot_make_are_refused_before_anything_is
     const char *const quiet = "farm.sh: the program's --quiet: farm.sh reads the picture's size from what the program "
                               "prints when it renders its top-left pixel, which --quiet silences (every task runs quiet "
                               "anyway); leave it out, or give --size W H";
+    const char *const animated_tiles = "farm.sh: the program's %s: farm.sh's tiles make one picture, each task a "
+                                       "piece of it; for an animation's frames give farm.sh's --frames N, before --";
+    const char *const animated_frames = "farm.sh: the program's %s: farm.sh's --frames N gives each task its own frame "
+                                        "(--frames N --frame K); leave it out of the program's arguments (a film is "
+                                        "made from the frames afterwards)";
+    char frames_in_tiles[400], video_in_tiles[400], frame_in_frames[400];
+    snprintf(frames_in_tiles, sizeof frames_in_tiles, animated_tiles, "--frames");
+    snprintf(video_in_tiles, sizeof video_in_tiles, animated_tiles, "--video");
+    snprintf(frame_in_frames, sizeof frame_in_frames, animated_frames, "--frame");
     const char *const tiles = "--tile-size 8 8 --dir %s -- %s --width 20 --height 12 %s";
     const char *const frames = "--frames 2 --dir %s -- %s %s";
     const char *const sized = "--size 20 12 --tile-size 8 8 --dir %s -- %s %s";
@@ -378,6 +387,11 @@ Test(farm, options_whose_files_a_farm_cannot_make_are_refused_before_anything_is
         {15, tiles, "-o x.png", output},
         {16, frames, "-o f.png", output},
         {15, tiles, "--quiet", quiet},
+        /* chapter 16's own frames: in tile mode every task rendered them all (and the size probe wrote
+         * /dev/null-0001 on), then nothing could be joined */
+        {16, tiles, "--frames 3", frames_in_tiles},
+        {16, tiles, "--video", video_in_tiles},
+        {16, frames, "--frame 1", frame_in_frames},
         {16, frames, "--heatmap h.png", NULL}, /* chapter 16 numbers each frame's heat-map */
         {15, sized, "--quiet", NULL},          /* with --size nothing is asked of the program */
     };
@@ -403,6 +417,32 @@ Test(farm, options_whose_files_a_farm_cannot_make_are_refused_before_anything_is
     }
 }
 
+/* Sizes no chapter draws, and more tiles than a job array is asked for: --size 999999999 999999999 with
+ * tiles of 1 x 1 went on to list 10^18 tiles' names without end, and 2000 x 2000 of them submitted 4
+ * million tasks and then could not join them. Refused, with exit 2, before anything is submitted. */
+Test(farm, sizes_beyond_a_chapters_and_too_many_tiles_are_refused_before_anything_is_submitted) {
+    char folder[300], submitted[400];
+    snprintf(folder, sizeof folder, "%s", fresh_folder("sizes"));
+    snprintf(submitted, sizeof submitted, "%s/submitted", folder);
+    make_stand_in_sbatch(folder);
+    static const char *const runs[][2] = {
+        {"--size 16385 12", "farm.sh: --size must be at most 16384, got 16385"},
+        {"--size 999999999 999999999 --tile-size 1 1", "farm.sh: --size must be at most 16384, got 999999999"},
+        {"--size 20 12 --tile-size 8 20000", "farm.sh: --tile-size must be at most 16384, got 20000"},
+        {"--frames 100001", "farm.sh: --frames must be at most 100000, got 100001"},
+        {"--size 2000 2000 --tile-size 1 1", "farm.sh: 2000 x 2000 tiles of 1 x 1 pixels are 4000000 tasks, more than "
+                                             "100000; give a larger --tile-size"},
+    };
+    for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+        char command[1200];
+        snprintf(command, sizeof command, "PATH=%s/stand-in:$PATH bash tools/farm/farm.sh %s --dir %s/pieces -- %s",
+                 folder, runs[k][0], folder, chapter_program(2));
+        remove(submitted);
+        expect_farm_usage_error(command, runs[k][1]);
+        cr_expect_neq(access(submitted, F_OK), 0, "%s: submitted", command);
+    }
+}
+
 /* A stand-in for sbatch in `folder`/runner that runs the job array here, its tasks one after another
  * (SLURM_ARRAY_TASK_ID from 0 to the array's last), and fails when a task fails. */
 static void make_running_sbatch(const char *folder) {
@@ -412,12 +452,26 @@ static void make_running_sbatch(const char *folder) {
                  "    SLURM_ARRAY_TASK_ID=$k bash \"$@\" || exit 1\n    k=$((k + 1))\ndone\n");
 }
 
+/* Runs farm.sh's `command`, which must succeed saying `joined`, and leave at `picture` the very bytes of
+ * `whole`, the picture of one run. */
+static void expect_farm_joins(const char *command, const char *joined, const char *whole, const char *picture) {
+    char log[FARM_LOG_SIZE];
+    int status = run_capturing(command, log, sizeof log);
+    cr_assert_eq(status, 0, "%s exited with %d:\n%s", command, status, log);
+    cr_assert_not_null(strstr(log, joined), "%s", log);
+    size_t a_size, b_size;
+    char *a = read_file(whole, &a_size), *b = read_file(picture, &b_size);
+    cr_assert(a_size == b_size && memcmp(a, b, a_size) == 0, "the joined picture is not the picture of one run");
+    free(a);
+    free(b);
+}
+
 /* WHITTED_BUILD may name the build folder by an absolute path: farm.sh took it as relative to the
  * repository, looked for assemble under /work/repo//work/repo/build, and said "the tiles could not be
  * joined" (exit 1) after every task had run. Run by the stand-in above, the tiles join into the very
  * picture of one run. */
 Test(farm, an_absolute_build_folder_finds_assemble) {
-    char folder[300], cwd[512], build[700], whole[400], picture[400], command[3000], log[FARM_LOG_SIZE];
+    char folder[300], cwd[512], build[700], whole[400], picture[400], command[3000];
     snprintf(folder, sizeof folder, "%s", fresh_folder("absolute-build"));
     make_running_sbatch(folder);
     cr_assert_not_null(getcwd(cwd, sizeof cwd));
@@ -430,12 +484,21 @@ Test(farm, an_absolute_build_folder_finds_assemble) {
              "PATH=%s/runner:$PATH WHITTED_BUILD=%s bash tools/farm/farm.sh --size 20 12 --tile-size 8 8 --dir %s/pieces "
              "-o %s -- %s %s --width 20 --height 12",
              folder, build, folder, picture, chapter_program(2), chapter_scene(2));
-    int status = run_capturing(command, log, sizeof log);
-    cr_assert_eq(status, 0, "%s exited with %d:\n%s", command, status, log);
-    cr_assert_not_null(strstr(log, "farm.sh: 3 x 2 tiles joined into"), "%s", log);
-    size_t a_size, b_size;
-    char *a = read_file(whole, &a_size), *b = read_file(picture, &b_size);
-    cr_assert(a_size == b_size && memcmp(a, b, a_size) == 0, "the joined picture is not the picture of one run");
-    free(a);
-    free(b);
+    expect_farm_joins(command, "farm.sh: 3 x 2 tiles joined into", whole, picture);
+}
+
+/* A picture smaller than a block of 32 x 32 with an adaptive antialias line: its top-left pixel alone is
+ * refused (it cuts a block), and so was the size probe's second try, the block, which reaches past the
+ * picture ("could not render its top-left corner"). The refusal says the size, which farm.sh now reads. */
+Test(farm, the_size_of_an_adaptive_picture_smaller_than_a_block_is_found) {
+    char folder[300], whole[400], picture[400], command[3000];
+    snprintf(folder, sizeof folder, "%s", fresh_folder("small-adaptive"));
+    make_running_sbatch(folder);
+    snprintf(whole, sizeof whole, "%s/whole.png", folder);
+    snprintf(picture, sizeof picture, "%s/picture.png", folder);
+    cr_assert_eq(render_chapter(12, chapter_scene(12), whole, "--width 16 --height 12"), 0);
+    snprintf(command, sizeof command,
+             "PATH=%s/runner:$PATH bash tools/farm/farm.sh --tile-size 32 32 --dir %s/pieces -o %s -- %s %s --width 16 "
+             "--height 12", folder, folder, picture, chapter_program(12), chapter_scene(12));
+    expect_farm_joins(command, "farm.sh: 1 x 1 tiles joined into", whole, picture);
 }
