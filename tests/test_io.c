@@ -130,6 +130,31 @@ static void expect_tool_refusal(const char *command, const char *message, const 
     cr_expect_neq(access(output_path, F_OK), 0, "%s wrote %s", command, output_path);
 }
 
+/* compare's --box N is all of it a number from 1 to a picture's side (atoi read 4294967297 and "1x" as 1,
+ * and the pictures then "agreed", exit 0), and an option in a picture's place is refused, not written:
+ * "compare A B --diff x.png" wrote its side-by-side picture to a file named --diff. */
+Test(io, compare_refuses_a_box_that_is_not_a_number_in_range_and_an_unknown_option) {
+    const char *a = bytes_file("io-compare-a.png", palette_png_checkerboard, sizeof palette_png_checkerboard);
+    const char *build = getenv("WHITTED_BUILD");
+    const struct {
+        const char *words, *message;
+    } rows[] = {
+        {"--box 4294967297 %s %s", "compare: --box '4294967297' is not a whole number from 1 to 16384"},
+        {"--box 1x %s %s", "compare: --box '1x' is not a whole number from 1 to 16384"},
+        {"--box 0 %s %s", "compare: --box '0' is not a whole number from 1 to 16384"},
+        {"--box 99999999999 %s %s", "compare: --box '99999999999' is not a whole number from 1 to 16384"},
+        {"%s %s --diff " TEST_OUT "/io-compare.png",
+         "compare: unknown option '--diff' (--box N comes first; a picture named so is ./--diff)"},
+    };
+    for (size_t k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+        char words[512], command[1024];
+        snprintf(words, sizeof words, rows[k].words, a, a);
+        snprintf(command, sizeof command, "%s/compare %s", build != NULL ? build : "build", words);
+        expect_tool_refusal(command, rows[k].message, TEST_OUT "/io-compare.png");
+    }
+    unlink("--diff");
+}
+
 /* inset's numbers are checked before they are used: a region of 1073741825 pixels at 1073741824 passed the
  * check that it lies inside the picture (the sum wrapped round) and the copy read gigabytes past it, a
  * crash; a zoom of 536870912 wrapped the panel's width. An OUT that names an input is refused too. */

@@ -5,6 +5,7 @@
  * Exit status: 0 when the pictures meet the POV-Ray agreement rule, 1 when not, 2 on bad input (also
  * SIDE.png or DIFF.png naming a picture it reads, or each other, or a file that cannot be created: all
  * refused before anything is read or written). */
+#include <errno.h>
 #include <math.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -59,11 +60,25 @@ static bool outputs_usable(char **argv, char *err, size_t err_size) {
 int main(int argc, char **argv) {
     int box = 1;
     if (argc >= 3 && strcmp(argv[1], "--box") == 0) {
-        box = atoi(argv[2]);
+        /* all of it a decimal number, from 1 to a picture's side: atoi read 4294967297 and "1x" as 1 */
+        char *end;
+        errno = 0;
+        long n = strtol(argv[2], &end, 10);
+        if (end == argv[2] || *end != '\0' || errno != 0 || n < 1 || n > IMAGE_MAX_SIDE) {
+            fprintf(stderr, "compare: --box '%s' is not a whole number from 1 to %d\n", argv[2], IMAGE_MAX_SIDE);
+            return 2;
+        }
+        box = (int)n;
         argv += 2;
         argc -= 2;
     }
-    if ((argc != 3 && argc != 5) || box < 1) {
+    for (int k = 1; k < argc; k++)
+        if (argv[k][0] == '-' && argv[k][1] != '\0') { /* an option in a picture's place: not a file to write */
+            fprintf(stderr, "compare: unknown option '%s' (--box N comes first; a picture named so is ./%s)\n",
+                    argv[k], argv[k]);
+            return 2;
+        }
+    if (argc != 3 && argc != 5) {
         fprintf(stderr, "usage: compare [--box N] A.png B.png [SIDE.png DIFF.png]\n");
         return 2;
     }
