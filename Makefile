@@ -219,7 +219,7 @@ $(BUILD)/assemble: $(BUILD)/tools/farm/assemble.o $(BUILD)/common/image.o $(BUIL
 # the coursework kit's student copy, the mutants), the results' quick run, the docs' commands run in a
 # copy of the repository, the no-root install, the largest differential tests (thousands of
 # triangles, meshes beyond float range, whole pictures by every structure and rung), and those that
-# take four seconds or more of their own: the damaged-mesh sweeps, the largest picture, linking every
+# take three seconds or more of their own on one core: the damaged-mesh sweeps, the largest picture, linking every
 # chapter with its own modules and with the modules before it, make bench after make test, make help
 # and make clean in a copy, the soups of triangles, the sphere and the grids (make test keeps the
 # bunny, the 5,000-triangle teapot and the float test's grazing rays), chapter 10's picture by 1, 2 and 4 threads
