@@ -352,9 +352,13 @@ static bool check_counts_fit(const struct mesh_input *in, const struct ply_heade
         size_t per_entry = min_entry_bytes(h, e);
         if (per_entry == 0)
             continue;
+        bool faces = false; /* a list of corners, counted at its least, 3 (a face of fewer is refused) */
+        for (size_t j = 0; j < e->property_count; j++)
+            faces = faces || h->properties[e->first_property + j].role == ROLE_CORNERS;
         if (e->count > (budget - needed) / per_entry)
-            return mesh_fail_line(in, e->line, "element %.*s %zu does not fit in the %zu bytes after the header",
-                                  mesh_shown(e->name), e->name.text, e->count, available);
+            return mesh_fail_line(in, e->line, "element %.*s %zu does not fit in the %zu bytes after the header (at "
+                                  "least %zu bytes each%s)", mesh_shown(e->name), e->name.text, e->count, available, per_entry,
+                                  faces ? ", a face holding 3 corners or more" : "");
         needed += e->count * per_entry;
     }
     return true;

@@ -681,13 +681,31 @@ Test(mesh_errors, ply_with_zero_faces_has_no_faces) {
 Test(mesh_errors, ply_ascii_vertex_count_larger_than_the_file_can_hold) {
     expect_error(DATA "bad-lying-vertex-count.ply",
                  DATA "bad-lying-vertex-count.ply:3: element vertex 100000000 does not fit in the 44 bytes after "
-                      "the header");
+                      "the header (at least 6 bytes each)");
 }
 
 Test(mesh_errors, ply_ascii_face_count_larger_than_the_file_can_hold) {
     expect_error(DATA "bad-lying-face-count.ply",
                  DATA "bad-lying-face-count.ply:7: element face 4000000000 does not fit in the 44 bytes after the "
-                      "header");
+                      "header (at least 8 bytes each, a face holding 3 corners or more)");
+}
+
+/* A face of no corners: the file is too short for the faces its header counts at their least, and the
+ * message says what that least is (it said only "does not fit", though the bytes were all there); in a
+ * file long enough, the face itself is refused. */
+Test(mesh_errors, ply_face_of_no_corners_is_refused_saying_a_face_holds_three) {
+    const char *header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    char text[512];
+    snprintf(text, sizeof text, "%s0 0 0\n1 0 0\n0 1 0\n0\n", header);
+    expect_error(write_scratch("face-of-no-corners.ply", text, strlen(text)),
+                 SCRATCH "face-of-no-corners.ply:7: element face 1 does not fit in the 20 bytes after the header (at "
+                         "least 8 bytes each, a face holding 3 corners or more)");
+    snprintf(text, sizeof text, "%s0 0 0\n1 0 0\n0 1 0\n0          \n", header);
+    char expected[512];
+    snprintf(expected, sizeof expected, SCRATCH "face-of-no-corners.ply:13: face 0: 0 corners (a face needs 3 to %d)",
+             MESH_MAX_POLYGON_CORNERS);
+    expect_error(write_scratch("face-of-no-corners.ply", text, strlen(text)), expected);
 }
 
 Test(mesh_errors, ply_ascii_line_with_too_few_values) {
@@ -877,7 +895,8 @@ Test(mesh_errors, ply_binary_vertex_count_larger_than_the_file_can_hold) {
     size_t body;
     binary_ply(&s, &b, &body);
     expect_binary_error(&b, "lying-vertices.ply",
-                        ":3: element vertex 1000000000 does not fit in the 78 bytes after the header");
+                        ":3: element vertex 1000000000 does not fit in the 78 bytes after the header (at least 12 bytes "
+                        "each)");
 }
 
 Test(mesh_errors, ply_binary_face_count_larger_than_the_file_can_hold) {
@@ -887,7 +906,8 @@ Test(mesh_errors, ply_binary_face_count_larger_than_the_file_can_hold) {
     size_t body;
     binary_ply(&s, &b, &body);
     expect_binary_error(&b, "lying-faces.ply",
-                        ":7: element face 4294967295 does not fit in the 78 bytes after the header");
+                        ":7: element face 4294967295 does not fit in the 78 bytes after the header (at least 13 bytes "
+                        "each, a face holding 3 corners or more)");
 }
 
 Test(mesh_errors, ply_binary_count_beyond_64_bits) {
