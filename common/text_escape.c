@@ -4,6 +4,17 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* Whether `code` is a character that shows as nothing or as a plain space, or reorders what follows it:
+ * a no-break space, a soft hyphen, the zero-width characters and joiners, the marks and overrides of
+ * writing direction (U+202E shows "y'" after it as "'y"), the invisible operators, and the byte-order
+ * mark. Quoted raw, "radius 1<U+00A0>" reads as "radius 1 " and "<U+FEFF>sphere" as "sphere": escaped,
+ * the message shows what is really there. */
+static bool is_invisible_format(uint32_t code) {
+    return code == 0xa0 || code == 0xad || code == 0x61c || code == 0x180e || (code >= 0x200b && code <= 0x200f) ||
+           (code >= 0x2028 && code <= 0x202f) || (code >= 0x2060 && code <= 0x206f) || code == 0xfeff ||
+           (code >= 0xfff9 && code <= 0xfffb);
+}
+
 /* Returns how many bytes the printable character at `s` takes (1 to 4), or 0 when the byte at `s` must
  * be escaped: a control character, or not the start of a valid, shortest-form UTF-8 character. */
 static size_t printable_length(const unsigned char *s) {
@@ -22,7 +33,7 @@ static size_t printable_length(const unsigned char *s) {
     static const uint32_t smallest[5] = {0, 0, 0x80, 0x800, 0x10000}; /* below: an overlong form */
     if (code < smallest[length] || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff))
         return 0;
-    if (code <= 0x9f) /* the C1 controls U+0080..U+009F */
+    if (code <= 0x9f || is_invisible_format(code)) /* the C1 controls U+0080..U+009F, and see below */
         return 0;
     return length;
 }

@@ -4,8 +4,10 @@
  * come from anyone; printed raw, a control character such as ESC (0x1b) is obeyed by the terminal (it
  * can recolour, move the cursor or retitle the window) and a stray byte garbles the line. So every byte
  * that is not printable text is written as \xNN instead: the control characters 0x00-0x1f and 0x7f,
- * the C1 controls U+0080-U+009F, and any byte that is not part of valid UTF-8. Printable ASCII and
- * valid UTF-8 (a name with an accent, a multiplication sign) pass unchanged. */
+ * the C1 controls U+0080-U+009F, the characters that show as nothing or as a plain space or reorder the
+ * text (a no-break space, zero-width ones, the direction overrides, the byte-order mark: each of their
+ * bytes), and any byte that is not part of valid UTF-8. Printable ASCII and valid UTF-8 (a name with an
+ * accent, a multiplication sign) pass unchanged. */
 #ifndef WHITTED_TEXT_ESCAPE_H
 #define WHITTED_TEXT_ESCAPE_H
 

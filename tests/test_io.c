@@ -607,6 +607,12 @@ Test(io, escaping_keeps_utf8_and_escapes_everything_else) {
     cr_assert_str_eq(out, "\\xc2\\x9b1m");
     text_escape("\xc0\xaf \xed\xa0\x80 \xc3 \xff", out, sizeof out); /* overlong, surrogate, cut, invalid */
     cr_assert_str_eq(out, "\\xc0\\xaf \\xed\\xa0\\x80 \\xc3 \\xff");
+    /* a right-to-left override, a no-break space, a byte-order mark, a zero-width space: they showed
+     * "unknown material '<RLO>y'" as "'y'", "radius 1<NBSP>" as "radius 1 " and "<BOM>sphere" as "sphere" */
+    text_escape("\xe2\x80\xaey 1\xc2\xa0 \xef\xbb\xbfsphere a\xe2\x80\x8b" "b", out, sizeof out);
+    cr_assert_str_eq(out, "\\xe2\\x80\\xaey 1\\xc2\\xa0 \\xef\\xbb\\xbfsphere a\\xe2\\x80\\x8bb");
+    text_escape("\xe2\x80\x94 \xe2\x80\x99", out, sizeof out); /* a dash and a quote mark are printable */
+    cr_assert_str_eq(out, "\xe2\x80\x94 \xe2\x80\x99");
     cr_assert_eq(text_escape("ab\x01" "c", out, 6), 2); /* the escape does not fit whole: stop before it */
     cr_assert_str_eq(out, "ab");
 }
