@@ -10,6 +10,7 @@
 #include <stb_image.h>
 
 #include "infile.h"
+#include "jpeg_decode.h"
 #include "png_palette.h"
 
 #define IMAGE_MAP_FILE_MAX_BYTES (256L * 1024 * 1024) /* no PNG or JPEG we read is larger */
@@ -326,8 +327,15 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
     int unused;
     stbi_info_from_memory(bytes, 0, &unused, &unused, &unused);
     const char *stale = stbi_failure_reason();
-    void *pixels = sixteen ? (void *)stbi_load_16_from_memory(bytes, (int)size, &width, &height, &channels, 4)
-                           : (void *)stbi_load_from_memory(bytes, (int)size, &width, &height, &channels, 4);
+    /* A JPEG is decoded as POV-Ray's libjpeg decodes it (jpeg_decode.h), the kinds it does not cover, and a
+     * damaged one (for stb's reason), by stb_image. */
+    uint8_t *as_libjpeg = NULL;
+    bool jpeg = size >= sizeof jpeg_signature && memcmp(bytes, jpeg_signature, sizeof jpeg_signature) == 0;
+    if (jpeg && jpeg_decode(bytes, (int)size, &as_libjpeg, &width, &height) != JPEG_DECODED)
+        as_libjpeg = NULL;
+    void *pixels = as_libjpeg != NULL ? (void *)as_libjpeg
+                   : sixteen          ? (void *)stbi_load_16_from_memory(bytes, (int)size, &width, &height, &channels, 4)
+                                      : (void *)stbi_load_from_memory(bytes, (int)size, &width, &height, &channels, 4);
     size_t count = (size_t)width * (size_t)height * 4;
     image->texels = pixels == NULL ? NULL : malloc(count * sizeof *image->texels);
     if (image->texels == NULL) {
@@ -338,7 +346,10 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
                      reason == stale ? "" : reason);
         else
             snprintf(why, why_size, "%s: out of memory", path);
-        stbi_image_free(pixels);
+        if (as_libjpeg != NULL)
+            free(as_libjpeg);
+        else
+            stbi_image_free(pixels);
         return false;
     }
     double gamma = image_map_png_gamma(bytes, size);
@@ -356,7 +367,10 @@ static bool decode(const char *path, const uint8_t *bytes, size_t size, struct p
         }
         image->texels[k] = value;
     }
-    stbi_image_free(pixels);
+    if (as_libjpeg != NULL)
+        free(as_libjpeg);
+    else
+        stbi_image_free(pixels);
     image->width = width;
     image->height = height;
     image->colour_key = png_has_colour_key(bytes, size);

@@ -33,8 +33,8 @@ FUZZ_MODULES_obj := $(FUZZ_MODULES_ply)
 # chapter 11's fast BVH, whose float boxes promise no exact agreement with brute force), with the
 # picture, its heat-map and its file, which chapter 12's sampling links to.
 FUZZ_MODULES_render := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_10)) image png_palette outfile heatmap sample_hash supersample \
-                       soft_shadow thin_lens image_map mesh_surface texture owen_sobol sampling emitter bsdf path_trace
-FUZZ_MODULES_image := infile png_palette image_map pigment_syntax
+                       soft_shadow thin_lens jpeg_decode image_map mesh_surface texture owen_sobol sampling emitter bsdf path_trace
+FUZZ_MODULES_image := infile png_palette jpeg_decode image_map pigment_syntax
 FUZZ_EXTRA_ply := fuzz_mesh
 FUZZ_EXTRA_obj := fuzz_mesh
 # stb_image's decoder is compiled by clang into the harnesses that read pictures (fuzz/stb_image_impl.c).
