@@ -1058,13 +1058,18 @@ Test(pictures, the_last_frame_of_an_animation_agrees_with_povray_at_its_clock, .
 
 /* ---- a camera inside a glass instance ----------------------------------------------------------- */
 
-/* A closed unit cube (corners at -1 and 1), its faces turned outwards. */
+/* A closed unit cube (corners at -1 and 1), its faces turned outwards. Written beside `path` and renamed
+ * over it, so that a test reading the cube while another writes it (the tests run at once, and three
+ * share it) never finds it cut short: POV-Ray's twin of it once failed so. */
 static void write_cube(const char *path) {
-    FILE *out = fopen(path, "w");
+    char temporary[512];
+    snprintf(temporary, sizeof temporary, "%s.%ld", path, (long)getpid());
+    FILE *out = fopen(temporary, "w");
     cr_assert_not_null(out);
     fprintf(out, "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
                  "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n");
-    fclose(out);
+    cr_assert_eq(fclose(out), 0);
+    cr_assert_eq(rename(temporary, path), 0);
 }
 
 /* Writes a scene whose eye is inside a glass cube turned and scaled 1.2 (a yellow ball and floor seen
