@@ -318,7 +318,7 @@ RUN_TESTS := OMP_WAIT_POLICY=passive LSAN_OPTIONS=suppressions=$(CURDIR)/tests/l
 ##                     POV-Ray, the docs' code and outputs (installs what it needs first)
 test: | deps
 	$(MAKE) --no-print-directory $(PARALLEL_BUILD) all $(BUILD)/run-tests $(BUILD)/check $(BUILD)/bench_accel $(BUILD)/inset \
-	    $(MODELS_FOREST)
+	    $(BUILD)/draw-textures $(MODELS_FOREST)
 	$(RUN_TESTS) -j$(TEST_JOBS) --filter '$(TEST_FILTER)'
 
 ## make test-long      the tests make test leaves out (LONG_TESTS in the Makefile), ten minutes or more:

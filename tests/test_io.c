@@ -155,6 +155,21 @@ Test(io, compare_refuses_a_box_that_is_not_a_number_in_range_and_an_unknown_opti
     unlink("--diff");
 }
 
+/* draw-textures (chapter 14's pictures) names the file it could not write: it named the last one, grid.jpg,
+ * whichever failed, and took --help for a folder ("cannot write --help/grid.jpg"). */
+Test(io, draw_textures_names_the_file_it_cannot_write) {
+    const char *build = getenv("WHITTED_BUILD");
+    char command[512], output[1024];
+    snprintf(command, sizeof command, "%s/draw-textures --help", build != NULL ? build : "build");
+    cr_expect_eq(run_capturing(command, output, sizeof output), 2, "%s: %s", command, output);
+    cr_expect_str_eq(output, "usage: draw-textures FOLDER\n");
+    cr_assert_eq(system("rm -rf " TEST_OUT "/textures-blocked && mkdir -p " TEST_OUT "/textures-blocked/grid.png"), 0);
+    snprintf(command, sizeof command, "%s/draw-textures " TEST_OUT "/textures-blocked", build != NULL ? build : "build");
+    cr_expect_eq(run_capturing(command, output, sizeof output), 1, "%s: %s", command, output);
+    cr_expect_str_eq(output, "draw-textures: cannot write " TEST_OUT "/textures-blocked/grid.png\n");
+    cr_expect_neq(access(TEST_OUT "/textures-blocked/grid.jpg", F_OK), 0, "it went on after the failure");
+}
+
 /* inset's numbers are checked before they are used: a region of 1073741825 pixels at 1073741824 passed the
  * check that it lies inside the picture (the sum wrapped round) and the copy read gigabytes past it, a
  * crash; a zoom of 536870912 wrapped the panel's width. An OUT that names an input is refused too. */

@@ -109,25 +109,33 @@ static uint8_t *draw_grid(void) {
     return pixels;
 }
 
+/* Writes `pixels` (RGB, width x height) to folder/name, a JPEG when the name ends in .jpg, else a PNG;
+ * says which file could not be written. */
+static bool write_picture(const char *folder, const char *name, const uint8_t *pixels, int width, int height) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", folder, name);
+    size_t length = strlen(name);
+    bool jpeg = length > 4 && strcmp(name + length - 4, ".jpg") == 0;
+    bool ok = jpeg ? stbi_write_jpg(path, width, height, 3, pixels, JPEG_QUALITY)
+                   : stbi_write_png(path, width, height, 3, pixels, 3 * width);
+    if (!ok)
+        fprintf(stderr, "draw-textures: cannot write %s\n", path);
+    return ok;
+}
+
 int main(int argc, char **argv) {
-    if (argc != 2) {
+    if (argc != 2 || argv[1][0] == '-') { /* --help, or an option: not a folder */
         fprintf(stderr, "usage: draw-textures FOLDER\n");
         return 2;
     }
-    char path[4096];
     uint8_t *globe = draw_globe(), *grid = draw_grid();
     bool ok = globe != NULL && grid != NULL;
-    snprintf(path, sizeof path, "%s/globe.png", argv[1]);
-    ok = ok && stbi_write_png(path, GLOBE_WIDTH, GLOBE_HEIGHT, 3, globe, 3 * GLOBE_WIDTH);
-    snprintf(path, sizeof path, "%s/grid.png", argv[1]);
-    ok = ok && stbi_write_png(path, GRID_SIDE, GRID_SIDE, 3, grid, 3 * GRID_SIDE);
-    snprintf(path, sizeof path, "%s/grid.jpg", argv[1]);
-    ok = ok && stbi_write_jpg(path, GRID_SIDE, GRID_SIDE, 3, grid, JPEG_QUALITY);
+    if (!ok)
+        fprintf(stderr, "draw-textures: out of memory\n");
+    ok = ok && write_picture(argv[1], "globe.png", globe, GLOBE_WIDTH, GLOBE_HEIGHT) &&
+         write_picture(argv[1], "grid.png", grid, GRID_SIDE, GRID_SIDE) &&
+         write_picture(argv[1], "grid.jpg", grid, GRID_SIDE, GRID_SIDE);
     free(globe);
     free(grid);
-    if (!ok) {
-        fprintf(stderr, "draw-textures: cannot write %s\n", path);
-        return 1;
-    }
-    return 0;
+    return ok ? 0 : 1;
 }
