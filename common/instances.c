@@ -51,17 +51,21 @@ static bool scale_flips(struct scene_pose a, struct scene_pose b) {
     return a.scale.x * b.scale.x < 0.0 || a.scale.y * b.scale.y < 0.0 || a.scale.z * b.scale.z < 0.0;
 }
 
+/* The spread max|s| / min|s| of a pose's scale factors (none of them 0: a scale is at least 1e-9). */
+static double scale_spread(vec3 s) {
+    double x = fabs(s.x), y = fabs(s.y), z = fabs(s.z);
+    return fmax(fmax(x, y), z) / fmin(fmin(x, y), z);
+}
+
 /* Returns whether every pose between keys a and b (the scale and the angles interpolated, no scale factor
- * changing sign) can be inverted accurately: its scale factors lie between a's and b's, and then
- * INSTANCES_TURN_SPREAD's bound keeps its condition within TRANSFORM_CONDITION_MAX for any turn. A key's
- * own pose is checked exactly (pose_valid); between two keys, a turn both keys avoid (the object's thin
- * axis turned half-way between two others) can make the condition up to three times a key's. */
+ * changing sign) can be inverted accurately: INSTANCES_TURN_SPREAD's bound keeps its condition within
+ * TRANSFORM_CONDITION_MAX for any turn when its scale factors' spread is small enough, and that spread is
+ * at most the larger of the two keys'. For each two factors interpolated in step, s_i(t) / s_j(t) moves
+ * one way only (its rate's sign is that of b_i a_j - a_i b_j, whatever t), so it is largest at a key. (A
+ * key's own pose is checked exactly, by pose_valid; between two keys, a turn both keys avoid, the object's
+ * thin axis turned half-way between two others, can make the condition up to three times a key's.) */
 static bool poses_between_invertible(struct scene_pose a, struct scene_pose b) {
-    double largest = fmax(fmax(fmax(fabs(a.scale.x), fabs(a.scale.y)), fabs(a.scale.z)),
-                          fmax(fmax(fabs(b.scale.x), fabs(b.scale.y)), fabs(b.scale.z)));
-    double smallest = fmin(fmin(fmin(fabs(a.scale.x), fabs(a.scale.y)), fabs(a.scale.z)),
-                           fmin(fmin(fabs(b.scale.x), fabs(b.scale.y)), fabs(b.scale.z)));
-    return INSTANCES_TURN_SPREAD * largest <= TRANSFORM_CONDITION_MAX * smallest;
+    return INSTANCES_TURN_SPREAD * fmax(scale_spread(a.scale), scale_spread(b.scale)) <= TRANSFORM_CONDITION_MAX;
 }
 
 /* Returns whether box b lies within the coordinates a placed object may reach and is not too small. */
@@ -112,7 +116,7 @@ static bool place(struct instances *in, size_t k, char *err, size_t err_size) {
                                  "the previous key, so it passes through zero (a flat object) in between");
         if (n > 0 && !poses_between_invertible(si->keys[n - 1].pose, key->pose))
             return instance_fail(in->scene, si, key->line, err, err_size, "between the previous key and this one, "
-                                 "a turn can make its transform impossible to invert accurately (its scale factors "
+                                 "a turn can make its transform impossible to invert accurately (a key's scale factors "
                                  "differ by more than a third of what the tracer can carry rays through)");
         it->keys[n] = (struct keyframe){key->time, pose_of(&key->pose)};
     }

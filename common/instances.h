@@ -41,8 +41,8 @@
  * row-sum norms transform_invert uses give ||R S|| <= sqrt(3) max|s| and ||S^-1 R^T|| <= sqrt(3) / min|s|,
  * so its condition is at most 3 max|s| / min|s| whatever the turn; the hundredth more covers the
  * roundings of the turned axes and of the interpolated scale. Between two keys, whose turn is not known
- * in advance, the scale factors of both keys must keep INSTANCES_TURN_SPREAD max|s| / min|s| within
- * TRANSFORM_CONDITION_MAX. */
+ * in advance, each key's scale factors must keep INSTANCES_TURN_SPREAD max|s| / min|s| within
+ * TRANSFORM_CONDITION_MAX (the poses in between spread no wider than the wider key). */
 #define INSTANCES_TURN_SPREAD 3.03
 
 /* How the top level follows the instances from one frame to the next. */

@@ -421,7 +421,7 @@ Test(two_level, refuses_transforms_it_cannot_carry_rays_through) {
         /* each key invertible (its turn keeps the thin axis on an axis), the pose half-way not */
         {"object bunny models/bunny.ply\ninstance bunny scale 8 8 1e-9 id a\nkey a time 0\nkey a time 1 rotate 0 0 90",
          "scenes/x.scene:7: instance of 'bunny': between the previous key and this one, a turn can make its "
-         "transform impossible to invert accurately (its scale factors differ by more than a third of what the "
+         "transform impossible to invert accurately (a key's scale factors differ by more than a third of what the "
          "tracer can carry rays through)"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
@@ -440,6 +440,40 @@ Test(two_level, refuses_transforms_it_cannot_carry_rays_through) {
         instances_free(in);
         cr_expect(strncmp(err, cases[k].message, strlen(cases[k].message)) == 0, "case %zu: '%s'", k, err);
         scene_free(&s);
+    }
+}
+
+/* Between two keys the bound is on each key's spread of scale factors, not on all six together: an
+ * instance that grows evenly from 1e-9 to 1e9 is uniform at every moment, and was refused ("its scale
+ * factors differ by more than a third of what the tracer can carry rays through"). And the spread of the
+ * poses in between is at most the larger key's, the fact the check rests on, over random keys. */
+Test(two_level, keys_each_within_the_bound_are_taken_however_far_apart_their_sizes) {
+    struct scene s;
+    char err[4096];
+    cr_assert(parse_scene_lines("scenes/x.scene", HEAD,
+                                "object bunny models/bunny.ply\ninstance bunny id a\nkey a time 0 scale 1e-9 1e-9 1e-9\n"
+                                "key a time 1 scale 1e9 1e9 1e9",
+                                test_every_kind, &s, err, sizeof err), "%s", err);
+    struct instances *in = instances_create(&s, 0, 0.0, 0.0, err, sizeof err);
+    cr_expect_not_null(in, "%s", err);
+    instances_free(in);
+    scene_free(&s);
+    uint32_t state = 12345;
+    for (int k = 0; k < 10000; k++) {
+        double f[6];
+        for (int i = 0; i < 6; i++) {
+            state = state * 1664525u + 1013904223u;
+            f[i] = pow(10.0, (state >> 8) / 16777216.0 * 18.0 - 9.0); /* 1e-9 to 1e9 */
+        }
+        vec3 a = vec3_make(f[0], f[1], f[2]), b = vec3_make(f[3], f[4], f[5]);
+        double spread_a = fmax(fmax(a.x, a.y), a.z) / fmin(fmin(a.x, a.y), a.z);
+        double spread_b = fmax(fmax(b.x, b.y), b.z) / fmin(fmin(b.x, b.y), b.z);
+        for (int step = 1; step < 16; step++) {
+            vec3 m = vec3_add_scaled(a, vec3_sub(b, a), step / 16.0);
+            double spread = fmax(fmax(m.x, m.y), m.z) / fmin(fmin(m.x, m.y), m.z);
+            cr_assert_leq(spread, fmax(spread_a, spread_b) * (1 + 1e-12), "keys %d: the spread %g half-way exceeds "
+                          "the keys' %g and %g", k, spread, spread_a, spread_b);
+        }
     }
 }
 
