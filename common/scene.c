@@ -646,6 +646,19 @@ const struct shape_list *scene_shapes(const struct scene *s, const struct shape_
 
 /* ---- lines and files --------------------------------------------------------------------------- */
 
+/* Whether `line` holds a carriage return with a word after it: a line break of a file whose lines end in
+ * carriage returns alone, which the reader, splitting at line feeds, takes for one line (then
+ * "camera ...<CR>image 8 6" said "unknown key 'image' for camera"). A carriage return at the end of a line
+ * is a CRLF file's, and one in a comment changes nothing. The first one decides: after it, either a word
+ * follows, or only white space to the end or the comment. */
+static bool lone_carriage_return(const char *line) {
+    size_t before = strcspn(line, "\r#");
+    if (line[before] != '\r')
+        return false;
+    const char *after = line + before + strspn(line + before, " \t\r\v\f");
+    return *after != '\0' && *after != '#';
+}
+
 /* Splits `line` in place at white space, stopping at '#'. Returns the token count, or -1 if there are
  * more than `max`. */
 static int split_tokens(char *line, char **tokens, int max) {
@@ -799,8 +812,12 @@ bool scene_parse(const char *name, const char *text, const struct shape_kind *co
             *newline = '\0';
         p.line++;
         char *tokens[LINE_MAX_TOKENS];
+        bool lone_return = lone_carriage_return(line);
         int n = split_tokens(line, tokens, LINE_MAX_TOKENS);
-        if (n < 0)
+        if (lone_return)
+            ok = fail(&p, "a carriage return inside the line: its lines end in carriage returns alone (old Mac "
+                          "OS), and they are read as one; save it with line feeds");
+        else if (n < 0)
             ok = fail(&p, "too many words on one line (at most %d)", LINE_MAX_TOKENS);
         else if (n > 0)
             ok = parse_line(&p, s, tokens, n, &camera_seen, &image_seen);

@@ -288,6 +288,22 @@ Test(scene, comments_blank_lines_and_crlf_are_ignored) {
     scene_free(&s);
 }
 
+/* A file whose lines end in carriage returns alone (old Mac OS) is one line to a reader that splits at
+ * line feeds: "unknown key 'image' for camera" said nothing of why. The message now says, on the line
+ * where it happens; a carriage return after the last word or in a comment is still nothing. */
+Test(scene, lines_ended_by_carriage_returns_alone_are_refused_saying_so) {
+    const char *message = NAME ":%d: a carriage return inside the line: its lines end in carriage returns alone "
+                          "(old Mac OS), and they are read as one; save it with line feeds";
+    char expected[512];
+    snprintf(expected, sizeof expected, message, 1);
+    expect_error("camera eye 0 0 0 target 0 0 -1 fov 60\rimage 4 3\rsphere centre 0 0 -5 radius 1\r", expected);
+    snprintf(expected, sizeof expected, message, 3);
+    expect_error("camera eye 0 0 0 target 0 0 -1 fov 60\nimage 4 3\nsphere centre 0 0 -5\r radius 1\n", expected);
+    struct scene s;
+    parse_ok("camera eye 0 0 0 target 0 0 -1 fov 60 \r \r\nimage 4 3 # a note\rwith a return\n", &s);
+    scene_free(&s);
+}
+
 Test(scene, many_shapes_are_all_kept_in_order) {
     char text[8192];
     int used = snprintf(text, sizeof text, HEAD);
