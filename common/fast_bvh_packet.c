@@ -10,7 +10,9 @@
  * share the walk's bookkeeping: one stack, one ordering of the children, one fetch of each node. The
  * children of a node are tested in one of two ways:
  *  - each ray tests them itself with rung 8's (rung 6's) float test, all children in one instruction
- *    (lane_hits8, lane_hits4), exactly as its single-ray walk would;
+ *    (lane_hits8, lane_hits4), exactly as its single-ray walk would; on an 8-wide tree the answers are
+ *    then gathered child by child in eight lanes too (rays_hit8): which rays enter each child, and the
+ *    nearest of their entries;
  *  - a coherent packet (one float origin, the same signs of 1 / direction: camera rays) tests them once
  *    for all its rays by interval arithmetic on 1 / direction (packet_hits8). The walk does so at nodes
  *    whose children it may enter are all nodes, and enters them with all its rays; at a node with a leaf
@@ -36,7 +38,9 @@
 
 /* The helpers below pass and return 8-float vectors; GCC and Clang warn that, without AVX, such values
  * cross a function call differently than with it. They are static and inlined, so no call is ever made
- * with them: the warning does not apply. */
+ * with them: the warning does not apply. They are marked always_inline, so that they are inlined at -O1
+ * too (the sanitizers' build): called from an AVX2 walk, a helper compiled without AVX2 would hand its
+ * vector back where the caller does not look for it. */
 #if defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
@@ -62,6 +66,7 @@
  * per child of an 8-wide node, or one per ray of the packet. */
 typedef float float8 __attribute__((vector_size(32)));
 typedef int32_t int8v __attribute__((vector_size(32)));
+typedef uint32_t uint8v __attribute__((vector_size(32)));
 
 _Static_assert(FAST_BVH_PACKET_SIZE == 8 && FAST_BVH_WIDTH_EIGHT == 8, "one float8 lane per ray and per child");
 _Static_assert(FAST_BVH_PACKET_COLUMNS * FAST_BVH_PACKET_ROWS == FAST_BVH_PACKET_SIZE, "a pixel for each lane");
@@ -72,21 +77,21 @@ _Static_assert(FAST_BVH_PACKET_COLUMNS * FAST_BVH_PACKET_ROWS == FAST_BVH_PACKET
 /* Bit set in a lane mask for every ray of the packet. */
 #define PACKET_ALL_LANES ((1u << FAST_BVH_PACKET_SIZE) - 1)
 
-static inline float8 broadcast8(float x) { return (float8){x, x, x, x, x, x, x, x}; }
+static inline __attribute__((always_inline)) float8 broadcast8(float x) { return (float8){x, x, x, x, x, x, x, x}; }
 
 /* Lane by lane, a > b ? a : b and a < b ? a : b: a NaN in a gives b, as max4 and min4 (float4.h). */
-static inline float8 max8(float8 a, float8 b) {
+static inline __attribute__((always_inline)) float8 max8(float8 a, float8 b) {
     int8v pick_a = a > b;
     return (float8)(((int8v)a & pick_a) | ((int8v)b & ~pick_a));
 }
 
-static inline float8 min8(float8 a, float8 b) {
+static inline __attribute__((always_inline)) float8 min8(float8 a, float8 b) {
     int8v pick_a = a < b;
     return (float8)(((int8v)a & pick_a) | ((int8v)b & ~pick_a));
 }
 
 /* The eight floats at p, which is 32-byte aligned. */
-static inline float8 load8(const float *p) {
+static inline __attribute__((always_inline)) float8 load8(const float *p) {
     float8 v;
     __builtin_memcpy(&v, p, sizeof v);
     return v;
@@ -94,7 +99,7 @@ static inline float8 load8(const float *p) {
 
 /* Bit k set when lane k of the comparison result m is true: two SSE instructions on x86 (one lane
  * mask of each half), a loop elsewhere. */
-static inline unsigned lanes8_true(int8v m) {
+static inline __attribute__((always_inline)) unsigned lanes8_true(int8v m) {
 #if defined(__SSE__)
     __m128 low, high;
     __builtin_memcpy(&low, &m, sizeof low);
@@ -109,10 +114,10 @@ static inline unsigned lanes8_true(int8v m) {
 }
 
 /* One ray of the packet, as the single-ray walk sets it up (fast_bvh_walk.h): rung 6's float origin,
- * 1 / direction and slack (in setup, four lanes wide, and again eight wide), its window and reach (a
- * struct walk_window), the triangle test's set-up and the nearest hit so far. */
+ * 1 / direction and slack (in setup, four lanes wide; the 8-wide test spreads them to eight lanes as
+ * it loads them), its window and reach (a struct walk_window), the triangle test's set-up and the
+ * nearest hit so far. */
 struct lane {
-    float8 origin8[3], inverse8[3];
     struct float_setup setup;
     int near[3];                /* 0 when the ray enters a box through its low face on this axis, 1 for the high */
     float float_min, float_max; /* the window, rounded outward to float */
@@ -152,18 +157,44 @@ static inline void packet_narrow(struct packet *p, int k) {
 }
 
 /* Rung 8's float test of ray l on all eight children of n (children_hit8 in fast_bvh_eight.c, the same
- * operations): the mask of the children it enters in its window, their entry distances in entry. */
+ * operations): true in the lane of each child it enters in its window, their entry distances in *entry. */
 /* TASK 11.1 ALSO: the slab tests of all eight children at once, in float, for one ray of a packet (rung 10) */
-static inline unsigned lane_hits8(const struct lane *l, const struct fast_bvh_node8 *n, float entry[8]) {
+static inline __attribute__((always_inline)) int8v lane_hits8(const struct lane *l, const struct fast_bvh_node8 *n,
+                                                             float8 *entry) {
     float8 enter = broadcast8(l->float_min), leave = broadcast8(l->float_max);
     for (int a = 0; a < 3; a++) {
-        float8 t0 = (load8(n->bounds[a][l->near[a]]) - l->origin8[a]) * l->inverse8[a];
-        float8 t1 = (load8(n->bounds[a][1 - l->near[a]]) - l->origin8[a]) * l->inverse8[a];
+        float8 origin = broadcast8(l->setup.origin[a][0]), inverse = broadcast8(l->setup.inverse[a][0]);
+        float8 t0 = (load8(n->bounds[a][l->near[a]]) - origin) * inverse;
+        float8 t1 = (load8(n->bounds[a][1 - l->near[a]]) - origin) * inverse;
         enter = max8(t0, enter);
         leave = min8(t1, leave);
     }
-    __builtin_memcpy(entry, &enter, sizeof enter);
-    return lanes8_true(enter <= (leave + l->setup.slack) * FAST_BVH_FLOAT_SCALE + l->setup.slack2);
+    *entry = enter;
+    return enter <= (leave + l->setup.slack) * FAST_BVH_FLOAT_SCALE + l->setup.slack2;
+}
+
+/* Every ray of `lanes` tests the eight children of n itself (lane_hits8), and the answers are gathered
+ * child by child, eight children at a time: hit_lanes[c] gets the rays that enter child c and key[c]
+ * the nearest of their entry distances (infinity for a child none enters; `used` is true in the lanes
+ * of the children n has). Returns the children entered. */
+static inline __attribute__((always_inline)) unsigned rays_hit8(const struct packet *p, unsigned lanes,
+                                                                const struct fast_bvh_node8 *n, int8v used,
+                                                                unsigned hit_lanes[FAST_BVH_WIDTH_EIGHT],
+                                                                float key[FAST_BVH_WIDTH_EIGHT]) {
+    int8v rays_in = {0};
+    float8 nearest = broadcast8(INFINITY);
+    for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
+        int k = __builtin_ctz(rest);
+        float8 entry;
+        int8v in = lane_hits8(&p->lane[k], n, &entry) & used;
+        int32_t bit = (int32_t)(1u << k);
+        rays_in |= in & (int8v){bit, bit, bit, bit, bit, bit, bit, bit};
+        int8v nearer = in & (entry < nearest); /* entries are never NaN: max8 with the window's start */
+        nearest = (float8)(((int8v)entry & nearer) | ((int8v)nearest & ~nearer));
+    }
+    __builtin_memcpy(hit_lanes, &rays_in, sizeof rays_in);
+    __builtin_memcpy(key, &nearest, sizeof nearest);
+    return lanes8_true(rays_in != 0);
 }
 
 /* Rung 6's float test of ray l on the four children of n (child_quad_hit in fast_bvh.c), likewise. */
@@ -249,9 +280,19 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
         if (count == 0) {
             const uint32_t *children = eight ? b->nodes8[child].child : b->nodes[child].child;
             const uint32_t *counts = eight ? b->nodes8[child].count : b->nodes[child].count;
-            unsigned used = 0;
-            for (int c = 0; c < width; c++)
-                used |= (unsigned)(children[c] != FAST_BVH_NO_CHILD) << c;
+            unsigned used = 0, leaves = 0;
+            int8v used8 = {0};
+            if (eight) { /* eight slots compared at once */
+                uint8v slots, sizes;
+                __builtin_memcpy(&slots, children, sizeof slots);
+                __builtin_memcpy(&sizes, counts, sizeof sizes);
+                used8 = (int8v)(slots != FAST_BVH_NO_CHILD);
+                used = lanes8_true(used8);
+                leaves = lanes8_true((int8v)(sizes != 0));
+            } else {
+                for (int c = 0; c < width; c++)
+                    used |= (unsigned)(children[c] != FAST_BVH_NO_CHILD) << c;
+            }
             /* Each ray tests the node's children; a child is entered by the rays that hit it, at the
              * nearest of their entry distances. A coherent packet first tests them all at once: when
              * no child it may enter is a leaf, it enters those children with all its rays, each ray's
@@ -261,9 +302,6 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
             bool tested_at_once = false;
             if (eight && p->coherent) {
                 unsigned maybe = packet_hits8(p, &b->nodes8[child], key) & used;
-                unsigned leaves = 0;
-                for (int c = 0; c < width; c++)
-                    leaves |= (unsigned)(counts[c] != 0) << c;
                 if ((maybe & leaves) == 0) {
                     tested_at_once = true;
                     entered = maybe;
@@ -272,11 +310,12 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
                     boxes += (uint64_t)__builtin_popcount(used);
                 }
             }
-            for (unsigned rest = tested_at_once ? 0 : lanes; rest != 0; rest &= rest - 1) {
+            if (eight && !tested_at_once)
+                entered = rays_hit8(p, lanes, &b->nodes8[child], used8, hit_lanes, key);
+            for (unsigned rest = tested_at_once || eight ? 0 : lanes; rest != 0; rest &= rest - 1) {
                 int k = __builtin_ctz(rest);
                 _Alignas(32) float entry[FAST_BVH_WIDTH_EIGHT];
-                unsigned hit = (eight ? lane_hits8(&p->lane[k], &b->nodes8[child], entry)
-                                      : lane_hits4(&p->lane[k], &b->nodes[child], entry)) & used;
+                unsigned hit = lane_hits4(&p->lane[k], &b->nodes[child], entry) & used;
                 for (unsigned each = hit; each != 0; each &= each - 1) {
                     int c = __builtin_ctz(each);
                     key[c] = entered >> c & 1 && key[c] <= entry[c] ? key[c] : entry[c];
@@ -375,12 +414,8 @@ static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, 
     }
     if (!float_setup_make(b, r, t_min, &l->setup))
         return false;
-    for (int a = 0; a < 3; a++) {
-        float inverse = l->setup.inverse[a][0]; /* 1 / direction in double rounded: the same sign */
-        l->origin8[a] = broadcast8(l->setup.origin[a][0]);
-        l->inverse8[a] = broadcast8(inverse);
-        l->near[a] = inverse < 0.0f;
-    }
+    for (int a = 0; a < 3; a++)
+        l->near[a] = l->setup.inverse[a][0] < 0.0f; /* 1 / direction in double rounded: the same sign */
     l->t_min = t_min;
     l->t_max = t_max;
     l->q = (struct query_state){.t = t_max};
