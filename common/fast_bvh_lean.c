@@ -557,6 +557,14 @@ AVX2 bool fast_bvh_lean_leaf_closest(const struct fast_bvh *b, const struct tria
     return leaf_triangles4(b, &l, first, count, t_min, t_max, QUERY_CLOSEST, q, box_max, tests);
 }
 
+AVX2 bool fast_bvh_lean_leaf_any(const struct fast_bvh *b, const struct triangle_ray *ready, uint32_t first,
+                                 uint32_t count, double t_min, double t_max, struct query_state *q, uint64_t *tests) {
+    struct lean_ray l;
+    lean_ray_triangles(ready, &l);
+    double box_max = t_max; /* not used by QUERY_ANY */
+    return leaf_triangles4(b, &l, first, count, t_min, t_max, QUERY_ANY, q, &box_max, tests);
+}
+
 AVX2 bool fast_bvh_lean_traverse(const struct fast_bvh *b, const ray *r, double t_min, double t_max,
                                  enum query kind, struct query_state *q) {
     /* Most rays of a frame miss the model. One slab test of the root's box in double, the test rung 8 and
@@ -578,6 +586,13 @@ bool fast_bvh_lean_leaf_closest(const struct fast_bvh *b, const struct triangle_
                                 uint32_t count, double t_min, double t_max, struct query_state *q, double *box_max,
                                 uint64_t *tests) {
     (void)b, (void)ready, (void)first, (void)count, (void)t_min, (void)t_max, (void)box_max, (void)tests;
+    q->found = false;
+    abort(); /* never called: the build makes no 8-wide tree without AVX2 */
+}
+
+bool fast_bvh_lean_leaf_any(const struct fast_bvh *b, const struct triangle_ray *ready, uint32_t first, uint32_t count,
+                            double t_min, double t_max, struct query_state *q, uint64_t *tests) {
+    (void)b, (void)ready, (void)first, (void)count, (void)t_min, (void)t_max, (void)tests;
     q->found = false;
     abort(); /* never called: the build makes no 8-wide tree without AVX2 */
 }

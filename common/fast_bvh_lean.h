@@ -46,4 +46,9 @@ bool fast_bvh_lean_leaf_closest(const struct fast_bvh *b, const struct triangle_
                                 uint32_t count, double t_min, double t_max, struct query_state *q, double *box_max,
                                 uint64_t *tests);
 
+/* As fast_bvh_lean_leaf_closest, for query QUERY_ANY: sets q->found and returns false at the first
+ * triangle crossed with t_min < t < t_max; else returns true. */
+bool fast_bvh_lean_leaf_any(const struct fast_bvh *b, const struct triangle_ray *ready, uint32_t first, uint32_t count,
+                            double t_min, double t_max, struct query_state *q, uint64_t *tests);
+
 #endif

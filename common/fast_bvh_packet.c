@@ -17,21 +17,25 @@
  *    for all its rays by interval arithmetic on 1 / direction (packet_hits8). The walk does so at nodes
  *    whose children it may enter are all nodes, and enters them with all its rays; at a node with a leaf
  *    among them every ray tests for itself.
- * Camera rays are coherent and gain; the scattered rays of reflections and shadows would not, and are
- * not packed.
+ * Camera rays are coherent and gain. The shadow rays of a packet's hits, towards one light, are walked
+ * together too, for the query "is anything in the way" (fast_bvh_occluded_packet): they start at
+ * different points, so each tests the boxes itself, but they share the walk as camera rays do, and each
+ * leaves it at its first hit. The scattered rays of reflections are not packed.
  *
  * Exact per ray. A ray's own test is rung 6's float test, operation for operation: the same float
  * origin, 1 / direction, slack and window (fast_bvh_walk.h), so it never refuses a box that the exact
  * test enters in the ray's window, by rung 6's argument; the interval test refuses nothing that a ray's
  * own test would enter (packet_hits8 says why). So every ray visits every leaf its single-ray walk would
  * need, and maybe more, and tests their triangles as its single-ray walk does (rung 9's four lanes, each
- * the double test's arithmetic, or test_leaf_triangles), keeping the nearest by triangle_hit_wins. The
- * order in which leaves are visited changes, the answer cannot: the nearest hit, lowest face among equal
- * t, is the same whatever the order. Rays the float test cannot cover (t_min < 0, coordinates beyond
- * FAST_BVH_FLOAT_RANGE) take fast_bvh_closest one by one.
+ * the double test's arithmetic, or test_leaf_triangles), keeping the nearest by triangle_hit_wins, or
+ * for a shadow ray stopping at the first crossing in its window. The order in which leaves are visited
+ * changes, the answer cannot: the nearest hit, lowest face among equal t, is the same whatever the order,
+ * and so is whether there is any. Rays the float test cannot cover (t_min < 0, coordinates beyond
+ * FAST_BVH_FLOAT_RANGE) take fast_bvh_closest (fast_bvh_occluded) one by one.
  *
  * The walk is written once with GCC's vector extension: on x86 it is compiled for AVX2 (the 8-wide
- * trees of rungs 8 and 9, which are built only when the processor has AVX2; once for each kind of leaf)
+ * trees of rungs 8 and 9, which are built only when the processor has AVX2; once for each kind of leaf
+ * and each query)
  * and for the baseline (rung 6's 4-wide tree, tested four children per SSE instruction); elsewhere (the
  * browser's WebAssembly) only the baseline. */
 #include "fast_bvh_packet.h"
@@ -268,7 +272,8 @@ static inline int children_by_key(unsigned entered, const float key[FAST_BVH_WID
  * the root; `eight` when the tree is 8-wide (b->nodes8), `compact` for rung 7's leaves, `lean` for rung
  * 9's (b->lean_corners, an 8-wide tree). */
 static inline __attribute__((always_inline)) void packet_walk(const struct fast_bvh *b, struct packet *p,
-                                                              unsigned lanes, bool eight, bool compact, bool lean) {
+                                                              unsigned lanes, enum query kind, bool eight,
+                                                              bool compact, bool lean) {
     const int width = eight ? FAST_BVH_WIDTH_EIGHT : FAST_BVH_WIDTH;
     uint64_t visits = 0, boxes = 0, tests = 0;
     struct packet_stack_entry stack[PACKET_STACK_SIZE];
@@ -344,6 +349,15 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
             for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
                 int k = __builtin_ctz(rest);
                 struct lane *l = &p->lane[k];
+                if (kind == QUERY_ANY) { /* a ray that finds a hit leaves the walk: no reach */
+                    bool go_on = lean ? fast_bvh_lean_leaf_any(b, &l->ready, child, count, l->t_min, l->t_max,
+                                                               &l->q, &tests)
+                                      : test_leaf_triangles(b, &l->ready, child, count, l->t_min, l->t_max,
+                                                            QUERY_ANY, compact, &l->q, &l->box_max, &tests);
+                    if (!go_on)
+                        p->limit[k] = -INFINITY;
+                    continue;
+                }
                 if (lean)
                     fast_bvh_lean_leaf_closest(b, &l->ready, child, count, l->t_min, l->t_max, &l->q, &l->box_max,
                                                &tests);
@@ -373,38 +387,49 @@ static inline __attribute__((always_inline)) void packet_walk(const struct fast_
 /* The walks of the 8-wide trees, rung 8's and rung 9's (lean leaves), compiled for AVX2 (as
  * fast_bvh_eight.c and fast_bvh_lean.c are): called only when the tree is 8-wide, which the build makes
  * only when the processor has AVX2. */
-__attribute__((target("avx2"))) static void packet_walk_eight(const struct fast_bvh *b, struct packet *p,
-                                                               unsigned lanes) {
-    packet_walk(b, p, lanes, true, false, false);
-}
-__attribute__((target("avx2"))) static void packet_walk_lean(const struct fast_bvh *b, struct packet *p,
-                                                              unsigned lanes) {
-    packet_walk(b, p, lanes, true, false, true);
-}
+#define PACKET_WALK_EIGHT __attribute__((target("avx2")))
 #else
-static void packet_walk_eight(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
-    packet_walk(b, p, lanes, true, false, false);
-}
-static void packet_walk_lean(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
-    packet_walk(b, p, lanes, true, false, true);
-}
+#define PACKET_WALK_EIGHT
 #endif
 
-static void packet_walk_four(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
-    packet_walk(b, p, lanes, false, false, false);
+/* The walk for query `kind` (QUERY_CLOSEST or QUERY_ANY) on b's kind of tree, each specialised. */
+PACKET_WALK_EIGHT static void packet_walk_lean_closest(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
+    packet_walk(b, p, lanes, QUERY_CLOSEST, true, false, true);
+}
+PACKET_WALK_EIGHT static void packet_walk_lean_any(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
+    packet_walk(b, p, lanes, QUERY_ANY, true, false, true);
+}
+PACKET_WALK_EIGHT static void packet_walk_eight_closest(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
+    packet_walk(b, p, lanes, QUERY_CLOSEST, true, false, false);
+}
+PACKET_WALK_EIGHT static void packet_walk_eight_any(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
+    packet_walk(b, p, lanes, QUERY_ANY, true, false, false);
 }
 
-static void packet_walk_four_compact(const struct fast_bvh *b, struct packet *p, unsigned lanes) {
-    packet_walk(b, p, lanes, false, true, false);
+static void packet_walk_any_kind(const struct fast_bvh *b, struct packet *p, unsigned lanes, enum query kind) {
+    bool eight = b->nodes8 != NULL, lean = eight && b->lean_corners != NULL, compact = b->triangles == NULL;
+    if (lean)
+        (kind == QUERY_ANY ? packet_walk_lean_any : packet_walk_lean_closest)(b, p, lanes);
+    else if (eight)
+        (kind == QUERY_ANY ? packet_walk_eight_any : packet_walk_eight_closest)(b, p, lanes);
+    else if (compact && kind == QUERY_ANY)
+        packet_walk(b, p, lanes, QUERY_ANY, false, true, false);
+    else if (compact)
+        packet_walk(b, p, lanes, QUERY_CLOSEST, false, true, false);
+    else if (kind == QUERY_ANY)
+        packet_walk(b, p, lanes, QUERY_ANY, false, false, false);
+    else
+        packet_walk(b, p, lanes, QUERY_CLOSEST, false, false, false);
 }
 
-/* Sets ray k of p up for ray r, as the single-ray walk sets itself up (fast_bvh.c's traverse): the
- * slivers tested, then the root's box in double; or, when no sliver lies outside the tree, the root's box
- * first, so that a ray that misses the model costs that one test (as on rung 9). Returns false when the
- * float test cannot cover r (the caller then asks fast_bvh_closest); else true, with *inside telling
- * whether r enters the root's box (when it does not, the lane's answer, nothing found, is made). */
+/* Sets ray k of p up for ray r and query `kind`, as the single-ray walk sets itself up (fast_bvh.c's
+ * traverse): the slivers tested, then the root's box in double; or, when no sliver lies outside the
+ * tree, the root's box first, so that a ray that misses the model costs that one test (as on rung 9).
+ * Returns false when the float test cannot cover r (the caller then asks the single-ray walk); else
+ * true, with *inside telling whether r is to be walked: it enters the root's box, and QUERY_ANY has not
+ * found its answer among the slivers (else the lane's answer is made). */
 static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, const ray *r, double t_min,
-                             double t_max, uint64_t *tests, bool *inside) {
+                             double t_max, enum query kind, uint64_t *tests, bool *inside) {
     struct lane *l = &p->lane[k];
     bool root_first = root_box_tested_first(b);
     if (root_first && !root_box_entered(b, r, t_min, t_max)) {
@@ -423,14 +448,13 @@ static bool packet_lane_make(const struct fast_bvh *b, struct packet *p, int k, 
     double box_min = t_min; /* >= 0: float_setup_make checked it */
     l->box_max = t_max < DBL_MAX ? t_max : DBL_MAX;
     uint32_t slivers = (uint32_t)(b->triangle_count - b->tree_count);
-    if (slivers > 0 && b->triangles == NULL)
-        test_leaf_triangles(b, &l->ready, (uint32_t)b->tree_count, slivers, t_min, t_max, QUERY_CLOSEST, true, &l->q,
-                            &l->box_max, tests);
-    else if (slivers > 0)
-        test_leaf_triangles(b, &l->ready, (uint32_t)b->tree_count, slivers, t_min, t_max, QUERY_CLOSEST, false,
-                            &l->q, &l->box_max, tests);
-    *inside = root_first || (b->tree_count > 0 && aabb_hit(&b->root_box, r->origin, aabb_inverse_direction(r->direction),
-                                                           box_min, l->box_max, NULL));
+    bool go_on = true; /* false when QUERY_ANY has its answer among the slivers */
+    if (slivers > 0)
+        go_on = test_leaf_triangles(b, &l->ready, (uint32_t)b->tree_count, slivers, t_min, t_max, kind,
+                                    b->triangles == NULL, &l->q, &l->box_max, tests);
+    *inside = go_on && (root_first || (b->tree_count > 0 && aabb_hit(&b->root_box, r->origin,
+                                                                     aabb_inverse_direction(r->direction), box_min,
+                                                                     l->box_max, NULL)));
     l->float_min = float_at_most(box_min);
     packet_narrow(p, k);
     return true;
@@ -471,33 +495,43 @@ static void packet_make_interval(struct packet *p, unsigned lanes) {
     }
 }
 
-unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
-                                 const double t_min[FAST_BVH_PACKET_SIZE], const double t_max[FAST_BVH_PACKET_SIZE],
-                                 double t[FAST_BVH_PACKET_SIZE], uint32_t face[FAST_BVH_PACKET_SIZE]) {
-    struct packet p;
-    p.limit = broadcast8(-INFINITY); /* a lane of no ray is never in a walk's mask */
-    unsigned walking = 0, answered = 0, found = 0;
+/* Sets the rays of `active` up for query `kind` and walks them together: into p, each answered ray's bit
+ * in the result, and the others (those the float test cannot cover) in *alone, for the caller to answer
+ * one by one. */
+static unsigned packet_trace(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
+                             const double t_min[FAST_BVH_PACKET_SIZE], const double t_max[FAST_BVH_PACKET_SIZE],
+                             enum query kind, struct packet *p, unsigned *alone) {
+    p->limit = broadcast8(-INFINITY); /* a lane of no ray is never in a walk's mask */
+    unsigned walking = 0, answered = 0;
+    *alone = 0;
     uint64_t tests = 0;
     for (unsigned rest = active & PACKET_ALL_LANES; rest != 0; rest &= rest - 1) {
         int k = __builtin_ctz(rest);
         bool inside;
-        if (!packet_lane_make(b, &p, k, &rays[k], t_min[k], t_max[k], &tests, &inside)) {
-            found |= (unsigned)fast_bvh_closest(b, &rays[k], t_min[k], t_max[k], &t[k], &face[k]) << k;
+        if (!packet_lane_make(b, p, k, &rays[k], t_min[k], t_max[k], kind, &tests, &inside)) {
+            *alone |= 1u << k;
             continue;
         }
         answered |= 1u << k;
         walking |= (unsigned)inside << k;
     }
     walk_counted(0, 0, tests);
-    packet_make_interval(&p, walking);
-    if (walking != 0 && b->nodes8 != NULL && b->lean_corners != NULL)
-        packet_walk_lean(b, &p, walking);
-    else if (walking != 0 && b->nodes8 != NULL)
-        packet_walk_eight(b, &p, walking);
-    else if (walking != 0 && b->triangles == NULL)
-        packet_walk_four_compact(b, &p, walking);
-    else if (walking != 0)
-        packet_walk_four(b, &p, walking);
+    packet_make_interval(p, walking);
+    if (walking != 0)
+        packet_walk_any_kind(b, p, walking, kind);
+    return answered;
+}
+
+unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
+                                 const double t_min[FAST_BVH_PACKET_SIZE], const double t_max[FAST_BVH_PACKET_SIZE],
+                                 double t[FAST_BVH_PACKET_SIZE], uint32_t face[FAST_BVH_PACKET_SIZE]) {
+    struct packet p;
+    unsigned alone, found = 0;
+    unsigned answered = packet_trace(b, rays, active, t_min, t_max, QUERY_CLOSEST, &p, &alone);
+    for (unsigned rest = alone; rest != 0; rest &= rest - 1) {
+        int k = __builtin_ctz(rest);
+        found |= (unsigned)fast_bvh_closest(b, &rays[k], t_min[k], t_max[k], &t[k], &face[k]) << k;
+    }
     for (unsigned rest = answered; rest != 0; rest &= rest - 1) {
         int k = __builtin_ctz(rest);
         if (p.lane[k].q.found) {
@@ -507,6 +541,23 @@ unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_B
         }
     }
     return found;
+}
+
+unsigned fast_bvh_occluded_packet(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
+                                  const double t_min[FAST_BVH_PACKET_SIZE],
+                                  const double t_max[FAST_BVH_PACKET_SIZE]) {
+    struct packet p;
+    unsigned alone, occluded = 0;
+    unsigned answered = packet_trace(b, rays, active, t_min, t_max, QUERY_ANY, &p, &alone);
+    for (unsigned rest = alone; rest != 0; rest &= rest - 1) {
+        int k = __builtin_ctz(rest);
+        occluded |= (unsigned)fast_bvh_occluded(b, &rays[k], t_min[k], t_max[k]) << k;
+    }
+    for (unsigned rest = answered; rest != 0; rest &= rest - 1) {
+        int k = __builtin_ctz(rest);
+        occluded |= (unsigned)p.lane[k].q.found << k;
+    }
+    return occluded;
 }
 
 unsigned fast_bvh_camera_packet(const struct camera *cam, int x, int y, int right, int bottom,

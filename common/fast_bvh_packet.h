@@ -1,6 +1,6 @@
-/* fast_bvh_packet.h: rung 10 of chapter 11's ladder: a packet of up to eight neighbouring camera rays
- * walked through the hierarchy together, each ray's answer still exactly the brute-force loop's
- * (chapter 11). */
+/* fast_bvh_packet.h: rung 10 of chapter 11's ladder: a packet of up to eight neighbouring camera rays,
+ * or of their shadow rays, walked through the hierarchy together, each ray's answer still exactly the
+ * brute-force loop's (chapter 11). */
 #ifndef WHITTED_FAST_BVH_PACKET_H
 #define WHITTED_FAST_BVH_PACKET_H
 
@@ -27,6 +27,16 @@
 unsigned fast_bvh_closest_packet(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
                                  const double t_min[FAST_BVH_PACKET_SIZE], const double t_max[FAST_BVH_PACKET_SIZE],
                                  double t[FAST_BVH_PACKET_SIZE], uint32_t face[FAST_BVH_PACKET_SIZE]);
+
+/* For every ray k whose bit k is set in `active`, whether anything lies on rays[k] with t_min[k] < t <
+ * t_max[k], exactly as fast_bvh_occluded(b, &rays[k], t_min[k], t_max[k]) says: the mask of the rays
+ * that meet something. Lanes whose bit is clear are not read. The rays walk together as in
+ * fast_bvh_closest_packet, each leaving the walk at its first hit; they need not share an origin (the
+ * shadow rays of neighbouring pixels towards one light). Adds to the calling thread's counters as
+ * fast_bvh_closest_packet does. Safe from several threads at once. */
+unsigned fast_bvh_occluded_packet(const struct fast_bvh *b, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
+                                  const double t_min[FAST_BVH_PACKET_SIZE],
+                                  const double t_max[FAST_BVH_PACKET_SIZE]);
 
 /* Fills a packet with the camera rays of cam through the pixels (x + k % FAST_BVH_PACKET_COLUMNS,
  * y + k / FAST_BVH_PACKET_COLUMNS), ray k in lane k, each with the window a camera ray is traced in

@@ -1,7 +1,8 @@
-/* test_fast_bvh_packet.c: rung 10's packets give every ray exactly the answer of fast_bvh_closest, which
- * tests/test_accel.c proves equal to the brute-force loop's: coherent camera rays, scattered rays, rays
- * through corners and along edges (ties), rays edge-on to axis-aligned faces, windows ending or starting
- * exactly at a hit, some lanes off, on rung 9's tree (the one rung 10 walks: its leaves tested four
+/* test_fast_bvh_packet.c: rung 10's packets give every ray exactly the answers of fast_bvh_closest and
+ * fast_bvh_occluded, which tests/test_accel.c proves equal to the brute-force loop's: coherent camera
+ * rays, the shadow rays of their hits towards a light, scattered rays, rays through corners and along
+ * edges (ties), rays edge-on to axis-aligned faces, windows ending or starting exactly at a hit, some
+ * lanes off, on rung 9's tree (the one rung 10 walks: its leaves tested four
  * triangles at a time), on rung 8's 8-wide tree, on rung 6's (rung 8 without AVX2), on rung 7's compact
  * leaves and on rung 2's tree. */
 #include <criterion/criterion.h>
@@ -47,11 +48,35 @@ static uint32_t rng_to(struct rng *g, uint32_t n) { return (uint32_t)(rng_next(g
 struct subject {
     const struct fast_bvh *b;
     const char *name;
-    size_t packets, hits; /* packets checked and lanes that hit, for the log */
+    size_t packets, hits;    /* packets checked and lanes that hit, for the log */
+    size_t occluded;         /* lanes occluded, of all packets */
+    size_t shadow_packets, shadow_lanes, shadow_occluded; /* packets of shadow rays, their lanes, those occluded */
 };
 
+/* Asks the packet whether anything lies on its rays and asserts that every lane in `active` has
+ * fast_bvh_occluded's answer, and no other lane is said to be occluded. Returns the lanes occluded. */
+static size_t check_occluded_packet(struct subject *s, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
+                                  const double t_min[FAST_BVH_PACKET_SIZE],
+                                  const double t_max[FAST_BVH_PACKET_SIZE]) {
+    unsigned occluded = fast_bvh_occluded_packet(s->b, rays, active, t_min, t_max);
+    size_t count = 0;
+    cr_assert_eq(occluded & ~active, 0, "%s: lanes 0x%x occluded, only 0x%x were asked", s->name, occluded, active);
+    for (int k = 0; k < FAST_BVH_PACKET_SIZE; k++) {
+        bool single = (active >> k & 1) && fast_bvh_occluded(s->b, &rays[k], t_min[k], t_max[k]);
+        const ray *r = &rays[k];
+        cr_assert_eq((occluded >> k & 1) != 0, single,
+                     "%s: lane %d of 0x%x, ray (%a, %a, %a) + t (%a, %a, %a) in (%a, %a): packet %s, single ray %s",
+                     s->name, k, active, r->origin.x, r->origin.y, r->origin.z, r->direction.x, r->direction.y,
+                     r->direction.z, t_min[k], t_max[k], occluded >> k & 1 ? "occluded" : "clear",
+                     single ? "occluded" : "clear");
+        count += single;
+    }
+    s->occluded += count;
+    return count;
+}
+
 /* Walks the packet and asserts that every lane in `active` has fast_bvh_closest's answer, bit for bit,
- * and that the other lanes were not written. */
+ * and that the other lanes were not written; then the same for fast_bvh_occluded's. */
 static void check_packet(struct subject *s, const ray rays[FAST_BVH_PACKET_SIZE], unsigned active,
                          const double t_min[FAST_BVH_PACKET_SIZE], const double t_max[FAST_BVH_PACKET_SIZE]) {
     double t[FAST_BVH_PACKET_SIZE];
@@ -79,6 +104,32 @@ static void check_packet(struct subject *s, const ray rays[FAST_BVH_PACKET_SIZE]
                   t[k], face[k], single_t, single_face);
         s->hits += hit;
     }
+    check_occluded_packet(s, rays, active, t_min, t_max);
+}
+
+/* The shadow rays of the hits of a packet of camera rays towards the point light, in the window the
+ * frame of chapter 11's benchmark traces them in; checked as a packet. */
+static void check_shadow_packet(struct subject *s, const ray camera_rays[FAST_BVH_PACKET_SIZE], vec3 light) {
+    double t_min[FAST_BVH_PACKET_SIZE], t_max[FAST_BVH_PACKET_SIZE], t[FAST_BVH_PACKET_SIZE];
+    uint32_t face[FAST_BVH_PACKET_SIZE];
+    ray rays[FAST_BVH_PACKET_SIZE];
+    unsigned lit = 0;
+    for (int k = 0; k < FAST_BVH_PACKET_SIZE; k++) {
+        rays[k] = camera_rays[k];
+        t_min[k] = RAY_T_MIN;
+        t_max[k] = INFINITY;
+        if (!fast_bvh_closest(s->b, &camera_rays[k], RAY_T_MIN, INFINITY, &t[k], &face[k]))
+            continue;
+        vec3 point = ray_at(camera_rays[k], t[k]), to_light = vec3_sub(light, point);
+        double distance = vec3_length(to_light);
+        rays[k] = (ray){point, vec3_scale(to_light, 1.0 / distance)};
+        t_min[k] = SHADOW_T_MIN;
+        t_max[k] = distance - SHADOW_T_MIN;
+        lit |= 1u << k;
+    }
+    s->shadow_occluded += check_occluded_packet(s, rays, lit, t_min, t_max);
+    s->shadow_packets += lit != 0;
+    s->shadow_lanes += (size_t)__builtin_popcount(lit);
 }
 
 /* A ray through a corner, the middle of an edge (both shared by several faces: ties) or a face's
@@ -138,6 +189,10 @@ static void check_packets(struct subject *s, const struct mesh *m, uint64_t seed
         }
         check_packet(s, rays, 0xffu, t_min, t_max);
         check_packet(s, rays, (unsigned)rng_to(&g, 256), t_min, t_max);
+        /* Their shadow rays, towards a light outside the box or inside it (among the triangles). */
+        vec3 light = vec3_add(centre, vec3_scale(vec3_make(rng_in(&g, -1, 1), rng_in(&g, -1, 1), rng_in(&g, -1, 1)),
+                                                 size * rng_in(&g, 0.0, 2.0)));
+        check_shadow_packet(s, rays, light);
         /* Scattered: eight unrelated rays at corners, edges and faces, some edge-on, in windows that
          * start before 0 (the single-ray fallback), at 0, at RAY_T_MIN, or end early. */
         static const double starts[] = {RAY_T_MIN, 0.0, -INFINITY, SHADOW_T_MIN};
@@ -217,11 +272,18 @@ static void check_trees(const char *name, const struct mesh *m, uint64_t seed) {
                          trees[k].what);
         char label[160];
         snprintf(label, sizeof label, "%s, %s", name, trees[k].what);
-        struct subject s = {b, label, 0, 0};
+        struct subject s = {b, label, 0, 0, 0, 0, 0, 0};
         check_packets(&s, m, seed);
         cr_assert_gt(s.hits, s.packets, "%s: too few hits (%zu in %zu packets) to prove anything", label, s.hits,
                      s.packets);
-        cr_log_info("%s: %zu packets, %zu lanes hit, every lane as fast_bvh_closest", label, s.packets, s.hits);
+        cr_assert_gt(s.shadow_packets, PACKET_TEST_ROUNDS / 4, "%s: too few packets of shadow rays (%zu)", label,
+                     s.shadow_packets);
+        cr_assert(s.shadow_occluded > s.shadow_lanes / 10 && s.shadow_occluded < s.shadow_lanes - s.shadow_lanes / 10,
+                  "%s: %zu of %zu shadow rays occluded: too few or too many to prove anything", label,
+                  s.shadow_occluded, s.shadow_lanes);
+        cr_log_info("%s: %zu packets, %zu lanes hit, every lane as fast_bvh_closest, %zu occluded, as "
+                    "fast_bvh_occluded; %zu packets of shadow rays, %zu of their %zu lanes occluded",
+                    label, s.packets, s.hits, s.occluded, s.shadow_packets, s.shadow_occluded, s.shadow_lanes);
         fast_bvh_free(b);
     }
 }
