@@ -72,8 +72,9 @@
 
 #ifdef WHITTED_EMBREE
 /* Defined in embree_ref.c: builds and traces the same frame with Embree; see there. */
-bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet, int repeats,
-                      double *build_ms, double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet,
+                      bool shadow_packets, int repeats, double *build_ms, double *frame_ms, unsigned char *pixels,
+                      char *err, size_t err_size);
 #endif
 
 
@@ -244,18 +245,27 @@ struct frame {
     uint64_t primary_tests;       /* triangle tests spent on camera rays alone */
 };
 
-/* The shadow ray of pixel p, whose camera ray r hit at p->t: whether the light is hidden. */
-static bool shadowed(const struct built *structure, const ray *r, const struct pixel *p, vec3 light) {
-    vec3 point = ray_at(*r, p->t);
+/* The shadow ray from where camera ray r hit, at t, towards the light, traced over SHADOW_T_MIN < t <
+ * *t_max (the distance to the light less SHADOW_T_MIN). */
+static ray shadow_ray(const ray *r, double t, vec3 light, double *t_max) {
+    vec3 point = ray_at(*r, t);
     vec3 to_light = vec3_sub(light, point);
     double distance = vec3_length(to_light);
-    ray shadow = {point, vec3_scale(to_light, 1.0 / distance)};
+    *t_max = distance - SHADOW_T_MIN;
+    return (ray){point, vec3_scale(to_light, 1.0 / distance)};
+}
+
+/* The shadow ray of pixel p, whose camera ray r hit at p->t: whether the light is hidden. */
+static bool shadowed(const struct built *structure, const ray *r, const struct pixel *p, vec3 light) {
+    double t_max;
+    ray shadow = shadow_ray(r, p->t, light, &t_max);
     stats_thread.shadow_rays++;
-    return occluded(structure, &shadow, SHADOW_T_MIN, distance - SHADOW_T_MIN);
+    return occluded(structure, &shadow, SHADOW_T_MIN, t_max);
 }
 
 /* Rung 10: the whole frame with the camera rays in packets of FAST_BVH_PACKET_COLUMNS x
- * FAST_BVH_PACKET_ROWS pixels, as chapter 11 packs them (fast_bvh_closest_packet), the shadow rays one by one, into pixels as trace_frame does. */
+ * FAST_BVH_PACKET_ROWS pixels, as chapter 11 packs them (fast_bvh_closest_packet), and the shadow rays of
+ * their hits in a packet of the same pixels (fast_bvh_occluded_packet), into pixels as trace_frame does. */
 static void trace_frame_in_packets(const struct built *structure, const struct camera *cam, vec3 light,
                                    struct pixel *pixels, struct frame *out) {
     stats_reset_thread();
@@ -273,15 +283,23 @@ static void trace_frame_in_packets(const struct built *structure, const struct c
             uint64_t before = stats_thread.triangle_tests;
             unsigned found = fast_bvh_closest_packet(structure->fast_bvh, rays, active, t_min, t_max, t, face);
             primary_tests += stats_thread.triangle_tests - before;
+            ray shadows[FAST_BVH_PACKET_SIZE];
+            double shadow_min[FAST_BVH_PACKET_SIZE], shadow_max[FAST_BVH_PACKET_SIZE];
+            for (unsigned rest = found; rest != 0; rest &= rest - 1) {
+                int k = __builtin_ctz(rest);
+                shadows[k] = shadow_ray(&rays[k], t[k], light, &shadow_max[k]);
+                shadow_min[k] = SHADOW_T_MIN;
+            }
+            stats_thread.shadow_rays += (uint64_t)__builtin_popcount(found);
+            unsigned dark = found != 0 ? fast_bvh_occluded_packet(structure->fast_bvh, shadows, found, shadow_min,
+                                                                  shadow_max)
+                                       : 0;
             for (unsigned rest = active; rest != 0; rest &= rest - 1) {
                 int k = __builtin_ctz(rest);
                 int i = x + k % FAST_BVH_PACKET_COLUMNS, j = y + k / FAST_BVH_PACKET_COLUMNS;
                 struct pixel p = {INFINITY, UINT32_MAX, false};
-                if (found >> k & 1) {
-                    p.t = t[k];
-                    p.face = face[k];
-                    p.shadowed = shadowed(structure, &rays[k], &p, light);
-                }
+                if (found >> k & 1)
+                    p = (struct pixel){t[k], face[k], (dark >> k & 1) != 0};
                 pixels[(size_t)j * cam->width + i] = p;
             }
         }
@@ -583,9 +601,10 @@ static int bench_model(const char *path, const struct options *options) {
     struct row embree = {0};
     embree.build_ms = INFINITY;
     embree.frame_ms = INFINITY;
-    /* Embree's packets of 4 and 8 camera rays, for rung 10: their best frame times. */
+    /* Embree's packets of 4 and 8 camera rays, for rung 10: their best frame times with the shadow rays
+     * one by one ([p][0]) and in packets of the same pixels ([p][1]). */
     static const int embree_packets[] = {4, 8};
-    double embree_packet_ms[2] = {INFINITY, INFINITY};
+    double embree_packet_ms[2][2] = {{INFINITY, INFINITY}, {INFINITY, INFINITY}};
     /* Round after round, every structure once per round (interleaved, so that a busy spell of a shared
      * machine slows all of them alike rather than one of them throughout); the best of the rounds is
      * kept. The reference goes first in each round, Embree last; the brute-force loop runs in the first round
@@ -648,7 +667,7 @@ static int bench_model(const char *path, const struct options *options) {
             unsigned char *codes = malloc(pixel_count);
             double build_ms, frame_ms;
             if (codes == NULL ||
-                !embree_ref_frame(&m, &cam, light, 1, 1, &build_ms, &frame_ms, codes, err, sizeof err)) {
+                !embree_ref_frame(&m, &cam, light, 1, false, 1, &build_ms, &frame_ms, codes, err, sizeof err)) {
                 fprintf(stderr, "bench_accel: %s: %s\n", path, codes == NULL ? "out of memory" : err);
                 return 1;
             }
@@ -665,13 +684,14 @@ static int bench_model(const char *path, const struct options *options) {
             embree.rays = (double)(pixel_count + hits);
             embree.differ = differ;
             embree.done = true;
-            for (int p = 0; p < 2 && (only == NULL || named_in(only, "rung 10 packet")); p++) {
-                if (!embree_ref_frame(&m, &cam, light, embree_packets[p], 1, &build_ms, &frame_ms, codes, err,
-                                      sizeof err)) {
+            for (int p = 0; p < 4 && (only == NULL || named_in(only, "rung 10 packet")); p++) {
+                double *best = &embree_packet_ms[p / 2][p % 2];
+                if (!embree_ref_frame(&m, &cam, light, embree_packets[p / 2], p % 2 == 1, 1, &build_ms, &frame_ms,
+                                      codes, err, sizeof err)) {
                     fprintf(stderr, "bench_accel: %s: %s\n", path, err);
                     return 1;
                 }
-                embree_packet_ms[p] = frame_ms < embree_packet_ms[p] ? frame_ms : embree_packet_ms[p];
+                *best = frame_ms < *best ? frame_ms : *best;
             }
             free(codes);
         }
@@ -694,10 +714,14 @@ static int bench_model(const char *path, const struct options *options) {
                100.0 * close / tests);
     }
     const struct row *packets = &rows[ACCEL_PACKETS];
-    for (int p = 0; p < 2 && packets->done && embree.done && !isinf(embree_packet_ms[p]); p++)
-        printf("  Embree 3 rtcIntersect%d (camera rays in packets of %d, shadow rays one by one): frame %.1f ms;\n"
-               "    rung 10 packet / it: %.2f\n",
-               embree_packets[p], embree_packets[p], embree_packet_ms[p], packets->frame_ms / embree_packet_ms[p]);
+    for (int p = 0; p < 2 && packets->done && embree.done && !isinf(embree_packet_ms[p][0]); p++) {
+        const double *ms = embree_packet_ms[p], faster = ms[0] < ms[1] ? ms[0] : ms[1];
+        printf("  Embree 3 rtcIntersect%d (camera rays in packets of %d): frame %.1f ms with the shadow rays one by\n"
+               "    one (rtcOccluded1), %.1f ms with them in packets of %d (rtcOccluded%d); rung 10 packet / the\n"
+               "    faster: %.2f\n",
+               embree_packets[p], embree_packets[p], ms[0], ms[1], embree_packets[p], embree_packets[p],
+               packets->frame_ms / faster);
+    }
     printf("\n");
     fflush(stdout);
     if (options->csv != NULL) {

@@ -5,9 +5,10 @@
  * library: wide BVHs, SIMD box and triangle tests, float arithmetic. To compare like with like it runs
  * here as our code does: one thread (device config "threads=1"), one ray at a time (rtcIntersect1 for
  * camera rays, rtcOccluded1 for shadow rays), default scene flags and build quality. Beside rung 10, whose
- * camera rays walk in packets, it also traces them in its own packets (rtcIntersect4 on four neighbouring
- * pixels of a row, rtcIntersect8 on 4 x 2 pixels, the context flagged coherent), the shadow rays one
- * by one as rung 10 does.
+ * rays walk in packets, it also traces the camera rays in its own packets (rtcIntersect4 on four
+ * neighbouring pixels of a row, rtcIntersect8 on 4 x 2 pixels, the context flagged coherent), and their
+ * shadow rays either one by one or, as rung 10 does, in packets of the same pixels (rtcOccluded4,
+ * rtcOccluded8).
  *
  * The rays are the very rays bench_accel traces, rounded to float: each pixel's camera ray, and from
  * each hit one shadow ray to the light over SHADOW_T_MIN < t < distance - SHADOW_T_MIN. The hit point
@@ -24,8 +25,9 @@
 #include "mesh.h"
 
 /* Also declared in bench_accel.c (which does without Embree's header). */
-bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet, int repeats,
-                      double *build_ms, double *frame_ms, unsigned char *pixels, char *err, size_t err_size);
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet,
+                      bool shadow_packets, int repeats, double *build_ms, double *frame_ms, unsigned char *pixels,
+                      char *err, size_t err_size);
 
 RTCScene embree_ref_mesh_scene(RTCDevice device, const struct mesh *m) {
     RTCScene scene = rtcNewScene(device);
@@ -84,9 +86,38 @@ static unsigned char shadow_code(RTCScene scene, struct RTCIntersectContext *con
 enum packet_field { P_ORG_X, P_ORG_Y, P_ORG_Z, P_TNEAR, P_DIR_X, P_DIR_Y, P_DIR_Z, P_TIME, P_TFAR, P_MASK, P_ID,
                     P_FLAGS, P_NG_X, P_NG_Y, P_NG_Z, P_U, P_V, P_PRIM_ID, P_GEOM_ID, P_INST_ID, P_FIELDS };
 
-/* One frame with the camera rays in Embree's packets of n (4: four pixels of a row; 8: 4 x 2 pixels);
- * as trace_frame otherwise. */
-static double trace_frame_in_packets(RTCScene scene, const struct camera *cam, vec3 light, int n,
+/* The shadow rays of a packet of n camera rays (rays[k], lane k valid where valid[k] is -1) whose hits
+ * are at t[k] (where hit[k] is -1), in one packet of Embree's: into codes[k], 0 for no hit, 1 lit, 2 in
+ * shadow. */
+static void shadow_packet(RTCScene scene, struct RTCIntersectContext *context, const ray rays[8], const float t[8],
+                          const int hit[8], vec3 light, int n, unsigned char codes[8]) {
+    _Alignas(32) union { float f[P_FIELDS * 8]; unsigned u[P_FIELDS * 8]; } packet;
+    _Alignas(32) int valid[8];
+    for (int k = 0; k < n; k++) {
+        valid[k] = hit[k];
+        vec3 point = ray_at(rays[k], hit[k] ? t[k] : 0.0f);
+        vec3 to_light = vec3_sub(light, point);
+        double distance = vec3_length(to_light);
+        struct RTCRay one;
+        embree_ref_set_ray(&one, point, vec3_scale(to_light, 1.0 / distance), SHADOW_T_MIN, distance - SHADOW_T_MIN);
+        float values[] = {one.org_x, one.org_y, one.org_z, one.tnear, one.dir_x, one.dir_y, one.dir_z, 0.0f, one.tfar};
+        for (int f = P_ORG_X; f <= P_TFAR; f++)
+            packet.f[f * n + k] = values[f];
+        packet.u[P_MASK * n + k] = UINT32_MAX;
+        packet.u[P_ID * n + k] = 0;
+        packet.u[P_FLAGS * n + k] = 0;
+    }
+    if (n == 4)
+        rtcOccluded4(valid, scene, context, (struct RTCRay4 *)&packet);
+    else
+        rtcOccluded8(valid, scene, context, (struct RTCRay8 *)&packet);
+    for (int k = 0; k < n; k++)
+        codes[k] = !hit[k] ? 0 : packet.f[P_TFAR * n + k] == -INFINITY ? 2 : 1; /* occluded: tfar = -inf */
+}
+
+/* One frame with the camera rays in Embree's packets of n (4: four pixels of a row; 8: 4 x 2 pixels),
+ * their shadow rays in packets too when shadow_packets is true; as trace_frame otherwise. */
+static double trace_frame_in_packets(RTCScene scene, const struct camera *cam, vec3 light, int n, bool shadow_packets,
                                      unsigned char *pixels) {
     struct RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -117,12 +148,21 @@ static double trace_frame_in_packets(RTCScene scene, const struct camera *cam, v
                 rtcIntersect4(valid, scene, &context, (struct RTCRayHit4 *)&packet);
             else
                 rtcIntersect8(valid, scene, &context, (struct RTCRayHit8 *)&packet);
+            _Alignas(32) int hit[8];
+            float t[8];
+            unsigned char codes[8];
+            for (int k = 0; k < n; k++) {
+                hit[k] = valid[k] && packet.u[P_GEOM_ID * n + k] != RTC_INVALID_GEOMETRY_ID ? -1 : 0;
+                t[k] = packet.f[P_TFAR * n + k];
+            }
+            if (shadow_packets)
+                shadow_packet(scene, &context, rays, t, hit, light, n, codes);
             for (int k = 0; k < n; k++) {
                 if (!valid[k])
                     continue;
-                unsigned char code = 0;
-                if (packet.u[P_GEOM_ID * n + k] != RTC_INVALID_GEOMETRY_ID)
-                    code = shadow_code(scene, &context, rays[k], packet.f[P_TFAR * n + k], light);
+                unsigned char code = shadow_packets ? codes[k] : 0;
+                if (!shadow_packets && hit[k])
+                    code = shadow_code(scene, &context, rays[k], t[k], light);
                 pixels[(size_t)(y + k / 4) * cam->width + x + k % 4] = code;
             }
         }
@@ -153,10 +193,12 @@ static double trace_frame(RTCScene scene, const struct camera *cam, vec3 light, 
 }
 
 /* Builds the scene `repeats` times and traces the frame `repeats` times, its camera rays one by one
- * (packet 1) or in packets of 4 or 8; reports the fastest of each (the least disturbed by the rest of the
+ * (packet 1) or in packets of 4 or 8, and then their shadow rays in packets of the same pixels when
+ * shadow_packets is true (else one by one); reports the fastest of each (the least disturbed by the rest of the
  * machine). Returns false with a message in err on failure. */
-bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet, int repeats,
-                      double *build_ms, double *frame_ms, unsigned char *pixels, char *err, size_t err_size) {
+bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light, int packet,
+                      bool shadow_packets, int repeats, double *build_ms, double *frame_ms, unsigned char *pixels,
+                      char *err, size_t err_size) {
     RTCDevice device = rtcNewDevice("threads=1");
     if (device == NULL) {
         snprintf(err, err_size, "embree: rtcNewDevice failed (error %d)", (int)rtcGetDeviceError(NULL));
@@ -181,7 +223,7 @@ bool embree_ref_frame(const struct mesh *m, const struct camera *cam, vec3 light
             return false;
         }
         double traced = packet == 1 ? trace_frame(scene, cam, light, pixels)
-                                    : trace_frame_in_packets(scene, cam, light, packet, pixels);
+                                    : trace_frame_in_packets(scene, cam, light, packet, shadow_packets, pixels);
         *build_ms = built < *build_ms ? built : *build_ms;
         *frame_ms = traced < *frame_ms ? traced : *frame_ms;
         rtcReleaseScene(scene);
