@@ -86,8 +86,8 @@ static unsigned char shadow_code(RTCScene scene, struct RTCIntersectContext *con
 enum packet_field { P_ORG_X, P_ORG_Y, P_ORG_Z, P_TNEAR, P_DIR_X, P_DIR_Y, P_DIR_Z, P_TIME, P_TFAR, P_MASK, P_ID,
                     P_FLAGS, P_NG_X, P_NG_Y, P_NG_Z, P_U, P_V, P_PRIM_ID, P_GEOM_ID, P_INST_ID, P_FIELDS };
 
-/* The shadow rays of a packet of n camera rays (rays[k], lane k valid where valid[k] is -1) whose hits
- * are at t[k] (where hit[k] is -1), in one packet of Embree's: into codes[k], 0 for no hit, 1 lit, 2 in
+/* The shadow rays of a packet of n camera rays rays[k], from their hits at t[k] in the lanes where hit[k]
+ * is -1 (0: no hit, or no ray), in one packet of Embree's: into codes[k], 0 for no hit, 1 lit, 2 in
  * shadow. */
 static void shadow_packet(RTCScene scene, struct RTCIntersectContext *context, const ray rays[8], const float t[8],
                           const int hit[8], vec3 light, int n, unsigned char codes[8]) {
