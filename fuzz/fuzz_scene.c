@@ -3,14 +3,15 @@
  * Every input is a scene text. The parser must either refuse it with "fuzz.scene:LINE: what is wrong"
  * (or "fuzz.scene: what is wrong"), or accept it and give a scene that keeps the promises the
  * chapters rely on: a size within the limits, a depth of at least 1, finite numbers, positive radii,
- * boxes with min < max, and every material index naming a material; and Part III's lines within
- * their limits (check_part_three). Inputs holding a zero byte are
+ * boxes with min < max, and every material index naming a material; Part III's lines within
+ * their limits (check_part_three); and Part IV's (check_part_four). Inputs holding a zero byte are
  * skipped: scene_read_text refuses those before the parser sees them, so no file could reach it. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "box.h"
+#include "instance_syntax.h"
 #include "fuzz_support.h"
 #include "plane.h"
 #include "scene.h"
@@ -144,6 +145,59 @@ static void check_part_three(const struct scene *s) {
                    paths->roulette);
 }
 
+/* A pose the instance reader accepted: every scale factor's size within INSTANCE_SCALE_MIN ..
+ * INSTANCE_SCALE_MAX, every angle within INSTANCE_ANGLE_MAX degrees, the translation within
+ * KEY_MAX_COORD (instance_syntax.h). */
+static void check_pose(const struct scene_pose *pose, const char *what, size_t k) {
+    double scale[] = {pose->scale.x, pose->scale.y, pose->scale.z};
+    double rotate[] = {pose->rotate.x, pose->rotate.y, pose->rotate.z};
+    double translate[] = {pose->translate.x, pose->translate.y, pose->translate.z};
+    for (int a = 0; a < 3; a++)
+        if (!(fabs(scale[a]) >= INSTANCE_SCALE_MIN && fabs(scale[a]) <= INSTANCE_SCALE_MAX) ||
+            !(fabs(rotate[a]) <= INSTANCE_ANGLE_MAX) || !(fabs(translate[a]) <= KEY_MAX_COORD))
+            fuzz_abort("%s %zu has scale %g, rotate %g, translate %g on axis %d", what, k, scale[a], rotate[a],
+                       translate[a], a);
+}
+
+/* The promises of Part IV's lines (chapters 16 and 17): the shutter within 0 .. 1; at most
+ * SCENE_OBJECT_MAX objects, each with a file and a terminated name; at most SCENE_INSTANCE_MAX
+ * instances, each placing an object and naming a material, with at most SCENE_KEY_MAX keys in strictly
+ * increasing time within 0 .. 1, and every pose within its limits; every material's roughness within
+ * 0 .. 1, its metal and lobe one of their words. */
+static void check_part_four(const struct scene *s) {
+    if (!(s->shutter >= 0.0 && s->shutter <= 1.0))
+        fuzz_abort("accepted a shutter of %g", s->shutter);
+    if (s->object_count > SCENE_OBJECT_MAX || s->instance_count > SCENE_INSTANCE_MAX)
+        fuzz_abort("accepted %zu objects and %zu instances", s->object_count, s->instance_count);
+    for (size_t k = 0; k < s->object_count; k++)
+        if (s->objects[k].path == NULL || memchr(s->objects[k].name, '\0', sizeof s->objects[k].name) == NULL)
+            fuzz_abort("object %zu has no path or an unterminated name", k);
+    for (size_t k = 0; k < s->instance_count; k++) {
+        const struct scene_instance *in = &s->instances[k];
+        if (in->object < 0 || (size_t)in->object >= s->object_count)
+            fuzz_abort("instance %zu places object %d of %zu", k, in->object, s->object_count);
+        check_material(s, in->material, "instance", k);
+        if (memchr(in->id, '\0', sizeof in->id) == NULL)
+            fuzz_abort("instance %zu has an unterminated id", k);
+        check_pose(&in->pose, "instance", k);
+        if (in->key_count > SCENE_KEY_MAX || (in->keys == NULL) != (in->key_count == 0))
+            fuzz_abort("instance %zu has %zu keys", k, in->key_count);
+        for (size_t j = 0; j < in->key_count; j++) {
+            const struct scene_key *key = &in->keys[j];
+            if (!(key->time >= 0.0 && key->time <= 1.0) || (j > 0 && !(key->time > in->keys[j - 1].time)))
+                fuzz_abort("instance %zu's key %zu has time %g", k, j, key->time);
+            check_pose(&key->pose, "key", j);
+        }
+    }
+    for (size_t k = 0; k < s->material_count; k++) {
+        const struct material *m = &s->materials[k];
+        if (!(m->roughness >= 0.0 && m->roughness <= 1.0) || m->metal < 0 || m->metal >= SCENE_METAL_COUNT ||
+            (m->lobe != SCENE_LOBE_GGX && m->lobe != SCENE_LOBE_PHONG))
+            fuzz_abort("material %zu has roughness %g, metal %d, lobe %d", k, m->roughness, (int)m->metal,
+                       (int)m->lobe);
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (memchr(data, '\0', size) != NULL)
         return 0;
@@ -153,6 +207,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (scene_parse(NAME, text, NULL, &s, err, sizeof err)) {
         check_scene(&s);
         check_part_three(&s);
+        check_part_four(&s);
         scene_free(&s);
     } else if (!fuzz_message_names(err, NAME)) {
         fuzz_abort("refused with a message that does not start with '" NAME ":': '%s'", err);
