@@ -29,11 +29,14 @@ FUZZ_NOT_LINKED := image png_palette outfile povray render heatmap cli scene_set
 FUZZ_MODULES_scene := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_01))
 FUZZ_MODULES_ply := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_03))
 FUZZ_MODULES_obj := $(FUZZ_MODULES_ply)
-# The renderer harness takes chapter 10's modules and what chapters 12 to 15 add to the tracing (not
-# chapter 11's fast BVH, whose float boxes promise no exact agreement with brute force), with the
-# picture, its heat-map and its file, which chapter 12's sampling links to.
+# The renderer harness takes chapter 10's modules and what chapters 12 to 17 add to the tracing, with the
+# picture, its heat-map and its file, which chapter 12's sampling links to. Chapter 11's fast BVH comes
+# in as chapter 16's bottom level (its instances' objects); the worlds it checks against brute force
+# are chapter 10's structures.
 FUZZ_MODULES_render := $(filter-out $(FUZZ_NOT_LINKED),$(MODULES_10)) image png_palette outfile heatmap sample_hash supersample \
-                       soft_shadow thin_lens jpeg_decode image_map mesh_surface texture owen_sobol sampling emitter bsdf path_trace
+                       soft_shadow thin_lens jpeg_decode image_map mesh_surface texture owen_sobol sampling emitter bsdf path_trace \
+                       fast_bvh fast_bvh_eight fast_bvh_lean fast_bvh_build float_triangle transform keyframes \
+                       instance_bvh instances microfacet rough_surface
 FUZZ_MODULES_image := infile png_palette jpeg_decode image_map pigment_syntax
 FUZZ_EXTRA_ply := fuzz_mesh
 FUZZ_EXTRA_obj := fuzz_mesh

@@ -1,5 +1,6 @@
 /* render_check.c: a scene text through the whole renderer of chapter 10, then chapters 12 to 15's
- * sampling, lens, area lights, textures and paths, every structure against the brute-force loop (the
+ * sampling, lens, area lights, textures and paths, chapter 16's instances and chapter 17's rough
+ * surfaces, every structure against the brute-force loop or a plainer route to the same answer (the
  * renderer fuzzer's check; not part of any chapter).
  *
  * The fuzzer writes scene text, so what it can reach is whatever a scene file can ask for: any camera,
@@ -26,10 +27,12 @@
 #include "bvh.h"
 #include "camera.h"
 #include "emitter.h"
+#include "instances.h"
 #include "kdtree.h"
 #include "mesh_surface.h"
 #include "path_trace.h"
 #include "plane.h"
+#include "rough_surface.h"
 #include "soft_shadow.h"
 #include "sphere.h"
 #include "supersample.h"
@@ -636,24 +639,195 @@ static bool check_paths(struct checker *c, const char *name, const char *text, i
     } else {
         ok = broken(c, "chapter 15's scene cannot be loaded: %s", err);
     }
-    for (int j = 0; built && ok && j < cam.height; j++)
-        for (int i = 0; ok && i < cam.width; i++) {
-            vec3 colour[2];
-            for (int w = 0; w < 2; w++) {
-                struct path_world paths;
-                path_world_init(&paths, &worlds[w].world, &emitters, &cam, &s.paths);
-                colour[w] = path_pixel(&paths, i, j, NULL);
+    /* Chapter 15's surfaces, then, when a material is rough, chapter 17's rough mirrors and glass, in the
+     * chapter's form and in the form its --form cycles-3.4 draws for the comparison with Cycles. */
+    bool rough = false;
+    for (size_t m = 0; m < s.material_count; m++)
+        rough = rough || s.materials[m].roughness > 0.0;
+    const struct path_surface *surfaces[] = {NULL, &rough_surface_hook, &rough_surface_hook_cycles_3_4};
+    for (int form = 0; form < (rough ? 3 : 1); form++)
+        for (int j = 0; built && ok && j < cam.height; j++)
+            for (int i = 0; ok && i < cam.width; i++) {
+                vec3 colour[2];
+                for (int w = 0; w < 2; w++) {
+                    struct path_world paths;
+                    path_world_init(&paths, &worlds[w].world, &emitters, &cam, &s.paths);
+                    paths.surface = surfaces[form];
+                    colour[w] = path_pixel(&paths, i, j, NULL);
+                }
+                const char *chapter = form == 0 ? "" : form == 1 ? " (chapter 17)" : " (chapter 17, cycles-3.4)";
+                if (!vec3_is_finite(colour[0]))
+                    ok = broken(c, "path pixel (%d, %d)%s: radiance (%g %g %g)", i, j, chapter, colour[0].x,
+                                colour[0].y, colour[0].z);
+                else if (c->compare_colours && !same_colour(colour[0], colour[1]))
+                    ok = broken(c, "path pixel (%d, %d)%s: %s sees (%.17g %.17g %.17g), brute force "
+                                "(%.17g %.17g %.17g)", i, j, chapter, world_names[k], colour[1].x, colour[1].y,
+                                colour[1].z, colour[0].x, colour[0].y, colour[0].z);
             }
-            if (!vec3_is_finite(colour[0]))
-                ok = broken(c, "path pixel (%d, %d): radiance (%g %g %g)", i, j, colour[0].x, colour[0].y, colour[0].z);
-            else if (c->compare_colours && !same_colour(colour[0], colour[1]))
-                ok = broken(c, "path pixel (%d, %d): %s sees (%.17g %.17g %.17g), brute force (%.17g %.17g %.17g)", i, j,
-                            world_names[k], colour[1].x, colour[1].y, colour[1].z, colour[0].x, colour[0].y,
-                            colour[0].z);
-        }
     emitter_list_free(&emitters);
     accel_world_free(&worlds[0]);
     accel_world_free(&worlds[1]);
+    scene_free(&s);
+    return ok;
+}
+
+/* ---- chapter 16: instances on the two-level structure --------------------------------------------
+ *
+ * The instance lines are drawn by chapter 16 only, on its two-level structure: a top-level BVH over the
+ * instances' world boxes (a moving instance's box holding it over the shutter), each ray carried into
+ * an instance's object space and walked through its object's chapter-11 BVH (instances.h). The check
+ * places them as chapter 16 places them for a single picture (over its shutter [0, shutter]) and asks
+ * of rays at the shutter's start, middle and end what the same instances give with no top level, every
+ * instance tested by every ray (as chapter 16 tests the instances of objects with slivers): the same
+ * nearest hit and the same crossings. So a box of the top level that leaves out what its instance
+ * holds at some time of the shutter, or a walk that skips a box, shows as a difference. (The
+ * brute-force loop that carries each ray into each instance itself is tests/test_instances.c's, kept
+ * out of the students' hand-out because it is a second route to task 16.1's answer; this file is in the
+ * hand-out.) Then the top level is refitted to the last frame's interval, [1, 1 + shutter / 2] (chapter
+ * 16's frames run from clock 0 to 1, each exposed for the shutter; the poses hold after the last key),
+ * and asked again there. */
+
+/* The clock times each ray of the check is traced at, as shares of the interval the instances are placed
+ * over. */
+static const double instance_check_times[] = {0.0, 0.5, 1.0};
+
+/* Besides the camera rays, rays from the eye towards points of the first RENDER_CHECK_INSTANCE_TARGETS
+ * instances, so that the tiny objects are hit: the points at these shares of the diagonal of the
+ * object's box (its centre lies near the tiny triangle's long edge and on the square's diagonal:
+ * grazing hits), carried to where the instance has them at the ray's time. */
+#define RENDER_CHECK_INSTANCE_TARGETS 16
+#define INSTANCE_CHECK_POINTS 3
+static const double instance_check_points[INSTANCE_CHECK_POINTS] = {0.5, 0.3, 0.7};
+
+/* True when p lies within RENDER_CHECK_NEAR_SIZES sizes of box b (size: its largest extent), where the
+ * instances' exactness is promised as the structures' is (RENDER_CHECK_NEAR_SIZES says why). */
+static bool near_box(struct aabb b, vec3 p) {
+    vec3 extent = vec3_sub(b.max, b.min);
+    double near = RENDER_CHECK_NEAR_SIZES * fmax(extent.x, fmax(extent.y, extent.z));
+    vec3 outside = vec3_max(vec3_max(vec3_sub(b.min, p), vec3_sub(p, b.max)), vec3_make(0, 0, 0));
+    return vec3_is_finite(p) && outside.x <= near && outside.y <= near && outside.z <= near;
+}
+
+/* Compares the two-level structure `in` with `every` (the same instances, no top level) on ray r at
+ * clock time `time`: the nearest hit (t to the last bit, instance, face, material and normal, and a
+ * finite t and normal) and, cut at twice its t (or unbounded), the crossings, into expected and got. */
+static bool check_instance_ray(struct checker *c, const struct instances *in, const struct instances *every,
+                               const ray *r, int n, double time, struct crossings *expected, struct crossings *got) {
+    struct hit fast = hit_nothing(INFINITY), slow = hit_nothing(INFINITY);
+    bool a = in->hook.closest(in, r, RAY_T_MIN, time, &fast);
+    bool b = in->hook.closest(every, r, RAY_T_MIN, time, &slow);
+    if (a != b || (a && (fast.t != slow.t || fast.object != slow.object || fast.face != slow.face ||
+                         fast.material != slow.material || fast.normal.x != slow.normal.x ||
+                         fast.normal.y != slow.normal.y || fast.normal.z != slow.normal.z)))
+        return broken(c, "instances, ray %d at time %.17g: two levels %s t %.17g instance %d face %d, every instance "
+                      "tested %s t %.17g instance %d face %d", n, time, a ? "hit" : "missed", fast.t, fast.object,
+                      fast.face, b ? "hit" : "missed", slow.t, slow.object, slow.face);
+    if (a && !(isfinite(fast.t) && vec3_is_finite(fast.normal)))
+        return broken(c, "instances, ray %d: a hit at t %g with normal (%g %g %g)", n, fast.t, fast.normal.x,
+                      fast.normal.y, fast.normal.z);
+    double t_max = a ? 2.0 * fast.t : INFINITY;
+    struct crossings *lists[] = {expected, got};
+    const struct instances *structures[] = {every, in};
+    for (int k = 0; k < 2; k++) {
+        lists[k]->count = 0;
+        in->hook.for_each_crossing(structures[k], r, RAY_T_MIN, t_max, time, collect_crossing, lists[k]);
+        size_t kept = lists[k]->count < lists[k]->capacity ? lists[k]->count : lists[k]->capacity;
+        qsort(lists[k]->t, kept, sizeof *lists[k]->t, compare_doubles);
+    }
+    bool same = got->count == expected->count;
+    for (size_t j = 0; same && j < got->count && j < got->capacity; j++)
+        same = got->t[j] == expected->t[j];
+    return same || broken(c, "instances, ray %d at time %.17g: %zu crossings, every instance tested %zu", n, time,
+                          got->count, expected->count);
+}
+
+/* Checks the rays of the check (the camera rays of cam, then rays from the eye towards points of the
+ * first instances) at instance_check_times over in's interval [in->t0, in->t1]. */
+static bool check_instance_rays(struct checker *c, const struct instances *in, const struct camera *cam, vec3 eye,
+                                struct crossings *expected, struct crossings *got) {
+    /* The same instances with no top level: every one in the list a ray tests one by one (the queries
+     * read the top level and that list from the struct they are given). */
+    struct instances every = *in;
+    every.top = NULL;
+    every.outside = malloc((in->count + 1) * sizeof *every.outside);
+    if (every.outside == NULL)
+        return broken(c, "out of memory");
+    for (size_t k = 0; k < in->count; k++)
+        every.outside[k] = k;
+    every.outside_count = in->count;
+    size_t targets = in->count < RENDER_CHECK_INSTANCE_TARGETS ? in->count : RENDER_CHECK_INSTANCE_TARGETS;
+    int camera_rays = cam->width * cam->height, rays = camera_rays + (int)(targets * INSTANCE_CHECK_POINTS);
+    bool ok = true;
+    for (size_t k = 0; ok && k < sizeof instance_check_times / sizeof *instance_check_times; k++) {
+        double time = in->t0 + instance_check_times[k] * (in->t1 - in->t0);
+        for (int n = 0; ok && n < rays; n++) {
+            ray r;
+            if (n < camera_rays) {
+                r = camera_ray(cam, n % cam->width, n / cam->width);
+            } else { /* towards a point of the object's box, where the instance has it at `time` */
+                int m = n - camera_rays;
+                size_t target = (size_t)m / INSTANCE_CHECK_POINTS;
+                struct aabb b = in->object_boxes[in->items[target].object];
+                struct transform to_world, to_object;
+                if (!instances_transform_at(in, target, time, &to_world, &to_object))
+                    continue;
+                double share = instance_check_points[m % INSTANCE_CHECK_POINTS];
+                vec3 to = transform_point(&to_world, vec3_add(b.min, vec3_scale(vec3_sub(b.max, b.min), share)));
+                r = (ray){eye, vec3_normalize(vec3_sub(to, eye))};
+                if (!vec3_is_finite(r.direction))
+                    continue; /* the eye is that point, or the object is empty */
+            }
+            ok = check_instance_ray(c, in, &every, &r, n, time, expected, got);
+        }
+    }
+    free(every.outside);
+    return ok;
+}
+
+/* Chapter 16: parses the text again, points every object line at its tiny mesh, places the instances
+ * over [0, shutter] with instances_create (a refusal must name the scene) and checks the rays of
+ * check_instance_rays there; then refits the top level to [1, 1 + shutter / 2] and checks them there.
+ * Only when the eye lies near the instances' boxes. */
+static bool check_instances(struct checker *c, const char *name, const char *text, const struct camera *cam) {
+    static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
+    struct scene s;
+    char err[512];
+    if (!scene_parse(name, text, kinds, &s, err, sizeof err))
+        return broken(c, "the scene is refused the second time: %s", err);
+    const char *folder = tiny_mesh_folder();
+    bool ok = folder != NULL || broken(c, "cannot write the tiny meshes under /tmp");
+    char file[32];
+    for (size_t k = 0; ok && k < s.object_count; k++) {
+        snprintf(file, sizeof file, "tiny-%zu.obj", (size_t)(tiny_mesh_for(s.objects[k].path) - tiny_meshes));
+        ok = replace_path(&s.objects[k].path, folder, file, err, sizeof err) || broken(c, "%s", err);
+    }
+    struct instances *in = NULL;
+    if (ok) {
+        in = instances_create(&s, 0, 0.0, s.shutter, err, sizeof err);
+        size_t n = strlen(name);
+        if (in == NULL && (strncmp(err, name, n) != 0 || err[n] != ':'))
+            ok = broken(c, "the instances are refused with a message that does not start with '%s:': %s", name, err);
+    }
+    struct aabb all = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    size_t faces = 0;
+    for (size_t k = 0; in != NULL && k < in->count; k++) {
+        all = (struct aabb){vec3_min(all.min, in->boxes[k].min), vec3_max(all.max, in->boxes[k].max)};
+        faces += s.objects[in->items[k].object].mesh.face_count;
+    }
+    struct crossings expected = {malloc((faces + 1) * sizeof(double)), 0, faces + 1};
+    struct crossings got = {malloc((faces + 1) * sizeof(double)), 0, faces + 1};
+    if (ok && (expected.t == NULL || got.t == NULL))
+        ok = broken(c, "out of memory");
+    if (ok && in != NULL && in->count > 0 && near_box(all, s.eye)) {
+        ok = check_instance_rays(c, in, cam, s.eye, &expected, &got);
+        if (ok && !instances_set_interval(in, 1.0, 1.0 + 0.5 * s.shutter, INSTANCES_REFIT, err, sizeof err))
+            ok = broken(c, "the instances cannot be refitted: %s", err);
+        if (ok)
+            ok = check_instance_rays(c, in, cam, s.eye, &expected, &got);
+    }
+    free(expected.t);
+    free(got.t);
+    instances_free(in);
     scene_free(&s);
     return ok;
 }
@@ -713,7 +887,8 @@ enum render_check_result render_check_scene(const char *name, const char *text, 
         int small_w = cam.width < RENDER_CHECK_SAMPLED_SIDE ? cam.width : RENDER_CHECK_SAMPLED_SIDE;
         int small_h = cam.height < RENDER_CHECK_SAMPLED_SIDE ? cam.height : RENDER_CHECK_SAMPLED_SIDE;
         if (ok && camera_init(&small, s.eye, s.target, s.up, s.fov, small_w, small_h, err, sizeof err))
-            ok = check_sampled(&c, &s, &small, k) && check_paths(&c, name, text, k);
+            ok = check_sampled(&c, &s, &small, k) && check_paths(&c, name, text, k) &&
+                 (s.instance_count == 0 || check_instances(&c, name, text, &small));
     } else if (has_picture) {
         ok = false;
     }

@@ -1,6 +1,6 @@
-/* render_check.h: one scene text taken through the whole renderer of chapter 10 and the sampled and
- * path tracers of chapters 12 to 15, and checked, for the renderer fuzzer (fuzz/fuzz_render.c) and for
- * its regression tests (tests/test_fuzz_regressions.c).
+/* render_check.h: one scene text taken through the whole renderer of chapter 10, the sampled and path
+ * tracers of chapters 12 to 15, chapter 16's instances and chapter 17's rough surfaces, and checked, for
+ * the renderer fuzzer (fuzz/fuzz_render.c) and for its regression tests (tests/test_fuzz_regressions.c).
  *
  * Not part of any chapter: the chapters' programs never call it. */
 #ifndef WHITTED_RENDER_CHECK_H
@@ -33,7 +33,13 @@
  * the work cut (render_check.c lists the limits), chapters 12 to 14's sampled tracer (the antialias
  * line, the lens, soft shadows of area lights) and chapter 15's path tracer (area lights made emitting
  * rectangles) must see the same colours in the brute-force world and one structure's, chosen by a
- * hash of the text; and every path-traced pixel must be finite.
+ * hash of the text; and every path-traced pixel must be finite; when a material is rough, the same
+ * again with chapter 17's rough surfaces, in both their forms. When the scene has instance lines,
+ * chapter 16's two-level structure (every object line's file replaced by a tiny mesh, placed over the
+ * shutter, then refitted to the last frame) must give the nearest hit and the crossings that the same instances give with no top
+ * level, every one tested by every ray, on the small picture's camera rays and on rays towards the
+ * first instances, at the start, middle and end of each interval, when the eye lies near the instances;
+ * a refusal of the instances must name the scene.
  * Returns RENDER_CHECK_PASSED when all hold (a cleanly refused scene passes); RENDER_CHECK_FAILED with
  * the first broken check described in why (why_size bytes); or RENDER_CHECK_KNOWN_DEFECT, without
  * building or tracing anything, when the scene has what triggers a defect being fixed (render_check.c
