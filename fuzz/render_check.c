@@ -742,9 +742,15 @@ static bool check_instance_ray(struct checker *c, const struct instances *in, co
 }
 
 /* Checks the rays of the check (the camera rays of cam, then rays from the eye towards points of the
- * first instances) at instance_check_times over in's interval [in->t0, in->t1]. */
+ * first instances) at instance_check_times over in's interval [in->t0, in->t1], when the eye lies near
+ * the instances' boxes over that interval. */
 static bool check_instance_rays(struct checker *c, const struct instances *in, const struct camera *cam, vec3 eye,
                                 struct crossings *expected, struct crossings *got) {
+    struct aabb all = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    for (size_t k = 0; k < in->count; k++)
+        all = (struct aabb){vec3_min(all.min, in->boxes[k].min), vec3_max(all.max, in->boxes[k].max)};
+    if (in->count == 0 || !near_box(all, eye))
+        return true;
     /* The same instances with no top level: every one in the list a ray tests one by one (the queries
      * read the top level and that list from the struct they are given). */
     struct instances every = *in;
@@ -786,8 +792,7 @@ static bool check_instance_rays(struct checker *c, const struct instances *in, c
 
 /* Chapter 16: parses the text again, points every object line at its tiny mesh, places the instances
  * over [0, shutter] with instances_create (a refusal must name the scene) and checks the rays of
- * check_instance_rays there; then refits the top level to [1, 1 + shutter / 2] and checks them there.
- * Only when the eye lies near the instances' boxes. */
+ * check_instance_rays there; then refits the top level to [1, 1 + shutter / 2] and checks them there. */
 static bool check_instances(struct checker *c, const char *name, const char *text, const struct camera *cam) {
     static const struct shape_kind *const kinds[] = {&sphere_kind, &triangle_kind, &plane_kind, &box_kind, NULL};
     struct scene s;
@@ -808,17 +813,14 @@ static bool check_instances(struct checker *c, const char *name, const char *tex
         if (in == NULL && (strncmp(err, name, n) != 0 || err[n] != ':'))
             ok = broken(c, "the instances are refused with a message that does not start with '%s:': %s", name, err);
     }
-    struct aabb all = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
     size_t faces = 0;
-    for (size_t k = 0; in != NULL && k < in->count; k++) {
-        all = (struct aabb){vec3_min(all.min, in->boxes[k].min), vec3_max(all.max, in->boxes[k].max)};
+    for (size_t k = 0; in != NULL && k < in->count; k++)
         faces += s.objects[in->items[k].object].mesh.face_count;
-    }
     struct crossings expected = {malloc((faces + 1) * sizeof(double)), 0, faces + 1};
     struct crossings got = {malloc((faces + 1) * sizeof(double)), 0, faces + 1};
     if (ok && (expected.t == NULL || got.t == NULL))
         ok = broken(c, "out of memory");
-    if (ok && in != NULL && in->count > 0 && near_box(all, s.eye)) {
+    if (ok && in != NULL) {
         ok = check_instance_rays(c, in, cam, s.eye, &expected, &got);
         if (ok && !instances_set_interval(in, 1.0, 1.0 + 0.5 * s.shutter, INSTANCES_REFIT, err, sizeof err))
             ok = broken(c, "the instances cannot be refitted: %s", err);
