@@ -774,11 +774,11 @@ static bool check_instance_rays(struct checker *c, const struct instances *in, c
                 int m = n - camera_rays;
                 size_t target = (size_t)m / INSTANCE_CHECK_POINTS;
                 struct aabb b = in->object_boxes[in->items[target].object];
-                struct transform to_world, to_object;
-                if (!instances_transform_at(in, target, time, &to_world, &to_object))
+                struct transform placed, unplaced; /* object to world at `time`, and back (not needed) */
+                if (!instances_transform_at(in, target, time, &placed, &unplaced))
                     continue;
                 double share = instance_check_points[m % INSTANCE_CHECK_POINTS];
-                vec3 to = transform_point(&to_world, vec3_add(b.min, vec3_scale(vec3_sub(b.max, b.min), share)));
+                vec3 to = transform_point(&placed, vec3_add(b.min, vec3_scale(vec3_sub(b.max, b.min), share)));
                 r = (ray){eye, vec3_normalize(vec3_sub(to, eye))};
                 if (!vec3_is_finite(r.direction))
                     continue; /* the eye is that point, or the object is empty */
