@@ -723,6 +723,7 @@ Test(command_line, video_takes_names_that_ffmpeg_would_read_as_an_option_or_a_pr
         snprintf(command, sizeof command, "cd " TEST_OUT " && %s/%s %s/%s --quiet --frames 2 --video --width 16 "
                  "--height 10 -o %s.png", cwd, chapter_program(16), cwd, chapter_scene(16), names[k]);
         cr_assert_eq(run_capturing(command, output, sizeof output), 0, "%s\n%s", command, output);
+        cr_expect_str_eq(output, "", "--quiet printed more than errors:\n%s", output);
         size_t size = 0;
         free(read_file(film, &size));
         cr_expect_gt(size, 500, "%s has %zu bytes", film, size);

@@ -211,9 +211,9 @@ static bool on_path(const char *program) {
  * a name starting with '-' is not an option, and "x:y.png" is not the protocol x. ffmpeg is told how many
  * frames to take (it reads a numbered pattern until a number is missing, and took in the frames a longer
  * run had left after these), and writes the film into outfile's temporary file, renamed over the film
- * only when ffmpeg succeeded: a failed film is never left half-written. Returns false with the reason in
- * err. */
-static bool make_video(const char *output, long frames, char *err, size_t err_size) {
+ * only when ffmpeg succeeded: a failed film is never left half-written. Says the film's name on standard
+ * output unless quiet. Returns false with the reason in err. */
+static bool make_video(const char *output, long frames, bool quiet, char *err, size_t err_size) {
     char pattern[2 * PATH_MAX], film[PATH_MAX], film_file[PATH_MAX + 8], frame_count[32];
     size_t stem = strlen(output) - 4; /* the output ends in .png (animation_options_valid) */
     /* ffmpeg reads the frames' names as a pattern, in which a % of the output's own name is written %% */
@@ -228,7 +228,7 @@ static bool make_video(const char *output, long frames, char *err, size_t err_si
         snprintf(film, sizeof film, "%.*s.mp4", (int)stem, output) >= (int)sizeof film)
         return (snprintf(err, err_size, "%s: the film's name is too long", output), false);
 #ifdef __EMSCRIPTEN__ /* the browser's build runs no other program */
-    (void)frames, (void)film_file, (void)frame_count;
+    (void)frames, (void)quiet, (void)film_file, (void)frame_count;
     return (snprintf(err, err_size, "--video: the browser cannot run ffmpeg"), false);
 #else
     struct outfile f;
@@ -259,7 +259,8 @@ static bool make_video(const char *output, long frames, char *err, size_t err_si
     }
     if (!outfile_commit(&f, why, sizeof why)) /* outfile's handle holds nothing: this closes and renames */
         return (snprintf(err, err_size, "--video: %s", why), false);
-    printf("chapter 16 (instances): wrote %s\n", film);
+    if (!quiet)
+        printf("chapter 16 (instances): wrote %s\n", film);
     return true;
 #endif
 }
@@ -319,7 +320,7 @@ static int render_frames(struct cli_run *run, struct accel_world *w, struct inst
         if (cli_render_sampled(run, trace_soft, &w->world, &shutter_sampler) && run->options.stats && in != NULL)
             instances_report(in, stdout, true);
     }
-    if (run->status == CLI_OK && animation.video && !make_video(output, animation.frames, run->err, sizeof run->err)) {
+    if (run->status == CLI_OK && animation.video && !make_video(output, animation.frames, run->options.quiet, run->err, sizeof run->err)) {
         fprintf(stderr, "%s\n", run->err);
         return CLI_OUTPUT_FAILED;
     }
