@@ -33,7 +33,9 @@
  * test cannot rule the double test's hit out.
  *
  * As fast_bvh_eight.c, only the functions that need AVX2 are compiled for it (the AVX2 attribute); the
- * build makes rung 9's tree only when fast_bvh_eight_available() says the processor has AVX2. */
+ * build makes rung 9's tree only when fast_bvh_eight_available() says the processor has AVX2. The loops
+ * over the three axes ask to be unrolled (#pragma GCC unroll 3), as fast_bvh_packet.c's do, for the same
+ * reason: GCC's -O2 leaves them rolled; lean_ray_triangles runs at every leaf rung 10 reaches. */
 #include "fast_bvh_lean.h"
 
 #include <math.h>
@@ -351,6 +353,7 @@ static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const struct 
     double4 axis_slack = (double4)((long4)(FAST_BVH_FLOAT_SLACK_FACTOR * shift * size) & ~flat);
     double slack = 0.0;
     unsigned negative = (unsigned)_mm_movemask_ps(inverse_f); /* bit a: 1 / direction < 0 on axis a */
+    #pragma GCC unroll 3
     for (int a = 0; a < 3; a++) {
         slack = axis_slack[a] > slack ? axis_slack[a] : slack;
         l->origin[a] = broadcast8(rounded[a]);
@@ -367,6 +370,7 @@ static inline AVX2 bool lean_float_setup(const struct fast_bvh *b, const struct 
 static inline AVX2 __attribute__((always_inline)) void lean_ray_triangles(const struct triangle_ray *ready,
                                                                           struct lean_ray *l) {
     const int axis[3] = {ready->kx, ready->ky, ready->kz};
+    #pragma GCC unroll 3
     for (int a = 0; a < 3; a++) {
         l->o[a] = broadcast4(vec3_axis(ready->ray.origin, axis[a]));
         l->axis[a] = fast_bvh_lean_index(0, 0, axis[a]);
