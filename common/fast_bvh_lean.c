@@ -42,19 +42,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "big_alloc.h"
 #include "fast_bvh_eight.h"
 #include "float4.h"
 #include "float_triangle.h"
 #include "stats.h"
 #include "triangle.h"
 
-/* The blocks' alignment: one AVX2 load of four doubles. */
-#define FAST_BVH_LEAN_ALIGN 32
-
 bool fast_bvh_lean_prepare(struct fast_bvh *b) {
     size_t blocks = (b->tree_count + FAST_BVH_LEAN_LANES - 1) / FAST_BVH_LEAN_LANES;
     size_t bytes = (blocks > 0 ? blocks : 1) * FAST_BVH_LEAN_BLOCK * sizeof(double); /* a multiple of 32 */
-    double *corners = aligned_alloc(FAST_BVH_LEAN_ALIGN, bytes);
+    /* Aligned to 64 bytes (an AVX2 load of four doubles wants 32), and on 2 MB pages like the tree's
+     * other big arrays (big_alloc.h). */
+    double *corners = big_alloc(bytes, true);
     if (corners == NULL)
         return false;
     /* The lanes past the last triangle, all in the last block (zeroing the whole array first would
