@@ -325,6 +325,42 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
     return true;
 }
 
+/* Line `number` of text (1 for the first), without its newline: its start in *start and its length in
+ * *length. Returns false when text has fewer lines. */
+static bool line_of_text(const char *text, long number, const char **start, size_t *length) {
+    for (long at = 1; at < number; at++) {
+        text = strchr(text, '\n');
+        if (text == NULL)
+            return false;
+        text++;
+    }
+    if (*text == '\0')
+        return false;
+    *start = text;
+    *length = strcspn(text, "\n");
+    return true;
+}
+
+/* Whether err, a parse error of the scene at `path` ("path:LINE: what is wrong"), points at a line that
+ * the changes made: a line whose text differs between before and after, or one added after the
+ * scene's last. An error that names no line of this file is at none. */
+static bool error_at_changed_line(const char *err, const char *path, const char *before, const char *after) {
+    size_t n = strlen(path);
+    if (strncmp(err, path, n) != 0 || err[n] != ':' || !isdigit((unsigned char)err[n + 1]))
+        return false;
+    char *end;
+    long line = strtol(err + n + 1, &end, 10);
+    if (*end != ':')
+        return false;
+    const char *old_line, *new_line;
+    size_t old_length, new_length;
+    if (!line_of_text(after, line, &new_line, &new_length))
+        return false;
+    if (!line_of_text(before, line, &old_line, &old_length))
+        return true; /* a line the changes added */
+    return old_length != new_length || memcmp(old_line, new_line, old_length) != 0;
+}
+
 bool scene_load_changed(const char *path, const char *const *specs, int count, const struct shape_kind *const *kinds,
                         struct scene *s, bool *bad_spec, char *err, size_t err_size) {
     memset(s, 0, sizeof *s);
@@ -332,16 +368,25 @@ bool scene_load_changed(const char *path, const char *const *specs, int count, c
     char *text = scene_read_text(path, err, err_size);
     if (text == NULL)
         return false;
+    char *original = count > 0 ? strdup(text) : NULL;
+    if (count > 0 && original == NULL) {
+        free(text);
+        snprintf(err, err_size, "%s: out of memory", path);
+        return false;
+    }
     for (int k = 0; k < count; k++)
         if (!scene_set_apply(&text, specs[k], err, err_size)) {
             free(text);
+            free(original);
             *bad_spec = true;
             return false;
         }
     bool ok = scene_parse(path, text, kinds, s, err, err_size);
-    free(text);
     size_t used = strlen(err);
-    if (!ok && count > 0 && used + 1 < err_size) /* the line in the file may not show the bad value */
+    /* The file's own line may not show the bad value: say so where the error is at a changed line. */
+    if (!ok && count > 0 && used + 1 < err_size && error_at_changed_line(err, path, original, text))
         snprintf(err + used, err_size - used, " (the line as changed by --set)");
+    free(text);
+    free(original);
     return ok;
 }

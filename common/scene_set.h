@@ -21,7 +21,8 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size);
 /* Loads the scene at `path` as scene_load does (with the kinds of shape `kinds`, ending with NULL), with
  * the `count` changes specs[] applied to its text first. Returns true on success (free *s with
  * scene_free). On failure returns false with the message in err, and sets *bad_spec when a change
- * itself was wrong (a command-line error), not the scene. */
+ * itself was wrong (a command-line error), not the scene. A parse error at a line the changes made
+ * (rewritten or added) ends "(the line as changed by --set)"; one at a line they left alone does not. */
 struct scene;
 struct shape_kind;
 bool scene_load_changed(const char *path, const char *const *specs, int count, const struct shape_kind *const *kinds,

@@ -226,6 +226,33 @@ Test(scene_set, a_bad_value_is_the_parsers_error_at_the_scene_line) {
     cr_assert_not_null(strstr(err, "'wide' (the line as changed by --set)"), "%s", err);
 }
 
+/* The note is for an error at a line the changes made (rewritten, or added after the last), whose text
+ * in the file may not show the bad value; an error at a line they left alone carries none. */
+Test(scene_set, only_an_error_at_a_line_the_changes_made_carries_the_note) {
+    cr_assert_eq(system("mkdir -p out/test"), 0);
+    const char *path = "out/test/set-note.scene";
+    FILE *f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(base, f);
+    fputs("sphere centre 0 2 0 radius -1 material clay\n", f); /* line 7: wrong in the file itself */
+    cr_assert_eq(fclose(f), 0);
+    struct scene s;
+    bool bad_spec;
+    char err[512];
+    const char *elsewhere[] = {"camera.fov=30"};
+    cr_assert(!scene_load_changed(path, elsewhere, 1, NULL, &s, &bad_spec, err, sizeof err));
+    cr_expect(!bad_spec);
+    cr_expect_str_eq(err, "out/test/set-note.scene:7: sphere radius must be positive, got -1");
+    const char *there[] = {"camera.fov=30", "sphere.3.radius=-2"};
+    cr_assert(!scene_load_changed(path, there, 2, NULL, &s, &bad_spec, err, sizeof err));
+    cr_expect_str_eq(err, "out/test/set-note.scene:7: sphere radius must be positive, got -2 "
+                          "(the line as changed by --set)");
+    const char *added[] = {"max_depth=0"};
+    cr_assert(!scene_load_changed("scenes/02-sphere.scene", added, 1, NULL, &s, &bad_spec, err, sizeof err));
+    cr_expect_str_eq(err, "scenes/02-sphere.scene:17: 'max_depth' must be between 1 and 64, got 0 "
+                          "(the line as changed by --set)");
+}
+
 Test(scene_set, the_chapter_programs_take_set_and_say_what_is_wrong) {
     const char *build = getenv("WHITTED_BUILD");
     char command[512];
