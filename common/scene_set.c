@@ -55,7 +55,7 @@ static int split_words(char *text, char **words, int max) {
     return count;
 }
 
-/* The bounds of line number `index` (0-based) of text: *start and the length. */
+/* Where a line lies in a text: the offset of its first byte, and its length without the newline. */
 struct line_span {
     size_t start, length;
 };
@@ -325,19 +325,19 @@ bool scene_set_apply(char **text, const char *spec, char *err, size_t err_size) 
     return true;
 }
 
-/* Line `number` of text (1 for the first), without its newline: its start in *start and its length in
- * *length. Returns false when text has fewer lines. */
-static bool line_of_text(const char *text, long number, const char **start, size_t *length) {
+/* Line `number` of text (1 for the first), without its newline, in *found. Returns false when text has
+ * fewer lines. */
+static bool line_of_text(const char *text, long number, struct line_span *found) {
+    const char *line = text;
     for (long at = 1; at < number; at++) {
-        text = strchr(text, '\n');
-        if (text == NULL)
+        line = strchr(line, '\n');
+        if (line == NULL)
             return false;
-        text++;
+        line++;
     }
-    if (*text == '\0')
+    if (*line == '\0')
         return false;
-    *start = text;
-    *length = strcspn(text, "\n");
+    *found = (struct line_span){(size_t)(line - text), strcspn(line, "\n")};
     return true;
 }
 
@@ -352,13 +352,13 @@ static bool error_at_changed_line(const char *err, const char *path, const char 
     long line = strtol(err + n + 1, &end, 10);
     if (*end != ':')
         return false;
-    const char *old_line, *new_line;
-    size_t old_length, new_length;
-    if (!line_of_text(after, line, &new_line, &new_length))
+    struct line_span old_line, new_line;
+    if (!line_of_text(after, line, &new_line))
         return false;
-    if (!line_of_text(before, line, &old_line, &old_length))
+    if (!line_of_text(before, line, &old_line))
         return true; /* a line the changes added */
-    return old_length != new_length || memcmp(old_line, new_line, old_length) != 0;
+    return old_line.length != new_line.length ||
+           memcmp(before + old_line.start, after + new_line.start, old_line.length) != 0;
 }
 
 bool scene_load_changed(const char *path, const char *const *specs, int count, const struct shape_kind *const *kinds,
